@@ -1,0 +1,60 @@
+#ifndef igabde_base_utilities_h
+#define igabde_base_utilities_h
+
+#include <deal.II/base/exceptions.h>
+#include <deal.II/base/point.h>
+#include <deal.II/base/tensor.h>
+
+#include <string>
+#include <vector>
+
+namespace igabde
+{
+  namespace base
+  {
+    using namespace dealii;
+
+    /**
+     * @brief A user-facing input error: one line naming the file, the
+     * parameter and what is accepted.
+     */
+    DeclException1(ExcInput, std::string, << arg1);
+
+    /// Trims white space at both ends.
+    std::string
+    trim(const std::string &s);
+
+    /// Splits at @p separator and trims; empty pieces are dropped.
+    std::vector<std::string>
+    split(const std::string &s, const char separator);
+
+    /**
+     * @brief Reads a comma- or space-separated list of numbers; @p where
+     * names the parameter in the error message.
+     */
+    std::vector<double>
+    parse_doubles(const std::string &text, const std::string &where);
+
+    /**
+     * @brief Reads a tensor of dimension @p dim; extra trailing components
+     * (a 3D default read in 2D) are ignored when they are zero.
+     */
+    template <int dim>
+    Tensor<1, dim>
+    parse_tensor(const std::string &text, const std::string &where);
+
+    /// As parse_tensor(), as a point.
+    template <int dim>
+    Point<dim>
+    parse_point(const std::string &text, const std::string &where);
+
+    /**
+     * @brief The message of a deal.II exception without the banner (file,
+     * line, function), on one line.
+     */
+    std::string
+    exception_message(const ExceptionBase &e);
+  } // namespace base
+} // namespace igabde
+
+#endif

@@ -1,0 +1,273 @@
+#ifndef igabde_discretization_body_h
+#define igabde_discretization_body_h
+
+#include <igabde/discretization/body_description.h>
+
+#include <deal.II/base/point.h>
+#include <deal.II/base/symmetric_tensor.h>
+#include <deal.II/base/tensor.h>
+
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/sparse_direct.h>
+#include <deal.II/lac/sparse_matrix.h>
+#include <deal.II/lac/sparsity_pattern.h>
+#include <deal.II/lac/vector.h>
+
+#include <array>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace igabde
+{
+  namespace discretization
+  {
+    using namespace dealii;
+
+    /**
+     * @brief The linear map from a body's unknowns to the displacement at one
+     * point, and its transpose, which distributes a point force to the
+     * unknowns (P_A = R_A(xi) P).
+     *
+     * u_c(X) = sum_k weights[k] u[dofs[k][c]].
+     */
+    template <int dim>
+    struct PointOperator
+    {
+      /// Basis function values at the point (NURBS R_A or Lagrange N_i).
+      std::vector<double> weights;
+      /// Vector-valued unknowns of each basis function, per component.
+      std::vector<std::array<types::global_dof_index, dim>> dofs;
+
+      /// Displacement at the point for the unknowns @p u.
+      Tensor<1, dim>
+      displacement(const Vector<double> &u) const;
+
+      /// Adds the point force @p force to the load vector @p f.
+      void
+      distribute(const Tensor<1, dim> &force, Vector<double> &f) const;
+    };
+
+    /**
+     * @brief Where contact pair points sit on a NURBS surface.
+     */
+    enum class PairPlacement
+    {
+      greville,
+      knots,
+      gauss
+    };
+
+    /**
+     * @brief A candidate contact point on a body's surface.
+     */
+    template <int dim>
+    struct SurfacePoint
+    {
+      /// Physical location (m).
+      Point<dim> location;
+      /// Volume parametric coordinates (NURBS) or reference location
+      /// (Lagrange: the node's position on the parametric mesh).
+      Point<dim> parametric;
+      /// Outward unit normal of this body at the point.
+      Tensor<1, dim> normal;
+      /// Share of a uniform pressure carried by the point (m^2, m in 2D).
+      double tributary_area = 0.;
+      /// Displacement / point-force operator.
+      PointOperator<dim> op;
+    };
+
+    /**
+     * @brief Error norms against an exact solution, relative to the exact
+     * solution's norms.
+     */
+    struct ErrorNorms
+    {
+      /// ||u - u_h||_L2 / ||u||_L2.
+      double l2_relative = 0.;
+      /// Energy-norm error / energy norm of the exact solution.
+      double energy_relative = 0.;
+      /// Exact measure (area/volume) of the body by the discrete quadrature.
+      double measure = 0.;
+    };
+
+    /**
+     * @brief A deformable body, discretised by NURBS or by Lagrange elements.
+     *
+     * This is the small interface the contact layer and the simulator see:
+     * give the displacement at points, apply point forces, solve for many
+     * right-hand sides. The linear algebra common to both discretisations
+     * (constraints, factorisation, superposition of load cases, rigid modes
+     * left free by the supports) lives here; a derived class builds the space
+     * and assembles.
+     */
+    template <int dim>
+    class Body
+    {
+    public:
+      /**
+       * @brief Keeps the description and the discretisation settings.
+       */
+      Body(const BodyDescription<dim>   &description,
+           const DiscretizationSettings &settings);
+
+      virtual ~Body() = default;
+
+      /**
+       * @brief Builds the space, assembles K and the load vector, applies
+       * supports, detects free rigid modes and factorises.
+       */
+      void
+      setup();
+
+      /// "nurbs" or "lagrange".
+      virtual std::string
+      discretization_name() const = 0;
+
+      /// Number of displacement unknowns.
+      types::global_dof_index
+      n_dofs() const;
+
+      /// Number of elements (knot spans or cells).
+      virtual unsigned int
+      n_elements() const = 0;
+
+      /// The body's description.
+      const BodyDescription<dim> &
+      description() const;
+
+      /**
+       * @brief Operator for a physical point inside or on the body.
+       */
+      virtual PointOperator<dim>
+      point_operator(const Point<dim> &location) const = 0;
+
+      /**
+       * @brief Candidate contact points on the patch face @p face.
+       */
+      virtual std::vector<SurfacePoint<dim>>
+      surface_points(const types::boundary_id face,
+                     const PairPlacement      placement) const = 0;
+
+      /**
+       * @brief Solves K u = f for every column, with homogeneous supports
+       * (and the pins that remove free rigid modes); one factorisation serves
+       * all. On return each vector holds its solution.
+       */
+      void
+      solve(std::vector<Vector<double>> &rhs_and_solutions) const;
+
+      /// Displacement under the external loads at load factor 1.
+      const Vector<double> &
+      load_solution() const;
+
+      /// Displacement under the prescribed displacements at factor 1.
+      const Vector<double> &
+      prescribed_solution() const;
+
+      /// External load vector at load factor 1 (homogeneous supports).
+      const Vector<double> &
+      load_vector() const;
+
+      /**
+       * @brief Rigid modes (as unknown vectors) that the supports leave free;
+       * empty when the body is fixed. Such a body is held only by contact.
+       */
+      const std::vector<Vector<double>> &
+      free_rigid_modes() const;
+
+      /// Human-readable names of the free rigid modes ("translation y", ...).
+      const std::vector<std::string> &
+      free_rigid_mode_names() const;
+
+      /**
+       * @brief Relative L2 and energy errors against @p exact.
+       */
+      virtual ErrorNorms
+      compute_errors(const Vector<double>     &u,
+                     const ExactSolution<dim> &exact) const = 0;
+
+      /**
+       * @brief Stress at a physical point.
+       */
+      virtual SymmetricTensor<2, dim>
+      stress(const Vector<double> &u, const Point<dim> &location) const = 0;
+
+      /**
+       * @brief Writes displacement, strain, stress and von Mises on the exact
+       * geometry to @p filename (VTU).
+       */
+      virtual void
+      write_vtu(const Vector<double> &u, const std::string &filename) const = 0;
+
+      /// Body area (2D) or volume (3D) by the body's quadrature.
+      virtual double
+      measure() const = 0;
+
+    protected:
+      /**
+       * @brief Builds the discrete space: fills n_unknowns,
+       * dof_locations, sparsity and the support constraints (homogeneous,
+       * and the prescribed values at factor 1 in prescribed_constraints).
+       */
+      virtual void
+      setup_space() = 0;
+
+      /**
+       * @brief Assembles the unconstrained stiffness into system_matrix and
+       * the external loads (tractions, body force, point loads) at load
+       * factor 1 into load_rhs, using all cores.
+       */
+      virtual void
+      assemble() = 0;
+
+      /// Scene description.
+      const BodyDescription<dim> body_description;
+      /// Discretisation settings.
+      const DiscretizationSettings settings;
+
+      /// Number of unknowns.
+      types::global_dof_index n_unknowns = 0;
+      /// Location of each scalar unknown's control point / node (for rigid
+      /// modes): dof_locations[i] belongs to unknown i.
+      std::vector<Point<dim>> dof_locations;
+      /// Component of each unknown.
+      std::vector<unsigned int> dof_components;
+      /// Supports, homogeneous.
+      AffineConstraints<double> constraints;
+      /// Supports with the prescribed values at displacement factor 1.
+      AffineConstraints<double> prescribed_constraints;
+      /// Sparsity of the stiffness.
+      SparsityPattern sparsity;
+      /// Unconstrained stiffness (assembled by the derived class).
+      SparseMatrix<double> system_matrix;
+      /// External loads at factor 1 (assembled by the derived class).
+      Vector<double> load_rhs;
+
+    private:
+      void
+      find_free_rigid_modes();
+
+      void
+      factorize();
+
+      SparseMatrix<double>        constrained_matrix;
+      AffineConstraints<double>   solve_constraints;
+      SparseDirectUMFPACK         direct_solver;
+      Vector<double>              u_load;
+      Vector<double>              u_prescribed;
+      std::vector<Vector<double>> rigid_modes;
+      std::vector<std::string>    rigid_mode_names;
+    };
+
+    /**
+     * @brief Creates the body the settings ask for (NURBS or Lagrange).
+     */
+    template <int dim>
+    std::unique_ptr<Body<dim>>
+    create_body(const BodyDescription<dim>   &description,
+                const DiscretizationSettings &settings);
+  } // namespace discretization
+} // namespace igabde
+
+#endif

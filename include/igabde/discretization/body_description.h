@@ -1,0 +1,125 @@
+#ifndef igabde_discretization_body_description_h
+#define igabde_discretization_body_description_h
+
+#include <igabde/nurbs/nurbs_patch.h>
+
+#include <igabde/elasticity/material.h>
+
+#include <deal.II/base/point.h>
+#include <deal.II/base/symmetric_tensor.h>
+#include <deal.II/base/tensor.h>
+#include <deal.II/base/types.h>
+
+#include <array>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace igabde
+{
+  namespace discretization
+  {
+    using namespace dealii;
+
+    /**
+     * @brief Prescribed displacement on a patch face: the selected components
+     * take the value @p value times the step's displacement factor.
+     */
+    template <int dim>
+    struct DirichletCondition
+    {
+      /// Patch face (deal.II colorized boundary id 0..2dim-1).
+      types::boundary_id boundary_id = 0;
+      /// Which displacement components are prescribed.
+      std::array<bool, dim> components{};
+      /// Prescribed value per component (m), constant on the face.
+      Tensor<1, dim> value;
+    };
+
+    /// Traction t(x, n) in Pa, given the point and the outward unit normal.
+    template <int dim>
+    using TractionFunction =
+      std::function<Tensor<1, dim>(const Point<dim> &, const Tensor<1, dim> &)>;
+
+    /**
+     * @brief Traction on a patch face, scaled by the step's load factor.
+     */
+    template <int dim>
+    struct NeumannCondition
+    {
+      /// Patch face (deal.II colorized boundary id 0..2dim-1).
+      types::boundary_id boundary_id = 0;
+      /// Traction as a function of the physical point and outward normal.
+      TractionFunction<dim> traction;
+    };
+
+    /**
+     * @brief A point force at a physical point, scaled by the load factor.
+     */
+    template <int dim>
+    struct PointLoad
+    {
+      /// Where the force acts (m); must lie in the body.
+      Point<dim> location;
+      /// Force (N, or N/m in 2D).
+      Tensor<1, dim> force;
+    };
+
+    /**
+     * @brief Exact solution of a verification scene, for error norms.
+     */
+    template <int dim>
+    struct ExactSolution
+    {
+      /// Displacement (m) at a physical point.
+      std::function<Tensor<1, dim>(const Point<dim> &)> displacement;
+      /// Cauchy stress (Pa) at a physical point.
+      std::function<SymmetricTensor<2, dim>(const Point<dim> &)> stress;
+    };
+
+    /**
+     * @brief Everything the scene says about one deformable body,
+     * independent of how it is discretised.
+     */
+    template <int dim>
+    struct BodyDescription
+    {
+      /// Name used in output files and messages.
+      std::string name = "body";
+      /// Exact geometry as a NURBS patch (coarsest description).
+      nurbs::NurbsPatch<dim> geometry;
+      /// Material law.
+      elasticity::IsotropicMaterial<dim> material;
+      /// Supports.
+      std::vector<DirichletCondition<dim>> dirichlet;
+      /// Tractions.
+      std::vector<NeumannCondition<dim>> tractions;
+      /// Point loads.
+      std::vector<PointLoad<dim>> point_loads;
+      /// Body force per unit volume (N/m^3).
+      Tensor<1, dim> body_force;
+    };
+
+    /**
+     * @brief How the scene discretises bodies.
+     */
+    struct DiscretizationSettings
+    {
+      /// "nurbs" or "lagrange".
+      std::string type = "nurbs";
+      /// Polynomial degree (NURBS: degree after elevation; Lagrange: FE_Q).
+      unsigned int degree = 2;
+      /// Extra uniform h-refinements of the scene's base mesh.
+      unsigned int refinements = 0;
+      /// Linear solver: "direct" or "cg-amg".
+      std::string linear_solver = "direct";
+      /// Relative tolerance of the iterative solver.
+      double linear_tolerance = 1e-12;
+      /// Subdivisions per cell and direction in the VTU output.
+      unsigned int output_subdivisions = 4;
+    };
+  } // namespace discretization
+} // namespace igabde
+
+#endif

@@ -1,0 +1,219 @@
+#ifndef igabde_discretization_iga_body_h
+#define igabde_discretization_iga_body_h
+
+#include <igabde/discretization/body.h>
+
+#include <igabde/nurbs/nurbs_patch.h>
+
+#include <deal.II/base/polynomial.h>
+
+#include <deal.II/grid/tria.h>
+
+#include <deal.II/lac/full_matrix.h>
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace igabde
+{
+  namespace discretization
+  {
+    using namespace dealii;
+
+    /**
+     * @brief The isogeometric (NURBS) discretisation of a body, hosted in
+     * deal.II.
+     *
+     * The description's patch is elevated to settings.degree in every
+     * direction whose degree is lower, then h-refined settings.refinements
+     * times (one midpoint knot per span and direction each time); the
+     * geometry is unchanged by both. The parametric box is a deal.II
+     * Triangulation with one cell per non-empty knot span (boundary id =
+     * patch face). On a cell the B-splines are the Bernstein polynomials
+     * times the 1D Bézier extraction operators, tensorised, and the NURBS
+     * functions R = w N / W; the geometry map x = sum R_A P_A and its
+     * Jacobian are evaluated by hand (no Mapping). Unknowns are control-point
+     * displacements: dof = dim A + c for the lexicographic control point A.
+     *
+     * Quadrature: QGauss(p+1) per direction in the cells (p the largest
+     * degree), QGauss(p+2) on faces for the traction loads and the
+     * tributary areas (the traction times the rational surface measure is
+     * not polynomial; one more point is cheap there), QGauss(p+3) for the
+     * error norms, and a high-order rule QGauss(max(p+1, 12)) for measure(),
+     * which must be exact to round-off on curved (rational) geometries.
+     */
+    template <int dim>
+    class IgaBody : public Body<dim>
+    {
+    public:
+      /**
+       * @brief Copies the description, elevates and refines the geometry and
+       * builds the parametric mesh; setup() builds the space and assembles.
+       */
+      IgaBody(const BodyDescription<dim>   &description,
+              const DiscretizationSettings &settings);
+
+      /// @brief "nurbs".
+      std::string
+      discretization_name() const override;
+
+      /// @brief Number of non-empty knot spans.
+      unsigned int
+      n_elements() const override;
+
+      /**
+       * @brief R_A at the parametric preimage of @p location (Newton
+       * inversion of the map); throws if the point is farther than 1e-8
+       * times the body's size from the body.
+       */
+      PointOperator<dim>
+      point_operator(const Point<dim> &location) const override;
+
+      /**
+       * @brief Points on the patch face @p face: images of the Greville
+       * abscissae of the face's directions (as many as the face's control
+       * points), of the knot grid, or the face's Gauss points (QGauss(p+1)
+       * per span and direction).
+       *
+       * Tributary areas A_i solve sum_i R_A(xi_i) A_i = int_face R_A dGamma
+       * for the face's control points A: exactly (square system) for
+       * Greville points; in the least-squares sense for knot points (more
+       * control points than knot points when p >= 2, so a uniform pressure
+       * is reproduced only approximately); for Gauss points the quadrature
+       * weights times the surface measure are used, which solve the
+       * (underdetermined) system up to quadrature error.
+       */
+      std::vector<SurfacePoint<dim>>
+      surface_points(const types::boundary_id face,
+                     const PairPlacement      placement) const override;
+
+      /**
+       * @brief Relative L2 error of the displacement and relative energy
+       * error sqrt(int (s - s_h) : C^-1 : (s - s_h) / int s : C^-1 : s);
+       * energy_relative is NaN when @p exact has no stress.
+       */
+      ErrorNorms
+      compute_errors(const Vector<double>     &u,
+                     const ExactSolution<dim> &exact) const override;
+
+      /// @brief Stress sigma = C : eps(u_h) at a physical point of the body.
+      SymmetricTensor<2, dim>
+      stress(const Vector<double> &u, const Point<dim> &location) const override;
+
+      /**
+       * @brief VTU with one patch per knot span, settings.output_subdivisions
+       * subdivisions, vertices at the exact x(xi): displacement (vector),
+       * strain and stress components, von Mises stress (with the
+       * out-of-plane stress of plane strain in 2D).
+       */
+      void
+      write_vtu(const Vector<double> &u,
+                const std::string    &filename) const override;
+
+      /// @brief Area (2D) or volume (3D), see the class note on quadrature.
+      double
+      measure() const override;
+
+      /// @brief The refined and elevated patch: the analysis space.
+      const nurbs::NurbsPatch<dim> &
+      patch() const;
+
+      /// @brief The parametric mesh (one cell per non-empty knot span).
+      const Triangulation<dim> &
+      triangulation() const;
+
+      /**
+       * @brief Parametric coordinates of a physical point of the body
+       * (Newton inversion from the nearest sampled point); throws with the
+       * distance if the point is not in the body (tolerance 1e-8 times the
+       * body's size).
+       */
+      Point<dim>
+      parametric_point(const Point<dim> &location) const;
+
+      /// @brief Displacement/point-force operator at parametric point @p xi.
+      PointOperator<dim>
+      parametric_point_operator(const Point<dim> &xi) const;
+
+      /// @brief Displacement u_h at the parametric point @p xi.
+      Tensor<1, dim>
+      displacement_at_parametric(const Vector<double> &u,
+                                 const Point<dim>     &xi) const;
+
+    protected:
+      /// @brief Unknowns, control-point locations, supports and sparsity.
+      void
+      setup_space() override;
+
+      /// @brief Stiffness and loads with WorkStream (all cores).
+      void
+      assemble() override;
+
+    private:
+      /**
+       * Basis functions and geometry of one knot span at a set of points
+       * given in the cell's reference coordinates [0, 1]^dim.
+       */
+      struct CellEvaluation
+      {
+        /// Global control-point index of each local function
+        /// (lexicographic, direction 0 fastest).
+        std::vector<unsigned int> control_points;
+        /// R[q][l].
+        std::vector<std::vector<double>> values;
+        /// dR/dxi[q][l] (parametric gradient).
+        std::vector<std::vector<Tensor<1, dim>>> parametric_gradients;
+        /// x(xi_q).
+        std::vector<Point<dim>> points;
+        /// dx/dxi at xi_q.
+        std::vector<Tensor<2, dim>> jacobians;
+        /// Parametric coordinates xi_q.
+        std::vector<Point<dim>> parametric_points;
+      };
+
+      /// Evaluates on span @p span at reference points @p reference.
+      void
+      evaluate_cell(const std::array<unsigned int, dim> &span,
+                    const std::vector<Point<dim>>       &reference,
+                    CellEvaluation                      &result) const;
+
+      /// Span lengths of span @p span.
+      Tensor<1, dim>
+      span_lengths(const std::array<unsigned int, dim> &span) const;
+
+      /// Reference points and weights of a Gauss rule on cell face @p face
+      /// (the face coordinate fixed at 0 or 1).
+      void
+      face_rule(const unsigned int       face,
+                const unsigned int       n_points_1d,
+                std::vector<Point<dim>> &points,
+                std::vector<double>     &weights) const;
+
+      /// Surface measure factor |cof(J) e_d| and outward unit normal.
+      std::pair<double, Tensor<1, dim>>
+      face_measure_and_normal(const unsigned int    face,
+                              const Tensor<2, dim> &J) const;
+
+      /// Largest degree over the directions.
+      unsigned int
+      max_degree() const;
+
+      nurbs::NurbsPatch<dim>                           geometry;
+      Triangulation<dim>                               parametric_mesh;
+      std::array<std::vector<FullMatrix<double>>, dim> extraction;
+      std::array<std::vector<unsigned int>, dim>       span_knot_index;
+      std::array<std::vector<double>, dim>             breaks;
+      std::array<std::vector<Polynomials::Polynomial<double>>, dim> bernstein;
+      /// Sign of det(dx/dxi) (+1 right-handed).
+      double orientation = 1.;
+      /// Size of the body (bounding-box diagonal of the control net).
+      double diameter = 0.;
+      /// Samples for the Newton start of the point inversion.
+      std::vector<Point<dim>> sample_parametric;
+      std::vector<Point<dim>> sample_physical;
+    };
+  } // namespace discretization
+} // namespace igabde
+
+#endif

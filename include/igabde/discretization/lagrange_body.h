@@ -1,0 +1,83 @@
+#ifndef igabde_discretization_lagrange_body_h
+#define igabde_discretization_lagrange_body_h
+
+#include <igabde/discretization/body.h>
+
+#include <deal.II/grid/tria.h>
+
+#include <deal.II/dofs/dof_handler.h>
+
+#include <deal.II/fe/fe_system.h>
+#include <deal.II/fe/mapping_fe_field.h>
+
+#include <memory>
+
+namespace igabde
+{
+  namespace discretization
+  {
+    using namespace dealii;
+
+    /**
+     * @brief The Lagrange comparison path: FE_Q(k)^dim on the knot-span
+     * mesh of the body's NURBS patch, with the geometry interpolated from the
+     * exact NURBS map at the FE_Q support points (isoparametric
+     * MappingFEField), so curved boundaries are curved elements of degree k.
+     */
+    template <int dim>
+    class LagrangeBody : public Body<dim>
+    {
+    public:
+      /// Builds nothing yet; setup() does the work.
+      LagrangeBody(const BodyDescription<dim>   &description,
+                   const DiscretizationSettings &settings);
+
+      std::string
+      discretization_name() const override;
+
+      unsigned int
+      n_elements() const override;
+
+      PointOperator<dim>
+      point_operator(const Point<dim> &location) const override;
+
+      std::vector<SurfacePoint<dim>>
+      surface_points(const types::boundary_id face,
+                     const PairPlacement      placement) const override;
+
+      ErrorNorms
+      compute_errors(const Vector<double>     &u,
+                     const ExactSolution<dim> &exact) const override;
+
+      SymmetricTensor<2, dim>
+      stress(const Vector<double> &u,
+             const Point<dim>     &location) const override;
+
+      void
+      write_vtu(const Vector<double> &u,
+                const std::string    &filename) const override;
+
+      double
+      measure() const override;
+
+    protected:
+      void
+      setup_space() override;
+
+      void
+      assemble() override;
+
+    private:
+      /// The patch after the scene's h-refinements (geometry source).
+      nurbs::NurbsPatch<dim> patch;
+      Triangulation<dim>     triangulation;
+      FESystem<dim>          fe;
+      DoFHandler<dim>        dof_handler;
+      /// Physical position of every support point (the MappingFEField data).
+      Vector<double>                            euler_vector;
+      std::unique_ptr<MappingFEField<dim, dim>> mapping;
+    };
+  } // namespace discretization
+} // namespace igabde
+
+#endif

@@ -1,0 +1,59 @@
+#ifndef igabde_elasticity_material_h
+#define igabde_elasticity_material_h
+
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/symmetric_tensor.h>
+
+#include <string>
+
+namespace igabde
+{
+  namespace elasticity
+  {
+    using namespace dealii;
+
+    /**
+     * @brief The 2D kinematic assumption; ignored in 3D.
+     */
+    enum class PlaneModel
+    {
+      plane_strain,
+      plane_stress
+    };
+
+    /**
+     * @brief Isotropic linear elastic material.
+     */
+    template <int dim>
+    struct IsotropicMaterial
+    {
+      /// Young's modulus (Pa).
+      double youngs_modulus = 1.0;
+      /// Poisson's ratio (-), 0 <= nu < 0.5.
+      double poisson_ratio = 0.3;
+      /// Plane strain or plane stress (2D only).
+      PlaneModel plane_model = PlaneModel::plane_strain;
+
+      /**
+       * @brief Throws a user-facing error naming @p where when the constants
+       * are not physical (E <= 0, nu outside [0, 0.5)).
+       */
+      void
+      validate(const std::string &where) const;
+
+      /**
+       * @brief The fourth-order stiffness C with sigma = C : eps.
+       */
+      SymmetricTensor<4, dim>
+      stiffness() const;
+
+      /**
+       * @brief The compliance C^-1 with eps = C^-1 : sigma (in-plane part).
+       */
+      SymmetricTensor<4, dim>
+      compliance() const;
+    };
+  } // namespace elasticity
+} // namespace igabde
+
+#endif

@@ -1,0 +1,200 @@
+#ifndef igabde_nurbs_nurbs_patch_h
+#define igabde_nurbs_nurbs_patch_h
+
+#include <igabde/nurbs/knot_vector.h>
+
+#include <deal.II/base/point.h>
+#include <deal.II/base/table.h>
+#include <deal.II/base/tensor.h>
+
+#include <array>
+#include <utility>
+#include <vector>
+
+namespace igabde
+{
+  namespace nurbs
+  {
+    using namespace dealii;
+
+    /**
+     * @brief A single NURBS patch: one open knot vector per parametric
+     * direction and a tensor-product net of weighted control points.
+     *
+     * Control points are numbered lexicographically, direction 0 fastest:
+     * A = i + n_0 (j + n_1 k). The parametric domain is the box spanned by
+     * the first and last knots of each direction. Faces are numbered as
+     * deal.II's colorized boxes: face f lies at the low (f%2 == 0) or high
+     * end of direction f/2.
+     */
+    template <int dim>
+    class NurbsPatch
+    {
+    public:
+      /// @brief The dimension (parametric = physical) of the patch.
+      static constexpr int dimension = dim;
+
+      /// @brief An empty patch (no knots, no control points).
+      NurbsPatch() = default;
+
+      /**
+       * @brief Build from knot vectors, control points (lexicographic) and
+       * weights; throws with a clear message on inconsistent sizes or a
+       * weight <= 0.
+       */
+      NurbsPatch(const std::array<KnotVector, dim> &knots,
+                 const std::vector<Point<dim>>      &control_points,
+                 const std::vector<double>          &weights);
+
+      /// Knot vector of direction @p d.
+      const KnotVector &
+      knot_vector(const unsigned int d) const;
+
+      /// Number of control points in direction @p d.
+      unsigned int
+      n_control_points(const unsigned int d) const;
+
+      /// Total number of control points.
+      unsigned int
+      n_control_points() const;
+
+      /// Control point @p a (physical coordinates, not homogeneous).
+      const Point<dim> &
+      control_point(const unsigned int a) const;
+
+      /// Weight of control point @p a.
+      double
+      weight(const unsigned int a) const;
+
+      /// Lexicographic index of the control point with tensor index @p ijk.
+      unsigned int
+      control_point_index(const std::array<unsigned int, dim> &ijk) const;
+
+      /// Physical point x(xi).
+      Point<dim>
+      value(const Point<dim> &xi) const;
+
+      /// Jacobian dx/dxi at xi (row i: component i, column j: d/dxi_j).
+      Tensor<2, dim>
+      jacobian(const Point<dim> &xi) const;
+
+      /**
+       * @brief Nonzero rational basis functions at @p xi: fills the
+       * control-point indices, R_A and dR_A/dxi (parametric derivatives).
+       */
+      void
+      basis(const Point<dim>           &xi,
+            std::vector<unsigned int>  &indices,
+            std::vector<double>        &values,
+            std::vector<Tensor<1, dim>> *gradients = nullptr) const;
+
+      /// Unique breakpoints (knot-span boundaries) of direction @p d.
+      std::vector<double>
+      breakpoints(const unsigned int d) const;
+
+      /// Insert @p n_per_span equally spaced knots into every non-empty span
+      /// of every direction (geometry unchanged).
+      void
+      refine_uniformly(const unsigned int n_per_span = 1);
+
+      /// Insert the knots @p new_knots into direction @p d (Boehm).
+      void
+      insert_knots(const unsigned int d, const std::vector<double> &new_knots);
+
+      /// Raise the degree of direction @p d by @p t (continuity kept).
+      void
+      elevate_degree(const unsigned int d, const unsigned int t = 1);
+
+      /**
+       * @brief Closest parametric point on the face @p face to the physical
+       * point @p x (Newton from a sampled start). Returns xi in the volume
+       * parametric coordinates (the face coordinate fixed).
+       */
+      Point<dim>
+      closest_point_on_face(const unsigned int face, const Point<dim> &x) const;
+
+      /**
+       * @brief Outward unit normal of the body at the face @p face at @p xi.
+       */
+      Tensor<1, dim>
+      outward_normal(const unsigned int face, const Point<dim> &xi) const;
+
+      /// @brief Polynomial degree of direction @p d.
+      unsigned int
+      degree(const unsigned int d) const;
+
+      /// @brief Tensor index (i, j[, k]) of the control point @p a.
+      std::array<unsigned int, dim>
+      tensor_index(const unsigned int a) const;
+
+      /// @brief Lower corner of the parametric box (first knots).
+      Point<dim>
+      parametric_lower() const;
+
+      /// @brief Upper corner of the parametric box (last knots).
+      Point<dim>
+      parametric_upper() const;
+
+      /**
+       * @brief Lexicographic indices of the control points on the face
+       * @p face (open knot vectors: exactly those with a nonzero trace there),
+       * ordered lexicographically in the remaining directions.
+       */
+      std::vector<unsigned int>
+      face_control_points(const unsigned int face) const;
+
+      /**
+       * @brief Sign (+1 or -1) of det(dx/dxi) at the centre of the parametric
+       * box: +1 for a right-handed parametrization. The builders' curved
+       * beam, for instance, is left-handed (-1).
+       */
+      double
+      orientation() const;
+
+      /**
+       * @brief Parametric point in the patch's parametric box whose image is
+       * closest to @p x (for a point of the body: x(xi) = x). Projected
+       * Newton on |x(xi) - x|^2, started from @p start, or when @p start is
+       * null from the nearest of the images of the breakpoints and span
+       * midpoints. If @p distance is not null it receives |x(xi) - x|.
+       */
+      Point<dim>
+      closest_parametric_point(const Point<dim> &x,
+                               const Point<dim> *start    = nullptr,
+                               double           *distance = nullptr) const;
+
+      /**
+       * @brief Homogeneous control net as a flat list: entry a holds
+       * (w_a P_a, w_a).
+       */
+      std::vector<std::array<double, dim + 1>>
+      homogeneous_control_points() const;
+
+    private:
+      /**
+       * @brief Minimises |x(xi) - x|^2 over the parametric box, keeping the
+       * coordinates with @p fixed[d] == true at their start values.
+       */
+      Point<dim>
+      minimize_distance(const Point<dim>           &x,
+                        Point<dim>                  xi,
+                        const std::array<bool, dim> &fixed,
+                        double                      *distance) const;
+
+      /// Replaces direction @p d's knot vector and net from homogeneous
+      /// points transformed line by line with the (n_new x n_old) matrix T,
+      /// stored by rows as (column, value) pairs.
+      void
+      transform_direction(
+        const unsigned int                                          d,
+        const KnotVector                                           &new_knots,
+        const std::vector<std::vector<std::pair<unsigned int, double>>> &T);
+
+      std::array<KnotVector, dim> knots;
+      std::vector<Point<dim>>     points;
+      std::vector<double>         weights;
+    };
+  } // namespace nurbs
+} // namespace igabde
+
+#endif

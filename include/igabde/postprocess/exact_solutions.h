@@ -1,0 +1,37 @@
+#ifndef igabde_postprocess_exact_solutions_h
+#define igabde_postprocess_exact_solutions_h
+
+#include <igabde/discretization/body_description.h>
+
+#include <igabde/elasticity/material.h>
+
+namespace igabde
+{
+  namespace postprocess
+  {
+    using namespace dealii;
+
+    /**
+     * @brief Kirsch's solution: infinite plate with a circular hole of radius
+     * @p a centred at the origin under remote tension @p T along x (2D;
+     * plane strain or plane stress from @p material).
+     */
+    discretization::ExactSolution<2>
+    kirsch_solution(const double                            T,
+                    const double                            a,
+                    const elasticity::IsotropicMaterial<2> &material);
+
+    /**
+     * @brief Lame's solution: thick cylinder a <= r <= b about the z axis
+     * under internal pressure @p p, plane strain (in 3D: w = 0).
+     */
+    template <int dim>
+    discretization::ExactSolution<dim>
+    lame_solution(const double                              a,
+                  const double                              b,
+                  const double                              p,
+                  const elasticity::IsotropicMaterial<dim> &material);
+  } // namespace postprocess
+} // namespace igabde
+
+#endif

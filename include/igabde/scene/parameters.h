@@ -1,0 +1,253 @@
+#ifndef igabde_scene_parameters_h
+#define igabde_scene_parameters_h
+
+#include <igabde/discretization/body_description.h>
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <string>
+#include <vector>
+
+namespace igabde
+{
+  namespace scene
+  {
+    using namespace dealii;
+
+    /**
+     * @brief Where and what a run writes.
+     */
+    struct OutputParameters
+    {
+      /// Output folder; empty means output/<scene name>/.
+      std::string directory;
+      /// Write VTU/PVD fields.
+      bool write_vtu = true;
+      /// Print the timing table on screen (off in tests: it is not
+      /// reproducible); summary.json and timing.txt always get it.
+      bool print_timing = true;
+
+      /// Declares the "Output" subsection.
+      static void
+      declare_parameters(ParameterHandler &prm);
+      /// Reads the "Output" subsection.
+      void
+      parse_parameters(ParameterHandler &prm);
+    };
+
+    /**
+     * @brief One deformable body (or, for Body 2, a rigid plane) as the
+     * scene file writes it; turned into a BodyDescription by the simulator.
+     */
+    struct BodyParameters
+    {
+      /// "deformable", "rigid plane" or "none" (Body 2 only).
+      std::string type = "deformable";
+      /// Geometry builder name.
+      std::string geometry = "box";
+      /// Box corners (m), comma-separated coordinates.
+      std::string lower_corner = "0, 0, 0";
+      /// Box corners (m), comma-separated coordinates.
+      std::string upper_corner = "1, 1, 1";
+      /// Radii of annulus-like geometries (m).
+      double inner_radius = 1.;
+      /// Radii of annulus-like geometries (m).
+      double outer_radius = 2.;
+      /// Radius of the Hertz cylinder (m).
+      double radius = 8.;
+      /// Extrusion width of 3D geometries (m).
+      double width = 1.;
+      /// Half-size L of the plate with a hole (m).
+      double plate_size = 4.;
+      /// Knot spans per direction of the base mesh, before refinements.
+      std::string subdivisions = "1";
+      /// Young's modulus (Pa).
+      double youngs_modulus = 1000.;
+      /// Poisson's ratio (-).
+      double poisson_ratio = 0.3;
+      /// Supports: "face: x y=0.1; face: z".
+      std::string supports;
+      /// Tractions: "face: pressure p; face: vector tx,ty; face: exact".
+      std::string tractions;
+      /// Point loads: "x,y[,z] : fx,fy[,fz]; ...".
+      std::string point_loads;
+      /// Body force per volume (N/m^3).
+      std::string body_force = "0, 0, 0";
+      /// Rigid plane: a point on it (m).
+      std::string plane_point = "0, 0, 0";
+      /// Rigid plane: unit normal pointing towards Body 1.
+      std::string plane_normal = "0, 1, 0";
+
+      /// Declares the subsection @p name ("Body 1" or "Body 2").
+      static void
+      declare_parameters(ParameterHandler  &prm,
+                         const std::string &name,
+                         const std::string &default_type);
+      /// Reads the subsection @p name.
+      void
+      parse_parameters(ParameterHandler &prm, const std::string &name);
+    };
+
+    /**
+     * @brief Exact solution of a verification scene.
+     */
+    struct ExactSolutionParameters
+    {
+      /// "none", "kirsch" (V1) or "lame" (V2).
+      std::string type = "none";
+      /// Kirsch remote tension T_x (Pa).
+      double remote_tension = 10.;
+      /// Kirsch hole radius (m).
+      double hole_radius = 1.;
+      /// Lame inner radius a (m).
+      double inner_radius = 1.;
+      /// Lame outer radius b (m).
+      double outer_radius = 2.;
+      /// Lame internal pressure (Pa).
+      double pressure = 1.;
+
+      /// Declares the "Exact solution" subsection.
+      static void
+      declare_parameters(ParameterHandler &prm);
+      /// Reads the "Exact solution" subsection.
+      void
+      parse_parameters(ParameterHandler &prm);
+    };
+
+    /**
+     * @brief Contact between Body 1 (slave, upper) and Body 2.
+     */
+    struct ContactParameters
+    {
+      /// Whether the scene has contact at all.
+      bool enabled = false;
+      /// Coulomb friction coefficient mu (>= 0); 0 forms no tangential
+      /// unknowns.
+      double friction_coefficient = 0.;
+      /// "bde", "penalty" or "augmented-lagrange".
+      std::string algorithm = "bde";
+      /// "condensed", "full" or "auto".
+      std::string path = "auto";
+      /// Patch face of Body 1 that may touch.
+      unsigned int slave_face = 2;
+      /// Patch face of Body 2 that may touch.
+      unsigned int master_face = 3;
+      /// Where pairs sit on a NURBS surface: greville, knots or gauss.
+      std::string pair_placement = "greville";
+      /// Natural-map residual tolerance relative to ||q||.
+      double tolerance = 1e-10;
+      /// B-Newton iteration limit per load step.
+      unsigned int max_iterations = 100;
+      /// Scaling of the per-pair r (hard-case studies).
+      double r_scale = 1.;
+      /// Print every B-Newton iteration.
+      bool verbose = false;
+
+      /// Declares the "Contact" subsection.
+      static void
+      declare_parameters(ParameterHandler &prm);
+      /// Reads the "Contact" subsection.
+      void
+      parse_parameters(ParameterHandler &prm);
+    };
+
+    /**
+     * @brief Named accuracy checks where the scene has an exact answer.
+     */
+    struct ChecksParameters
+    {
+      /// Expected uniform contact pressure (Pa); 0: no such check (V3).
+      double uniform_pressure = 0.;
+      /// Hertz line load P (N/m) on the cylinder of Body 1/Radius against a
+      /// rigid flat; 0: no Hertz check (V5).
+      double hertz_line_load = 0.;
+
+      /// Declares the "Checks" subsection.
+      static void
+      declare_parameters(ParameterHandler &prm);
+      /// Reads the "Checks" subsection.
+      void
+      parse_parameters(ParameterHandler &prm);
+    };
+
+    /**
+     * @brief The load path: one load factor (scales tractions, point loads,
+     * body force) and one displacement factor (scales prescribed
+     * displacements) per step.
+     */
+    struct LoadPathParameters
+    {
+      /// Number of load steps for proportional loading.
+      unsigned int n_steps = 1;
+      /// Explicit load factors per step (overrides proportional).
+      std::vector<double> load_factors;
+      /// Explicit displacement factors per step.
+      std::vector<double> displacement_factors;
+
+      /// Declares the "Load path" subsection.
+      static void
+      declare_parameters(ParameterHandler &prm);
+      /// Reads the "Load path" subsection.
+      void
+      parse_parameters(ParameterHandler &prm);
+
+      /// Load and displacement factor of every step.
+      std::vector<std::pair<double, double>>
+      steps() const;
+    };
+
+    /**
+     * @brief All parameters of a scene (step-44's AllParameters).
+     */
+    struct AllParameters
+    {
+      /// Scene name (from the file name unless set).
+      std::string name;
+      /// Spatial dimension, 2 or 3.
+      unsigned int dimension = 2;
+      /// Plane strain or plane stress (2D).
+      std::string plane_model = "plane strain";
+      /// Probe points: "name: x,y[,z]; ...".
+      std::string probes;
+      /// Output.
+      OutputParameters output;
+      /// Discretisation.
+      discretization::DiscretizationSettings discretization;
+      /// Body 1 (Omega^1, slave, upper).
+      BodyParameters body1;
+      /// Body 2 (Omega^2, master, lower).
+      BodyParameters body2;
+      /// Exact solution.
+      ExactSolutionParameters exact;
+      /// Contact.
+      ContactParameters contact;
+      /// Load path.
+      LoadPathParameters load_path;
+      /// Accuracy checks.
+      ChecksParameters checks;
+
+      /// Declares every parameter.
+      static void
+      declare_parameters(ParameterHandler &prm);
+      /// Reads every parameter; @p scene_file names the file in messages.
+      void
+      parse_parameters(ParameterHandler &prm, const std::string &scene_file);
+    };
+
+    /**
+     * @brief Declares the "Discretization" subsection.
+     */
+    void
+    declare_discretization_parameters(ParameterHandler &prm);
+
+    /**
+     * @brief Reads the "Discretization" subsection.
+     */
+    void
+    parse_discretization_parameters(
+      ParameterHandler                       &prm,
+      discretization::DiscretizationSettings &settings);
+  } // namespace scene
+} // namespace igabde
+
+#endif

@@ -1,0 +1,112 @@
+#ifndef igabde_scene_simulator_h
+#define igabde_scene_simulator_h
+
+#include <igabde/base/json.h>
+
+#include <igabde/discretization/body.h>
+
+#include <igabde/scene/parameters.h>
+
+#include <deal.II/base/timer.h>
+
+#include <memory>
+#include <optional>
+#include <ostream>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace igabde
+{
+  namespace contact
+  {
+    template <int dim>
+    class ContactStage;
+  }
+
+  namespace scene
+  {
+    using namespace dealii;
+
+    /**
+     * @brief Runs one scene: bodies, load steps (with contact when the scene
+     * asks for it), postprocessing, output. Data flows one way: parameters →
+     * bodies → contact → load steps → output.
+     */
+    template <int dim>
+    class Simulator
+    {
+    public:
+      /**
+       * @brief Keeps the parameters; nothing is built yet.
+       * @param parameters The parsed scene.
+       * @param scene_file The scene file, for messages.
+       * @param output_directory Existing folder for every output file.
+       * @param log Screen log (also copied to log.txt by the caller).
+       */
+      Simulator(const AllParameters &parameters,
+                const std::string   &scene_file,
+                const std::string   &output_directory,
+                std::ostream        &log);
+
+      ~Simulator();
+
+      /// Builds, solves every load step and writes all output.
+      void
+      run();
+
+      /**
+       * @brief Writes summary.json with status "failed" and @p message,
+       * keeping everything finished so far.
+       */
+      void
+      write_failed_summary(const std::string &message);
+
+    private:
+      discretization::BodyDescription<dim>
+      make_description(const BodyParameters &body,
+                       const std::string    &name) const;
+
+      void
+      setup_bodies();
+
+      void
+      solve_load_steps();
+
+      void
+      output_step(const unsigned int                 step,
+                  const std::vector<Vector<double>> &solutions);
+
+      void
+      postprocess_final(const std::vector<Vector<double>> &solutions);
+
+      void
+      write_summary(const std::string &status, const std::string &error);
+
+      const AllParameters parameters;
+      const std::string   scene_file;
+      const std::string   output_directory;
+      std::ostream       &log;
+
+      TimerOutput timer;
+      base::Json  summary;
+
+      std::optional<discretization::ExactSolution<dim>>        exact;
+      std::vector<std::unique_ptr<discretization::Body<dim>>>  bodies;
+      std::unique_ptr<contact::ContactStage<dim>>              contact_stage;
+      std::vector<std::vector<std::pair<double, std::string>>> pvd_records;
+      base::Json                                               step_records;
+    };
+
+    /**
+     * @brief Parses @p scene_file (with the --set overrides) and runs it in
+     * the right dimension. Returns the process exit status.
+     */
+    int
+    run_scene(
+      const std::string                                      &scene_file,
+      const std::vector<std::pair<std::string, std::string>> &overrides);
+  } // namespace scene
+} // namespace igabde
+
+#endif

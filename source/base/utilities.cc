@@ -1,0 +1,139 @@
+#include <igabde/base/utilities.h>
+
+#include <cmath>
+#include <sstream>
+
+namespace igabde
+{
+  namespace base
+  {
+    std::string
+    trim(const std::string &s)
+    {
+      const auto begin = s.find_first_not_of(" \t\r\n");
+      if (begin == std::string::npos)
+        return "";
+      const auto end = s.find_last_not_of(" \t\r\n");
+      return s.substr(begin, end - begin + 1);
+    }
+
+
+
+    std::vector<std::string>
+    split(const std::string &s, const char separator)
+    {
+      std::vector<std::string> pieces;
+      std::string              piece;
+      std::istringstream       in(s);
+      while (std::getline(in, piece, separator))
+      {
+        piece = trim(piece);
+        if (!piece.empty())
+          pieces.push_back(piece);
+      }
+      return pieces;
+    }
+
+
+
+    std::vector<double>
+    parse_doubles(const std::string &text, const std::string &where)
+    {
+      std::string cleaned = text;
+      for (char &c : cleaned)
+        if (c == ',')
+          c = ' ';
+      std::istringstream  in(cleaned);
+      std::vector<double> values;
+      std::string         token;
+      while (in >> token)
+      {
+        std::size_t used = 0;
+        double      v    = 0;
+        try
+        {
+          v = std::stod(token, &used);
+        }
+        catch (...)
+        {
+          used = 0;
+        }
+        AssertThrow(used == token.size() && std::isfinite(v),
+                    ExcInput(where + ": '" + token +
+                             "' is not a number; expected a comma-separated "
+                             "list of numbers."));
+        values.push_back(v);
+      }
+      return values;
+    }
+
+
+
+    template <int dim>
+    Tensor<1, dim>
+    parse_tensor(const std::string &text, const std::string &where)
+    {
+      const std::vector<double> v  = parse_doubles(text, where);
+      bool                      ok = (v.size() >= dim);
+      for (unsigned int i = dim; ok && i < v.size(); ++i)
+        ok = (v[i] == 0.);
+      AssertThrow(ok,
+                  ExcInput(where + ": '" + text + "' must have " +
+                           std::to_string(dim) +
+                           " comma-separated components in this " +
+                           std::to_string(dim) + "D scene."));
+      Tensor<1, dim> t;
+      for (unsigned int i = 0; i < dim; ++i)
+        t[i] = v[i];
+      return t;
+    }
+
+
+
+    template <int dim>
+    Point<dim>
+    parse_point(const std::string &text, const std::string &where)
+    {
+      return Point<dim>(parse_tensor<dim>(text, where));
+    }
+
+
+
+    std::string
+    exception_message(const ExceptionBase &e)
+    {
+      std::ostringstream out;
+      e.print_info(out);
+      std::string message = out.str();
+      // deal.II's messages span several lines and start with "    ";
+      // collapse them into one.
+      std::string result;
+      bool        space = false;
+      for (const char c : message)
+        if (c == '\n' || c == ' ' || c == '\t')
+          space = !result.empty();
+        else
+        {
+          if (space)
+            result += ' ';
+          result += c;
+          space = false;
+        }
+      const std::string prefix = "Additional information: ";
+      if (result.rfind(prefix, 0) == 0)
+        result = result.substr(prefix.size());
+      return result;
+    }
+
+
+
+    template Tensor<1, 2>
+    parse_tensor<2>(const std::string &, const std::string &);
+    template Tensor<1, 3>
+    parse_tensor<3>(const std::string &, const std::string &);
+    template Point<2>
+    parse_point<2>(const std::string &, const std::string &);
+    template Point<3>
+    parse_point<3>(const std::string &, const std::string &);
+  } // namespace base
+} // namespace igabde

@@ -1,0 +1,340 @@
+#include <igabde/discretization/body.h>
+#include <igabde/discretization/iga_body.h>
+#include <igabde/discretization/lagrange_body.h>
+
+#include <deal.II/base/exceptions.h>
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <cmath>
+
+namespace igabde
+{
+  namespace discretization
+  {
+    template <int dim>
+    Tensor<1, dim>
+    PointOperator<dim>::displacement(const Vector<double> &u) const
+    {
+      Tensor<1, dim> result;
+      for (unsigned int k = 0; k < weights.size(); ++k)
+        for (unsigned int c = 0; c < dim; ++c)
+          result[c] += weights[k] * u[dofs[k][c]];
+      return result;
+    }
+
+
+
+    template <int dim>
+    void
+    PointOperator<dim>::distribute(const Tensor<1, dim> &force,
+                                   Vector<double>       &f) const
+    {
+      for (unsigned int k = 0; k < weights.size(); ++k)
+        for (unsigned int c = 0; c < dim; ++c)
+          f[dofs[k][c]] += weights[k] * force[c];
+    }
+
+
+
+    template <int dim>
+    Body<dim>::Body(const BodyDescription<dim>   &description,
+                    const DiscretizationSettings &settings)
+      : body_description(description)
+      , settings(settings)
+    {
+      description.material.validate("Body '" + description.name + "'");
+    }
+
+
+
+    template <int dim>
+    void
+    Body<dim>::setup()
+    {
+      setup_space();
+      AssertDimension(dof_locations.size(), n_unknowns);
+      AssertDimension(dof_components.size(), n_unknowns);
+      assemble();
+      find_free_rigid_modes();
+      factorize();
+
+      // Superposition: the external loads and the prescribed displacements
+      // are two load cases, scaled separately by the load path.
+      u_load = load_rhs;
+      std::vector<Vector<double>> columns(1, load_rhs);
+
+      Vector<double> u_d(n_unknowns);
+      for (types::global_dof_index i = 0; i < n_unknowns; ++i)
+        if (prescribed_constraints.is_constrained(i))
+          u_d[i] = prescribed_constraints.get_inhomogeneity(i);
+      Vector<double> rhs_d(n_unknowns);
+      system_matrix.vmult(rhs_d, u_d);
+      rhs_d *= -1.;
+      columns.push_back(rhs_d);
+
+      solve(columns);
+      u_load       = columns[0];
+      u_prescribed = columns[1];
+      u_prescribed += u_d;
+    }
+
+
+
+    template <int dim>
+    types::global_dof_index
+    Body<dim>::n_dofs() const
+    {
+      return n_unknowns;
+    }
+
+
+
+    template <int dim>
+    const BodyDescription<dim> &
+    Body<dim>::description() const
+    {
+      return body_description;
+    }
+
+
+
+    template <int dim>
+    const Vector<double> &
+    Body<dim>::load_solution() const
+    {
+      return u_load;
+    }
+
+
+
+    template <int dim>
+    const Vector<double> &
+    Body<dim>::prescribed_solution() const
+    {
+      return u_prescribed;
+    }
+
+
+
+    template <int dim>
+    const Vector<double> &
+    Body<dim>::load_vector() const
+    {
+      return load_rhs;
+    }
+
+
+
+    template <int dim>
+    const std::vector<Vector<double>> &
+    Body<dim>::free_rigid_modes() const
+    {
+      return rigid_modes;
+    }
+
+
+
+    template <int dim>
+    const std::vector<std::string> &
+    Body<dim>::free_rigid_mode_names() const
+    {
+      return rigid_mode_names;
+    }
+
+
+
+    template <int dim>
+    void
+    Body<dim>::find_free_rigid_modes()
+    {
+      // Rigid modes evaluated at the control points / nodes: exact for
+      // NURBS too, since the basis reproduces linear fields. Rotations are
+      // taken about the centroid and scaled by the body size so that all
+      // modes have entries of order one.
+      const unsigned int n_modes = (dim == 2 ? 3 : 6);
+      Point<dim>         centre;
+      for (const auto &x : dof_locations)
+        centre += x;
+      if (n_unknowns > 0)
+        centre /= static_cast<double>(n_unknowns);
+      double size = 0.;
+      for (const auto &x : dof_locations)
+        size = std::max(size, (x - centre).norm());
+      size = std::max(size, 1e-300);
+
+      auto mode_value = [&](const unsigned int            mode,
+                            const types::global_dof_index i) -> double
+      {
+        const unsigned int   c = dof_components[i];
+        const Tensor<1, dim> x = (dof_locations[i] - centre) / size;
+        if (mode < dim)
+          return (c == mode ? 1. : 0.);
+        // Rotation about axis a (3D) or about z (2D): u = e_a x x.
+        Tensor<1, dim> u;
+        if (dim == 2)
+        {
+          u[0] = -x[1];
+          u[1] = x[0];
+        }
+        else
+        {
+          const unsigned int a = mode - dim;
+          const unsigned int b = (a + 1) % 3, d = (a + 2) % 3;
+          u[b] = -x[d];
+          u[d] = x[b];
+        }
+        return u[c];
+      };
+
+      std::vector<types::global_dof_index> constrained;
+      for (types::global_dof_index i = 0; i < n_unknowns; ++i)
+        if (constraints.is_constrained(i))
+          constrained.push_back(i);
+
+      Eigen::MatrixXd M(std::max<std::size_t>(constrained.size(), 1), n_modes);
+      M.setZero();
+      for (unsigned int r = 0; r < constrained.size(); ++r)
+        for (unsigned int m = 0; m < n_modes; ++m)
+          M(r, m) = mode_value(m, constrained[r]);
+
+      Eigen::JacobiSVD<Eigen::MatrixXd> svd(M, Eigen::ComputeFullV);
+      const Eigen::VectorXd            &s = svd.singularValues();
+      std::vector<Eigen::VectorXd>      free;
+      for (unsigned int m = 0; m < n_modes; ++m)
+      {
+        const double sigma = (m < s.size() ? s(m) : 0.);
+        if (sigma < 1e-8 * std::max(1., std::sqrt(double(constrained.size()))))
+          free.push_back(svd.matrixV().col(m));
+      }
+
+      static const char *names2[] = {"translation x",
+                                     "translation y",
+                                     "rotation z"};
+      static const char *names3[] = {"translation x",
+                                     "translation y",
+                                     "translation z",
+                                     "rotation x",
+                                     "rotation y",
+                                     "rotation z"};
+      rigid_modes.clear();
+      rigid_mode_names.clear();
+      for (const auto &v : free)
+      {
+        Vector<double> mode(n_unknowns);
+        for (types::global_dof_index i = 0; i < n_unknowns; ++i)
+          if (!constraints.is_constrained(i))
+            for (unsigned int m = 0; m < n_modes; ++m)
+              mode[i] += v(m) * mode_value(m, i);
+        rigid_modes.push_back(mode);
+
+        unsigned int dominant = 0;
+        Eigen::Index arg      = 0;
+        const double vmax     = v.cwiseAbs().maxCoeff(&arg);
+        dominant              = static_cast<unsigned int>(arg);
+        const bool pure       = std::abs(vmax - 1.) < 1e-10;
+        rigid_mode_names.push_back(
+          std::string(dim == 2 ? names2[dominant] : names3[dominant]) +
+          (pure ? "" : " (combined)"));
+      }
+
+      // Pins: one unknown per free mode, chosen by column-pivoted QR on the
+      // free modes so that they are independent there. With balanced loads
+      // the pins carry no reaction, so the pinned solve is a generalised
+      // inverse K^+ (method.md, "Bodies held only through contact").
+      solve_constraints.clear();
+      solve_constraints.copy_from(constraints);
+      if (!rigid_modes.empty())
+      {
+        Eigen::MatrixXd Rt(rigid_modes.size(), n_unknowns);
+        for (unsigned int k = 0; k < rigid_modes.size(); ++k)
+          for (types::global_dof_index i = 0; i < n_unknowns; ++i)
+            Rt(k, i) = rigid_modes[k][i];
+        Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(Rt);
+        const auto               &perm = qr.colsPermutation().indices();
+        AffineConstraints<double> pins;
+        for (unsigned int k = 0; k < rigid_modes.size(); ++k)
+        {
+          const types::global_dof_index i = perm(k);
+          Assert(!constraints.is_constrained(i), ExcInternalError());
+          pins.add_line(i);
+        }
+        pins.close();
+        solve_constraints.merge(pins);
+      }
+      solve_constraints.close();
+    }
+
+
+
+    template <int dim>
+    void
+    Body<dim>::factorize()
+    {
+      // Zero the constrained rows and columns and keep a positive diagonal:
+      // the solution is then zero there and the rest is the reduced system.
+      constrained_matrix.reinit(sparsity);
+      constrained_matrix.copy_from(system_matrix);
+      double diagonal_scale = 0.;
+      for (types::global_dof_index i = 0; i < n_unknowns; ++i)
+        diagonal_scale += std::abs(system_matrix.diag_element(i));
+      diagonal_scale /= std::max<types::global_dof_index>(n_unknowns, 1);
+
+      for (types::global_dof_index row = 0; row < n_unknowns; ++row)
+      {
+        const bool row_constrained = solve_constraints.is_constrained(row);
+        for (auto entry = constrained_matrix.begin(row);
+             entry != constrained_matrix.end(row);
+             ++entry)
+          if (row_constrained ||
+              solve_constraints.is_constrained(entry->column()))
+            entry->value() = (entry->column() == row ? diagonal_scale : 0.);
+      }
+      direct_solver.initialize(constrained_matrix);
+    }
+
+
+
+    template <int dim>
+    void
+    Body<dim>::solve(std::vector<Vector<double>> &rhs_and_solutions) const
+    {
+      for (auto &v : rhs_and_solutions)
+      {
+        AssertDimension(v.size(), n_unknowns);
+        solve_constraints.set_zero(v);
+        direct_solver.solve(v);
+        solve_constraints.set_zero(v);
+      }
+    }
+
+
+
+    template <int dim>
+    std::unique_ptr<Body<dim>>
+    create_body(const BodyDescription<dim>   &description,
+                const DiscretizationSettings &settings)
+    {
+      if (settings.type == "nurbs")
+        return std::make_unique<IgaBody<dim>>(description, settings);
+      else if (settings.type == "lagrange")
+        return std::make_unique<LagrangeBody<dim>>(description, settings);
+      AssertThrow(false,
+                  ExcMessage("Discretization/Type: unknown value '" +
+                             settings.type + "'; use 'nurbs' or 'lagrange'."));
+      return nullptr;
+    }
+
+
+
+    template struct PointOperator<2>;
+    template struct PointOperator<3>;
+    template class Body<2>;
+    template class Body<3>;
+    template std::unique_ptr<Body<2>>
+    create_body(const BodyDescription<2> &, const DiscretizationSettings &);
+    template std::unique_ptr<Body<3>>
+    create_body(const BodyDescription<3> &, const DiscretizationSettings &);
+  } // namespace discretization
+} // namespace igabde

@@ -1,0 +1,543 @@
+#include <igabde/nurbs/parametric_mesh.h>
+
+#include <igabde/discretization/lagrange_body.h>
+
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/base/work_stream.h>
+
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/full_matrix.h>
+
+#include <deal.II/grid/grid_tools.h>
+
+#include <deal.II/dofs/dof_tools.h>
+
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/fe/mapping_cartesian.h>
+
+#include <deal.II/numerics/data_out.h>
+#include <deal.II/numerics/data_postprocessor.h>
+
+#include <fstream>
+#include <map>
+
+namespace igabde
+{
+  namespace discretization
+  {
+    namespace
+    {
+      /// Strain, stress and von Mises from the displacement gradient.
+      template <int dim>
+      class StressPostprocessor : public DataPostprocessor<dim>
+      {
+      public:
+        explicit StressPostprocessor(const SymmetricTensor<4, dim> &C)
+          : C(C)
+        {
+        }
+
+        void
+        evaluate_vector_field(
+          const DataPostprocessorInputs::Vector<dim> &inputs,
+          std::vector<Vector<double>> &computed_quantities) const override
+        {
+          for (unsigned int q = 0; q < inputs.solution_gradients.size(); ++q)
+          {
+            Tensor<2, dim> grad;
+            for (unsigned int c = 0; c < dim; ++c)
+              grad[c] = inputs.solution_gradients[q][c];
+            const SymmetricTensor<2, dim> eps   = symmetrize(grad);
+            const SymmetricTensor<2, dim> sigma = C * eps;
+            unsigned int                  k     = 0;
+            for (unsigned int i = 0; i < dim; ++i)
+              for (unsigned int j = i; j < dim; ++j)
+                computed_quantities[q][k++] = eps[i][j];
+            for (unsigned int i = 0; i < dim; ++i)
+              for (unsigned int j = i; j < dim; ++j)
+                computed_quantities[q][k++] = sigma[i][j];
+            const SymmetricTensor<2, dim> s = deviator(sigma);
+            computed_quantities[q][k]       = std::sqrt(1.5 * (s * s));
+          }
+        }
+
+        std::vector<std::string>
+        get_names() const override
+        {
+          std::vector<std::string> names;
+          const char               xyz[] = "xyz";
+          for (const std::string prefix : {"strain_", "stress_"})
+            for (unsigned int i = 0; i < dim; ++i)
+              for (unsigned int j = i; j < dim; ++j)
+                names.push_back(prefix + xyz[i] + xyz[j]);
+          names.push_back("von_mises");
+          return names;
+        }
+
+        UpdateFlags
+        get_needed_update_flags() const override
+        {
+          return update_gradients;
+        }
+
+      private:
+        const SymmetricTensor<4, dim> C;
+      };
+    } // namespace
+
+
+
+    template <int dim>
+    LagrangeBody<dim>::LagrangeBody(const BodyDescription<dim>   &description,
+                                    const DiscretizationSettings &settings)
+      : Body<dim>(description, settings)
+      , patch(description.geometry)
+      , fe(FE_Q<dim>(settings.degree), dim)
+    {
+      AssertThrow(settings.degree >= 1 && settings.degree <= 4,
+                  ExcMessage("Discretization/Degree: the Lagrange path "
+                             "supports FE_Q degrees 1 to 4, got " +
+                             std::to_string(settings.degree) + "."));
+    }
+
+
+
+    template <int dim>
+    std::string
+    LagrangeBody<dim>::discretization_name() const
+    {
+      return "lagrange";
+    }
+
+
+
+    template <int dim>
+    unsigned int
+    LagrangeBody<dim>::n_elements() const
+    {
+      return triangulation.n_active_cells();
+    }
+
+
+
+    template <int dim>
+    void
+    LagrangeBody<dim>::setup_space()
+    {
+      for (unsigned int r = 0; r < this->settings.refinements; ++r)
+        patch.refine_uniformly(1);
+      nurbs::make_parametric_triangulation(patch, triangulation);
+      dof_handler.reinit(triangulation);
+      dof_handler.distribute_dofs(fe);
+      this->n_unknowns = dof_handler.n_dofs();
+
+      // Geometry: the exact NURBS map at the support points.
+      std::vector<Point<dim>> parametric(this->n_unknowns);
+      DoFTools::map_dofs_to_support_points(MappingCartesian<dim>(),
+                                           dof_handler,
+                                           parametric);
+      euler_vector.reinit(this->n_unknowns);
+      this->dof_locations.resize(this->n_unknowns);
+      this->dof_components.resize(this->n_unknowns);
+      {
+        std::vector<types::global_dof_index> local(fe.n_dofs_per_cell());
+        for (const auto &cell : dof_handler.active_cell_iterators())
+        {
+          cell->get_dof_indices(local);
+          for (unsigned int i = 0; i < local.size(); ++i)
+            this->dof_components[local[i]] =
+              fe.system_to_component_index(i).first;
+        }
+      }
+      for (types::global_dof_index i = 0; i < this->n_unknowns; ++i)
+      {
+        const Point<dim> x     = patch.value(parametric[i]);
+        euler_vector[i]        = x[this->dof_components[i]];
+        this->dof_locations[i] = x;
+      }
+      mapping =
+        std::make_unique<MappingFEField<dim, dim>>(dof_handler, euler_vector);
+
+      // Supports on patch faces, exact for constant values.
+      this->constraints.clear();
+      this->prescribed_constraints.clear();
+      for (const auto &bc : this->body_description.dirichlet)
+      {
+        std::vector<bool> mask(bc.components.begin(), bc.components.end());
+        const IndexSet    dofs =
+          DoFTools::extract_boundary_dofs(dof_handler,
+                                          ComponentMask(mask),
+                                          {bc.boundary_id});
+        for (const auto i : dofs)
+        {
+          if (!this->constraints.is_constrained(i))
+            this->constraints.add_line(i);
+          if (!this->prescribed_constraints.is_constrained(i))
+            this->prescribed_constraints.add_line(i);
+          this->prescribed_constraints
+            .set_inhomogeneity(i, bc.value[this->dof_components[i]]);
+        }
+      }
+      this->constraints.close();
+      this->prescribed_constraints.close();
+
+      DynamicSparsityPattern dsp(this->n_unknowns);
+      DoFTools::make_sparsity_pattern(dof_handler, dsp);
+      this->sparsity.copy_from(dsp);
+    }
+
+
+
+    namespace
+    {
+      template <int dim>
+      struct ScratchData
+      {
+        ScratchData(const Mapping<dim>       &mapping,
+                    const FiniteElement<dim> &fe,
+                    const unsigned int        degree)
+          : fe_values(mapping,
+                      fe,
+                      QGauss<dim>(degree + 1),
+                      update_values | update_gradients |
+                        update_quadrature_points | update_JxW_values)
+          , fe_face_values(mapping,
+                           fe,
+                           QGauss<dim - 1>(degree + 1),
+                           update_values | update_quadrature_points |
+                             update_normal_vectors | update_JxW_values)
+        {
+        }
+
+        ScratchData(const ScratchData &other)
+          : fe_values(other.fe_values.get_mapping(),
+                      other.fe_values.get_fe(),
+                      other.fe_values.get_quadrature(),
+                      other.fe_values.get_update_flags())
+          , fe_face_values(other.fe_face_values.get_mapping(),
+                           other.fe_face_values.get_fe(),
+                           other.fe_face_values.get_quadrature(),
+                           other.fe_face_values.get_update_flags())
+        {
+        }
+
+        FEValues<dim>     fe_values;
+        FEFaceValues<dim> fe_face_values;
+      };
+
+      struct CopyData
+      {
+        FullMatrix<double>                   cell_matrix;
+        Vector<double>                       cell_rhs;
+        std::vector<types::global_dof_index> dof_indices;
+      };
+    } // namespace
+
+
+
+    template <int dim>
+    void
+    LagrangeBody<dim>::assemble()
+    {
+      this->system_matrix.reinit(this->sparsity);
+      this->load_rhs.reinit(this->n_unknowns);
+      const SymmetricTensor<4, dim> C =
+        this->body_description.material.stiffness();
+      const FEValuesExtractors::Vector displacement(0);
+      const auto                      &description = this->body_description;
+
+      auto worker =
+        [&](const typename DoFHandler<dim>::active_cell_iterator &cell,
+            ScratchData<dim>                                     &scratch,
+            CopyData                                             &copy)
+      {
+        const unsigned int n = fe.n_dofs_per_cell();
+        copy.cell_matrix.reinit(n, n);
+        copy.cell_rhs.reinit(n);
+        copy.dof_indices.resize(n);
+        cell->get_dof_indices(copy.dof_indices);
+
+        scratch.fe_values.reinit(cell);
+        const auto                          &fv = scratch.fe_values;
+        std::vector<SymmetricTensor<2, dim>> eps(n);
+        for (const unsigned int q : fv.quadrature_point_indices())
+        {
+          for (unsigned int i = 0; i < n; ++i)
+            eps[i] = fv[displacement].symmetric_gradient(i, q);
+          for (unsigned int i = 0; i < n; ++i)
+          {
+            const SymmetricTensor<2, dim> Ceps = C * eps[i];
+            for (unsigned int j = 0; j < n; ++j)
+              copy.cell_matrix(i, j) += (Ceps * eps[j]) * fv.JxW(q);
+            copy.cell_rhs(i) +=
+              (fv[displacement].value(i, q) * description.body_force) *
+              fv.JxW(q);
+          }
+        }
+
+        for (const auto f : cell->face_indices())
+          if (cell->face(f)->at_boundary())
+            for (const auto &neumann : description.tractions)
+              if (cell->face(f)->boundary_id() == neumann.boundary_id)
+              {
+                scratch.fe_face_values.reinit(cell, f);
+                const auto &ffv = scratch.fe_face_values;
+                for (const unsigned int q : ffv.quadrature_point_indices())
+                {
+                  const Tensor<1, dim> t =
+                    neumann.traction(ffv.quadrature_point(q),
+                                     ffv.normal_vector(q));
+                  for (unsigned int i = 0; i < n; ++i)
+                    copy.cell_rhs(i) +=
+                      (ffv[displacement].value(i, q) * t) * ffv.JxW(q);
+                }
+              }
+      };
+
+      auto copier = [&](const CopyData &copy)
+      {
+        for (unsigned int i = 0; i < copy.dof_indices.size(); ++i)
+        {
+          for (unsigned int j = 0; j < copy.dof_indices.size(); ++j)
+            this->system_matrix.add(copy.dof_indices[i],
+                                    copy.dof_indices[j],
+                                    copy.cell_matrix(i, j));
+          this->load_rhs(copy.dof_indices[i]) += copy.cell_rhs(i);
+        }
+      };
+
+      WorkStream::run(dof_handler.begin_active(),
+                      dof_handler.end(),
+                      worker,
+                      copier,
+                      ScratchData<dim>(*mapping, fe, fe.degree),
+                      CopyData());
+
+      for (const auto &load : description.point_loads)
+        point_operator(load.location).distribute(load.force, this->load_rhs);
+    }
+
+
+
+    template <int dim>
+    PointOperator<dim>
+    LagrangeBody<dim>::point_operator(const Point<dim> &location) const
+    {
+      const auto cell_and_point =
+        GridTools::find_active_cell_around_point(*mapping,
+                                                 dof_handler,
+                                                 location);
+      const auto &cell = cell_and_point.first;
+      Point<dim>  unit = cell_and_point.second;
+      for (unsigned int d = 0; d < dim; ++d)
+        unit[d] = std::min(1., std::max(0., unit[d]));
+
+      std::vector<types::global_dof_index> local(fe.n_dofs_per_cell());
+      cell->get_dof_indices(local);
+      const auto &base = fe.base_element(0);
+
+      PointOperator<dim> op;
+      op.weights.resize(base.n_dofs_per_cell());
+      op.dofs.resize(base.n_dofs_per_cell());
+      for (unsigned int i = 0; i < fe.n_dofs_per_cell(); ++i)
+      {
+        const auto [component, k] = fe.system_to_component_index(i);
+        op.dofs[k][component]     = local[i];
+        if (component == 0)
+          op.weights[k] = base.shape_value(k, unit);
+      }
+      return op;
+    }
+
+
+
+    template <int dim>
+    std::vector<SurfacePoint<dim>>
+    LagrangeBody<dim>::surface_points(const types::boundary_id face,
+                                      const PairPlacement) const
+    {
+      // Pairs sit at the nodes of the face. The normal is the mesh normal,
+      // averaged over the faces sharing a node; the tributary area is the
+      // integral of the node's shape function over the face, which makes a
+      // uniform pressure exact.
+      std::map<types::global_dof_index, SurfacePoint<dim>> nodes;
+      std::map<types::global_dof_index, Tensor<1, dim>>    normals;
+
+      const auto &base        = fe.base_element(0);
+      const auto &unit_points = base.get_unit_face_support_points(0);
+      const Quadrature<dim - 1>            node_quadrature(unit_points);
+      FEFaceValues<dim>                    node_values(*mapping,
+                                    fe,
+                                    node_quadrature,
+                                    update_quadrature_points |
+                                      update_normal_vectors);
+      FEFaceValues<dim>                    area_values(*mapping,
+                                    fe,
+                                    QGauss<dim - 1>(fe.degree + 2),
+                                    update_values | update_JxW_values);
+      std::vector<types::global_dof_index> local(fe.n_dofs_per_cell());
+
+      for (const auto &cell : dof_handler.active_cell_iterators())
+        for (const auto f : cell->face_indices())
+          if (cell->face(f)->at_boundary() &&
+              cell->face(f)->boundary_id() == face)
+          {
+            cell->get_dof_indices(local);
+            node_values.reinit(cell, f);
+            area_values.reinit(cell, f);
+            for (unsigned int j = 0; j < base.n_dofs_per_face(); ++j)
+            {
+              const unsigned int i_base = base.face_to_cell_index(j, f);
+              const unsigned int i_sys =
+                fe.component_to_system_index(0, i_base);
+              const types::global_dof_index key   = local[i_sys];
+              auto                         &point = nodes[key];
+              if (point.op.weights.empty())
+              {
+                point.location   = node_values.quadrature_point(j);
+                point.op.weights = {1.};
+                point.op.dofs.resize(1);
+                for (unsigned int c = 0; c < dim; ++c)
+                  point.op.dofs[0][c] =
+                    local[fe.component_to_system_index(c, i_base)];
+              }
+              normals[key] += node_values.normal_vector(j);
+              for (unsigned int q = 0; q < area_values.n_quadrature_points; ++q)
+                point.tributary_area +=
+                  area_values.shape_value(i_sys, q) * area_values.JxW(q);
+            }
+          }
+
+      std::vector<SurfacePoint<dim>> result;
+      for (auto &[key, point] : nodes)
+      {
+        point.normal = normals[key] / normals[key].norm();
+        result.push_back(point);
+      }
+      return result;
+    }
+
+
+
+    template <int dim>
+    ErrorNorms
+    LagrangeBody<dim>::compute_errors(const Vector<double>     &u,
+                                      const ExactSolution<dim> &exact) const
+    {
+      const SymmetricTensor<4, dim> S =
+        this->body_description.material.compliance();
+      const SymmetricTensor<4, dim> C =
+        this->body_description.material.stiffness();
+      FEValues<dim>                        fe_values(*mapping,
+                              fe,
+                              QGauss<dim>(fe.degree + 3),
+                              update_values | update_gradients |
+                                update_quadrature_points | update_JxW_values);
+      const FEValuesExtractors::Vector     displacement(0);
+      std::vector<Tensor<1, dim>>          u_h(fe_values.n_quadrature_points);
+      std::vector<SymmetricTensor<2, dim>> eps_h(fe_values.n_quadrature_points);
+
+      double e_l2 = 0, u_l2 = 0, e_en = 0, u_en = 0, measure = 0;
+      for (const auto &cell : dof_handler.active_cell_iterators())
+      {
+        fe_values.reinit(cell);
+        fe_values[displacement].get_function_values(u, u_h);
+        fe_values[displacement].get_function_symmetric_gradients(u, eps_h);
+        for (const unsigned int q : fe_values.quadrature_point_indices())
+        {
+          const Point<dim> &x  = fe_values.quadrature_point(q);
+          const double      dx = fe_values.JxW(q);
+          const auto        ue = exact.displacement(x);
+          const auto        se = exact.stress(x);
+          const auto        de = se - C * eps_h[q];
+          e_l2 += (ue - u_h[q]).norm_square() * dx;
+          u_l2 += ue.norm_square() * dx;
+          e_en += (de * (S * de)) * dx;
+          u_en += (se * (S * se)) * dx;
+          measure += dx;
+        }
+      }
+      ErrorNorms norms;
+      norms.l2_relative     = std::sqrt(e_l2 / u_l2);
+      norms.energy_relative = std::sqrt(e_en / u_en);
+      norms.measure         = measure;
+      return norms;
+    }
+
+
+
+    template <int dim>
+    SymmetricTensor<2, dim>
+    LagrangeBody<dim>::stress(const Vector<double> &u,
+                              const Point<dim>     &location) const
+    {
+      const auto cell_and_point =
+        GridTools::find_active_cell_around_point(*mapping,
+                                                 dof_handler,
+                                                 location);
+      const Quadrature<dim> quadrature(
+        std::vector<Point<dim>>(1, cell_and_point.second));
+      FEValues<dim> fe_values(*mapping, fe, quadrature, update_gradients);
+      fe_values.reinit(cell_and_point.first);
+      std::vector<SymmetricTensor<2, dim>> eps(1);
+      fe_values[FEValuesExtractors::Vector(0)]
+        .get_function_symmetric_gradients(u, eps);
+      return this->body_description.material.stiffness() * eps[0];
+    }
+
+
+
+    template <int dim>
+    void
+    LagrangeBody<dim>::write_vtu(const Vector<double> &u,
+                                 const std::string    &filename) const
+    {
+      StressPostprocessor<dim> postprocessor(
+        this->body_description.material.stiffness());
+      DataOut<dim> data_out;
+      data_out.attach_dof_handler(dof_handler);
+      std::vector<DataComponentInterpretation::DataComponentInterpretation>
+        interpretation(
+          dim,
+          DataComponentInterpretation::component_is_part_of_vector);
+      data_out.add_data_vector(u,
+                               std::vector<std::string>(dim, "displacement"),
+                               DataOut<dim>::type_dof_data,
+                               interpretation);
+      data_out.add_data_vector(u, postprocessor);
+      data_out.build_patches(*mapping,
+                             std::max(fe.degree,
+                                      this->settings.output_subdivisions),
+                             DataOut<dim>::curved_inner_cells);
+      std::ofstream out(filename);
+      AssertThrow(out, ExcMessage("Cannot write '" + filename + "'."));
+      data_out.write_vtu(out);
+    }
+
+
+
+    template <int dim>
+    double
+    LagrangeBody<dim>::measure() const
+    {
+      FEValues<dim> fe_values(*mapping,
+                              fe,
+                              QGauss<dim>(fe.degree + 1),
+                              update_JxW_values);
+      double        result = 0.;
+      for (const auto &cell : dof_handler.active_cell_iterators())
+      {
+        fe_values.reinit(cell);
+        for (const unsigned int q : fe_values.quadrature_point_indices())
+          result += fe_values.JxW(q);
+      }
+      return result;
+    }
+
+
+
+    template class LagrangeBody<2>;
+    template class LagrangeBody<3>;
+  } // namespace discretization
+} // namespace igabde

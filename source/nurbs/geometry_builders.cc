@@ -1,0 +1,285 @@
+#include <igabde/nurbs/geometry_builders.h>
+
+#include <deal.II/base/exceptions.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace igabde
+{
+  namespace nurbs
+  {
+    namespace
+    {
+      const KnotVector &
+      linear()
+      {
+        static const KnotVector kv(1, {0., 0., 1., 1.});
+        return kv;
+      }
+
+      const KnotVector &
+      quadratic()
+      {
+        static const KnotVector kv(2, {0., 0., 0., 1., 1., 1.});
+        return kv;
+      }
+    } // namespace
+
+
+
+    template <int dim>
+    NurbsPatch<dim>
+    make_box(const Point<dim> &lo, const Point<dim> &hi)
+    {
+      for (unsigned int d = 0; d < dim; ++d)
+        AssertThrow(lo[d] < hi[d],
+                    ExcMessage("make_box: the lower corner must be below the "
+                               "upper corner in every coordinate (direction " +
+                               std::to_string(d) + ")."));
+      std::array<KnotVector, dim> knots;
+      knots.fill(linear());
+      std::vector<Point<dim>> points(1u << dim);
+      std::vector<double>     weights(1u << dim, 1.);
+      for (unsigned int a = 0; a < points.size(); ++a)
+        for (unsigned int d = 0; d < dim; ++d)
+          points[a][d] = ((a >> d) & 1u) ? hi[d] : lo[d];
+      return NurbsPatch<dim>(knots, points, weights);
+    }
+
+
+
+    NurbsPatch<2>
+    make_quarter_annulus(const double r0, const double r1)
+    {
+      AssertThrow(r0 > 0. && r0 < r1,
+                  ExcMessage("make_quarter_annulus: need 0 < r0 < r1, got r0 = " +
+                             std::to_string(r0) +
+                             ", r1 = " + std::to_string(r1) + "."));
+      const double w = std::sqrt(0.5);
+      // Radial index fastest.
+      const std::vector<Point<2>> points = {Point<2>(r0, 0.),
+                                            Point<2>(r1, 0.),
+                                            Point<2>(r0, r0),
+                                            Point<2>(r1, r1),
+                                            Point<2>(0., r0),
+                                            Point<2>(0., r1)};
+      const std::vector<double>   weights = {1., 1., w, w, 1., 1.};
+      return NurbsPatch<2>({{linear(), quadratic()}}, points, weights);
+    }
+
+
+
+    template <int dim>
+    NurbsPatch<dim>
+    make_thick_cylinder_quarter(const double r0,
+                                const double r1,
+                                const double height)
+    {
+      const NurbsPatch<2> annulus = make_quarter_annulus(r0, r1);
+      if constexpr (dim == 2)
+        {
+          (void)height;
+          return annulus;
+        }
+      else
+        {
+          AssertThrow(height > 0.,
+                      ExcMessage("make_thick_cylinder_quarter: the height "
+                                 "must be positive."));
+          std::vector<Point<3>> points;
+          std::vector<double>   weights;
+          for (unsigned int k = 0; k < 2; ++k)
+            for (unsigned int a = 0; a < annulus.n_control_points(); ++a)
+              {
+                const Point<2> &p = annulus.control_point(a);
+                points.emplace_back(p[0], p[1], k * height);
+                weights.push_back(annulus.weight(a));
+              }
+          return NurbsPatch<3>({{linear(), quadratic(), linear()}},
+                               points,
+                               weights);
+        }
+    }
+
+
+
+    NurbsPatch<3>
+    make_curved_beam(const double r0, const double r1, const double width)
+    {
+      AssertThrow(width > 0.,
+                  ExcMessage("make_curved_beam: the width must be positive."));
+      const NurbsPatch<2>   annulus = make_quarter_annulus(r0, r1);
+      std::vector<Point<3>> points;
+      std::vector<double>   weights;
+      for (unsigned int k = 0; k < 2; ++k)
+        for (unsigned int a = 0; a < annulus.n_control_points(); ++a)
+          {
+            // (x, y) of the annulus becomes (x, z) of the beam.
+            const Point<2> &p = annulus.control_point(a);
+            points.emplace_back(p[0], k * width, p[1]);
+            weights.push_back(annulus.weight(a));
+          }
+      return NurbsPatch<3>({{linear(), quadratic(), linear()}},
+                           points,
+                           weights);
+    }
+
+
+
+    NurbsPatch<2>
+    make_plate_with_hole(const double R, const double L)
+    {
+      AssertThrow(R > 0. && R < L,
+                  ExcMessage("make_plate_with_hole: need 0 < R < L, got R = " +
+                             std::to_string(R) +
+                             ", L = " + std::to_string(L) + "."));
+      const double s  = std::sqrt(2.);
+      const double wm = (1. + 1. / s) / 2.;
+      const double m  = (R + L) / 2.;
+      // Rows along direction 1 (angle); within a row the index of direction
+      // 0 (hole -> outer) runs fastest. Hughes et al.'s upper-left quadrant,
+      // mirrored (x -> -x) and transposed so that the patch is right-handed.
+      const Point<2> hole[4]  = {Point<2>(R, 0.),
+                                Point<2>(R, R * (s - 1.)),
+                                Point<2>(R * (s - 1.), R),
+                                Point<2>(0., R)};
+      const double   whole[4] = {1., wm, wm, 1.};
+      const Point<2> mid[4]   = {Point<2>(m, 0.),
+                               Point<2>(m, 0.3 * m),
+                               Point<2>(0.3 * m, m),
+                               Point<2>(0., m)};
+      const Point<2> outer[4] = {Point<2>(L, 0.),
+                                 Point<2>(L, L),
+                                 Point<2>(L, L),
+                                 Point<2>(0., L)};
+      std::vector<Point<2>> points;
+      std::vector<double>   weights;
+      for (unsigned int j = 0; j < 4; ++j)
+        {
+          points.push_back(hole[j]);
+          weights.push_back(whole[j]);
+          points.push_back(mid[j]);
+          weights.push_back(1.);
+          points.push_back(outer[j]);
+          weights.push_back(1.);
+        }
+      const KnotVector angular(2, {0., 0., 0., 0.5, 1., 1., 1.});
+      return NurbsPatch<2>({{quadratic(), angular}}, points, weights);
+    }
+
+
+
+    NurbsPatch<2>
+    make_hertz_quarter_disc(const double R)
+    {
+      AssertThrow(R > 0.,
+                  ExcMessage("make_hertz_quarter_disc: the radius must be "
+                             "positive."));
+      const double s  = std::sqrt(2.);
+      const double cw = std::cos(M_PI / 8.); // 45-degree arcs
+      // Boundary control points and weights (homogeneous Coons interior).
+      std::array<std::array<Point<2>, 3>, 3> P; // P[i][j]
+      std::array<std::array<double, 3>, 3>   w;
+      P[0][0] = Point<2>(0., 0.);
+      w[0][0] = 1.;
+      P[1][0] = Point<2>(R * (s - 1.), 0.); // tangents at -90 and -45 deg
+      w[1][0] = cw;
+      P[2][0] = Point<2>(R / s, R * (1. - 1. / s));
+      w[2][0] = 1.;
+      P[2][1] = Point<2>(R, R * (2. - s)); // tangents at -45 and 0 deg
+      w[2][1] = cw;
+      P[2][2] = Point<2>(R, R);
+      w[2][2] = 1.;
+      P[0][1] = Point<2>(0., 0.5 * R);
+      w[0][1] = cw;
+      P[0][2] = Point<2>(0., R);
+      w[0][2] = 1.;
+      P[1][2] = Point<2>(0.5 * R, R);
+      w[1][2] = cw;
+
+      // Interior point: bilinear Coons blend of the homogeneous boundary net,
+      // Pw11 = (edge midpoints)/2 - (corners)/4.
+      Tensor<1, 2> pw;
+      double       ww = 0.;
+      auto         add = [&](const unsigned int i,
+                     const unsigned int j,
+                     const double       c) {
+        pw += c * w[i][j] * static_cast<const Tensor<1, 2> &>(P[i][j]);
+        ww += c * w[i][j];
+      };
+      add(0, 1, 0.5);
+      add(2, 1, 0.5);
+      add(1, 0, 0.5);
+      add(1, 2, 0.5);
+      add(0, 0, -0.25);
+      add(2, 0, -0.25);
+      add(0, 2, -0.25);
+      add(2, 2, -0.25);
+      w[1][1] = ww;
+      P[1][1] = Point<2>(pw / ww);
+
+      std::vector<Point<2>> points;
+      std::vector<double>   weights;
+      for (unsigned int j = 0; j < 3; ++j)
+        for (unsigned int i = 0; i < 3; ++i)
+          {
+            points.push_back(P[i][j]);
+            weights.push_back(w[i][j]);
+          }
+      return NurbsPatch<2>({{quadratic(), quadratic()}}, points, weights);
+    }
+
+
+
+    template <int dim>
+    void
+    elevate_to_degree(NurbsPatch<dim> &patch, const unsigned int degree)
+    {
+      for (unsigned int d = 0; d < dim; ++d)
+        if (patch.degree(d) < degree)
+          patch.elevate_degree(d, degree - patch.degree(d));
+    }
+
+
+
+    template <int dim>
+    void
+    subdivide(
+      NurbsPatch<dim>                                            &patch,
+      const std::array<unsigned int, static_cast<std::size_t>(dim)> &n_spans)
+    {
+      for (unsigned int d = 0; d < dim; ++d)
+        {
+          AssertThrow(n_spans[d] >= 1,
+                      ExcMessage("subdivide: every direction needs at least "
+                                 "one part per span."));
+          const std::vector<double> b = patch.breakpoints(d);
+          std::vector<double>       new_knots;
+          for (unsigned int e = 0; e + 1 < b.size(); ++e)
+            for (unsigned int j = 1; j < n_spans[d]; ++j)
+              new_knots.push_back(b[e] + (b[e + 1] - b[e]) * j / n_spans[d]);
+          patch.insert_knots(d, new_knots);
+        }
+    }
+
+
+
+    template NurbsPatch<2>
+    make_box(const Point<2> &, const Point<2> &);
+    template NurbsPatch<3>
+    make_box(const Point<3> &, const Point<3> &);
+    template NurbsPatch<2>
+    make_thick_cylinder_quarter(const double, const double, const double);
+    template NurbsPatch<3>
+    make_thick_cylinder_quarter(const double, const double, const double);
+    template void
+    elevate_to_degree(NurbsPatch<2> &, const unsigned int);
+    template void
+    elevate_to_degree(NurbsPatch<3> &, const unsigned int);
+    template void
+    subdivide<2>(NurbsPatch<2> &, const std::array<unsigned int, 2> &);
+    template void
+    subdivide<3>(NurbsPatch<3> &, const std::array<unsigned int, 3> &);
+  } // namespace nurbs
+} // namespace igabde

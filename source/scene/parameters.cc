@@ -1,0 +1,573 @@
+#include <igabde/base/utilities.h>
+
+#include <igabde/scene/parameters.h>
+
+#include <cmath>
+
+namespace igabde
+{
+  namespace scene
+  {
+    void
+    OutputParameters::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Output");
+      {
+        prm.declare_entry("Directory",
+                          "",
+                          Patterns::Anything(),
+                          "Folder for all output of the run. Empty: "
+                          "output/<scene name>/ below the working directory.");
+        prm.declare_entry("Write vtu",
+                          "true",
+                          Patterns::Bool(),
+                          "Write the displacement, strain, stress and von "
+                          "Mises fields as VTU files with a PVD series.");
+        prm.declare_entry("Print timing",
+                          "true",
+                          Patterns::Bool(),
+                          "Print the timing table on screen. Scene tests "
+                          "switch it off; timing.txt and summary.json always "
+                          "have it.");
+      }
+      prm.leave_subsection();
+    }
+
+
+
+    void
+    OutputParameters::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Output");
+      {
+        directory    = prm.get("Directory");
+        write_vtu    = prm.get_bool("Write vtu");
+        print_timing = prm.get_bool("Print timing");
+      }
+      prm.leave_subsection();
+    }
+
+
+
+    void
+    BodyParameters::declare_parameters(ParameterHandler  &prm,
+                                       const std::string &name,
+                                       const std::string &default_type)
+    {
+      prm.enter_subsection(name);
+      {
+        prm.declare_entry("Type",
+                          default_type,
+                          Patterns::Selection("deformable|rigid plane|none"),
+                          "deformable: a meshed elastic body. rigid plane: a "
+                          "fixed flat obstacle with no mesh and no unknowns "
+                          "(Body 2 only). none: no such body (Body 2 only).");
+        prm.declare_entry(
+          "Geometry",
+          "box",
+          Patterns::Selection("box|quarter annulus|thick cylinder|"
+                              "plate with hole|hertz quarter disc|"
+                              "curved beam"),
+          "Exact NURBS geometry. box: [Lower corner, Upper corner]. quarter "
+          "annulus / thick cylinder: Inner/Outer radius, 0..90 degrees "
+          "(3D: extruded by Width along z). plate with hole: the quarter "
+          "[0,Plate size]^2 minus the hole of radius Inner radius. hertz "
+          "quarter disc: lower right quarter of a disc of Radius touching "
+          "y = 0 at the origin. curved beam: quarter annulus in the x-z "
+          "plane extruded in y by Width.");
+        prm.declare_entry("Lower corner",
+                          "0, 0, 0",
+                          Patterns::Anything(),
+                          "box: lower corner (m), comma-separated.");
+        prm.declare_entry("Upper corner",
+                          "1, 1, 1",
+                          Patterns::Anything(),
+                          "box: upper corner (m), comma-separated.");
+        prm.declare_entry("Inner radius",
+                          "1",
+                          Patterns::Double(0.),
+                          "Inner radius (m) of annulus, cylinder, curved "
+                          "beam; hole radius of the plate with hole.");
+        prm.declare_entry("Outer radius",
+                          "2",
+                          Patterns::Double(0.),
+                          "Outer radius (m) of annulus, cylinder, curved "
+                          "beam.");
+        prm.declare_entry("Radius",
+                          "8",
+                          Patterns::Double(0.),
+                          "Radius (m) of the Hertz cylinder.");
+        prm.declare_entry("Width",
+                          "1",
+                          Patterns::Double(0.),
+                          "Extrusion width (m) of 3D annulus-like bodies.");
+        prm.declare_entry("Plate size",
+                          "4",
+                          Patterns::Double(0.),
+                          "Edge length L (m) of the plate with hole.");
+        prm.declare_entry("Subdivisions",
+                          "1",
+                          Patterns::Anything(),
+                          "Knot spans per parametric direction of the base "
+                          "mesh (one number for all, or one per direction), "
+                          "before Discretization/Refinements.");
+        prm.declare_entry("Young's modulus",
+                          "1000",
+                          Patterns::Double(),
+                          "Young's modulus E (Pa), > 0.");
+        prm.declare_entry("Poisson's ratio",
+                          "0.3",
+                          Patterns::Double(),
+                          "Poisson's ratio nu, 0 <= nu < 0.5.");
+        prm.declare_entry(
+          "Supports",
+          "",
+          Patterns::Anything(),
+          "Prescribed displacements on patch faces: 'face: components; ...' "
+          "where a component is x, y or z, optionally with a value "
+          "(x=0.05) scaled by the step's displacement factor; e.g. "
+          "'0: x; 2: y'. Faces: 0/1 low/high end of parametric direction "
+          "0, 2/3 of direction 1, 4/5 of direction 2.");
+        prm.declare_entry(
+          "Tractions",
+          "",
+          Patterns::Anything(),
+          "Tractions on patch faces, scaled by the load factor: "
+          "'face: pressure p' (t = -p n), 'face: vector tx, ty[, tz]' or "
+          "'face: exact' (sigma_exact n from the Exact solution); separated "
+          "by ';'.");
+        prm.declare_entry("Point loads",
+                          "",
+                          Patterns::Anything(),
+                          "Point forces 'x, y[, z] : fx, fy[, fz]; ...' (N), "
+                          "scaled by the load factor.");
+        prm.declare_entry("Body force",
+                          "0, 0, 0",
+                          Patterns::Anything(),
+                          "Body force per unit volume (N/m^3).");
+        prm.declare_entry("Plane point",
+                          "0, 0, 0",
+                          Patterns::Anything(),
+                          "rigid plane: a point on the plane (m).");
+        prm.declare_entry("Plane normal",
+                          "0, 1, 0",
+                          Patterns::Anything(),
+                          "rigid plane: normal pointing towards Body 1.");
+      }
+      prm.leave_subsection();
+    }
+
+
+
+    void
+    BodyParameters::parse_parameters(ParameterHandler  &prm,
+                                     const std::string &name)
+    {
+      prm.enter_subsection(name);
+      {
+        type           = prm.get("Type");
+        geometry       = prm.get("Geometry");
+        lower_corner   = prm.get("Lower corner");
+        upper_corner   = prm.get("Upper corner");
+        inner_radius   = prm.get_double("Inner radius");
+        outer_radius   = prm.get_double("Outer radius");
+        radius         = prm.get_double("Radius");
+        width          = prm.get_double("Width");
+        plate_size     = prm.get_double("Plate size");
+        subdivisions   = prm.get("Subdivisions");
+        youngs_modulus = prm.get_double("Young's modulus");
+        poisson_ratio  = prm.get_double("Poisson's ratio");
+        supports       = prm.get("Supports");
+        tractions      = prm.get("Tractions");
+        point_loads    = prm.get("Point loads");
+        body_force     = prm.get("Body force");
+        plane_point    = prm.get("Plane point");
+        plane_normal   = prm.get("Plane normal");
+      }
+      prm.leave_subsection();
+    }
+
+
+
+    void
+    ExactSolutionParameters::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Exact solution");
+      {
+        prm.declare_entry("Type",
+                          "none",
+                          Patterns::Selection("none|kirsch|lame"),
+                          "Exact solution for error norms and 'exact' "
+                          "tractions: kirsch (V1, infinite plate with a hole "
+                          "under remote tension along x), lame (V2, thick "
+                          "cylinder under internal pressure, plane strain).");
+        prm.declare_entry("Remote tension",
+                          "10",
+                          Patterns::Double(),
+                          "kirsch: remote tension T_x (Pa).");
+        prm.declare_entry("Hole radius",
+                          "1",
+                          Patterns::Double(0.),
+                          "kirsch: hole radius (m).");
+        prm.declare_entry("Inner radius",
+                          "1",
+                          Patterns::Double(0.),
+                          "lame: inner radius a (m).");
+        prm.declare_entry("Outer radius",
+                          "2",
+                          Patterns::Double(0.),
+                          "lame: outer radius b (m).");
+        prm.declare_entry("Pressure",
+                          "1",
+                          Patterns::Double(),
+                          "lame: internal pressure (Pa).");
+      }
+      prm.leave_subsection();
+    }
+
+
+
+    void
+    ExactSolutionParameters::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Exact solution");
+      {
+        type           = prm.get("Type");
+        remote_tension = prm.get_double("Remote tension");
+        hole_radius    = prm.get_double("Hole radius");
+        inner_radius   = prm.get_double("Inner radius");
+        outer_radius   = prm.get_double("Outer radius");
+        pressure       = prm.get_double("Pressure");
+      }
+      prm.leave_subsection();
+    }
+
+
+
+    void
+    ContactParameters::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Contact");
+      {
+        prm.declare_entry("Enabled",
+                          "false",
+                          Patterns::Bool(),
+                          "Whether Body 1 and Body 2 may touch.");
+        prm.declare_entry("Friction coefficient",
+                          "0",
+                          Patterns::Double(),
+                          "Coulomb friction coefficient mu >= 0. With 0 no "
+                          "tangential contact unknowns are formed.");
+        prm.declare_entry("Algorithm",
+                          "bde",
+                          Patterns::Selection("bde|penalty|augmented-lagrange"),
+                          "Contact algorithm: bde (B-differentiable "
+                          "equations with damped B-Newton).");
+        prm.declare_entry("Path",
+                          "auto",
+                          Patterns::Selection("condensed|full|auto"),
+                          "condensed: flexibility matrix and dense BDE "
+                          "system; full: uncondensed sparse system; auto: "
+                          "condensed for few pairs.");
+        prm.declare_entry("Slave face",
+                          "2",
+                          Patterns::Integer(0, 5),
+                          "Patch face of Body 1 that may touch Body 2.");
+        prm.declare_entry("Master face",
+                          "3",
+                          Patterns::Integer(0, 5),
+                          "Patch face of Body 2 that may touch Body 1.");
+        prm.declare_entry("Pair placement",
+                          "greville",
+                          Patterns::Selection("greville|knots|gauss"),
+                          "Where pairs sit on a NURBS surface: images of the "
+                          "Greville abscissae, knot-grid points or Gauss "
+                          "points. Lagrange surfaces use their nodes.");
+        prm.declare_entry("Tolerance",
+                          "1e-10",
+                          Patterns::Double(0.),
+                          "Stopping test: natural-map residual relative to "
+                          "||q||.");
+        prm.declare_entry("Max iterations",
+                          "100",
+                          Patterns::Integer(1),
+                          "B-Newton iteration limit per load step.");
+        prm.declare_entry("r scale",
+                          "1",
+                          Patterns::Double(0.),
+                          "Factor on the per-pair r_n = 1/F_nn, "
+                          "r_t = 1/lambda_max(F_tt).");
+        prm.declare_entry("Verbose",
+                          "false",
+                          Patterns::Bool(),
+                          "Print every B-Newton iteration.");
+      }
+      prm.leave_subsection();
+    }
+
+
+
+    void
+    ContactParameters::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Contact");
+      {
+        enabled              = prm.get_bool("Enabled");
+        friction_coefficient = prm.get_double("Friction coefficient");
+        algorithm            = prm.get("Algorithm");
+        path                 = prm.get("Path");
+        slave_face           = prm.get_integer("Slave face");
+        master_face          = prm.get_integer("Master face");
+        pair_placement       = prm.get("Pair placement");
+        tolerance            = prm.get_double("Tolerance");
+        max_iterations       = prm.get_integer("Max iterations");
+        r_scale              = prm.get_double("r scale");
+        verbose              = prm.get_bool("Verbose");
+      }
+      prm.leave_subsection();
+    }
+
+
+
+    void
+    ChecksParameters::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Checks");
+      {
+        prm.declare_entry("Uniform pressure",
+                          "0",
+                          Patterns::Double(0.),
+                          "Exact uniform contact pressure (Pa): adds "
+                          "checks.pressure_uniformity = max_i |p_i / p - 1| "
+                          "to summary.json. 0: no such check.");
+        prm.declare_entry("Hertz line load",
+                          "0",
+                          Patterns::Double(0.),
+                          "Line load P (N/m) of a Hertz cylinder (radius "
+                          "Body 1/Radius) on a rigid flat: adds "
+                          "checks.hertz_half_width, hertz_peak_pressure and "
+                          "pressure_l2_rel_error. 0: no Hertz check.");
+      }
+      prm.leave_subsection();
+    }
+
+
+
+    void
+    ChecksParameters::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Checks");
+      {
+        uniform_pressure = prm.get_double("Uniform pressure");
+        hertz_line_load  = prm.get_double("Hertz line load");
+      }
+      prm.leave_subsection();
+    }
+
+
+
+    void
+    LoadPathParameters::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Load path");
+      {
+        prm.declare_entry("Number of steps",
+                          "1",
+                          Patterns::Integer(1),
+                          "Proportional loading in this many equal steps. "
+                          "A frictionless proportional scene needs one.");
+        prm.declare_entry("Load factors",
+                          "",
+                          Patterns::Anything(),
+                          "Explicit load factor of each step (scales "
+                          "tractions, point loads, body force), e.g. "
+                          "'0.5, 1, 0.5' to unload. Overrides Number of "
+                          "steps.");
+        prm.declare_entry("Displacement factors",
+                          "",
+                          Patterns::Anything(),
+                          "Explicit factor of the prescribed displacements "
+                          "per step; as many as Load factors, or empty "
+                          "(then equal to the load factors).");
+      }
+      prm.leave_subsection();
+    }
+
+
+
+    void
+    LoadPathParameters::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Load path");
+      {
+        n_steps      = prm.get_integer("Number of steps");
+        load_factors = base::parse_doubles(prm.get("Load factors"),
+                                           "Load path/Load factors");
+        displacement_factors =
+          base::parse_doubles(prm.get("Displacement factors"),
+                              "Load path/Displacement factors");
+      }
+      prm.leave_subsection();
+    }
+
+
+
+    std::vector<std::pair<double, double>>
+    LoadPathParameters::steps() const
+    {
+      std::vector<std::pair<double, double>> result;
+      if (load_factors.empty() && displacement_factors.empty())
+      {
+        for (unsigned int s = 1; s <= n_steps; ++s)
+          result.emplace_back(double(s) / n_steps, double(s) / n_steps);
+        return result;
+      }
+      const std::vector<double> &lf =
+        load_factors.empty() ? displacement_factors : load_factors;
+      const std::vector<double> &df =
+        displacement_factors.empty() ? load_factors : displacement_factors;
+      for (unsigned int s = 0; s < lf.size(); ++s)
+        result.emplace_back(lf[s], df[s]);
+      return result;
+    }
+
+
+
+    void
+    declare_discretization_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Discretization");
+      {
+        prm.declare_entry("Type",
+                          "nurbs",
+                          Patterns::Selection("nurbs|lagrange"),
+                          "nurbs: isogeometric analysis on the exact "
+                          "geometry. lagrange: FE_Q elements on the same "
+                          "knot-span mesh, geometry interpolated.");
+        prm.declare_entry("Degree",
+                          "2",
+                          Patterns::Integer(1, 6),
+                          "NURBS degree (geometry elevated to it) or FE_Q "
+                          "degree.");
+        prm.declare_entry("Refinements",
+                          "0",
+                          Patterns::Integer(0, 12),
+                          "Extra uniform h-refinements (each halves every "
+                          "knot span / cell).");
+        prm.declare_entry("Linear solver",
+                          "direct",
+                          Patterns::Selection("direct"),
+                          "direct: sparse LU (UMFPACK), one factorisation "
+                          "per body serving all right-hand sides.");
+        prm.declare_entry("Output subdivisions",
+                          "4",
+                          Patterns::Integer(1, 16),
+                          "Subdivisions per element and direction in VTU "
+                          "output, so that curved boundaries look curved.");
+      }
+      prm.leave_subsection();
+    }
+
+
+
+    void
+    parse_discretization_parameters(
+      ParameterHandler                       &prm,
+      discretization::DiscretizationSettings &settings)
+    {
+      prm.enter_subsection("Discretization");
+      {
+        settings.type                = prm.get("Type");
+        settings.degree              = prm.get_integer("Degree");
+        settings.refinements         = prm.get_integer("Refinements");
+        settings.linear_solver       = prm.get("Linear solver");
+        settings.output_subdivisions = prm.get_integer("Output subdivisions");
+      }
+      prm.leave_subsection();
+    }
+
+
+
+    void
+    AllParameters::declare_parameters(ParameterHandler &prm)
+    {
+      prm.declare_entry("Scene name",
+                        "",
+                        Patterns::Anything(),
+                        "Name of the scene; empty: the file name without "
+                        ".prm.");
+      prm.declare_entry("Dimension",
+                        "2",
+                        Patterns::Integer(2, 3),
+                        "Spatial dimension: 2 (two displacement "
+                        "components) or 3.");
+      prm.declare_entry("Plane model",
+                        "plane strain",
+                        Patterns::Selection("plane strain|plane stress"),
+                        "2D kinematics.");
+      prm.declare_entry("Probe points",
+                        "",
+                        Patterns::Anything(),
+                        "Named points whose displacement goes to "
+                        "summary.json: 'A: x, y[, z]; B: ...' (on Body 1).");
+      OutputParameters::declare_parameters(prm);
+      declare_discretization_parameters(prm);
+      BodyParameters::declare_parameters(prm, "Body 1", "deformable");
+      BodyParameters::declare_parameters(prm, "Body 2", "none");
+      ExactSolutionParameters::declare_parameters(prm);
+      ContactParameters::declare_parameters(prm);
+      LoadPathParameters::declare_parameters(prm);
+      ChecksParameters::declare_parameters(prm);
+    }
+
+
+
+    void
+    AllParameters::parse_parameters(ParameterHandler  &prm,
+                                    const std::string &scene_file)
+    {
+      name        = prm.get("Scene name");
+      dimension   = prm.get_integer("Dimension");
+      plane_model = prm.get("Plane model");
+      probes      = prm.get("Probe points");
+      output.parse_parameters(prm);
+      parse_discretization_parameters(prm, discretization);
+      body1.parse_parameters(prm, "Body 1");
+      body2.parse_parameters(prm, "Body 2");
+      exact.parse_parameters(prm);
+      contact.parse_parameters(prm);
+      load_path.parse_parameters(prm);
+      checks.parse_parameters(prm);
+
+      // Checks that need more than a pattern; each names the parameter and
+      // the fix.
+      const std::string f = scene_file + ": ";
+      AssertThrow(body1.type == "deformable",
+                  base::ExcInput(f + "Body 1/Type must be 'deformable'; only "
+                                     "Body 2 may be a rigid plane."));
+      AssertThrow(contact.friction_coefficient >= 0.,
+                  base::ExcInput(
+                    f + "Contact/Friction coefficient = " +
+                    std::to_string(contact.friction_coefficient) +
+                    " is negative; use mu >= 0 (0 for frictionless)."));
+      AssertThrow(!contact.enabled || body2.type != "none",
+                  base::ExcInput(f + "Contact/Enabled is true but Body 2/Type "
+                                     "is 'none'; set Body 2/Type to "
+                                     "'deformable' or 'rigid plane'."));
+      AssertThrow(contact.algorithm == "bde",
+                  base::ExcInput(f +
+                                 "Contact/Algorithm = " + contact.algorithm +
+                                 " is not available yet; use 'bde'."));
+      AssertThrow(load_path.displacement_factors.empty() ||
+                    load_path.load_factors.empty() ||
+                    load_path.displacement_factors.size() ==
+                      load_path.load_factors.size(),
+                  base::ExcInput(
+                    f + "Load path/Displacement factors has " +
+                    std::to_string(load_path.displacement_factors.size()) +
+                    " entries but Load path/Load factors has " +
+                    std::to_string(load_path.load_factors.size()) +
+                    "; give both lists the same length."));
+    }
+  } // namespace scene
+} // namespace igabde

@@ -1,0 +1,690 @@
+#include <igabde/base/utilities.h>
+
+#include <igabde/contact/contact_stage.h>
+
+#include <igabde/postprocess/exact_solutions.h>
+#include <igabde/scene/geometry.h>
+#include <igabde/scene/simulator.h>
+
+#include <deal.II/base/data_out_base.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+
+namespace igabde
+{
+  namespace scene
+  {
+    namespace
+    {
+      /// Writes to two streams at once (screen and log.txt).
+      class TeeBuffer : public std::streambuf
+      {
+      public:
+        TeeBuffer(std::streambuf *a, std::streambuf *b)
+          : a(a)
+          , b(b)
+        {
+        }
+
+      protected:
+        int
+        overflow(int c) override
+        {
+          if (c == EOF)
+            return !EOF;
+          const int r1 = a->sputc(c), r2 = b->sputc(c);
+          return (r1 == EOF || r2 == EOF) ? EOF : c;
+        }
+
+        int
+        sync() override
+        {
+          return (a->pubsync() == 0 && b->pubsync() == 0) ? 0 : -1;
+        }
+
+      private:
+        std::streambuf *a, *b;
+      };
+
+      std::string
+      component_names(const unsigned int dim)
+      {
+        return dim == 2 ? "x, y" : "x, y, z";
+      }
+    } // namespace
+
+
+
+    template <int dim>
+    Simulator<dim>::Simulator(const AllParameters &parameters,
+                              const std::string   &scene_file,
+                              const std::string   &output_directory,
+                              std::ostream        &log)
+      : parameters(parameters)
+      , scene_file(scene_file)
+      , output_directory(output_directory)
+      , log(log)
+      , timer(log, TimerOutput::never, TimerOutput::wall_times)
+      , step_records(base::Json::array())
+    {
+      summary["scene"]          = parameters.name;
+      summary["status"]         = "running";
+      summary["dim"]            = dim;
+      summary["discretization"] = parameters.discretization.type;
+      summary["degree"]         = parameters.discretization.degree;
+      summary["refinements"]    = parameters.discretization.refinements;
+    }
+
+
+
+    template <int dim>
+    Simulator<dim>::~Simulator() = default;
+
+
+
+    template <int dim>
+    discretization::BodyDescription<dim>
+    Simulator<dim>::make_description(const BodyParameters &body,
+                                     const std::string    &name) const
+    {
+      const std::string where = scene_file + ": " + name + "/";
+      discretization::BodyDescription<dim> d;
+      d.name                    = (name == "Body 1" ? "body1" : "body2");
+      d.material.youngs_modulus = body.youngs_modulus;
+      d.material.poisson_ratio  = body.poisson_ratio;
+      d.material.plane_model    = (parameters.plane_model == "plane stress" ?
+                                     elasticity::PlaneModel::plane_stress :
+                                     elasticity::PlaneModel::plane_strain);
+      d.material.validate(scene_file + ": " + name);
+
+      d.geometry = make_geometry<dim>(body, where);
+
+      // Supports: "face: x y=0.1; face: z".
+      for (const std::string &item : base::split(body.supports, ';'))
+      {
+        const auto colon = item.find(':');
+        AssertThrow(colon != std::string::npos,
+                    base::ExcInput(where + "Supports: '" + item +
+                                   "' must read 'face: components', e.g. "
+                                   "'0: x y'."));
+        discretization::DirichletCondition<dim> bc;
+        const auto                              face =
+          base::parse_doubles(item.substr(0, colon), where + "Supports");
+        AssertThrow(face.size() == 1 && face[0] >= 0 && face[0] < 2 * dim &&
+                      face[0] == std::floor(face[0]),
+                    base::ExcInput(where + "Supports: face in '" + item +
+                                   "' must be a patch face 0.." +
+                                   std::to_string(2 * dim - 1) + "."));
+        bc.boundary_id   = static_cast<types::boundary_id>(face[0]);
+        std::string rest = item.substr(colon + 1);
+        for (char &c : rest)
+          if (c == ',')
+            c = ' ';
+        std::istringstream in(rest);
+        std::string        token;
+        bool               any = false;
+        while (in >> token)
+        {
+          const auto        eq   = token.find('=');
+          const std::string comp = token.substr(0, eq);
+          const int         c    = (comp == "x" ? 0 :
+                                    comp == "y" ? 1 :
+                                    comp == "z" ? 2 :
+                                                  -1);
+          AssertThrow(c >= 0 && c < dim,
+                      base::ExcInput(where + "Supports: '" + token + "' in '" +
+                                     item + "' is not a component; use " +
+                                     component_names(dim) +
+                                     ", optionally with =value."));
+          bc.components[c] = true;
+          if (eq != std::string::npos)
+          {
+            const auto v =
+              base::parse_doubles(token.substr(eq + 1), where + "Supports");
+            AssertThrow(v.size() == 1,
+                        base::ExcInput(where + "Supports: '" + token +
+                                       "' needs one value."));
+            bc.value[c] = v[0];
+          }
+          any = true;
+        }
+        AssertThrow(any,
+                    base::ExcInput(where + "Supports: '" + item +
+                                   "' names no component."));
+        d.dirichlet.push_back(bc);
+      }
+
+      // Tractions.
+      for (const std::string &item : base::split(body.tractions, ';'))
+      {
+        const auto colon = item.find(':');
+        AssertThrow(colon != std::string::npos,
+                    base::ExcInput(where + "Tractions: '" + item +
+                                   "' must read 'face: pressure p', "
+                                   "'face: vector tx, ty' or 'face: "
+                                   "exact'."));
+        const auto face =
+          base::parse_doubles(item.substr(0, colon), where + "Tractions");
+        AssertThrow(face.size() == 1 && face[0] >= 0 && face[0] < 2 * dim,
+                    base::ExcInput(where + "Tractions: face in '" + item +
+                                   "' must be a patch face 0.." +
+                                   std::to_string(2 * dim - 1) + "."));
+        discretization::NeumannCondition<dim> bc;
+        bc.boundary_id         = static_cast<types::boundary_id>(face[0]);
+        const std::string rest = base::trim(item.substr(colon + 1));
+        if (rest.rfind("pressure", 0) == 0)
+        {
+          const auto v =
+            base::parse_doubles(rest.substr(8), where + "Tractions");
+          AssertThrow(v.size() == 1,
+                      base::ExcInput(where + "Tractions: '" + item +
+                                     "' needs one pressure value."));
+          const double p = v[0];
+          bc.traction    = [p](const Point<dim> &, const Tensor<1, dim> &n)
+          {
+            return -p * n;
+          };
+        }
+        else if (rest.rfind("vector", 0) == 0)
+        {
+          const Tensor<1, dim> t =
+            base::parse_tensor<dim>(rest.substr(6), where + "Tractions");
+          bc.traction = [t](const Point<dim> &, const Tensor<1, dim> &)
+          {
+            return t;
+          };
+        }
+        else if (rest == "exact")
+        {
+          AssertThrow(exact.has_value(),
+                      base::ExcInput(where + "Tractions: 'exact' needs "
+                                             "Exact solution/Type other "
+                                             "than none."));
+          const auto stress = exact->stress;
+          bc.traction = [stress](const Point<dim> &x, const Tensor<1, dim> &n)
+          {
+            return stress(x) * n;
+          };
+        }
+        else
+          AssertThrow(false,
+                      base::ExcInput(where + "Tractions: '" + rest +
+                                     "' is not 'pressure p', 'vector tx, "
+                                     "ty[, tz]' or 'exact'."));
+        d.tractions.push_back(bc);
+      }
+
+      // Point loads.
+      for (const std::string &item : base::split(body.point_loads, ';'))
+      {
+        const auto colon = item.find(':');
+        AssertThrow(colon != std::string::npos,
+                    base::ExcInput(where + "Point loads: '" + item +
+                                   "' must read 'x, y[, z] : fx, fy[, "
+                                   "fz]'."));
+        discretization::PointLoad<dim> load;
+        load.location =
+          base::parse_point<dim>(item.substr(0, colon), where + "Point loads");
+        load.force = base::parse_tensor<dim>(item.substr(colon + 1),
+                                             where + "Point loads");
+        d.point_loads.push_back(load);
+      }
+      d.body_force =
+        base::parse_tensor<dim>(body.body_force, where + "Body force");
+      return d;
+    }
+
+
+
+    template <int dim>
+    void
+    Simulator<dim>::setup_bodies()
+    {
+      TimerOutput::Scope t(timer, "setup");
+      // Exact solution first: 'exact' tractions use it.
+      {
+        elasticity::IsotropicMaterial<dim> material;
+        material.youngs_modulus = parameters.body1.youngs_modulus;
+        material.poisson_ratio  = parameters.body1.poisson_ratio;
+        material.plane_model    = (parameters.plane_model == "plane stress" ?
+                                     elasticity::PlaneModel::plane_stress :
+                                     elasticity::PlaneModel::plane_strain);
+        const auto &e           = parameters.exact;
+        if (e.type == "kirsch")
+        {
+          AssertThrow(dim == 2,
+                      base::ExcInput(scene_file +
+                                     ": Exact solution/Type = kirsch is a "
+                                     "2D solution; set Dimension = 2."));
+          if constexpr (dim == 2)
+            exact = postprocess::kirsch_solution(e.remote_tension,
+                                                 e.hole_radius,
+                                                 material);
+        }
+        else if (e.type == "lame")
+          exact = postprocess::lame_solution<dim>(e.inner_radius,
+                                                  e.outer_radius,
+                                                  e.pressure,
+                                                  material);
+      }
+
+      bodies.push_back(discretization::create_body<dim>(
+        make_description(parameters.body1, "Body 1"),
+        parameters.discretization));
+      if (parameters.body2.type == "deformable")
+        bodies.push_back(discretization::create_body<dim>(
+          make_description(parameters.body2, "Body 2"),
+          parameters.discretization));
+      pvd_records.resize(bodies.size());
+
+      types::global_dof_index n_dofs     = 0;
+      unsigned int            n_elements = 0;
+      for (auto &body : bodies)
+      {
+        body->setup();
+        n_dofs += body->n_dofs();
+        n_elements += body->n_elements();
+        log << "  " << body->description().name << ": " << body->n_elements()
+            << " elements, " << body->n_dofs() << " unknowns ("
+            << body->discretization_name() << ", degree "
+            << parameters.discretization.degree << ")" << std::endl;
+        for (const auto &name : body->free_rigid_mode_names())
+          log << "    free rigid mode left by the supports: " << name
+              << " (closed by the contact equilibrium)" << std::endl;
+      }
+      summary["n_dofs"]     = static_cast<unsigned long long>(n_dofs);
+      summary["n_elements"] = n_elements;
+      base::Json per_body   = base::Json::array();
+      for (const auto &body : bodies)
+      {
+        base::Json b;
+        b["name"]        = body->description().name;
+        b["n_dofs"]      = static_cast<unsigned long long>(body->n_dofs());
+        b["n_elements"]  = body->n_elements();
+        base::Json modes = base::Json::array();
+        for (const auto &name : body->free_rigid_mode_names())
+          modes.push_back(name);
+        b["free_rigid_modes"] = modes;
+        per_body.push_back(b);
+      }
+      summary["bodies"] = per_body;
+
+      // Every body without supports that fix it must be held by contact.
+      for (const auto &body : bodies)
+        AssertThrow(
+          body->free_rigid_modes().empty() || parameters.contact.enabled,
+          base::ExcInput(scene_file + ": " + body->description().name +
+                         " is not held against " +
+                         body->free_rigid_mode_names()[0] +
+                         " and the scene has no contact; add Supports."));
+    }
+
+
+
+    template <int dim>
+    void
+    Simulator<dim>::solve_load_steps()
+    {
+      const auto steps = parameters.load_path.steps();
+      if (parameters.contact.enabled)
+      {
+        TimerOutput::Scope            t(timer, "contact: setup");
+        contact::ContactSettings<dim> cs;
+        const auto                   &c = parameters.contact;
+        cs.friction_coefficient         = c.friction_coefficient;
+        cs.slave_face                   = c.slave_face;
+        cs.master_face                  = c.master_face;
+        cs.placement                    = (c.pair_placement == "knots" ?
+                                             discretization::PairPlacement::knots :
+                                           c.pair_placement == "gauss" ?
+                                             discretization::PairPlacement::gauss :
+                                             discretization::PairPlacement::greville);
+        cs.rigid_plane = (parameters.body2.type == "rigid plane");
+        if (cs.rigid_plane)
+        {
+          const std::string where = scene_file + ": Body 2/";
+          cs.plane_point = base::parse_point<dim>(parameters.body2.plane_point,
+                                                  where + "Plane point");
+          cs.plane_normal =
+            base::parse_tensor<dim>(parameters.body2.plane_normal,
+                                    where + "Plane normal");
+          AssertThrow(cs.plane_normal.norm() > 0.,
+                      base::ExcInput(where + "Plane normal must not be "
+                                             "zero."));
+          cs.plane_normal /= cs.plane_normal.norm();
+        }
+        cs.solver.tolerance      = c.tolerance;
+        cs.solver.max_iterations = c.max_iterations;
+        cs.solver.r_factor       = c.r_scale;
+        cs.solver.log            = c.verbose;
+        cs.solver.log_stream     = &log;
+        cs.uniform_pressure      = parameters.checks.uniform_pressure;
+        cs.hertz_line_load       = parameters.checks.hertz_line_load;
+        cs.hertz_radius          = parameters.body1.radius;
+        cs.scene_file            = scene_file;
+        contact_stage =
+          std::make_unique<contact::ContactStage<dim>>(cs, bodies, log);
+        contact_stage->setup(timer);
+        contact_stage->add_summary(summary);
+      }
+      else
+      {
+        base::Json effects;
+        effects["contact"]    = false;
+        effects["friction"]   = false;
+        effects["load_steps"] = steps.size();
+        summary["effects"]    = effects;
+      }
+
+      for (unsigned int s = 0; s < steps.size(); ++s)
+      {
+        const auto [load_factor, displacement_factor] = steps[s];
+        log << "Load step " << s + 1 << "/" << steps.size() << ": load factor "
+            << load_factor << ", displacement factor " << displacement_factor
+            << std::endl;
+        std::vector<Vector<double>> u(bodies.size());
+        for (unsigned int b = 0; b < bodies.size(); ++b)
+        {
+          u[b] = bodies[b]->load_solution();
+          u[b] *= load_factor;
+          u[b].add(displacement_factor, bodies[b]->prescribed_solution());
+        }
+        base::Json record;
+        record["step"]                = s + 1;
+        record["load_factor"]         = load_factor;
+        record["displacement_factor"] = displacement_factor;
+        if (contact_stage)
+          contact_stage->solve_step(s + 1,
+                                    load_factor,
+                                    displacement_factor,
+                                    u,
+                                    record,
+                                    timer);
+        step_records.push_back(record);
+        summary["load_steps"] = step_records;
+        output_step(s + 1, u);
+        if (s + 1 == steps.size())
+          postprocess_final(u);
+      }
+    }
+
+
+
+    template <int dim>
+    void
+    Simulator<dim>::output_step(const unsigned int                 step,
+                                const std::vector<Vector<double>> &u)
+    {
+      TimerOutput::Scope t(timer, "output");
+      if (!parameters.output.write_vtu)
+        return;
+      for (unsigned int b = 0; b < bodies.size(); ++b)
+      {
+        std::ostringstream name;
+        name << "solution-" << bodies[b]->description().name << "-"
+             << std::setw(4) << std::setfill('0') << step << ".vtu";
+        bodies[b]->write_vtu(u[b], output_directory + "/" + name.str());
+        pvd_records[b].emplace_back(double(step), name.str());
+        std::ofstream pvd(output_directory + "/solution-" +
+                          bodies[b]->description().name + ".pvd");
+        DataOutBase::write_pvd_record(pvd, pvd_records[b]);
+      }
+      if (contact_stage)
+        contact_stage->write_step_output(step, output_directory);
+    }
+
+
+
+    template <int dim>
+    void
+    Simulator<dim>::postprocess_final(const std::vector<Vector<double>> &u)
+    {
+      TimerOutput::Scope t(timer, "postprocess");
+      base::Json         checks = base::Json::object();
+      if (exact)
+      {
+        const auto norms       = bodies[0]->compute_errors(u[0], *exact);
+        checks["l2_error"]     = norms.l2_relative;
+        checks["energy_error"] = norms.energy_relative;
+        log << "  relative L2 error " << std::setprecision(4) << std::scientific
+            << norms.l2_relative << ", relative energy error "
+            << norms.energy_relative << std::defaultfloat
+            << std::setprecision(6) << std::endl;
+      }
+      if (contact_stage)
+        contact_stage->add_checks(checks);
+      summary["checks"] = checks;
+
+      base::Json points = base::Json::object();
+      for (const std::string &item : base::split(parameters.probes, ';'))
+      {
+        const auto colon = item.find(':');
+        AssertThrow(colon != std::string::npos,
+                    base::ExcInput(scene_file + ": Probe points: '" + item +
+                                   "' must read 'name: x, y[, z]'."));
+        const std::string name = base::trim(item.substr(0, colon));
+        const Point<dim>  x =
+          base::parse_point<dim>(item.substr(colon + 1),
+                                 scene_file + ": Probe points");
+        const Tensor<1, dim> d =
+          bodies[0]->point_operator(x).displacement(u[0]);
+        base::Json value = base::Json::array();
+        for (unsigned int c = 0; c < dim; ++c)
+          value.push_back(d[c]);
+        points[name] = value;
+        log << "  probe " << name << ": displacement " << std::setprecision(5)
+            << d << std::setprecision(6) << std::endl;
+      }
+      summary["points"] = points;
+    }
+
+
+
+    template <int dim>
+    void
+    Simulator<dim>::write_summary(const std::string &status,
+                                  const std::string &error)
+    {
+      summary["status"] = status;
+      if (!error.empty())
+        summary["error"] = error;
+      base::Json timing = base::Json::object();
+      double     total  = 0.;
+      for (const auto &[phase, seconds] :
+           timer.get_summary_data(TimerOutput::total_wall_time))
+      {
+        timing[phase] = seconds;
+        total += seconds;
+      }
+      timing["total"]   = total;
+      summary["timing"] = timing;
+
+      std::ofstream out(output_directory + "/summary.json");
+      summary.write(out);
+
+      // The timing table as deal.II's TimerOutput prints it, to a file
+      // always and to the screen unless the scene switches it off.
+      const auto         calls = timer.get_summary_data(TimerOutput::n_calls);
+      std::ostringstream table;
+      table << "+" << std::string(40, '-') << "+" << std::string(11, '-') << "+"
+            << std::string(13, '-') << "+\n"
+            << "| Wall time per phase" << std::string(20, ' ') << "| calls"
+            << std::string(5, ' ') << "| seconds     |\n";
+      for (const auto &[phase, seconds] :
+           timer.get_summary_data(TimerOutput::total_wall_time))
+        table << "| " << std::left << std::setw(39) << phase << "| "
+              << std::right << std::setw(9) << calls.at(phase) << " | "
+              << std::setw(11) << std::setprecision(4) << seconds << " |\n";
+      table << "| " << std::left << std::setw(39) << "total"
+            << "| " << std::right << std::setw(9) << ""
+            << " | " << std::setw(11) << std::setprecision(4) << total << " |\n"
+            << "+" << std::string(40, '-') << "+" << std::string(11, '-') << "+"
+            << std::string(13, '-') << "+\n";
+      std::ofstream(output_directory + "/timing.txt") << table.str();
+      if (parameters.output.print_timing)
+        log << table.str() << std::flush;
+    }
+
+
+
+    template <int dim>
+    void
+    Simulator<dim>::run()
+    {
+      log << "Scene " << parameters.name << " (" << dim << "D, "
+          << parameters.discretization.type << ", degree "
+          << parameters.discretization.degree << ", "
+          << parameters.discretization.refinements << " refinements)"
+          << std::endl;
+      setup_bodies();
+      solve_load_steps();
+      write_summary("ok", "");
+    }
+
+
+
+    template <int dim>
+    void
+    Simulator<dim>::write_failed_summary(const std::string &message)
+    {
+      write_summary("failed", message);
+    }
+
+
+
+    template class Simulator<2>;
+    template class Simulator<3>;
+  } // namespace scene
+} // namespace igabde
+
+
+
+namespace igabde
+{
+  namespace scene
+  {
+    namespace
+    {
+      void
+      set_override(ParameterHandler  &prm,
+                   const std::string &path,
+                   const std::string &value)
+      {
+        const std::vector<std::string> parts = base::split(path, '/');
+        AssertThrow(!parts.empty(),
+                    base::ExcInput("--set: '" + path +
+                                   "' is not of the form "
+                                   "'Section/Name=value'."));
+        for (unsigned int i = 0; i + 1 < parts.size(); ++i)
+          prm.enter_subsection(parts[i]);
+        try
+        {
+          prm.set(parts.back(), value);
+        }
+        catch (const ExceptionBase &e)
+        {
+          for (unsigned int i = 0; i + 1 < parts.size(); ++i)
+            prm.leave_subsection();
+          AssertThrow(false,
+                      base::ExcInput("--set " + path + "=" + value + ": " +
+                                     base::exception_message(e)));
+        }
+        for (unsigned int i = 0; i + 1 < parts.size(); ++i)
+          prm.leave_subsection();
+      }
+    } // namespace
+
+
+
+    int
+    run_scene(const std::string &scene_file,
+              const std::vector<std::pair<std::string, std::string>> &overrides)
+    {
+      ParameterHandler prm;
+      AllParameters::declare_parameters(prm);
+      AllParameters parameters;
+      try
+      {
+        AssertThrow(std::filesystem::exists(scene_file),
+                    base::ExcInput(scene_file +
+                                   ": no such scene file; give the path "
+                                   "of a .prm file (see prm/)."));
+        prm.parse_input(scene_file);
+        for (const auto &[path, value] : overrides)
+          set_override(prm, path, value);
+        parameters.parse_parameters(prm, scene_file);
+        if (parameters.name.empty())
+          parameters.name = std::filesystem::path(scene_file).stem();
+        if (parameters.output.directory.empty())
+          parameters.output.directory = "output/" + parameters.name;
+      }
+      catch (const ExceptionBase &e)
+      {
+        std::string message = base::exception_message(e);
+        if (message.find(scene_file) == std::string::npos)
+          message = scene_file + ": " + message;
+        std::cerr << "igabde: error: " << message << std::endl;
+        return 2;
+      }
+
+      const std::string dir = parameters.output.directory;
+      std::error_code   ec;
+      std::filesystem::create_directories(dir, ec);
+      if (ec)
+      {
+        std::cerr << "igabde: error: " << scene_file << ": Output/Directory = '"
+                  << dir << "' cannot be created (" << ec.message()
+                  << "); choose a writable folder." << std::endl;
+        return 2;
+      }
+      {
+        std::ofstream echo(dir + "/parameters.prm");
+        prm.print_parameters(echo, ParameterHandler::PRM);
+        std::ofstream echo_json(dir + "/parameters.json");
+        prm.print_parameters(echo_json, ParameterHandler::JSON);
+      }
+
+      std::ofstream log_file(dir + "/log.txt");
+      TeeBuffer     tee(std::cout.rdbuf(), log_file.rdbuf());
+      std::ostream  log(&tee);
+      log << std::setprecision(6);
+
+      auto run = [&](auto &simulator) -> int
+      {
+        try
+        {
+          simulator.run();
+          return 0;
+        }
+        catch (const ExceptionBase &e)
+        {
+          const std::string message = base::exception_message(e);
+          log << "igabde: error: " << message << std::endl;
+          std::cerr << "igabde: error: " << message << std::endl;
+          simulator.write_failed_summary(message);
+        }
+        catch (const std::exception &e)
+        {
+          log << "igabde: error: " << e.what() << std::endl;
+          std::cerr << "igabde: error: " << e.what() << std::endl;
+          simulator.write_failed_summary(e.what());
+        }
+        return 1;
+      };
+
+      if (parameters.dimension == 2)
+      {
+        Simulator<2> simulator(parameters, scene_file, dir, log);
+        return run(simulator);
+      }
+      else
+      {
+        Simulator<3> simulator(parameters, scene_file, dir, log);
+        return run(simulator);
+      }
+    }
+  } // namespace scene
+} // namespace igabde

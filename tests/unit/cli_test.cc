@@ -1,0 +1,151 @@
+// Command-line behaviour of the igabde executable: help, parameter listing,
+// clear one-line errors for bad input, --set overrides.
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+namespace
+{
+  struct RunResult
+  {
+    int         status = -1;
+    std::string output;
+  };
+
+  /// Runs igabde with @p arguments in a scratch folder, stdout+stderr.
+  RunResult
+  run_igabde(const std::string &arguments, const std::string &folder)
+  {
+    std::filesystem::create_directories(folder);
+    const std::string command = "cd '" + folder + "' && " +
+                                std::string(IGABDE_EXECUTABLE) + " " +
+                                arguments + " 2>&1";
+    RunResult              result;
+    FILE                  *pipe = popen(command.c_str(), "r");
+    std::array<char, 4096> buffer;
+    while (fgets(buffer.data(), buffer.size(), pipe) != nullptr)
+      result.output += buffer.data();
+    const int status = pclose(pipe);
+    result.status    = WEXITSTATUS(status);
+    return result;
+  }
+
+  std::string
+  scratch(const std::string &name)
+  {
+    return (std::filesystem::temp_directory_path() /
+            ("igabde-cli-" + name + "-" + std::to_string(getpid())))
+      .string();
+  }
+
+  void
+  write_file(const std::string &path, const std::string &text)
+  {
+    std::ofstream(path) << text;
+  }
+} // namespace
+
+
+
+TEST(Cli, HelpAndParameterListing)
+{
+  const auto help = run_igabde("--help", scratch("help"));
+  EXPECT_EQ(help.status, 0);
+  EXPECT_NE(help.output.find("Usage: igabde SCENE.prm"), std::string::npos);
+
+  const auto prm = run_igabde("--print-parameters", scratch("prm"));
+  EXPECT_EQ(prm.status, 0);
+  for (const char *name : {"Friction coefficient",
+                           "Refinements",
+                           "Degree",
+                           "Directory",
+                           "Algorithm",
+                           "Path"})
+    EXPECT_NE(prm.output.find(name), std::string::npos) << name;
+
+  const auto json = run_igabde("--print-parameters json", scratch("json"));
+  EXPECT_EQ(json.status, 0);
+  EXPECT_NE(json.output.find("\"Discretization\""), std::string::npos);
+}
+
+
+
+TEST(Cli, MisspelledParameterIsOneClearError)
+{
+  const std::string folder = scratch("misspelled");
+  std::filesystem::create_directories(folder);
+  write_file(folder + "/bad.prm",
+             "set Dimension = 2\nsubsection Body 1\n"
+             "  set Youngs modulus = 1000\nend\n");
+  const auto result = run_igabde("bad.prm", folder);
+  EXPECT_NE(result.status, 0);
+  EXPECT_NE(result.output.find("bad.prm"), std::string::npos) << result.output;
+  EXPECT_NE(result.output.find("Youngs modulus"), std::string::npos)
+    << result.output;
+  EXPECT_NE(result.output.find("line"), std::string::npos) << result.output;
+  // One line, no stack trace and no result files presented as a result.
+  EXPECT_EQ(result.output.find("Stacktrace"), std::string::npos);
+  EXPECT_FALSE(std::filesystem::exists(folder + "/output/bad/summary.json"));
+}
+
+
+
+TEST(Cli, MalformedValueAndMissingFile)
+{
+  const std::string folder = scratch("malformed");
+  std::filesystem::create_directories(folder);
+  write_file(folder + "/bad.prm",
+             "subsection Discretization\n  set Degree = two\nend\n");
+  const auto bad = run_igabde("bad.prm", folder);
+  EXPECT_NE(bad.status, 0);
+  EXPECT_NE(bad.output.find("Degree"), std::string::npos) << bad.output;
+  EXPECT_NE(bad.output.find("two"), std::string::npos) << bad.output;
+
+  const auto missing = run_igabde("nowhere.prm", folder);
+  EXPECT_NE(missing.status, 0);
+  EXPECT_NE(missing.output.find("nowhere.prm"), std::string::npos);
+
+  write_file(folder + "/nu.prm",
+             "subsection Body 1\n  set Poisson's ratio = 0.5\nend\n");
+  const auto nu = run_igabde("nu.prm", folder);
+  EXPECT_NE(nu.status, 0);
+  EXPECT_NE(nu.output.find("Poisson"), std::string::npos) << nu.output;
+
+  write_file(folder + "/mu.prm",
+             "subsection Contact\n  set Friction coefficient = -0.1\nend\n");
+  const auto mu = run_igabde("mu.prm", folder);
+  EXPECT_NE(mu.status, 0);
+  EXPECT_NE(mu.output.find("Friction coefficient"), std::string::npos)
+    << mu.output;
+}
+
+
+
+TEST(Cli, SetOverridesAValue)
+{
+  const std::string folder = scratch("set");
+  const std::string scene =
+    std::string(IGABDE_SOURCE_DIR) + "/prm/v2-lame-cylinder.prm";
+  const auto result =
+    run_igabde("'" + scene +
+                 "' --set 'Discretization/Refinements=0' --set "
+                 "'Output/Directory=out' --set 'Output/Write vtu=false'",
+               folder);
+  ASSERT_EQ(result.status, 0) << result.output;
+  std::ifstream     in(folder + "/out/summary.json");
+  const std::string summary((std::istreambuf_iterator<char>(in)),
+                            std::istreambuf_iterator<char>());
+  EXPECT_NE(summary.find("\"refinements\": 0"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("\"status\": \"ok\""), std::string::npos) << summary;
+
+  const auto wrong =
+    run_igabde("'" + scene + "' --set 'Discretization/Refinementz=1'", folder);
+  EXPECT_NE(wrong.status, 0);
+  EXPECT_NE(wrong.output.find("Refinementz"), std::string::npos)
+    << wrong.output;
+}

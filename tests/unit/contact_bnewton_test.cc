@@ -1,0 +1,460 @@
+// Unit tests of the damped B-Newton contact solver on hand-checkable
+// problems.
+
+#include <igabde/contact/bnewton.h>
+#include <igabde/contact/condition_check.h>
+#include <igabde/contact/contact_problem.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <sstream>
+
+using namespace igabde::contact;
+
+namespace
+{
+  ContactProblem
+  make_problem(const unsigned int         n_components,
+               const Eigen::MatrixXd     &W,
+               const Eigen::VectorXd     &q,
+               const std::vector<double> &mu)
+  {
+    ContactProblem problem;
+    problem.n_components = n_components;
+    problem.n_contacts   = q.size() / n_components;
+    problem.W            = W;
+    problem.q            = q;
+    problem.mu           = mu;
+    return problem;
+  }
+
+
+
+  // A random symmetric positive definite flexibility with a dominant
+  // diagonal, n_contacts pairs.
+  Eigen::MatrixXd
+  random_spd(const unsigned int n, const unsigned int seed)
+  {
+    std::mt19937                           gen(seed);
+    std::uniform_real_distribution<double> dist(-1., 1.);
+    Eigen::MatrixXd                        A(n, n);
+    for (unsigned int i = 0; i < n; ++i)
+      for (unsigned int j = 0; j < n; ++j)
+        A(i, j) = dist(gen);
+    return A * A.transpose() / n + Eigen::MatrixXd::Identity(n, n);
+  }
+
+
+
+  void
+  expect_solution_ok(const ContactProblem        &problem,
+                     const BNewtonSolver::Result &result)
+  {
+    EXPECT_TRUE(result.converged) << result.summary();
+    EXPECT_LE(result.residual, 1e-10);
+    const ConditionReport report =
+      check_contact_conditions(problem, result.p, result.u, 1e-8);
+    EXPECT_TRUE(report.passed()) << report.first_violation();
+  }
+} // namespace
+
+
+
+// One 3D pair with a positive gap: p = 0, u = q, open.
+TEST(ContactBNewton, SingleContactOpen)
+{
+  const ContactProblem        problem = make_problem(3,
+                                              Eigen::Matrix3d::Identity(),
+                                              Eigen::Vector3d(1., 0.2, 0.),
+                                              {0.5});
+  const BNewtonSolver::Result result  = BNewtonSolver().solve(problem);
+  expect_solution_ok(problem, result);
+  EXPECT_EQ(result.p.norm(), 0.);
+  EXPECT_EQ(result.status[0], ContactStatus::open);
+  EXPECT_EQ(result.n_open, 1u);
+}
+
+
+
+// W = I, q = (-1, -0.1, 0), mu = 0.5. Normal: u_n = p_n - 1 = 0, p_n = 1.
+// Stick: u_t = p_t + q_t = 0, p_t = (0.1, 0), |p_t| = 0.1 < mu p_n = 0.5.
+TEST(ContactBNewton, SingleContactStick)
+{
+  const ContactProblem        problem = make_problem(3,
+                                              Eigen::Matrix3d::Identity(),
+                                              Eigen::Vector3d(-1., -0.1, 0.),
+                                              {0.5});
+  const BNewtonSolver::Result result  = BNewtonSolver().solve(problem);
+  expect_solution_ok(problem, result);
+  EXPECT_NEAR(result.p[0], 1., 1e-12);
+  EXPECT_NEAR(result.p[1], 0.1, 1e-12);
+  EXPECT_NEAR(result.p[2], 0., 1e-12);
+  EXPECT_EQ(result.status[0], ContactStatus::stick);
+}
+
+
+
+// W = I, q = (-1, -0.8, -0.6), mu = 0.5: sticking would need |p_t| = 1 >
+// 0.5, so the pair slips. p_n = 1 (uncoupled), p_t = mu p_n (0.8, 0.6) =
+// (0.4, 0.3), u_t = p_t + q_t = (-0.4, -0.3) = -|u_t| p_t / |p_t|.
+TEST(ContactBNewton, SingleContactSlip3D)
+{
+  const ContactProblem problem = make_problem(3,
+                                              Eigen::Matrix3d::Identity(),
+                                              Eigen::Vector3d(-1., -0.8, -0.6),
+                                              {0.5});
+  for (const FrictionRadius radius :
+       {FrictionRadius::christensen_pang, FrictionRadius::alart_curnier})
+  {
+    BNewtonSolver::Settings settings;
+    settings.radius                    = radius;
+    const BNewtonSolver::Result result = BNewtonSolver(settings).solve(problem);
+    expect_solution_ok(problem, result);
+    EXPECT_NEAR(result.p[0], 1., 1e-12);
+    EXPECT_NEAR(result.p[1], 0.4, 1e-12);
+    EXPECT_NEAR(result.p[2], 0.3, 1e-12);
+    EXPECT_NEAR(result.u[1], -0.4, 1e-12);
+    EXPECT_EQ(result.status[0], ContactStatus::slip);
+  }
+}
+
+
+
+// 2D, coupled: W = [[2, 0.5], [0.5, 1]], q = (-2, -3), mu = 0.3. With slip
+// and p_t = mu p_n: u_n = 2 p_n + 0.5 mu p_n - 2 = 0, p_n = 2/2.15;
+// u_t = 0.5 p_n + mu p_n - 3 = -2.2558 < 0, opposite to p_t > 0.
+TEST(ContactBNewton, SingleContactSlip2D)
+{
+  Eigen::Matrix2d W;
+  W << 2., 0.5, 0.5, 1.;
+  const ContactProblem problem =
+    make_problem(2, W, Eigen::Vector2d(-2., -3.), {0.3});
+  const BNewtonSolver::Result result = BNewtonSolver().solve(problem);
+  expect_solution_ok(problem, result);
+  const double pn = 2. / 2.15;
+  EXPECT_NEAR(result.p[0], pn, 1e-12);
+  EXPECT_NEAR(result.p[1], 0.3 * pn, 1e-12);
+  EXPECT_NEAR(result.u[1], 0.8 * pn - 3., 1e-12);
+  EXPECT_EQ(result.status[0], ContactStatus::slip);
+}
+
+
+
+// Frictionless, two pairs, W = [[2, 1], [1, 2]]. q = (-1, 0.5): pair 0
+// closes with 2 p_0 = 1, pair 1 stays open with u_1 = p_0 + 0.5 = 1.
+// q = (-1, -1): both close, 3 p = 1.
+TEST(ContactBNewton, FrictionlessNormalOnly)
+{
+  Eigen::Matrix2d W;
+  W << 2., 1., 1., 2.;
+  {
+    const ContactProblem problem =
+      make_problem(1, W, Eigen::Vector2d(-1., 0.5), {});
+    const BNewtonSolver::Result result = BNewtonSolver().solve(problem);
+    expect_solution_ok(problem, result);
+    EXPECT_EQ(result.p.size(), 2);
+    EXPECT_NEAR(result.p[0], 0.5, 1e-14);
+    EXPECT_EQ(result.p[1], 0.);
+    EXPECT_NEAR(result.u[1], 1., 1e-14);
+    EXPECT_EQ(result.status[0], ContactStatus::slip);
+    EXPECT_EQ(result.status[1], ContactStatus::open);
+  }
+  {
+    const ContactProblem problem =
+      make_problem(1, W, Eigen::Vector2d(-1., -1.), {});
+    const BNewtonSolver::Result result = BNewtonSolver().solve(problem);
+    expect_solution_ok(problem, result);
+    EXPECT_NEAR(result.p[0], 1. / 3., 1e-14);
+    EXPECT_NEAR(result.p[1], 1. / 3., 1e-14);
+  }
+}
+
+
+
+// Grazing contacts: q_n = 0 gives the tie r u_n = p_n = 0 at p = 0 and the
+// zero radius. The solution is p = 0 (with q_t = -0.1 the pair slides with
+// zero force); the tie rules must not move it.
+TEST(ContactBNewton, GrazingTies)
+{
+  for (const double qt : {0., -0.1})
+  {
+    const ContactProblem        problem = make_problem(3,
+                                                Eigen::Matrix3d::Identity(),
+                                                Eigen::Vector3d(0., qt, 0.),
+                                                {0.5});
+    const BNewtonSolver::Result result =
+      BNewtonSolver().solve(problem, Eigen::VectorXd());
+    EXPECT_TRUE(result.converged) << result.summary();
+    EXPECT_EQ(result.p.norm(), 0.);
+    EXPECT_EQ(result.status[0], ContactStatus::open);
+    const ConditionReport report =
+      check_contact_conditions(problem, result.p, result.u, 1e-8);
+    EXPECT_TRUE(report.passed()) << report.first_violation();
+  }
+  // A grazing pair next to a closed one: W = I (3 pairs), pair 1 grazing.
+  Eigen::VectorXd q(9);
+  q << -1., -0.3, 0.2, 0., 0., 0., 0.5, 0., 0.;
+  const ContactProblem problem =
+    make_problem(3, Eigen::MatrixXd::Identity(9, 9), q, {0.5, 0.5, 0.5});
+  const BNewtonSolver::Result result = BNewtonSolver().solve(problem);
+  expect_solution_ok(problem, result);
+  EXPECT_NEAR(result.p[0], 1., 1e-14);
+  EXPECT_NEAR(result.p[1], 0.3, 1e-14);
+  EXPECT_NEAR(result.p[2], -0.2, 1e-14);
+  EXPECT_EQ(result.p.segment(3, 6).norm(), 0.);
+}
+
+
+
+// High friction (mu = 2) on a coupled random problem with mixed states;
+// the answer is checked by the natural map and the condition check, and
+// both radii must reach it.
+TEST(ContactBNewton, HighFriction)
+{
+  const unsigned int                     nc = 8;
+  const Eigen::MatrixXd                  W  = random_spd(3 * nc, 7);
+  std::mt19937                           gen(11);
+  std::uniform_real_distribution<double> dist(-1., 1.);
+  Eigen::VectorXd                        q(3 * nc);
+  for (unsigned int i = 0; i < 3 * nc; ++i)
+    q[i] = (i % 3 == 0) ? dist(gen) - 0.3 : 3. * dist(gen);
+  const ContactProblem problem =
+    make_problem(3, W, q, std::vector<double>(nc, 2.));
+  for (const FrictionRadius radius :
+       {FrictionRadius::christensen_pang, FrictionRadius::alart_curnier})
+  {
+    BNewtonSolver::Settings settings;
+    settings.radius                    = radius;
+    const BNewtonSolver::Result result = BNewtonSolver(settings).solve(problem);
+    expect_solution_ok(problem, result);
+    EXPECT_GT(result.n_open + result.n_stick + result.n_slip, 0u);
+  }
+}
+
+
+
+// W and q scaled: force factor f and displacement factor d give p -> f p,
+// u -> d u exactly (r is per contact, so the iterates scale too).
+TEST(ContactBNewton, ScaledProblems)
+{
+  const unsigned int                     nc = 6;
+  const Eigen::MatrixXd                  W  = random_spd(3 * nc, 3);
+  std::mt19937                           gen(5);
+  std::uniform_real_distribution<double> dist(-1., 1.);
+  Eigen::VectorXd                        q(3 * nc);
+  for (unsigned int i = 0; i < 3 * nc; ++i)
+    q[i] = dist(gen);
+  const ContactProblem problem =
+    make_problem(3, W, q, std::vector<double>(nc, 0.3));
+  const BNewtonSolver         solver;
+  const BNewtonSolver::Result reference = solver.solve(problem);
+  expect_solution_ok(problem, reference);
+  for (const double f : {1e-6, 1., 1e6})
+    for (const double dsp : {1e-6, 1e6})
+    {
+      const ContactProblem        scaled = problem.scaled(f, dsp);
+      const BNewtonSolver::Result result = solver.solve(scaled);
+      EXPECT_TRUE(result.converged) << result.summary();
+      EXPECT_LE((result.p - f * reference.p).norm(),
+                1e-9 * f * reference.p.norm());
+      EXPECT_LE((result.u - dsp * reference.u).norm(),
+                1e-9 * dsp * reference.u.norm());
+      // The iterates scale exactly; only the FCLIB part of the stopping
+      // test (not scale invariant) may ask for a few more iterations,
+      // until the rounding floor of the balanced error is detected.
+      EXPECT_LE(result.iterations, reference.iterations + 3);
+      EXPECT_LE(result.balanced_residual, 1e-10);
+      const ConditionReport report =
+        check_contact_conditions(scaled, result.p, result.u, 1e-8);
+      EXPECT_TRUE(report.passed()) << report.first_violation();
+    }
+}
+
+
+
+// Warm start: from the solution, no iteration is needed; from a nearby
+// point only a few.
+TEST(ContactBNewton, WarmStart)
+{
+  const unsigned int                     nc = 5;
+  const Eigen::MatrixXd                  W  = random_spd(3 * nc, 9);
+  std::mt19937                           gen(2);
+  std::uniform_real_distribution<double> dist(-1., 1.);
+  Eigen::VectorXd                        q(3 * nc);
+  for (unsigned int i = 0; i < 3 * nc; ++i)
+    q[i] = dist(gen);
+  const ContactProblem problem =
+    make_problem(3, W, q, std::vector<double>(nc, 0.4));
+  const BNewtonSolver         solver;
+  const BNewtonSolver::Result cold = solver.solve(problem);
+  expect_solution_ok(problem, cold);
+  const BNewtonSolver::Result warm = solver.solve(problem, cold.p);
+  EXPECT_TRUE(warm.converged);
+  EXPECT_EQ(warm.iterations, 0u);
+  // Next load step: q changes a little.
+  ContactProblem next = problem;
+  next.q *= 1.05;
+  const BNewtonSolver::Result step = solver.solve(next, cold.p);
+  expect_solution_ok(next, step);
+  EXPECT_LE(step.iterations, cold.iterations + 1);
+}
+
+
+
+// A floating body pressed by the force b = 50 against two springs in
+// series (k1 = 100 for the body, k2 = 400 for the support), initial gap
+// g0 = 0.01, its rigid translation alpha along +n (opening). Flexibility
+// W = 1/k1 + 1/k2 = 0.0125. Equilibrium G^T p = b with G = 1: p = 50.
+// Contact u_n = W p + g0 + alpha = 0: alpha = -(0.625 + 0.01) = -0.635.
+TEST(ContactBNewton, FloatingBodyOnSpringsInSeries)
+{
+  ContactProblem problem;
+  problem.n_components = 1;
+  problem.n_contacts   = 1;
+  problem.W            = Eigen::MatrixXd::Constant(1, 1, 1. / 100. + 1. / 400.);
+  problem.q            = Eigen::VectorXd::Constant(1, 0.01);
+  problem.G            = Eigen::MatrixXd::Constant(1, 1, 1.);
+  problem.b            = Eigen::VectorXd::Constant(1, 50.);
+  const Eigen::VectorXd alpha0 = touching_alpha(problem);
+  EXPECT_NEAR(alpha0[0], -0.01, 1e-15);
+  const BNewtonSolver::Result result = BNewtonSolver().solve(problem);
+  EXPECT_TRUE(result.converged) << result.summary();
+  EXPECT_NEAR(result.p[0], 50., 1e-12);
+  EXPECT_NEAR(result.alpha[0], -0.635, 1e-12);
+  EXPECT_NEAR(result.u[0], 0., 1e-12);
+  const ConditionReport report =
+    check_contact_conditions(problem, result.p, result.u, 1e-10);
+  EXPECT_TRUE(report.passed()) << report.first_violation();
+
+  // The same body on two such supports (gaps 0.01 and 0.03, same springs),
+  // alpha = vertical translation: the first support takes the load alone
+  // while alpha > -0.03 - W p_2; with b = 50 the body sinks to
+  // alpha = -0.635, so both touch: W p_1 + 0.01 + alpha = 0,
+  // W p_2 + 0.03 + alpha = 0, p_1 + p_2 = 50. Then
+  // p_1 - p_2 = 0.02 / W = 1.6, p_1 = 25.8, p_2 = 24.2,
+  // alpha = -(0.0125 * 25.8 + 0.01) = -0.3325.
+  ContactProblem two;
+  two.n_components               = 1;
+  two.n_contacts                 = 2;
+  two.W                          = 0.0125 * Eigen::MatrixXd::Identity(2, 2);
+  two.q                          = Eigen::Vector2d(0.01, 0.03);
+  two.G                          = Eigen::MatrixXd::Ones(2, 1);
+  two.b                          = Eigen::VectorXd::Constant(1, 50.);
+  const BNewtonSolver::Result r2 = BNewtonSolver().solve(two);
+  EXPECT_TRUE(r2.converged) << r2.summary();
+  EXPECT_NEAR(r2.p[0], 25.8, 1e-11);
+  EXPECT_NEAR(r2.p[1], 24.2, 1e-11);
+  EXPECT_NEAR(r2.alpha[0], -0.3325, 1e-12);
+}
+
+
+
+// A floating 3D body on one frictional support with all three
+// translations free: p = b exactly, the pair sticks, alpha closes the
+// relative displacement: alpha = -(W b + q).
+TEST(ContactBNewton, FloatingBody3DStick)
+{
+  ContactProblem problem;
+  problem.n_components = 3;
+  problem.n_contacts   = 1;
+  problem.W            = Eigen::Matrix3d::Identity() * 0.01;
+  problem.W(0, 1) = problem.W(1, 0)  = 0.002;
+  problem.q                          = Eigen::Vector3d(0.02, 0., 0.);
+  problem.mu                         = {0.5};
+  problem.G                          = Eigen::Matrix3d::Identity();
+  problem.b                          = Eigen::Vector3d(50., 10., -5.);
+  const BNewtonSolver::Result result = BNewtonSolver().solve(problem);
+  EXPECT_TRUE(result.converged) << result.summary();
+  EXPECT_LE((result.p - problem.b).norm(), 1e-11);
+  const Eigen::Vector3d expected_alpha = -(problem.W * problem.b + problem.q);
+  EXPECT_LE((result.alpha - expected_alpha).norm(), 1e-12);
+  EXPECT_EQ(result.status[0], ContactStatus::stick);
+}
+
+
+
+// Ill-posed problems must say so: (a) a floating body pulled away from its
+// support (G^T p = b < 0 with p_n >= 0 has no solution); (b) W = 0 with a
+// negative gap (u_n = q_n < 0 whatever p).
+TEST(ContactBNewton, IllPosedReportsNotConverged)
+{
+  {
+    ContactProblem problem;
+    problem.n_components = 1;
+    problem.n_contacts   = 1;
+    problem.W            = Eigen::MatrixXd::Constant(1, 1, 0.01);
+    problem.q            = Eigen::VectorXd::Constant(1, 0.01);
+    problem.G            = Eigen::MatrixXd::Constant(1, 1, 1.);
+    problem.b            = Eigen::VectorXd::Constant(1, -50.);
+    const BNewtonSolver::Result result =
+      BNewtonSolver().solve(problem,
+                            Eigen::VectorXd(),
+                            Eigen::VectorXd::Zero(1));
+    EXPECT_FALSE(result.converged);
+    EXPECT_FALSE(result.diagnosis.empty());
+    EXPECT_NE(result.diagnosis.find("not converged"), std::string::npos)
+      << result.diagnosis;
+    EXPECT_TRUE(result.p.allFinite());
+  }
+  {
+    ContactProblem problem;
+    problem.n_components = 3;
+    problem.n_contacts   = 2;
+    problem.W            = Eigen::MatrixXd::Zero(6, 6);
+    problem.q.setZero(6);
+    problem.q[0] = -1.;
+    problem.q[3] = -2.;
+    problem.mu   = {0.3, 0.3};
+    BNewtonSolver::Settings settings;
+    settings.max_iterations            = 60;
+    const BNewtonSolver::Result result = BNewtonSolver(settings).solve(problem);
+    EXPECT_FALSE(result.converged);
+    EXPECT_NE(result.diagnosis.find("not converged"), std::string::npos)
+      << result.diagnosis;
+    EXPECT_TRUE(result.p.allFinite());
+    const ConditionReport report =
+      check_contact_conditions(problem, result.p, result.u, 1e-6);
+    EXPECT_FALSE(report.passed());
+  }
+}
+
+
+
+// The history is printed with the column header and one line per
+// iteration.
+TEST(ContactBNewton, HistoryPrinting)
+{
+  const ContactProblem    problem = make_problem(3,
+                                              Eigen::Matrix3d::Identity(),
+                                              Eigen::Vector3d(-1., -0.8, -0.6),
+                                              {0.5});
+  std::ostringstream      log;
+  BNewtonSolver::Settings settings;
+  settings.log                       = true;
+  settings.log_stream                = &log;
+  const BNewtonSolver::Result result = BNewtonSolver(settings).solve(problem);
+  EXPECT_TRUE(result.converged);
+  EXPECT_EQ(result.history.size(), result.iterations);
+  std::ostringstream out;
+  result.print_history(out);
+  EXPECT_NE(out.str().find("residual"), std::string::npos);
+  EXPECT_NE(out.str().find("converged"), std::string::npos);
+  EXPECT_NE(log.str().find("newton-cp"), std::string::npos);
+}
+
+
+
+// Bad input is rejected with a clear message.
+TEST(ContactBNewton, BadInputThrows)
+{
+  ContactProblem problem =
+    make_problem(3, Eigen::Matrix3d::Identity(), Eigen::Vector3d(1, 0, 0), {});
+  EXPECT_ANY_THROW(BNewtonSolver().solve(problem));
+  problem.mu = {-1.};
+  EXPECT_ANY_THROW(BNewtonSolver().solve(problem));
+  problem.mu = {0.3};
+  EXPECT_NO_THROW(BNewtonSolver().solve(problem));
+  EXPECT_ANY_THROW(BNewtonSolver().solve(problem, Eigen::VectorXd::Zero(2)));
+}
