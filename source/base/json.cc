@@ -3,6 +3,7 @@
 #include <cmath>
 #include <iomanip>
 #include <sstream>
+#include <stdexcept>
 
 namespace igabde
 {
@@ -118,6 +119,55 @@ namespace igabde
         if (member.first == key)
           return true;
       return false;
+    }
+
+
+
+    const Json &
+    Json::at(const std::string &key) const
+    {
+      for (const auto &member : members)
+        if (member.first == key)
+          return member.second;
+      throw std::out_of_range("summary has no member '" + key + "'");
+    }
+
+
+
+    const Json &
+    Json::at(const unsigned int i) const
+    {
+      if (i >= elements.size())
+        throw std::out_of_range("summary array index out of range");
+      return elements[i];
+    }
+
+
+
+    unsigned int
+    Json::size() const
+    {
+      return kind == Kind::array ? elements.size() : members.size();
+    }
+
+
+
+    double
+    Json::number() const
+    {
+      if (kind != Kind::number)
+        throw std::runtime_error("summary value is not a number");
+      return number_value;
+    }
+
+
+
+    const std::string &
+    Json::string() const
+    {
+      if (kind != Kind::string)
+        throw std::runtime_error("summary value is not a string");
+      return string_value;
     }
 
 

@@ -936,7 +936,22 @@ namespace igabde
       Vec    x(m + na);
       x.head(m) = p0.size() > 0 ? p0 : Vec::Zero(m);
       if (na > 0)
-        x.tail(na) = alpha0.size() > 0 ? alpha0 : touching_alpha(problem);
+      {
+        if (alpha0.size() > 0)
+          x.tail(na) = alpha0;
+        else
+        {
+          // No pair closes along -b (e.g. b = 0): start from zero.
+          try
+          {
+            x.tail(na) = touching_alpha(problem);
+          }
+          catch (const std::exception &)
+          {
+            x.tail(na).setZero();
+          }
+        }
+      }
 
       Driver driver(problem, settings, result);
       if (settings.log)

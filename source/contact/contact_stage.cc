@@ -238,15 +238,50 @@ namespace igabde
               FL(m * i + r, m * j + s) = v;
             }
 
-      // Pairs whose points are both held by supports carry no information:
-      // their flexibility rows vanish. Leave them out.
-      double max_diag = 0.;
+      // Rigid modes left free by the supports: u = K^+ f + R alpha, with the
+      // equilibrium R^T (f_ext + f_contact) = 0 joining the BDE system.
+      alpha_modes.clear();
+      for (unsigned int b = 0; b < bodies.size(); ++b)
+        for (unsigned int k = 0; k < bodies[b]->free_rigid_modes().size(); ++k)
+          alpha_modes.emplace_back(b, k);
+      Eigen::MatrixXd GL(m * nc, alpha_modes.size());
+      rigid_mode_loads.resize(alpha_modes.size());
+      for (unsigned int a = 0; a < alpha_modes.size(); ++a)
+      {
+        const auto [b, k]   = alpha_modes[a];
+        const auto  &mode   = bodies[b]->free_rigid_modes()[k];
+        const double sign   = (b == 0 ? 1. : -1.);
+        rigid_mode_loads(a) = mode * bodies[b]->load_vector();
+        for (unsigned int i = 0; i < nc; ++i)
+        {
+          const Tensor<1, dim> r =
+            (b == 0 ? pair_list[i].op1 : pair_list[i].op2).displacement(mode);
+          for (unsigned int s = 0; s < m; ++s)
+            GL(m * i + s, a) = sign * (pair_list[i].frame[s] * r);
+        }
+        log << "  " << bodies[b]->description().name << ": free rigid mode '"
+            << bodies[b]->free_rigid_mode_names()[k]
+            << "' closed by the contact equilibrium (exact, no springs)"
+            << std::endl;
+      }
+
+      // Pairs whose two points are both held by supports carry no
+      // information: their flexibility rows and rigid-mode rows vanish.
+      // Leave them out (a pinned point of a floating body keeps its rigid
+      // motion, so it stays).
+      double max_diag = 0., max_g = 0.;
       for (unsigned int i = 0; i < m * nc; ++i)
         max_diag = std::max(max_diag, FL(i, i));
+      if (GL.size() > 0)
+        max_g = GL.cwiseAbs().maxCoeff();
       std::vector<unsigned int> keep;
       for (unsigned int i = 0; i < nc; ++i)
-        if (FL(m * i, m * i) > 1e-12 * max_diag)
+      {
+        const double g_row =
+          (GL.cols() > 0 ? GL.row(m * i).cwiseAbs().maxCoeff() : 0.);
+        if (FL(m * i, m * i) > 1e-12 * max_diag || g_row > 1e-12 * max_g)
           keep.push_back(i);
+      }
       n_dropped = nc - keep.size();
       AssertThrow(!keep.empty(),
                   base::ExcInput(settings.scene_file +
@@ -254,12 +289,14 @@ namespace igabde
                                  "both sides; nothing can touch."));
       std::vector<PointPair<dim>> kept_pairs;
       Eigen::MatrixXd             W(m * keep.size(), m * keep.size());
+      problem.G.resize(m * keep.size(), alpha_modes.size());
       for (unsigned int i = 0; i < keep.size(); ++i)
       {
         kept_pairs.push_back(pair_list[keep[i]]);
         for (unsigned int j = 0; j < keep.size(); ++j)
           W.block(m * i, m * j, m, m) =
             FL.block(m * keep[i], m * keep[j], m, m);
+        problem.G.middleRows(m * i, m) = GL.middleRows(m * keep[i], m);
       }
       pair_list = kept_pairs;
       const double asymmetry =
@@ -273,33 +310,7 @@ namespace igabde
       problem.mu.assign(pair_list.size(), settings.friction_coefficient);
       problem.name = settings.scene_file;
 
-      // Rigid modes left free by the supports: u = K^+ f + R alpha, with the
-      // equilibrium R^T (f_ext + f_contact) = 0 joining the BDE system.
-      alpha_modes.clear();
-      for (unsigned int b = 0; b < bodies.size(); ++b)
-        for (unsigned int k = 0; k < bodies[b]->free_rigid_modes().size(); ++k)
-          alpha_modes.emplace_back(b, k);
-      problem.G.resize(m * pair_list.size(), alpha_modes.size());
       problem.b.resize(alpha_modes.size());
-      rigid_mode_loads.resize(alpha_modes.size());
-      for (unsigned int a = 0; a < alpha_modes.size(); ++a)
-      {
-        const auto [b, k]   = alpha_modes[a];
-        const auto  &mode   = bodies[b]->free_rigid_modes()[k];
-        const double sign   = (b == 0 ? 1. : -1.);
-        rigid_mode_loads(a) = mode * bodies[b]->load_vector();
-        for (unsigned int i = 0; i < pair_list.size(); ++i)
-        {
-          const Tensor<1, dim> r =
-            (b == 0 ? pair_list[i].op1 : pair_list[i].op2).displacement(mode);
-          for (unsigned int s = 0; s < m; ++s)
-            problem.G(m * i + s, a) = sign * (pair_list[i].frame[s] * r);
-        }
-        log << "  " << bodies[b]->description().name << ": free rigid mode '"
-            << bodies[b]->free_rigid_mode_names()[k]
-            << "' closed by the contact equilibrium (exact, no springs)"
-            << std::endl;
-      }
       problem.b.setZero();
       problem.check_consistency();
 
@@ -407,9 +418,7 @@ namespace igabde
       }
       if (settings.solver.log)
         result.print_history(log);
-      log << "  B-Newton: " << result.summary() << ", open/stick/slip "
-          << result.n_open << "/" << result.n_stick << "/" << result.n_slip
-          << std::endl;
+      log << "  B-Newton: " << result.summary() << std::endl;
 
       record["newton_iterations"] = result.iterations;
       record["residual"]          = result.residual;

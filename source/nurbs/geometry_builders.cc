@@ -53,17 +53,17 @@ namespace igabde
     make_quarter_annulus(const double r0, const double r1)
     {
       AssertThrow(r0 > 0. && r0 < r1,
-                  ExcMessage("make_quarter_annulus: need 0 < r0 < r1, got r0 = " +
-                             std::to_string(r0) +
-                             ", r1 = " + std::to_string(r1) + "."));
+                  ExcMessage(
+                    "make_quarter_annulus: need 0 < r0 < r1, got r0 = " +
+                    std::to_string(r0) + ", r1 = " + std::to_string(r1) + "."));
       const double w = std::sqrt(0.5);
       // Radial index fastest.
-      const std::vector<Point<2>> points = {Point<2>(r0, 0.),
-                                            Point<2>(r1, 0.),
-                                            Point<2>(r0, r0),
-                                            Point<2>(r1, r1),
-                                            Point<2>(0., r0),
-                                            Point<2>(0., r1)};
+      const std::vector<Point<2>> points  = {Point<2>(r0, 0.),
+                                             Point<2>(r1, 0.),
+                                             Point<2>(r0, r0),
+                                             Point<2>(r1, r1),
+                                             Point<2>(0., r0),
+                                             Point<2>(0., r1)};
       const std::vector<double>   weights = {1., 1., w, w, 1., 1.};
       return NurbsPatch<2>({{linear(), quadratic()}}, points, weights);
     }
@@ -78,28 +78,28 @@ namespace igabde
     {
       const NurbsPatch<2> annulus = make_quarter_annulus(r0, r1);
       if constexpr (dim == 2)
-        {
-          (void)height;
-          return annulus;
-        }
+      {
+        (void)height;
+        return annulus;
+      }
       else
-        {
-          AssertThrow(height > 0.,
-                      ExcMessage("make_thick_cylinder_quarter: the height "
-                                 "must be positive."));
-          std::vector<Point<3>> points;
-          std::vector<double>   weights;
-          for (unsigned int k = 0; k < 2; ++k)
-            for (unsigned int a = 0; a < annulus.n_control_points(); ++a)
-              {
-                const Point<2> &p = annulus.control_point(a);
-                points.emplace_back(p[0], p[1], k * height);
-                weights.push_back(annulus.weight(a));
-              }
-          return NurbsPatch<3>({{linear(), quadratic(), linear()}},
-                               points,
-                               weights);
-        }
+      {
+        AssertThrow(height > 0.,
+                    ExcMessage("make_thick_cylinder_quarter: the height "
+                               "must be positive."));
+        std::vector<Point<3>> points;
+        std::vector<double>   weights;
+        for (unsigned int k = 0; k < 2; ++k)
+          for (unsigned int a = 0; a < annulus.n_control_points(); ++a)
+          {
+            const Point<2> &p = annulus.control_point(a);
+            points.emplace_back(p[0], p[1], k * height);
+            weights.push_back(annulus.weight(a));
+          }
+        return NurbsPatch<3>({{linear(), quadratic(), linear()}},
+                             points,
+                             weights);
+      }
     }
 
 
@@ -114,12 +114,12 @@ namespace igabde
       std::vector<double>   weights;
       for (unsigned int k = 0; k < 2; ++k)
         for (unsigned int a = 0; a < annulus.n_control_points(); ++a)
-          {
-            // (x, y) of the annulus becomes (x, z) of the beam.
-            const Point<2> &p = annulus.control_point(a);
-            points.emplace_back(p[0], k * width, p[1]);
-            weights.push_back(annulus.weight(a));
-          }
+        {
+          // (x, y) of the annulus becomes (x, z) of the beam.
+          const Point<2> &p = annulus.control_point(a);
+          points.emplace_back(p[0], k * width, p[1]);
+          weights.push_back(annulus.weight(a));
+        }
       return NurbsPatch<3>({{linear(), quadratic(), linear()}},
                            points,
                            weights);
@@ -132,38 +132,38 @@ namespace igabde
     {
       AssertThrow(R > 0. && R < L,
                   ExcMessage("make_plate_with_hole: need 0 < R < L, got R = " +
-                             std::to_string(R) +
-                             ", L = " + std::to_string(L) + "."));
+                             std::to_string(R) + ", L = " + std::to_string(L) +
+                             "."));
       const double s  = std::sqrt(2.);
       const double wm = (1. + 1. / s) / 2.;
       const double m  = (R + L) / 2.;
       // Rows along direction 1 (angle); within a row the index of direction
       // 0 (hole -> outer) runs fastest. Hughes et al.'s upper-left quadrant,
       // mirrored (x -> -x) and transposed so that the patch is right-handed.
-      const Point<2> hole[4]  = {Point<2>(R, 0.),
-                                Point<2>(R, R * (s - 1.)),
-                                Point<2>(R * (s - 1.), R),
-                                Point<2>(0., R)};
-      const double   whole[4] = {1., wm, wm, 1.};
-      const Point<2> mid[4]   = {Point<2>(m, 0.),
-                               Point<2>(m, 0.3 * m),
-                               Point<2>(0.3 * m, m),
-                               Point<2>(0., m)};
-      const Point<2> outer[4] = {Point<2>(L, 0.),
-                                 Point<2>(L, L),
-                                 Point<2>(L, L),
-                                 Point<2>(0., L)};
+      const Point<2>        hole[4]  = {Point<2>(R, 0.),
+                                        Point<2>(R, R * (s - 1.)),
+                                        Point<2>(R * (s - 1.), R),
+                                        Point<2>(0., R)};
+      const double          whole[4] = {1., wm, wm, 1.};
+      const Point<2>        mid[4]   = {Point<2>(m, 0.),
+                                        Point<2>(m, 0.3 * m),
+                                        Point<2>(0.3 * m, m),
+                                        Point<2>(0., m)};
+      const Point<2>        outer[4] = {Point<2>(L, 0.),
+                                        Point<2>(L, L),
+                                        Point<2>(L, L),
+                                        Point<2>(0., L)};
       std::vector<Point<2>> points;
       std::vector<double>   weights;
       for (unsigned int j = 0; j < 4; ++j)
-        {
-          points.push_back(hole[j]);
-          weights.push_back(whole[j]);
-          points.push_back(mid[j]);
-          weights.push_back(1.);
-          points.push_back(outer[j]);
-          weights.push_back(1.);
-        }
+      {
+        points.push_back(hole[j]);
+        weights.push_back(whole[j]);
+        points.push_back(mid[j]);
+        weights.push_back(1.);
+        points.push_back(outer[j]);
+        weights.push_back(1.);
+      }
       const KnotVector angular(2, {0., 0., 0., 0.5, 1., 1., 1.});
       return NurbsPatch<2>({{quadratic(), angular}}, points, weights);
     }
@@ -202,9 +202,8 @@ namespace igabde
       // Pw11 = (edge midpoints)/2 - (corners)/4.
       Tensor<1, 2> pw;
       double       ww = 0.;
-      auto         add = [&](const unsigned int i,
-                     const unsigned int j,
-                     const double       c) {
+      auto add = [&](const unsigned int i, const unsigned int j, const double c)
+      {
         pw += c * w[i][j] * static_cast<const Tensor<1, 2> &>(P[i][j]);
         ww += c * w[i][j];
       };
@@ -223,10 +222,10 @@ namespace igabde
       std::vector<double>   weights;
       for (unsigned int j = 0; j < 3; ++j)
         for (unsigned int i = 0; i < 3; ++i)
-          {
-            points.push_back(P[i][j]);
-            weights.push_back(w[i][j]);
-          }
+        {
+          points.push_back(P[i][j]);
+          weights.push_back(w[i][j]);
+        }
       return NurbsPatch<2>({{quadratic(), quadratic()}}, points, weights);
     }
 
@@ -246,21 +245,21 @@ namespace igabde
     template <int dim>
     void
     subdivide(
-      NurbsPatch<dim>                                            &patch,
+      NurbsPatch<dim>                                               &patch,
       const std::array<unsigned int, static_cast<std::size_t>(dim)> &n_spans)
     {
       for (unsigned int d = 0; d < dim; ++d)
-        {
-          AssertThrow(n_spans[d] >= 1,
-                      ExcMessage("subdivide: every direction needs at least "
-                                 "one part per span."));
-          const std::vector<double> b = patch.breakpoints(d);
-          std::vector<double>       new_knots;
-          for (unsigned int e = 0; e + 1 < b.size(); ++e)
-            for (unsigned int j = 1; j < n_spans[d]; ++j)
-              new_knots.push_back(b[e] + (b[e + 1] - b[e]) * j / n_spans[d]);
-          patch.insert_knots(d, new_knots);
-        }
+      {
+        AssertThrow(n_spans[d] >= 1,
+                    ExcMessage("subdivide: every direction needs at least "
+                               "one part per span."));
+        const std::vector<double> b = patch.breakpoints(d);
+        std::vector<double>       new_knots;
+        for (unsigned int e = 0; e + 1 < b.size(); ++e)
+          for (unsigned int j = 1; j < n_spans[d]; ++j)
+            new_knots.push_back(b[e] + (b[e + 1] - b[e]) * j / n_spans[d]);
+        patch.insert_knots(d, new_knots);
+      }
     }
 
 

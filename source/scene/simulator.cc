@@ -8,6 +8,8 @@
 
 #include <deal.II/base/data_out_base.h>
 
+#include <algorithm>
+#include <cctype>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -547,6 +549,15 @@ namespace igabde
 
 
     template <int dim>
+    const base::Json &
+    Simulator<dim>::get_summary() const
+    {
+      return summary;
+    }
+
+
+
+    template <int dim>
     void
     Simulator<dim>::write_failed_summary(const std::string &message)
     {
@@ -599,11 +610,82 @@ namespace igabde
 
 
 
-    int
-    run_scene(const std::string &scene_file,
-              const std::vector<std::pair<std::string, std::string>> &overrides)
+    namespace
     {
-      ParameterHandler prm;
+      /// Levenshtein distance, case-insensitive.
+      unsigned int
+      edit_distance(const std::string &a, const std::string &b)
+      {
+        std::vector<unsigned int> row(b.size() + 1);
+        for (unsigned int j = 0; j <= b.size(); ++j)
+          row[j] = j;
+        for (unsigned int i = 1; i <= a.size(); ++i)
+        {
+          unsigned int diagonal = row[0];
+          row[0]                = i;
+          for (unsigned int j = 1; j <= b.size(); ++j)
+          {
+            const unsigned int up = row[j];
+            row[j]                = std::min(
+              {row[j] + 1,
+                              row[j - 1] + 1,
+                              diagonal + (std::tolower(a[i - 1]) != std::tolower(b[j - 1]))});
+            diagonal = up;
+          }
+        }
+        return row[b.size()];
+      }
+
+
+
+      /**
+       * For an undeclared entry, the message names the nearest declared
+       * parameter, so that a misspelling is fixed at once.
+       */
+      std::string
+      suggest_parameter(const ParameterHandler &prm, const std::string &message)
+      {
+        const std::string key = "No entry with name <";
+        const auto        at  = message.find(key);
+        if (at == std::string::npos)
+          return message;
+        const auto        end = message.find('>', at + key.size());
+        const std::string name =
+          message.substr(at + key.size(), end - at - key.size());
+        std::ostringstream listing;
+        prm.print_parameters(listing, ParameterHandler::ShortPRM);
+        std::istringstream in(listing.str());
+        std::string        line, best;
+        unsigned int       best_distance = 1000;
+        while (std::getline(in, line))
+        {
+          line = base::trim(line);
+          if (line.rfind("set ", 0) != 0)
+            continue;
+          const std::string candidate =
+            base::trim(line.substr(4, line.find('=') - 4));
+          const unsigned int d = edit_distance(name, candidate);
+          if (d < best_distance)
+          {
+            best_distance = d;
+            best          = candidate;
+          }
+        }
+        std::string result = message;
+        if (best_distance <= std::max<std::size_t>(3, name.size() / 3))
+          result += " Did you mean '" + best + "'?";
+        return result + " (igabde --print-parameters lists every parameter.)";
+      }
+    } // namespace
+
+
+
+    AllParameters
+    parse_scene(
+      ParameterHandler                                       &prm,
+      const std::string                                      &scene_file,
+      const std::vector<std::pair<std::string, std::string>> &overrides)
+    {
       AllParameters::declare_parameters(prm);
       AllParameters parameters;
       try
@@ -616,17 +698,69 @@ namespace igabde
         for (const auto &[path, value] : overrides)
           set_override(prm, path, value);
         parameters.parse_parameters(prm, scene_file);
-        if (parameters.name.empty())
-          parameters.name = std::filesystem::path(scene_file).stem();
-        if (parameters.output.directory.empty())
-          parameters.output.directory = "output/" + parameters.name;
       }
       catch (const ExceptionBase &e)
       {
-        std::string message = base::exception_message(e);
+        std::string message =
+          suggest_parameter(prm, base::exception_message(e));
         if (message.find(scene_file) == std::string::npos)
           message = scene_file + ": " + message;
-        std::cerr << "igabde: error: " << message << std::endl;
+        throw base::ExcInput(message);
+      }
+      if (parameters.name.empty())
+        parameters.name = std::filesystem::path(scene_file).stem();
+      if (parameters.output.directory.empty())
+        parameters.output.directory = "output/" + parameters.name;
+      return parameters;
+    }
+
+
+
+    base::Json
+    run_scene_in_process(
+      const std::string                                      &scene_file,
+      const std::vector<std::pair<std::string, std::string>> &overrides,
+      std::ostream                                           &log)
+    {
+      ParameterHandler    prm;
+      const AllParameters parameters = parse_scene(prm, scene_file, overrides);
+      std::filesystem::create_directories(parameters.output.directory);
+      auto run = [&](auto &simulator)
+      {
+        simulator.run();
+        return simulator.get_summary();
+      };
+      if (parameters.dimension == 2)
+      {
+        Simulator<2> simulator(parameters,
+                               scene_file,
+                               parameters.output.directory,
+                               log);
+        return run(simulator);
+      }
+      Simulator<3> simulator(parameters,
+                             scene_file,
+                             parameters.output.directory,
+                             log);
+      return run(simulator);
+    }
+
+
+
+    int
+    run_scene(const std::string &scene_file,
+              const std::vector<std::pair<std::string, std::string>> &overrides)
+    {
+      ParameterHandler prm;
+      AllParameters    parameters;
+      try
+      {
+        parameters = parse_scene(prm, scene_file, overrides);
+      }
+      catch (const ExceptionBase &e)
+      {
+        std::cerr << "igabde: error: " << base::exception_message(e)
+                  << std::endl;
         return 2;
       }
 

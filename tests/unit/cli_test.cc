@@ -87,7 +87,10 @@ TEST(Cli, MisspelledParameterIsOneClearError)
   EXPECT_NE(result.output.find("bad.prm"), std::string::npos) << result.output;
   EXPECT_NE(result.output.find("Youngs modulus"), std::string::npos)
     << result.output;
-  EXPECT_NE(result.output.find("line"), std::string::npos) << result.output;
+  EXPECT_NE(result.output.find("Line <3>"), std::string::npos) << result.output;
+  EXPECT_NE(result.output.find("Did you mean 'Young's modulus'"),
+            std::string::npos)
+    << result.output;
   // One line, no stack trace and no result files presented as a result.
   EXPECT_EQ(result.output.find("Stacktrace"), std::string::npos);
   EXPECT_FALSE(std::filesystem::exists(folder + "/output/bad/summary.json"));

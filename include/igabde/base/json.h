@@ -58,6 +58,26 @@ namespace igabde
       bool
       has(const std::string &key) const;
 
+      /// Object member @p key; throws if there is none.
+      const Json &
+      at(const std::string &key) const;
+
+      /// Array element @p i; throws if out of range.
+      const Json &
+      at(const unsigned int i) const;
+
+      /// Number of array elements or object members.
+      unsigned int
+      size() const;
+
+      /// The number; throws if this is not a number.
+      double
+      number() const;
+
+      /// The string; throws if this is not a string.
+      const std::string &
+      string() const;
+
       /// Writes the value, indented by @p indent spaces per level.
       void
       write(std::ostream &out, const unsigned int indent = 2) const;

@@ -194,9 +194,9 @@ namespace igabde
      * Settings::proximal, proximal-point outer iterations (Acary et al.
      * 2018, PPA-NSN): the subproblem W + eps I, q - eps p_k (centred on the
      * current iterate, strongly monotone) is solved by Newton, eps starting
-     * at max_i W_ii and divided by 10 after every outer step that decreased
-     * the error, multiplied by 10 after a failed one. All phases share the
-     * iteration budget Settings::max_iterations (inner iterations count).
+     * at max_i W_ii and divided by 10 after every outer step that halved
+     * the error, multiplied by 10 after a failed inner solve. All phases share
+     * the iteration budget Settings::max_iterations (inner iterations count).
      *
      * <h3>Stopping</h3>
      * Converged when balanced_natural_map_error() <= tol and either
@@ -295,7 +295,7 @@ namespace igabde
        * @param problem The problem.
        * @param p0 Initial contact forces, n_rows() (empty: zero).
        * @param alpha0 Initial floating-body amplitudes, n_alpha() (empty:
-       * touching_alpha() from zero if p0 is empty, else zero).
+       * touching_alpha() from zero, or zero if no pair closes along -b).
        */
       Result
       solve(const ContactProblem  &problem,

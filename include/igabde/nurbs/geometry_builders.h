@@ -112,7 +112,12 @@ namespace igabde
      *    point: the contact face;
      *  - 3: the horizontal cut y = R through the centre, from (0, R) to
      *    (R, R): where the load goes.
-     * Right-handed, non-degenerate (det J > 0 on the closed patch).
+     * Right-handed, no collapsed edge: det J > 0 everywhere except at the
+     * single corner xi = (1, 0), the 45-degree point, where faces 1 and 2
+     * meet at a straight angle (the arc is smooth there), so that J has rank
+     * one at that point only; no quadrature point ever sits there. The
+     * interior control point is the bilinear Coons blend of the homogeneous
+     * boundary net.
      */
     NurbsPatch<2>
     make_hertz_quarter_disc(const double R);
@@ -135,7 +140,7 @@ namespace igabde
     template <int dim>
     void
     subdivide(
-      NurbsPatch<dim>                                            &patch,
+      NurbsPatch<dim>                                               &patch,
       const std::array<unsigned int, static_cast<std::size_t>(dim)> &n_spans);
   } // namespace nurbs
 } // namespace igabde

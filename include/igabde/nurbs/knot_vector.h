@@ -136,11 +136,10 @@ namespace igabde
        * derivative of N_{span-p+j}.
        */
       void
-      basis_function_derivatives(
-        const double                      u,
-        const unsigned int                span,
-        const unsigned int                n_derivatives,
-        std::vector<std::vector<double>> &ders) const;
+      basis_function_derivatives(const double       u,
+                                 const unsigned int span,
+                                 const unsigned int n_derivatives,
+                                 std::vector<std::vector<double>> &ders) const;
 
       /**
        * @brief The Bézier extraction operator of every non-empty span (Borden,

@@ -43,8 +43,8 @@ namespace igabde
        * weight <= 0.
        */
       NurbsPatch(const std::array<KnotVector, dim> &knots,
-                 const std::vector<Point<dim>>      &control_points,
-                 const std::vector<double>          &weights);
+                 const std::vector<Point<dim>>     &control_points,
+                 const std::vector<double>         &weights);
 
       /// Knot vector of direction @p d.
       const KnotVector &
@@ -83,9 +83,9 @@ namespace igabde
        * control-point indices, R_A and dR_A/dxi (parametric derivatives).
        */
       void
-      basis(const Point<dim>           &xi,
-            std::vector<unsigned int>  &indices,
-            std::vector<double>        &values,
+      basis(const Point<dim>            &xi,
+            std::vector<unsigned int>   &indices,
+            std::vector<double>         &values,
             std::vector<Tensor<1, dim>> *gradients = nullptr) const;
 
       /// Unique breakpoints (knot-span boundaries) of direction @p d.
@@ -176,8 +176,8 @@ namespace igabde
        * coordinates with @p fixed[d] == true at their start values.
        */
       Point<dim>
-      minimize_distance(const Point<dim>           &x,
-                        Point<dim>                  xi,
+      minimize_distance(const Point<dim>            &x,
+                        Point<dim>                   xi,
                         const std::array<bool, dim> &fixed,
                         double                      *distance) const;
 
@@ -186,8 +186,8 @@ namespace igabde
       /// stored by rows as (column, value) pairs.
       void
       transform_direction(
-        const unsigned int                                          d,
-        const KnotVector                                           &new_knots,
+        const unsigned int d,
+        const KnotVector  &new_knots,
         const std::vector<std::vector<std::pair<unsigned int, double>>> &T);
 
       std::array<KnotVector, dim> knots;

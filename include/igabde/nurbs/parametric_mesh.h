@@ -32,7 +32,7 @@ namespace igabde
      */
     template <int dim>
     std::array<unsigned int, dim>
-    span_of_cell(const NurbsPatch<dim>                             &patch,
+    span_of_cell(const NurbsPatch<dim>                            &patch,
                  const typename Triangulation<dim>::cell_iterator &cell);
 
     /**

@@ -55,6 +55,10 @@ namespace igabde
       void
       run();
 
+      /// The summary as written to summary.json.
+      const base::Json &
+      get_summary() const;
+
       /**
        * @brief Writes summary.json with status "failed" and @p message,
        * keeping everything finished so far.
@@ -97,6 +101,27 @@ namespace igabde
       std::vector<std::vector<std::pair<double, std::string>>> pvd_records;
       base::Json                                               step_records;
     };
+
+    /**
+     * @brief Declares every parameter in @p prm, reads @p scene_file, applies
+     * the "Section/Name" = value overrides and returns the checked
+     * parameters; throws base::ExcInput with a one-line message on bad input.
+     */
+    AllParameters
+    parse_scene(
+      ParameterHandler                                       &prm,
+      const std::string                                      &scene_file,
+      const std::vector<std::pair<std::string, std::string>> &overrides);
+
+    /**
+     * @brief Runs a scene in this process (tests, studies) and returns its
+     * summary; the log goes to @p log. Throws on bad input or failure.
+     */
+    base::Json
+    run_scene_in_process(
+      const std::string                                      &scene_file,
+      const std::vector<std::pair<std::string, std::string>> &overrides,
+      std::ostream                                           &log);
 
     /**
      * @brief Parses @p scene_file (with the --set overrides) and runs it in
