@@ -45,72 +45,73 @@ main(int argc, char **argv)
   std::string                                      scene_file;
   std::vector<std::pair<std::string, std::string>> overrides;
   for (int i = 1; i < argc; ++i)
-  {
-    const std::string arg = argv[i];
-    if (arg == "--help" || arg == "-h")
     {
-      print_usage(std::cout);
-      return 0;
+      const std::string arg = argv[i];
+      if (arg == "--help" || arg == "-h")
+        {
+          print_usage(std::cout);
+          return 0;
+        }
+      else if (arg == "--print-parameters")
+        {
+          std::string format = "prm";
+          if (i + 1 < argc && argv[i + 1][0] != '-')
+            format = argv[++i];
+          if (format != "prm" && format != "json")
+            {
+              std::cerr << "igabde: error: --print-parameters takes 'prm' or "
+                           "'json', got '"
+                        << format << "'." << std::endl;
+              return 2;
+            }
+          ParameterHandler prm;
+          igabde::scene::AllParameters::declare_parameters(prm);
+          prm.print_parameters(std::cout,
+                               format == "json" ? ParameterHandler::JSON :
+                                                  ParameterHandler::PRM);
+          return 0;
+        }
+      else if (arg == "--set")
+        {
+          if (i + 1 >= argc)
+            {
+              std::cerr << "igabde: error: --set needs "
+                           "\"Section/Name=value\"."
+                        << std::endl;
+              return 2;
+            }
+          const std::string assignment = argv[++i];
+          const auto        eq         = assignment.find('=');
+          if (eq == std::string::npos)
+            {
+              std::cerr << "igabde: error: --set '" << assignment
+                        << "' is not of the form \"Section/Name=value\"."
+                        << std::endl;
+              return 2;
+            }
+          overrides.emplace_back(igabde::base::trim(assignment.substr(0, eq)),
+                                 igabde::base::trim(assignment.substr(eq + 1)));
+        }
+      else if (!arg.empty() && arg[0] == '-')
+        {
+          std::cerr << "igabde: error: unknown option '" << arg
+                    << "'; see igabde --help." << std::endl;
+          return 2;
+        }
+      else if (scene_file.empty())
+        scene_file = arg;
+      else
+        {
+          std::cerr << "igabde: error: more than one scene file ('"
+                    << scene_file << "', '" << arg
+                    << "'); run one scene at a time." << std::endl;
+          return 2;
+        }
     }
-    else if (arg == "--print-parameters")
-    {
-      std::string format = "prm";
-      if (i + 1 < argc && argv[i + 1][0] != '-')
-        format = argv[++i];
-      if (format != "prm" && format != "json")
-      {
-        std::cerr << "igabde: error: --print-parameters takes 'prm' or "
-                     "'json', got '"
-                  << format << "'." << std::endl;
-        return 2;
-      }
-      ParameterHandler prm;
-      igabde::scene::AllParameters::declare_parameters(prm);
-      prm.print_parameters(std::cout,
-                           format == "json" ? ParameterHandler::JSON :
-                                              ParameterHandler::PRM);
-      return 0;
-    }
-    else if (arg == "--set")
-    {
-      if (i + 1 >= argc)
-      {
-        std::cerr << "igabde: error: --set needs "
-                     "\"Section/Name=value\"."
-                  << std::endl;
-        return 2;
-      }
-      const std::string assignment = argv[++i];
-      const auto        eq         = assignment.find('=');
-      if (eq == std::string::npos)
-      {
-        std::cerr << "igabde: error: --set '" << assignment
-                  << "' is not of the form \"Section/Name=value\"."
-                  << std::endl;
-        return 2;
-      }
-      overrides.emplace_back(igabde::base::trim(assignment.substr(0, eq)),
-                             igabde::base::trim(assignment.substr(eq + 1)));
-    }
-    else if (!arg.empty() && arg[0] == '-')
-    {
-      std::cerr << "igabde: error: unknown option '" << arg
-                << "'; see igabde --help." << std::endl;
-      return 2;
-    }
-    else if (scene_file.empty())
-      scene_file = arg;
-    else
-    {
-      std::cerr << "igabde: error: more than one scene file ('" << scene_file
-                << "', '" << arg << "'); run one scene at a time." << std::endl;
-      return 2;
-    }
-  }
   if (scene_file.empty())
-  {
-    print_usage(std::cerr);
-    return 2;
-  }
+    {
+      print_usage(std::cerr);
+      return 2;
+    }
   return igabde::scene::run_scene(scene_file, overrides);
 }

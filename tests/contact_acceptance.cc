@@ -49,65 +49,65 @@ main()
   for (const std::string dim : {"2d", "3d"})
     for (const std::string type : {"nurbs", "lagrange"})
       for (const std::string mu : {"0", "0.3"})
-      {
-        const auto   summary = run("v3-contact-patch-" + dim,
-                                 "v3-" + dim + type + mu,
-                                 {{"Discretization/Type", type},
-                                    {"Contact/Friction coefficient", mu}});
-        const double u =
-          summary.at("checks").at("pressure_uniformity").number();
-        const auto &f =
-          summary.at("load_steps").at(0).at("total_contact_force");
-        const double normal = f.at(f.size() - 1).number();
-        deallog << "V3 " << dim << " " << type << " mu=" << mu << ": pairs "
-                << summary.at("n_contact_pairs").number()
-                << ", pressure uniformity <= 1e-8: " << yes(u <= 1e-8)
-                << ", total normal force " << normal << std::endl;
-      }
+        {
+          const auto   summary = run("v3-contact-patch-" + dim,
+                                   "v3-" + dim + type + mu,
+                                   {{"Discretization/Type", type},
+                                      {"Contact/Friction coefficient", mu}});
+          const double u =
+            summary.at("checks").at("pressure_uniformity").number();
+          const auto &f =
+            summary.at("load_steps").at(0).at("total_contact_force");
+          const double normal = f.at(f.size() - 1).number();
+          deallog << "V3 " << dim << " " << type << " mu=" << mu << ": pairs "
+                  << summary.at("n_contact_pairs").number()
+                  << ", pressure uniformity <= 1e-8: " << yes(u <= 1e-8)
+                  << ", total normal force " << normal << std::endl;
+        }
 
   // V4: |F_t| <= mu |F_n| always, = once sliding; stick pairs in the stick
   // phase.
   for (const std::string type : {"nurbs", "lagrange"})
-  {
-    const auto summary =
-      run("v4-sliding-block", "v4-" + type, {{"Discretization/Type", type}});
-    const auto  &steps      = summary.at("load_steps");
-    const double mu         = 0.4;
-    bool         bounded    = true;
-    bool         saw_stick  = false;
-    double       last_ratio = 0.;
-    for (unsigned int s = 0; s < steps.size(); ++s)
     {
-      const auto  &f  = steps.at(s).at("total_contact_force");
-      const double ft = std::abs(f.at(0).number());
-      const double fn = std::abs(f.at(1).number());
-      bounded         = bounded && ft <= mu * fn * (1. + 1e-8);
-      saw_stick =
-        saw_stick || (s > 0 && steps.at(s).at("n_stick").number() > 0);
-      last_ratio = ft / (mu * fn);
+      const auto summary =
+        run("v4-sliding-block", "v4-" + type, {{"Discretization/Type", type}});
+      const auto  &steps      = summary.at("load_steps");
+      const double mu         = 0.4;
+      bool         bounded    = true;
+      bool         saw_stick  = false;
+      double       last_ratio = 0.;
+      for (unsigned int s = 0; s < steps.size(); ++s)
+        {
+          const auto  &f  = steps.at(s).at("total_contact_force");
+          const double ft = std::abs(f.at(0).number());
+          const double fn = std::abs(f.at(1).number());
+          bounded         = bounded && ft <= mu * fn * (1. + 1e-8);
+          saw_stick =
+            saw_stick || (s > 0 && steps.at(s).at("n_stick").number() > 0);
+          last_ratio = ft / (mu * fn);
+        }
+      deallog << "V4 " << type << ": " << steps.size()
+              << " steps, |F_t| <= mu |F_n| in every step: " << yes(bounded)
+              << ", stick pairs while sticking: " << yes(saw_stick)
+              << ", sliding |F_t| = mu |F_n| to 1e-8: "
+              << yes(std::abs(last_ratio - 1.) <= 1e-8) << std::endl;
     }
-    deallog << "V4 " << type << ": " << steps.size()
-            << " steps, |F_t| <= mu |F_n| in every step: " << yes(bounded)
-            << ", stick pairs while sticking: " << yes(saw_stick)
-            << ", sliding |F_t| = mu |F_n| to 1e-8: "
-            << yes(std::abs(last_ratio - 1.) <= 1e-8) << std::endl;
-  }
 
   // V5 Hertz: half-width within 1 % (NURBS) / 2 % (FE_Q(2)) of 1.4915,
   // profile L2 error <= 3 % (NURBS) / within 2 % ... of Johnson's.
   for (const std::string type : {"nurbs", "lagrange"})
-  {
-    const auto summary =
-      run("v5-hertz-2d", "v5-" + type, {{"Discretization/Type", type}});
-    const auto  &checks = summary.at("checks");
-    const double a_err  = checks.at("hertz_half_width_error").number();
-    const double l2     = checks.at("pressure_l2_rel_error").number();
-    const double limit  = (type == "nurbs" ? 0.01 : 0.02);
-    deallog << "V5 " << type << ": half-width within " << 100 * limit
-            << " %: " << yes(a_err <= limit)
-            << ", profile L2 error <= 3 %: " << yes(l2 <= 0.03)
-            << ", half-width " << std::setprecision(3)
-            << checks.at("hertz_half_width").number() << std::setprecision(6)
-            << std::endl;
-  }
+    {
+      const auto summary =
+        run("v5-hertz-2d", "v5-" + type, {{"Discretization/Type", type}});
+      const auto  &checks = summary.at("checks");
+      const double a_err  = checks.at("hertz_half_width_error").number();
+      const double l2     = checks.at("pressure_l2_rel_error").number();
+      const double limit  = (type == "nurbs" ? 0.01 : 0.02);
+      deallog << "V5 " << type << ": half-width within " << 100 * limit
+              << " %: " << yes(a_err <= limit)
+              << ", profile L2 error <= 3 %: " << yes(l2 <= 0.03)
+              << ", half-width " << std::setprecision(3)
+              << checks.at("hertz_half_width").number() << std::setprecision(6)
+              << std::endl;
+    }
 }

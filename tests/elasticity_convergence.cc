@@ -57,31 +57,32 @@ main()
        std::vector<std::pair<std::string, int>>{{"nurbs", 2},
                                                 {"nurbs", 3},
                                                 {"lagrange", 2}})
-  {
-    std::vector<Level> levels;
-    for (unsigned int r = 1; r <= 5; ++r)
-      levels.push_back(run("v1-plate-with-hole", type, degree, r));
-    const double l2_rate = std::log2(levels[2].l2 / levels[4].l2) / 2.;
-    const double en_rate = std::log2(levels[2].energy / levels[4].energy) / 2.;
-    deallog << "V1 " << type << " p=" << degree
-            << ": L2 rate >= " << degree + 0.8 << ": "
-            << (l2_rate >= degree + 0.8 ? "yes" : "NO")
-            << ", energy rate >= " << degree - 0.2 << ": "
-            << (en_rate >= degree - 0.2 ? "yes" : "NO") << std::endl;
-  }
+    {
+      std::vector<Level> levels;
+      for (unsigned int r = 1; r <= 5; ++r)
+        levels.push_back(run("v1-plate-with-hole", type, degree, r));
+      const double l2_rate = std::log2(levels[2].l2 / levels[4].l2) / 2.;
+      const double en_rate =
+        std::log2(levels[2].energy / levels[4].energy) / 2.;
+      deallog << "V1 " << type << " p=" << degree
+              << ": L2 rate >= " << degree + 0.8 << ": "
+              << (l2_rate >= degree + 0.8 ? "yes" : "NO")
+              << ", energy rate >= " << degree - 0.2 << ": "
+              << (en_rate >= degree - 0.2 ? "yes" : "NO") << std::endl;
+    }
 
   // V2: on the same mesh the NURBS space has fewer unknowns and smaller
   // errors than FE_Q(2), so its error is below FE_Q(2)'s at equal DOFs.
   for (unsigned int r = 1; r <= 3; ++r)
-  {
-    const Level nurbs    = run("v2-lame-cylinder", "nurbs", 2, r);
-    const Level lagrange = run("v2-lame-cylinder", "lagrange", 2, r);
-    deallog << "V2 level " << r << ": NURBS dofs <= FE_Q(2) dofs: "
-            << (nurbs.dofs <= lagrange.dofs ? "yes" : "NO")
-            << ", NURBS L2 and energy errors below FE_Q(2)'s: "
-            << (nurbs.l2 < lagrange.l2 && nurbs.energy < lagrange.energy ?
-                  "yes" :
-                  "NO")
-            << std::endl;
-  }
+    {
+      const Level nurbs    = run("v2-lame-cylinder", "nurbs", 2, r);
+      const Level lagrange = run("v2-lame-cylinder", "lagrange", 2, r);
+      deallog << "V2 level " << r << ": NURBS dofs <= FE_Q(2) dofs: "
+              << (nurbs.dofs <= lagrange.dofs ? "yes" : "NO")
+              << ", NURBS L2 and energy errors below FE_Q(2)'s: "
+              << (nurbs.l2 < lagrange.l2 && nurbs.energy < lagrange.energy ?
+                    "yes" :
+                    "NO")
+              << std::endl;
+    }
 }

@@ -42,21 +42,18 @@ main(int argc, char **argv)
   const long         max_rows       = argc > 4 ? std::atol(argv[4]) : 6000;
 
   if (!std::filesystem::is_directory(folder))
-  {
-    std::cerr << "fclib_benchmark: no folder '" << folder << "'\n";
-    return 1;
-  }
+    {
+      std::cerr << "fclib_benchmark: no folder '" << folder << "'\n";
+      return 1;
+    }
   std::vector<std::filesystem::path> files;
   for (const auto &entry :
        std::filesystem::recursive_directory_iterator(folder))
     if (entry.is_regular_file())
       files.push_back(entry.path());
-  std::sort(files.begin(),
-            files.end(),
-            [](const auto &a, const auto &b)
-            {
-              return a.filename().string() < b.filename().string();
-            });
+  std::sort(files.begin(), files.end(), [](const auto &a, const auto &b) {
+    return a.filename().string() < b.filename().string();
+  });
 
   BNewtonSolver::Settings settings;
   settings.tolerance        = 1e-8;
@@ -70,76 +67,76 @@ main(int argc, char **argv)
   unsigned int solved[4] = {0, 0, 0, 0}, attempted[4] = {0, 0, 0, 0};
   std::vector<std::string> skipped;
   for (const auto &path : files)
-  {
-    const std::string   name = path.filename().string();
-    const FclibFileKind kind = classify_fclib_file(path.string());
-    if (kind == FclibFileKind::unknown ||
-        kind == FclibFileKind::siconos_global_dat ||
-        kind == FclibFileKind::hdf5_global_rolling)
     {
-      skipped.push_back(name + " (not a local/global FCLIB problem)");
-      continue;
+      const std::string   name = path.filename().string();
+      const FclibFileKind kind = classify_fclib_file(path.string());
+      if (kind == FclibFileKind::unknown ||
+          kind == FclibFileKind::siconos_global_dat ||
+          kind == FclibFileKind::hdf5_global_rolling)
+        {
+          skipped.push_back(name + " (not a local/global FCLIB problem)");
+          continue;
+        }
+      ContactProblem problem;
+      try
+        {
+          problem = read_fclib_problem(path.string());
+        }
+      catch (const std::exception &e)
+        {
+          std::string what = e.what();
+          const auto  pos  = what.find("FCLIB reader");
+          const auto  pos2 = what.find("Siconos reader");
+          what             = what.substr(
+            std::min(pos, pos2) == std::string::npos ? 0 : std::min(pos, pos2));
+          what = what.substr(0, what.find('\n'));
+          skipped.push_back(name + " (unreadable: " + what + ")");
+          continue;
+        }
+      if (problem.n_components < 2)
+        {
+          skipped.push_back(name + " (frictionless, not an FCLIB case)");
+          continue;
+        }
+      if (static_cast<long>(problem.n_rows()) > max_rows)
+        {
+          skipped.push_back(name + " (" + std::to_string(problem.n_rows()) +
+                            " rows > " + std::to_string(max_rows) +
+                            ", dense W too large)");
+          continue;
+        }
+      const auto                  t0 = std::chrono::steady_clock::now();
+      const BNewtonSolver::Result r  = solver.solve(problem);
+      const double ms = std::chrono::duration<double, std::milli>(
+                          std::chrono::steady_clock::now() - t0)
+                          .count();
+      const bool ok = r.residual <= 1e-8 && r.p.allFinite();
+      const bool checks =
+        check_contact_conditions(problem, r.p, r.u, 1e-6).passed();
+      const unsigned int d = problem.n_components;
+      ++attempted[d];
+      if (ok)
+        ++solved[d];
+      double mu_min = problem.mu.empty() ? 0. : problem.mu[0], mu_max = mu_min;
+      for (const double mu : problem.mu)
+        {
+          mu_min = std::min(mu_min, mu);
+          mu_max = std::max(mu_max, mu);
+        }
+      std::string diagnosis = r.converged ? "" : r.diagnosis;
+      if (diagnosis.size() > 80)
+        diagnosis = diagnosis.substr(0, 77) + "...";
+      std::cout << "| " << name << " | " << d << " | " << problem.n_contacts
+                << " | " << std::setprecision(3) << mu_min;
+      if (mu_max > mu_min)
+        std::cout << "-" << mu_max;
+      std::cout << " | " << r.iterations << " | " << std::scientific
+                << std::setprecision(1) << r.residual << " | "
+                << r.balanced_residual << " | " << (ok ? "yes" : "no") << " | "
+                << (checks ? "pass" : "FAIL") << " | " << std::fixed
+                << std::setprecision(1) << ms << " | " << diagnosis << " |"
+                << std::defaultfloat << std::endl;
     }
-    ContactProblem problem;
-    try
-    {
-      problem = read_fclib_problem(path.string());
-    }
-    catch (const std::exception &e)
-    {
-      std::string what = e.what();
-      const auto  pos  = what.find("FCLIB reader");
-      const auto  pos2 = what.find("Siconos reader");
-      what             = what.substr(
-        std::min(pos, pos2) == std::string::npos ? 0 : std::min(pos, pos2));
-      what = what.substr(0, what.find('\n'));
-      skipped.push_back(name + " (unreadable: " + what + ")");
-      continue;
-    }
-    if (problem.n_components < 2)
-    {
-      skipped.push_back(name + " (frictionless, not an FCLIB case)");
-      continue;
-    }
-    if (static_cast<long>(problem.n_rows()) > max_rows)
-    {
-      skipped.push_back(name + " (" + std::to_string(problem.n_rows()) +
-                        " rows > " + std::to_string(max_rows) +
-                        ", dense W too large)");
-      continue;
-    }
-    const auto                  t0 = std::chrono::steady_clock::now();
-    const BNewtonSolver::Result r  = solver.solve(problem);
-    const double                ms = std::chrono::duration<double, std::milli>(
-                        std::chrono::steady_clock::now() - t0)
-                        .count();
-    const bool ok = r.residual <= 1e-8 && r.p.allFinite();
-    const bool checks =
-      check_contact_conditions(problem, r.p, r.u, 1e-6).passed();
-    const unsigned int d = problem.n_components;
-    ++attempted[d];
-    if (ok)
-      ++solved[d];
-    double mu_min = problem.mu.empty() ? 0. : problem.mu[0], mu_max = mu_min;
-    for (const double mu : problem.mu)
-    {
-      mu_min = std::min(mu_min, mu);
-      mu_max = std::max(mu_max, mu);
-    }
-    std::string diagnosis = r.converged ? "" : r.diagnosis;
-    if (diagnosis.size() > 80)
-      diagnosis = diagnosis.substr(0, 77) + "...";
-    std::cout << "| " << name << " | " << d << " | " << problem.n_contacts
-              << " | " << std::setprecision(3) << mu_min;
-    if (mu_max > mu_min)
-      std::cout << "-" << mu_max;
-    std::cout << " | " << r.iterations << " | " << std::scientific
-              << std::setprecision(1) << r.residual << " | "
-              << r.balanced_residual << " | " << (ok ? "yes" : "no") << " | "
-              << (checks ? "pass" : "FAIL") << " | " << std::fixed
-              << std::setprecision(1) << ms << " | " << diagnosis << " |"
-              << std::defaultfloat << std::endl;
-  }
   std::cout << "\nsolved (relative natural map <= 1e-8): 3D " << solved[3]
             << "/" << attempted[3] << ", 2D " << solved[2] << "/"
             << attempted[2] << '\n';

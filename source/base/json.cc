@@ -12,59 +12,51 @@ namespace igabde
     Json::Json(const double value)
       : kind(Kind::number)
       , number_value(value)
-    {
-    }
+    {}
 
 
 
     Json::Json(const int value)
       : Json(static_cast<double>(value))
-    {
-    }
+    {}
 
 
 
     Json::Json(const unsigned int value)
       : Json(static_cast<double>(value))
-    {
-    }
+    {}
 
 
 
     Json::Json(const unsigned long value)
       : Json(static_cast<double>(value))
-    {
-    }
+    {}
 
 
 
     Json::Json(const unsigned long long value)
       : Json(static_cast<double>(value))
-    {
-    }
+    {}
 
 
 
     Json::Json(const bool value)
       : kind(Kind::boolean)
       , boolean_value(value)
-    {
-    }
+    {}
 
 
 
     Json::Json(const std::string &value)
       : kind(Kind::string)
       , string_value(value)
-    {
-    }
+    {}
 
 
 
     Json::Json(const char *value)
       : Json(std::string(value))
-    {
-    }
+    {}
 
 
 
@@ -190,26 +182,26 @@ namespace igabde
         o << '"';
         for (const char c : s)
           switch (c)
-          {
-            case '"':
-              o << "\\\"";
-              break;
-            case '\\':
-              o << "\\\\";
-              break;
-            case '\n':
-              o << "\\n";
-              break;
-            case '\t':
-              o << "\\t";
-              break;
-            default:
-              if (static_cast<unsigned char>(c) < 0x20)
-                o << "\\u" << std::hex << std::setw(4) << std::setfill('0')
-                  << static_cast<int>(c) << std::dec;
-              else
-                o << c;
-          }
+            {
+              case '"':
+                o << "\\\"";
+                break;
+              case '\\':
+                o << "\\\\";
+                break;
+              case '\n':
+                o << "\\n";
+                break;
+              case '\t':
+                o << "\\t";
+                break;
+              default:
+                if (static_cast<unsigned char>(c) < 0x20)
+                  o << "\\u" << std::hex << std::setw(4) << std::setfill('0')
+                    << static_cast<int>(c) << std::dec;
+                else
+                  o << c;
+            }
         o << '"';
         return o.str();
       }
@@ -225,56 +217,56 @@ namespace igabde
       const std::string pad(indent * (level + 1), ' ');
       const std::string end_pad(indent * level, ' ');
       switch (kind)
-      {
-        case Kind::null:
-          out << "null";
-          break;
-        case Kind::boolean:
-          out << (boolean_value ? "true" : "false");
-          break;
-        case Kind::number:
-          if (!std::isfinite(number_value))
-            out << "null"; // JSON has no NaN/inf
-          else if (number_value == std::floor(number_value) &&
-                   std::abs(number_value) < 1e15)
-            out << static_cast<long long>(number_value);
-          else
-            out << std::setprecision(16) << number_value;
-          break;
-        case Kind::string:
-          out << escape(string_value);
-          break;
-        case Kind::array:
-          if (elements.empty())
-          {
-            out << "[]";
+        {
+          case Kind::null:
+            out << "null";
             break;
-          }
-          out << "[\n";
-          for (unsigned int i = 0; i < elements.size(); ++i)
-          {
-            out << pad;
-            elements[i].write(out, indent, level + 1);
-            out << (i + 1 < elements.size() ? ",\n" : "\n");
-          }
-          out << end_pad << "]";
-          break;
-        case Kind::object:
-          if (members.empty())
-          {
-            out << "{}";
+          case Kind::boolean:
+            out << (boolean_value ? "true" : "false");
             break;
-          }
-          out << "{\n";
-          for (unsigned int i = 0; i < members.size(); ++i)
-          {
-            out << pad << escape(members[i].first) << ": ";
-            members[i].second.write(out, indent, level + 1);
-            out << (i + 1 < members.size() ? ",\n" : "\n");
-          }
-          out << end_pad << "}";
-          break;
-      }
+          case Kind::number:
+            if (!std::isfinite(number_value))
+              out << "null"; // JSON has no NaN/inf
+            else if (number_value == std::floor(number_value) &&
+                     std::abs(number_value) < 1e15)
+              out << static_cast<long long>(number_value);
+            else
+              out << std::setprecision(16) << number_value;
+            break;
+          case Kind::string:
+            out << escape(string_value);
+            break;
+          case Kind::array:
+            if (elements.empty())
+              {
+                out << "[]";
+                break;
+              }
+            out << "[\n";
+            for (unsigned int i = 0; i < elements.size(); ++i)
+              {
+                out << pad;
+                elements[i].write(out, indent, level + 1);
+                out << (i + 1 < elements.size() ? ",\n" : "\n");
+              }
+            out << end_pad << "]";
+            break;
+          case Kind::object:
+            if (members.empty())
+              {
+                out << "{}";
+                break;
+              }
+            out << "{\n";
+            for (unsigned int i = 0; i < members.size(); ++i)
+              {
+                out << pad << escape(members[i].first) << ": ";
+                members[i].second.write(out, indent, level + 1);
+                out << (i + 1 < members.size() ? ",\n" : "\n");
+              }
+            out << end_pad << "}";
+            break;
+        }
     }
   } // namespace base
 } // namespace igabde

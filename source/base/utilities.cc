@@ -26,11 +26,11 @@ namespace igabde
       std::string              piece;
       std::istringstream       in(s);
       while (std::getline(in, piece, separator))
-      {
-        piece = trim(piece);
-        if (!piece.empty())
-          pieces.push_back(piece);
-      }
+        {
+          piece = trim(piece);
+          if (!piece.empty())
+            pieces.push_back(piece);
+        }
       return pieces;
     }
 
@@ -47,23 +47,23 @@ namespace igabde
       std::vector<double> values;
       std::string         token;
       while (in >> token)
-      {
-        std::size_t used = 0;
-        double      v    = 0;
-        try
         {
-          v = std::stod(token, &used);
+          std::size_t used = 0;
+          double      v    = 0;
+          try
+            {
+              v = std::stod(token, &used);
+            }
+          catch (...)
+            {
+              used = 0;
+            }
+          AssertThrow(used == token.size() && std::isfinite(v),
+                      ExcInput(where + ": '" + token +
+                               "' is not a number; expected a comma-separated "
+                               "list of numbers."));
+          values.push_back(v);
         }
-        catch (...)
-        {
-          used = 0;
-        }
-        AssertThrow(used == token.size() && std::isfinite(v),
-                    ExcInput(where + ": '" + token +
-                             "' is not a number; expected a comma-separated "
-                             "list of numbers."));
-        values.push_back(v);
-      }
       return values;
     }
 
@@ -113,12 +113,12 @@ namespace igabde
         if (c == '\n' || c == ' ' || c == '\t')
           space = !result.empty();
         else
-        {
-          if (space)
-            result += ' ';
-          result += c;
-          space = false;
-        }
+          {
+            if (space)
+              result += ' ';
+            result += c;
+            space = false;
+          }
       const std::string prefix = "Additional information: ";
       if (result.rfind(prefix, 0) == 0)
         result = result.substr(prefix.size());

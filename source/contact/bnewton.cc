@@ -31,11 +31,11 @@ namespace igabde
         if (nt <= mu * x[0])
           return;
         if (mu * nt <= -x[0])
-        {
-          for (unsigned int k = 0; k < d; ++k)
-            x[k] = 0.;
-          return;
-        }
+          {
+            for (unsigned int k = 0; k < d; ++k)
+              x[k] = 0.;
+            return;
+          }
         const double xn = (x[0] + mu * nt) / (1. + mu * mu);
         x[0]            = xn;
         for (unsigned int k = 1; k < d; ++k)
@@ -82,25 +82,26 @@ namespace igabde
           max_diag = problem.W.diagonal().maxCoeff();
         const double fallback = max_diag > 0. ? factor / max_diag : factor;
         for (unsigned int c = 0; c < nc; ++c)
-        {
-          const unsigned int o   = c * d;
-          const double       wnn = problem.W(o, o);
-          w.r_n[c] =
-            (wnn > 1e-14 * max_diag && wnn > 0.) ? factor / wnn : fallback;
-          double lmax = 0.;
-          if (d == 2)
-            lmax = problem.W(o + 1, o + 1);
-          else if (d == 3)
           {
-            const double a = problem.W(o + 1, o + 1),
-                         b = problem.W(o + 2, o + 2),
-                         e = 0.5 * (problem.W(o + 1, o + 2) +
-                                    problem.W(o + 2, o + 1));
-            lmax = 0.5 * (a + b) + std::sqrt(0.25 * (a - b) * (a - b) + e * e);
+            const unsigned int o   = c * d;
+            const double       wnn = problem.W(o, o);
+            w.r_n[c] =
+              (wnn > 1e-14 * max_diag && wnn > 0.) ? factor / wnn : fallback;
+            double lmax = 0.;
+            if (d == 2)
+              lmax = problem.W(o + 1, o + 1);
+            else if (d == 3)
+              {
+                const double a = problem.W(o + 1, o + 1),
+                             b = problem.W(o + 2, o + 2),
+                             e = 0.5 * (problem.W(o + 1, o + 2) +
+                                        problem.W(o + 2, o + 1));
+                lmax =
+                  0.5 * (a + b) + std::sqrt(0.25 * (a - b) * (a - b) + e * e);
+              }
+            w.r_t[c] =
+              (lmax > 1e-14 * max_diag && lmax > 0.) ? factor / lmax : w.r_n[c];
           }
-          w.r_t[c] =
-            (lmax > 1e-14 * max_diag && lmax > 0.) ? factor / lmax : w.r_n[c];
-        }
         return w;
       }
 
@@ -130,8 +131,7 @@ namespace igabde
           , d(problem.n_components)
           , m(problem.n_rows())
           , na(problem.n_alpha())
-        {
-        }
+        {}
 
         Vec
         displacement(const Vec &x) const
@@ -153,88 +153,90 @@ namespace igabde
           if (branches)
             branches->resize(problem.n_contacts);
           for (unsigned int c = 0; c < problem.n_contacts; ++c)
-          {
-            const unsigned int o      = c * d;
-            const double       rn     = w.r_n[c];
-            const double       pn     = x[o];
-            const double       run    = rn * u[o];
-            const bool         closed = run < pn;
-            H[o]                      = closed ? run : pn;
-            Branch *br                = branches ? &(*branches)[c] : nullptr;
-            if (br)
             {
-              br->A.setZero();
-              br->B.setZero();
-              br->closed = closed;
-              if (closed)
-                br->A(0, 0) = rn;
-              else
-                br->B(0, 0) = 1.;
-              br->status = closed ? ContactStatus::slip : ContactStatus::open;
-            }
-            if (d == 1)
-              continue;
-
-            const double mu   = problem.mu[c];
-            const double rt   = w.r_t[c];
-            const double R    = radius == FrictionRadius::christensen_pang ?
-                                  mu * std::max(pn, 0.) :
-                                  mu * std::max(pn - run, 0.);
-            double       z[2] = {0., 0.};
-            double       nz   = 0.;
-            for (unsigned int k = 1; k < d; ++k)
-            {
-              z[k - 1] = x[o + k] - rt * u[o + k];
-              nz += z[k - 1] * z[k - 1];
-            }
-            nz = std::sqrt(nz);
-            if (nz <= R)
-            {
-              // stick, lambda := 1 (includes z = 0, R = 0)
-              for (unsigned int k = 1; k < d; ++k)
-                H[o + k] = rt * u[o + k];
+              const unsigned int o      = c * d;
+              const double       rn     = w.r_n[c];
+              const double       pn     = x[o];
+              const double       run    = rn * u[o];
+              const bool         closed = run < pn;
+              H[o]                      = closed ? run : pn;
+              Branch *br                = branches ? &(*branches)[c] : nullptr;
               if (br)
-              {
-                for (unsigned int k = 1; k < d; ++k)
-                  br->A(k, k) = rt;
-                if (closed)
-                  br->status = ContactStatus::stick;
-              }
-            }
-            else if (R <= 0.)
-            {
-              // projection onto {0}: H_t = p_t
-              for (unsigned int k = 1; k < d; ++k)
-                H[o + k] = x[o + k];
-              if (br)
-                for (unsigned int k = 1; k < d; ++k)
-                  br->B(k, k) = 1.;
-            }
-            else
-            {
-              const double lambda = R / nz;
-              for (unsigned int k = 1; k < d; ++k)
-                H[o + k] = x[o + k] - lambda * z[k - 1];
-              if (br)
-              {
-                // Gamma = lambda (I - zhat zhat^T)
-                for (unsigned int k = 1; k < d; ++k)
-                  for (unsigned int l = 1; l < d; ++l)
-                  {
-                    const double zz    = (z[k - 1] / nz) * (z[l - 1] / nz);
-                    const double gamma = lambda * ((k == l ? 1. : 0.) - zz);
-                    br->B(k, l)        = (k == l ? 1. : 0.) - gamma;
-                    br->A(k, l)        = rt * gamma;
-                  }
-                for (unsigned int k = 1; k < d; ++k)
                 {
-                  br->B(k, 0) = -mu * z[k - 1] / nz;
-                  if (radius == FrictionRadius::alart_curnier)
-                    br->A(k, 0) = mu * rn * z[k - 1] / nz;
+                  br->A.setZero();
+                  br->B.setZero();
+                  br->closed = closed;
+                  if (closed)
+                    br->A(0, 0) = rn;
+                  else
+                    br->B(0, 0) = 1.;
+                  br->status =
+                    closed ? ContactStatus::slip : ContactStatus::open;
                 }
-              }
+              if (d == 1)
+                continue;
+
+              const double mu   = problem.mu[c];
+              const double rt   = w.r_t[c];
+              const double R    = radius == FrictionRadius::christensen_pang ?
+                                    mu * std::max(pn, 0.) :
+                                    mu * std::max(pn - run, 0.);
+              double       z[2] = {0., 0.};
+              double       nz   = 0.;
+              for (unsigned int k = 1; k < d; ++k)
+                {
+                  z[k - 1] = x[o + k] - rt * u[o + k];
+                  nz += z[k - 1] * z[k - 1];
+                }
+              nz = std::sqrt(nz);
+              if (nz <= R)
+                {
+                  // stick, lambda := 1 (includes z = 0, R = 0)
+                  for (unsigned int k = 1; k < d; ++k)
+                    H[o + k] = rt * u[o + k];
+                  if (br)
+                    {
+                      for (unsigned int k = 1; k < d; ++k)
+                        br->A(k, k) = rt;
+                      if (closed)
+                        br->status = ContactStatus::stick;
+                    }
+                }
+              else if (R <= 0.)
+                {
+                  // projection onto {0}: H_t = p_t
+                  for (unsigned int k = 1; k < d; ++k)
+                    H[o + k] = x[o + k];
+                  if (br)
+                    for (unsigned int k = 1; k < d; ++k)
+                      br->B(k, k) = 1.;
+                }
+              else
+                {
+                  const double lambda = R / nz;
+                  for (unsigned int k = 1; k < d; ++k)
+                    H[o + k] = x[o + k] - lambda * z[k - 1];
+                  if (br)
+                    {
+                      // Gamma = lambda (I - zhat zhat^T)
+                      for (unsigned int k = 1; k < d; ++k)
+                        for (unsigned int l = 1; l < d; ++l)
+                          {
+                            const double zz = (z[k - 1] / nz) * (z[l - 1] / nz);
+                            const double gamma =
+                              lambda * ((k == l ? 1. : 0.) - zz);
+                            br->B(k, l) = (k == l ? 1. : 0.) - gamma;
+                            br->A(k, l) = rt * gamma;
+                          }
+                      for (unsigned int k = 1; k < d; ++k)
+                        {
+                          br->B(k, 0) = -mu * z[k - 1] / nz;
+                          if (radius == FrictionRadius::alart_curnier)
+                            br->A(k, 0) = mu * rn * z[k - 1] / nz;
+                        }
+                    }
+                }
             }
-          }
           if (na > 0)
             H.tail(na) = problem.G.transpose() * x.head(m) - problem.b;
         }
@@ -254,14 +256,14 @@ namespace igabde
           unsigned int best = 0;
           double       gap  = std::numeric_limits<double>::infinity();
           for (unsigned int c = 0; c < problem.n_contacts; ++c)
-          {
-            const double g = w.r_n[c] * u[c * d] - x[c * d];
-            if (g < gap)
             {
-              gap  = g;
-              best = c;
+              const double g = w.r_n[c] * u[c * d] - x[c * d];
+              if (g < gap)
+                {
+                  gap  = g;
+                  best = c;
+                }
             }
-          }
           Branch &br = branches[best];
           br.closed  = true;
           br.A(0, 0) = w.r_n[best];
@@ -320,39 +322,39 @@ namespace igabde
         J.is_trivial.assign(n, 0);
         for (unsigned int c = 0; c < pb.n_contacts; ++c)
           for (unsigned int k = 0; k < d; ++k)
-          {
-            const Branch &br      = branches[c];
-            bool          trivial = br.B(k, k) == 1.;
-            for (unsigned int l = 0; l < d && trivial; ++l)
-              trivial = br.A(k, l) == 0. && (l == k || br.B(k, l) == 0.);
-            J.is_trivial[c * d + k] = trivial;
-          }
+            {
+              const Branch &br      = branches[c];
+              bool          trivial = br.B(k, k) == 1.;
+              for (unsigned int l = 0; l < d && trivial; ++l)
+                trivial = br.A(k, l) == 0. && (l == k || br.B(k, l) == 0.);
+              J.is_trivial[c * d + k] = trivial;
+            }
         for (unsigned int i = 0; i < n; ++i)
           (J.is_trivial[i] ? J.trivial : J.others).push_back(i);
 
         J.JN.setZero(J.others.size(), n);
         for (unsigned int r = 0; r < J.others.size(); ++r)
-        {
-          const unsigned int i = J.others[r];
-          if (i < m)
           {
-            const unsigned int c = i / d, k = i % d, o = c * d;
-            const Branch      &br = branches[c];
-            for (unsigned int l = 0; l < d; ++l)
-            {
-              const double a = br.A(k, l);
-              if (a != 0.)
+            const unsigned int i = J.others[r];
+            if (i < m)
               {
-                J.JN.row(r).head(m) += a * pb.W.row(o + l);
-                if (na > 0)
-                  J.JN.row(r).tail(na) += a * pb.G.row(o + l);
+                const unsigned int c = i / d, k = i % d, o = c * d;
+                const Branch      &br = branches[c];
+                for (unsigned int l = 0; l < d; ++l)
+                  {
+                    const double a = br.A(k, l);
+                    if (a != 0.)
+                      {
+                        J.JN.row(r).head(m) += a * pb.W.row(o + l);
+                        if (na > 0)
+                          J.JN.row(r).tail(na) += a * pb.G.row(o + l);
+                      }
+                    J.JN(r, o + l) += br.B(k, l);
+                  }
               }
-              J.JN(r, o + l) += br.B(k, l);
-            }
+            else
+              J.JN.row(r).head(m) = pb.G.col(i - m).transpose();
           }
-          else
-            J.JN.row(r).head(m) = pb.G.col(i - m).transpose();
-        }
         return J;
       }
 
@@ -367,17 +369,17 @@ namespace igabde
         n_open = n_stick = n_slip = 0;
         for (const Branch &br : branches)
           switch (br.status)
-          {
-            case ContactStatus::open:
-              ++n_open;
-              break;
-            case ContactStatus::stick:
-              ++n_stick;
-              break;
-            case ContactStatus::slip:
-              ++n_slip;
-              break;
-          }
+            {
+              case ContactStatus::open:
+                ++n_open;
+                break;
+              case ContactStatus::stick:
+                ++n_stick;
+                break;
+              case ContactStatus::slip:
+                ++n_slip;
+                break;
+            }
       }
 
 
@@ -475,11 +477,11 @@ namespace igabde
           if (!std::isfinite(score))
             return;
           if (!have_best || score < best_score)
-          {
-            have_best  = true;
-            best_score = score;
-            best_x     = x;
-          }
+            {
+              have_best  = true;
+              best_score = score;
+              best_x     = x;
+            }
         }
 
         PhaseOutcome
@@ -547,174 +549,175 @@ namespace igabde
         Vec u = sys.displacement(x);
         sys.residual(x, u, H, &branches);
         for (;;)
-        {
-          const double theta = 0.5 * H.squaredNorm();
-          if (!std::isfinite(theta) || !x.allFinite())
-            return {false, "non-finite values (NaN/inf) in H"};
-          double err, balanced, eq_err;
-          // The FCLIB error may be out of reach in floating point when
-          // forces and displacements have very different scales: accept
-          // the balanced error alone once Newton stops converging
-          // quadratically (|H| decreased less than 2x in the last step).
-          const bool at_floor = local_it > 0 && theta > 0.25 * last_theta;
-          last_theta          = theta;
-          const bool done     = stopping_test(problem,
-                                          x,
-                                          u,
-                                          tolerance,
-                                          err,
-                                          balanced,
-                                          eq_err,
-                                          at_floor);
-          if (on_original)
-            offer_best(x, balanced, eq_err);
-
-          BNewtonSolver::IterationRecord rec;
-          rec.phase             = phase;
-          rec.h_norm            = std::sqrt(2. * theta);
-          rec.residual          = err;
-          rec.balanced_residual = balanced;
-          count_status(branches, rec.n_open, rec.n_stick, rec.n_slip);
-
-          if (done)
           {
+            const double theta = 0.5 * H.squaredNorm();
+            if (!std::isfinite(theta) || !x.allFinite())
+              return {false, "non-finite values (NaN/inf) in H"};
+            double err, balanced, eq_err;
+            // The FCLIB error may be out of reach in floating point when
+            // forces and displacements have very different scales: accept
+            // the balanced error alone once Newton stops converging
+            // quadratically (|H| decreased less than 2x in the last step).
+            const bool at_floor = local_it > 0 && theta > 0.25 * last_theta;
+            last_theta          = theta;
+            const bool done     = stopping_test(problem,
+                                            x,
+                                            u,
+                                            tolerance,
+                                            err,
+                                            balanced,
+                                            eq_err,
+                                            at_floor);
             if (on_original)
-              converged_x = x;
-            return {true, "converged"};
-          }
-          if (local_it >= budget || out_of_iterations())
-            return {false, "iteration limit"};
-          if (out_of_time())
-            return {false, "time limit"};
-          if (theta < best_theta * (1. - 1e-3))
-          {
-            best_theta    = theta;
-            last_progress = local_it;
-          }
-          else if (local_it - last_progress >= settings.stall_iterations)
-            return {false,
-                    "stall (no decrease of |H| in " +
-                      std::to_string(settings.stall_iterations) +
-                      " iterations)"};
+              offer_best(x, balanced, eq_err);
 
-          ++local_it;
-          ++result.iterations;
-          rec.iteration = result.iterations;
+            BNewtonSolver::IterationRecord rec;
+            rec.phase             = phase;
+            rec.h_norm            = std::sqrt(2. * theta);
+            rec.residual          = err;
+            rec.balanced_residual = balanced;
+            count_status(branches, rec.n_open, rec.n_stick, rec.n_slip);
 
-          // --- direction
-          sys.apply_floating_tie_rule(x, u, branches);
-          const ReducedJacobian J = build_jacobian(sys, branches);
-          rec.n_reduced           = J.others.size();
-          const unsigned int n    = x.size();
-          Vec                dx(n);
-          for (const int i : J.trivial)
-            dx[i] = -H[i];
-          if (!J.others.empty())
-          {
-            const unsigned int nN = J.others.size();
-            Mat                K(nN, nN);
-            Vec                rhs(nN);
-            for (unsigned int a = 0; a < nN; ++a)
-            {
-              rhs[a] = -H[J.others[a]];
-              for (const int i : J.trivial)
-                rhs[a] -= J.JN(a, i) * dx[i];
-            }
-            for (unsigned int b = 0; b < nN; ++b)
-              K.col(b) = J.JN.col(J.others[b]);
-            Eigen::PartialPivLU<Mat> lu(K);
-            Vec                      dN = lu.solve(rhs);
-            const double             rc = lu.rcond();
-            if (!(rc > 1e-14) || !dN.allFinite())
-            {
-              // Levenberg-Marquardt on the reduced system
-              const Mat    KtK = K.transpose() * K;
-              const double lm =
-                1e-10 * std::max(KtK.diagonal().maxCoeff(), 1e-300);
-              dN = (KtK + lm * Mat::Identity(nN, nN))
-                     .ldlt()
-                     .solve(K.transpose() * rhs);
-              rec.note += "lm ";
-            }
-            for (unsigned int a = 0; a < nN; ++a)
-              dx[J.others[a]] = dN[a];
-          }
-
-          const Vec grad          = J.apply_transpose(H);
-          double    slope         = grad.dot(J.apply(dx));
-          bool      gradient_step = false;
-          if (!dx.allFinite() || !(slope < -1e-8 * grad.norm() * dx.norm()))
-          {
-            dx            = -grad;
-            slope         = -grad.squaredNorm();
-            gradient_step = true;
-            rec.note += "gradient ";
-          }
-
-          // --- line search (non-monotone Armijo)
-          theta_memory.push_back(theta);
-          while (theta_memory.size() >
-                 std::max(1u, settings.nonmonotone_memory))
-            theta_memory.pop_front();
-          const double theta_ref =
-            *std::max_element(theta_memory.begin(), theta_memory.end());
-
-          bool   accepted = false;
-          double step     = 0.;
-          for (int attempt = 0; attempt < 2 && !accepted; ++attempt)
-          {
-            Vec du = problem.W * dx.head(m);
-            if (na > 0)
-              du += problem.G * dx.tail(na);
-            double t = 1., best_t = 0.,
-                   best_trial = std::numeric_limits<double>::max();
-            while (t >= settings.min_step)
-            {
-              const Vec xt = x + t * dx;
-              const Vec ut = u + t * du;
-              sys.residual(xt, ut, H_trial, nullptr);
-              const double th = 0.5 * H_trial.squaredNorm();
-              if (std::isfinite(th) && th < best_trial)
+            if (done)
               {
-                best_trial = th;
-                best_t     = t;
+                if (on_original)
+                  converged_x = x;
+                return {true, "converged"};
               }
-              if (std::isfinite(th) && th <= theta_ref + sigma * t * slope)
+            if (local_it >= budget || out_of_iterations())
+              return {false, "iteration limit"};
+            if (out_of_time())
+              return {false, "time limit"};
+            if (theta < best_theta * (1. - 1e-3))
               {
-                accepted = true;
-                step     = t;
-                break;
+                best_theta    = theta;
+                last_progress = local_it;
               }
-              t *= beta;
-            }
-            if (!accepted && best_t > 0. && best_trial < theta)
-            {
-              accepted = true;
-              step     = best_t;
-              rec.note += "best-trial ";
-            }
-            if (!accepted && !gradient_step)
-            {
-              dx            = -grad;
-              slope         = -grad.squaredNorm();
-              gradient_step = true;
-              rec.note += "gradient ";
-            }
-            else
-              break;
-          }
-          rec.step = step;
-          result.history.push_back(rec);
-          log_record(rec);
-          if (!accepted)
-            return {false,
-                    "line-search failure (no decrease along the "
-                    "Newton and the steepest-descent directions)"};
+            else if (local_it - last_progress >= settings.stall_iterations)
+              return {false,
+                      "stall (no decrease of |H| in " +
+                        std::to_string(settings.stall_iterations) +
+                        " iterations)"};
 
-          x += step * dx;
-          u = sys.displacement(x);
-          sys.residual(x, u, H, &branches);
-        }
+            ++local_it;
+            ++result.iterations;
+            rec.iteration = result.iterations;
+
+            // --- direction
+            sys.apply_floating_tie_rule(x, u, branches);
+            const ReducedJacobian J = build_jacobian(sys, branches);
+            rec.n_reduced           = J.others.size();
+            const unsigned int n    = x.size();
+            Vec                dx(n);
+            for (const int i : J.trivial)
+              dx[i] = -H[i];
+            if (!J.others.empty())
+              {
+                const unsigned int nN = J.others.size();
+                Mat                K(nN, nN);
+                Vec                rhs(nN);
+                for (unsigned int a = 0; a < nN; ++a)
+                  {
+                    rhs[a] = -H[J.others[a]];
+                    for (const int i : J.trivial)
+                      rhs[a] -= J.JN(a, i) * dx[i];
+                  }
+                for (unsigned int b = 0; b < nN; ++b)
+                  K.col(b) = J.JN.col(J.others[b]);
+                Eigen::PartialPivLU<Mat> lu(K);
+                Vec                      dN = lu.solve(rhs);
+                const double             rc = lu.rcond();
+                if (!(rc > 1e-14) || !dN.allFinite())
+                  {
+                    // Levenberg-Marquardt on the reduced system
+                    const Mat    KtK = K.transpose() * K;
+                    const double lm =
+                      1e-10 * std::max(KtK.diagonal().maxCoeff(), 1e-300);
+                    dN = (KtK + lm * Mat::Identity(nN, nN))
+                           .ldlt()
+                           .solve(K.transpose() * rhs);
+                    rec.note += "lm ";
+                  }
+                for (unsigned int a = 0; a < nN; ++a)
+                  dx[J.others[a]] = dN[a];
+              }
+
+            const Vec grad          = J.apply_transpose(H);
+            double    slope         = grad.dot(J.apply(dx));
+            bool      gradient_step = false;
+            if (!dx.allFinite() || !(slope < -1e-8 * grad.norm() * dx.norm()))
+              {
+                dx            = -grad;
+                slope         = -grad.squaredNorm();
+                gradient_step = true;
+                rec.note += "gradient ";
+              }
+
+            // --- line search (non-monotone Armijo)
+            theta_memory.push_back(theta);
+            while (theta_memory.size() >
+                   std::max(1u, settings.nonmonotone_memory))
+              theta_memory.pop_front();
+            const double theta_ref =
+              *std::max_element(theta_memory.begin(), theta_memory.end());
+
+            bool   accepted = false;
+            double step     = 0.;
+            for (int attempt = 0; attempt < 2 && !accepted; ++attempt)
+              {
+                Vec du = problem.W * dx.head(m);
+                if (na > 0)
+                  du += problem.G * dx.tail(na);
+                double t = 1., best_t = 0.,
+                       best_trial = std::numeric_limits<double>::max();
+                while (t >= settings.min_step)
+                  {
+                    const Vec xt = x + t * dx;
+                    const Vec ut = u + t * du;
+                    sys.residual(xt, ut, H_trial, nullptr);
+                    const double th = 0.5 * H_trial.squaredNorm();
+                    if (std::isfinite(th) && th < best_trial)
+                      {
+                        best_trial = th;
+                        best_t     = t;
+                      }
+                    if (std::isfinite(th) &&
+                        th <= theta_ref + sigma * t * slope)
+                      {
+                        accepted = true;
+                        step     = t;
+                        break;
+                      }
+                    t *= beta;
+                  }
+                if (!accepted && best_t > 0. && best_trial < theta)
+                  {
+                    accepted = true;
+                    step     = best_t;
+                    rec.note += "best-trial ";
+                  }
+                if (!accepted && !gradient_step)
+                  {
+                    dx            = -grad;
+                    slope         = -grad.squaredNorm();
+                    gradient_step = true;
+                    rec.note += "gradient ";
+                  }
+                else
+                  break;
+              }
+            rec.step = step;
+            result.history.push_back(rec);
+            log_record(rec);
+            if (!accepted)
+              return {false,
+                      "line-search failure (no decrease along the "
+                      "Newton and the steepest-descent directions)"};
+
+            x += step * dx;
+            u = sys.displacement(x);
+            sys.residual(x, u, H, &branches);
+          }
       }
 
     } // namespace
@@ -725,14 +728,14 @@ namespace igabde
     to_string(const ContactStatus status)
     {
       switch (status)
-      {
-        case ContactStatus::open:
-          return "open";
-        case ContactStatus::stick:
-          return "stick";
-        case ContactStatus::slip:
-          return "slip";
-      }
+        {
+          case ContactStatus::open:
+            return "open";
+          case ContactStatus::stick:
+            return "stick";
+          case ContactStatus::slip:
+            return "slip";
+        }
       return "unknown";
     }
 
@@ -747,29 +750,29 @@ namespace igabde
       double             sum = 0.;
       double             y[3], e;
       for (unsigned int c = 0; c < problem.n_contacts; ++c)
-      {
-        const unsigned int o = c * d;
-        if (d == 1)
         {
-          e = p[o] - std::max(0., p[o] - u[o]);
-          sum += e * e;
-          continue;
+          const unsigned int o = c * d;
+          if (d == 1)
+            {
+              e = p[o] - std::max(0., p[o] - u[o]);
+              sum += e * e;
+              continue;
+            }
+          const double mu = problem.mu[c];
+          double       ut = 0.;
+          for (unsigned int k = 1; k < d; ++k)
+            ut += u[o + k] * u[o + k];
+          ut = std::sqrt(ut);
+          for (unsigned int k = 0; k < d; ++k)
+            y[k] = p[o + k] - u[o + k];
+          y[0] -= mu * ut;
+          project_on_cone(y, d, mu);
+          for (unsigned int k = 0; k < d; ++k)
+            {
+              e = p[o + k] - y[k];
+              sum += e * e;
+            }
         }
-        const double mu = problem.mu[c];
-        double       ut = 0.;
-        for (unsigned int k = 1; k < d; ++k)
-          ut += u[o + k] * u[o + k];
-        ut = std::sqrt(ut);
-        for (unsigned int k = 0; k < d; ++k)
-          y[k] = p[o + k] - u[o + k];
-        y[0] -= mu * ut;
-        project_on_cone(y, d, mu);
-        for (unsigned int k = 0; k < d; ++k)
-        {
-          e = p[o + k] - y[k];
-          sum += e * e;
-        }
-      }
       return std::sqrt(sum);
     }
 
@@ -801,41 +804,41 @@ namespace igabde
       double             sum = 0., sum_q = 0., sum_p = 0.;
       double             y[3], x[3], e;
       for (unsigned int c = 0; c < problem.n_contacts; ++c)
-      {
-        const unsigned int o   = c * d;
-        const double       rho = weights.r_n[c];
-        const double       mu  = d > 1 ? problem.mu[c] : 0.;
-        double             ut  = 0.;
-        for (unsigned int k = 1; k < d; ++k)
-          ut += u[o + k] * u[o + k];
-        ut = std::sqrt(ut);
-        for (unsigned int k = 0; k < d; ++k)
         {
-          x[k] = rho * u[o + k];
-          sum_q += rho * rho * problem.q[o + k] * problem.q[o + k];
-          sum_p += p[o + k] * p[o + k];
+          const unsigned int o   = c * d;
+          const double       rho = weights.r_n[c];
+          const double       mu  = d > 1 ? problem.mu[c] : 0.;
+          double             ut  = 0.;
+          for (unsigned int k = 1; k < d; ++k)
+            ut += u[o + k] * u[o + k];
+          ut = std::sqrt(ut);
+          for (unsigned int k = 0; k < d; ++k)
+            {
+              x[k] = rho * u[o + k];
+              sum_q += rho * rho * problem.q[o + k] * problem.q[o + k];
+              sum_p += p[o + k] * p[o + k];
+            }
+          x[0] += rho * mu * ut;
+          for (unsigned int k = 0; k < d; ++k)
+            y[k] = p[o + k] - x[k];
+          if (d == 1)
+            y[0] = std::max(y[0], 0.);
+          else
+            project_on_cone(y, d, mu);
+          for (unsigned int k = 0; k < d; ++k)
+            {
+              e = p[o + k] - y[k];
+              sum += e * e;
+            }
         }
-        x[0] += rho * mu * ut;
-        for (unsigned int k = 0; k < d; ++k)
-          y[k] = p[o + k] - x[k];
-        if (d == 1)
-          y[0] = std::max(y[0], 0.);
-        else
-          project_on_cone(y, d, mu);
-        for (unsigned int k = 0; k < d; ++k)
-        {
-          e = p[o + k] - y[k];
-          sum += e * e;
-        }
-      }
       const double err = std::sqrt(sum);
       const double nq = std::sqrt(sum_q), np = std::sqrt(sum_p);
       double       nr = 0.; // |rho (u - q)|, to detect q ~ 0
       for (unsigned int i = 0; i < problem.n_rows(); ++i)
-      {
-        const double v = weights.r_n[i / d] * (u[i] - problem.q[i]);
-        nr += v * v;
-      }
+        {
+          const double v = weights.r_n[i / d] * (u[i] - problem.q[i]);
+          nr += v * v;
+        }
       nr = std::sqrt(nr);
       if (nq > 0. && nq > 1e-12 * nr)
         return err / nq;
@@ -936,22 +939,22 @@ namespace igabde
       Vec    x(m + na);
       x.head(m) = p0.size() > 0 ? p0 : Vec::Zero(m);
       if (na > 0)
-      {
-        if (alpha0.size() > 0)
-          x.tail(na) = alpha0;
-        else
         {
-          // No pair closes along -b (e.g. b = 0): start from zero.
-          try
-          {
-            x.tail(na) = touching_alpha(problem);
-          }
-          catch (const std::exception &)
-          {
-            x.tail(na).setZero();
-          }
+          if (alpha0.size() > 0)
+            x.tail(na) = alpha0;
+          else
+            {
+              // No pair closes along -b (e.g. b = 0): start from zero.
+              try
+                {
+                  x.tail(na) = touching_alpha(problem);
+                }
+              catch (const std::exception &)
+                {
+                  x.tail(na).setZero();
+                }
+            }
         }
-      }
 
       Driver driver(problem, settings, result);
       if (settings.log)
@@ -967,116 +970,117 @@ namespace igabde
       if (m + na == 0)
         outcome.converged = true;
       else
-      {
-        // Phase 1: Newton with the chosen radius.
-        const FrictionRadius radius = settings.radius;
-        Vec                  x1     = x;
-        outcome                     = driver.newton(problem,
-                                radius,
-                                x1,
-                                settings.tolerance,
-                                phase_name("newton", radius),
-                                true,
-                                settings.max_iterations);
-        reasons = phase_name("newton", radius) + ": " + outcome.reason;
-        // Phase 2: the other radius, from the best iterate.
-        if (!outcome.converged && problem.has_friction() &&
-            settings.switch_radius && !driver.out_of_iterations() &&
-            !driver.out_of_time())
         {
-          Vec x2  = driver.have_best ? driver.best_x : x;
-          outcome = driver.newton(problem,
-                                  other(radius),
-                                  x2,
+          // Phase 1: Newton with the chosen radius.
+          const FrictionRadius radius = settings.radius;
+          Vec                  x1     = x;
+          outcome                     = driver.newton(problem,
+                                  radius,
+                                  x1,
                                   settings.tolerance,
-                                  phase_name("newton", other(radius)),
+                                  phase_name("newton", radius),
                                   true,
                                   settings.max_iterations);
-          reasons +=
-            "; " + phase_name("newton", other(radius)) + ": " + outcome.reason;
+          reasons = phase_name("newton", radius) + ": " + outcome.reason;
+          // Phase 2: the other radius, from the best iterate.
+          if (!outcome.converged && problem.has_friction() &&
+              settings.switch_radius && !driver.out_of_iterations() &&
+              !driver.out_of_time())
+            {
+              Vec x2  = driver.have_best ? driver.best_x : x;
+              outcome = driver.newton(problem,
+                                      other(radius),
+                                      x2,
+                                      settings.tolerance,
+                                      phase_name("newton", other(radius)),
+                                      true,
+                                      settings.max_iterations);
+              reasons += "; " + phase_name("newton", other(radius)) + ": " +
+                         outcome.reason;
+            }
+          // Phase 3: proximal point.
+          if (!outcome.converged && settings.proximal &&
+              !driver.out_of_iterations() && !driver.out_of_time())
+            {
+              Vec          xk = driver.have_best ? driver.best_x : x;
+              const double max_diag =
+                m > 0 ? std::max(problem.W.diagonal().maxCoeff(), 0.) : 0.;
+              const double   eps_ref = max_diag > 0. ? max_diag : 1.;
+              double         eps     = eps_ref;
+              double         err    = driver.have_best ? driver.best_score : 1.;
+              unsigned int   n_fail = 0;
+              std::string    prox_reason = "iteration limit";
+              ContactProblem sub         = problem;
+              while (!driver.out_of_iterations() && !driver.out_of_time())
+                {
+                  sub.W = problem.W;
+                  sub.W.diagonal().array() += eps;
+                  sub.q                  = problem.q - eps * xk.head(m);
+                  const double inner_tol = std::max(0.1 * settings.tolerance,
+                                                    std::min(1e-6, 0.1 * err));
+                  Vec          xi        = xk;
+                  PhaseOutcome in        = driver.newton(sub,
+                                                  radius,
+                                                  xi,
+                                                  inner_tol,
+                                                  phase_name("prox", radius),
+                                                  false,
+                                                  50);
+                  if (!in.converged && !driver.out_of_iterations())
+                    {
+                      xi = xk;
+                      in = driver.newton(sub,
+                                         other(radius),
+                                         xi,
+                                         inner_tol,
+                                         phase_name("prox", other(radius)),
+                                         false,
+                                         50);
+                    }
+                  if (in.converged)
+                    {
+                      xk = xi;
+                      const Vec uk =
+                        problem.relative_displacement(xk.head(m), xk.tail(na));
+                      double       e_fclib, e_bal, eq;
+                      const bool   done = stopping_test(problem,
+                                                      xk,
+                                                      uk,
+                                                      settings.tolerance,
+                                                      e_fclib,
+                                                      e_bal,
+                                                      eq,
+                                                      false);
+                      const double e    = e_bal;
+                      driver.offer_best(xk, e, eq);
+                      if (done)
+                        {
+                          driver.converged_x = xk;
+                          outcome.converged  = true;
+                          prox_reason        = "converged";
+                          break;
+                        }
+                      if (e < 0.5 * err)
+                        eps = std::max(eps * 0.1, 1e-12 * eps_ref);
+                      err    = std::min(err, e);
+                      n_fail = 0;
+                    }
+                  else
+                    {
+                      eps *= 10.;
+                      if (++n_fail > 6 || eps > 1e12 * eps_ref)
+                        {
+                          prox_reason =
+                            "stall (inner solves fail: " + in.reason + ")";
+                          break;
+                        }
+                    }
+                }
+              if (!outcome.converged)
+                outcome.reason = prox_reason;
+              reasons += "; proximal: " + prox_reason;
+            }
         }
-        // Phase 3: proximal point.
-        if (!outcome.converged && settings.proximal &&
-            !driver.out_of_iterations() && !driver.out_of_time())
-        {
-          Vec          xk = driver.have_best ? driver.best_x : x;
-          const double max_diag =
-            m > 0 ? std::max(problem.W.diagonal().maxCoeff(), 0.) : 0.;
-          const double   eps_ref = max_diag > 0. ? max_diag : 1.;
-          double         eps     = eps_ref;
-          double         err     = driver.have_best ? driver.best_score : 1.;
-          unsigned int   n_fail  = 0;
-          std::string    prox_reason = "iteration limit";
-          ContactProblem sub         = problem;
-          while (!driver.out_of_iterations() && !driver.out_of_time())
-          {
-            sub.W = problem.W;
-            sub.W.diagonal().array() += eps;
-            sub.q = problem.q - eps * xk.head(m);
-            const double inner_tol =
-              std::max(0.1 * settings.tolerance, std::min(1e-6, 0.1 * err));
-            Vec          xi = xk;
-            PhaseOutcome in = driver.newton(sub,
-                                            radius,
-                                            xi,
-                                            inner_tol,
-                                            phase_name("prox", radius),
-                                            false,
-                                            50);
-            if (!in.converged && !driver.out_of_iterations())
-            {
-              xi = xk;
-              in = driver.newton(sub,
-                                 other(radius),
-                                 xi,
-                                 inner_tol,
-                                 phase_name("prox", other(radius)),
-                                 false,
-                                 50);
-            }
-            if (in.converged)
-            {
-              xk = xi;
-              const Vec uk =
-                problem.relative_displacement(xk.head(m), xk.tail(na));
-              double       e_fclib, e_bal, eq;
-              const bool   done = stopping_test(problem,
-                                              xk,
-                                              uk,
-                                              settings.tolerance,
-                                              e_fclib,
-                                              e_bal,
-                                              eq,
-                                              false);
-              const double e    = e_bal;
-              driver.offer_best(xk, e, eq);
-              if (done)
-              {
-                driver.converged_x = xk;
-                outcome.converged  = true;
-                prox_reason        = "converged";
-                break;
-              }
-              if (e < 0.5 * err)
-                eps = std::max(eps * 0.1, 1e-12 * eps_ref);
-              err    = std::min(err, e);
-              n_fail = 0;
-            }
-            else
-            {
-              eps *= 10.;
-              if (++n_fail > 6 || eps > 1e12 * eps_ref)
-              {
-                prox_reason = "stall (inner solves fail: " + in.reason + ")";
-                break;
-              }
-            }
-          }
-          if (!outcome.converged)
-            outcome.reason = prox_reason;
-          reasons += "; proximal: " + prox_reason;
-        }
-      }
 
       // The returned iterate: the converged one, else the best one seen on
       // the original problem.

@@ -30,11 +30,11 @@ namespace igabde
              const std::string  &detail)
       {
         if (violation > cv.max_violation)
-        {
-          cv.max_violation = violation;
-          cv.contact       = contact;
-          cv.detail        = detail;
-        }
+          {
+            cv.max_violation = violation;
+            cv.contact       = contact;
+            cv.detail        = detail;
+          }
       }
     } // namespace
 
@@ -117,71 +117,76 @@ namespace igabde
       equil.name  = "equilibrium G^T p = b";
 
       for (unsigned int c = 0; c < problem.n_contacts; ++c)
-      {
-        const unsigned int o  = c * d;
-        const double       pn = p[o], un = u[o];
-        const std::string  nvals =
-          "p_n = " + format(pn) + ", u_n = " + format(un);
-        update(pen, std::max(-un, 0.) / D, c, nvals);
-        update(comp, std::max(-pn, 0.) / F, c, nvals);
-        update(compl_, std::min(std::abs(pn) / F, std::abs(un) / D), c, nvals);
-        if (!std::isfinite(pn) || !std::isfinite(un))
-          update(pen, std::numeric_limits<double>::infinity(), c, nvals);
-        if (d == 1)
-          continue;
-        const double mu = problem.mu[c];
-        double       pt = 0., ut = 0.;
-        for (unsigned int k = 1; k < d; ++k)
         {
-          pt += p[o + k] * p[o + k];
-          ut += u[o + k] * u[o + k];
-        }
-        pt = std::sqrt(pt);
-        ut = std::sqrt(ut);
-        update(cone,
-               std::max(pt - mu * pn, 0.) / F,
-               c,
-               "|p_t| = " + format(pt) + ", mu p_n = " + format(mu * pn));
-        if (ut / D > tolerance)
-        {
-          double e = 0.;
-          for (unsigned int k = 1; k < d; ++k)
-          {
-            const double ek = p[o + k] + mu * std::max(pn, 0.) * u[o + k] / ut;
-            e += ek * ek;
-          }
-          std::string pts = "p_t = (", uts = "u_t = (";
-          for (unsigned int k = 1; k < d; ++k)
-          {
-            pts += format(p[o + k]) + (k + 1 < d ? ", " : ")");
-            uts += format(u[o + k]) + (k + 1 < d ? ", " : ")");
-          }
-          update(slip,
-                 std::sqrt(e) / F,
+          const unsigned int o  = c * d;
+          const double       pn = p[o], un = u[o];
+          const std::string  nvals =
+            "p_n = " + format(pn) + ", u_n = " + format(un);
+          update(pen, std::max(-un, 0.) / D, c, nvals);
+          update(comp, std::max(-pn, 0.) / F, c, nvals);
+          update(compl_,
+                 std::min(std::abs(pn) / F, std::abs(un) / D),
                  c,
-                 pts + ", " + uts + ", mu p_n = " + format(mu * pn));
+                 nvals);
+          if (!std::isfinite(pn) || !std::isfinite(un))
+            update(pen, std::numeric_limits<double>::infinity(), c, nvals);
+          if (d == 1)
+            continue;
+          const double mu = problem.mu[c];
+          double       pt = 0., ut = 0.;
+          for (unsigned int k = 1; k < d; ++k)
+            {
+              pt += p[o + k] * p[o + k];
+              ut += u[o + k] * u[o + k];
+            }
+          pt = std::sqrt(pt);
+          ut = std::sqrt(ut);
+          update(cone,
+                 std::max(pt - mu * pn, 0.) / F,
+                 c,
+                 "|p_t| = " + format(pt) + ", mu p_n = " + format(mu * pn));
+          if (ut / D > tolerance)
+            {
+              double e = 0.;
+              for (unsigned int k = 1; k < d; ++k)
+                {
+                  const double ek =
+                    p[o + k] + mu * std::max(pn, 0.) * u[o + k] / ut;
+                  e += ek * ek;
+                }
+              std::string pts = "p_t = (", uts = "u_t = (";
+              for (unsigned int k = 1; k < d; ++k)
+                {
+                  pts += format(p[o + k]) + (k + 1 < d ? ", " : ")");
+                  uts += format(u[o + k]) + (k + 1 < d ? ", " : ")");
+                }
+              update(slip,
+                     std::sqrt(e) / F,
+                     c,
+                     pts + ", " + uts + ", mu p_n = " + format(mu * pn));
+            }
         }
-      }
       report.conditions = {pen, comp, compl_};
       if (d > 1)
-      {
-        report.conditions.push_back(cone);
-        report.conditions.push_back(slip);
-      }
+        {
+          report.conditions.push_back(cone);
+          report.conditions.push_back(slip);
+        }
       if (problem.n_alpha() > 0)
-      {
-        const Eigen::VectorXd res = problem.G.transpose() * p - problem.b;
-        const double          den = std::max(problem.b.cwiseAbs().maxCoeff(),
-                                    F * problem.G.cwiseAbs().maxCoeff());
-        Eigen::Index          j   = 0;
-        const double worst = res.size() > 0 ? res.cwiseAbs().maxCoeff(&j) : 0.;
-        update(equil,
-               den > 0. ? worst / den : worst,
-               static_cast<unsigned int>(j),
-               "rigid mode " + std::to_string(j) +
-                 ": G^T p - b = " + format(res.size() > 0 ? res[j] : 0.));
-        report.conditions.push_back(equil);
-      }
+        {
+          const Eigen::VectorXd res = problem.G.transpose() * p - problem.b;
+          const double          den = std::max(problem.b.cwiseAbs().maxCoeff(),
+                                      F * problem.G.cwiseAbs().maxCoeff());
+          Eigen::Index          j   = 0;
+          const double          worst =
+            res.size() > 0 ? res.cwiseAbs().maxCoeff(&j) : 0.;
+          update(equil,
+                 den > 0. ? worst / den : worst,
+                 static_cast<unsigned int>(j),
+                 "rigid mode " + std::to_string(j) +
+                   ": G^T p - b = " + format(res.size() > 0 ? res[j] : 0.));
+          report.conditions.push_back(equil);
+        }
       return report;
     }
 

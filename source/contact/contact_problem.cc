@@ -58,35 +58,35 @@ namespace igabde
                   dealii::ExcMessage(where +
                                      ": W or q has non-finite entries"));
       if (has_friction())
-      {
-        AssertThrow(mu.size() == n_contacts,
-                    dealii::ExcMessage(
-                      where + ": mu must have one entry per contact (" +
-                      std::to_string(n_contacts) + "), has " +
-                      std::to_string(mu.size())));
-        for (unsigned int i = 0; i < mu.size(); ++i)
-          AssertThrow(std::isfinite(mu[i]) && mu[i] >= 0.,
-                      dealii::ExcMessage(where + ": mu[" + std::to_string(i) +
-                                         "] must be finite and >= 0"));
-      }
+        {
+          AssertThrow(mu.size() == n_contacts,
+                      dealii::ExcMessage(
+                        where + ": mu must have one entry per contact (" +
+                        std::to_string(n_contacts) + "), has " +
+                        std::to_string(mu.size())));
+          for (unsigned int i = 0; i < mu.size(); ++i)
+            AssertThrow(std::isfinite(mu[i]) && mu[i] >= 0.,
+                        dealii::ExcMessage(where + ": mu[" + std::to_string(i) +
+                                           "] must be finite and >= 0"));
+        }
       else
         AssertThrow(mu.empty() || mu.size() == n_contacts,
                     dealii::ExcMessage(where + ": mu has the wrong size"));
       if (G.size() > 0 || b.size() > 0)
-      {
-        AssertThrow(G.rows() == m,
-                    dealii::ExcMessage(where + ": G must have " +
-                                       std::to_string(m) + " rows, has " +
-                                       std::to_string(G.rows())));
-        AssertThrow(b.size() == G.cols(),
-                    dealii::ExcMessage(
-                      where + ": b must have one entry per column of G (" +
-                      std::to_string(G.cols()) + "), has " +
-                      std::to_string(b.size())));
-        AssertThrow(G.allFinite() && b.allFinite(),
-                    dealii::ExcMessage(where +
-                                       ": G or b has non-finite entries"));
-      }
+        {
+          AssertThrow(G.rows() == m,
+                      dealii::ExcMessage(where + ": G must have " +
+                                         std::to_string(m) + " rows, has " +
+                                         std::to_string(G.rows())));
+          AssertThrow(b.size() == G.cols(),
+                      dealii::ExcMessage(
+                        where + ": b must have one entry per column of G (" +
+                        std::to_string(G.cols()) + "), has " +
+                        std::to_string(b.size())));
+          AssertThrow(G.allFinite() && b.allFinite(),
+                      dealii::ExcMessage(where +
+                                         ": G or b has non-finite entries"));
+        }
     }
 
 
@@ -101,12 +101,12 @@ namespace igabde
                                      std::to_string(n_rows())));
       Eigen::VectorXd u = W * p + q;
       if (n_alpha() > 0 && alpha.size() > 0)
-      {
-        AssertThrow(alpha.size() == static_cast<Eigen::Index>(n_alpha()),
-                    dealii::ExcMessage(
-                      "relative_displacement: alpha has the wrong size"));
-        u += G * alpha;
-      }
+        {
+          AssertThrow(alpha.size() == static_cast<Eigen::Index>(n_alpha()),
+                      dealii::ExcMessage(
+                        "relative_displacement: alpha has the wrong size"));
+          u += G * alpha;
+        }
       return u;
     }
 
@@ -163,11 +163,11 @@ namespace igabde
       const double          slope_scale = slope.cwiseAbs().maxCoeff();
       double                t = std::numeric_limits<double>::infinity();
       for (unsigned int i = 0; i < problem.n_contacts; ++i)
-      {
-        const double g = slope[i * nc];
-        if (g < -1e-14 * slope_scale)
-          t = std::min(t, u0[i * nc] / (-g));
-      }
+        {
+          const double g = slope[i * nc];
+          if (g < -1e-14 * slope_scale)
+            t = std::min(t, u0[i * nc] / (-g));
+        }
       AssertThrow(std::isfinite(t),
                   dealii::ExcMessage("touching_alpha: no pair closes when "
                                      "alpha moves along the direction"));

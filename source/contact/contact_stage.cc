@@ -23,28 +23,28 @@ namespace igabde
         Tensor<2, dim> T;
         T[0] = n;
         if (dim == 2)
-        {
-          T[1][0] = -n[1];
-          T[1][1] = n[0];
-        }
+          {
+            T[1][0] = -n[1];
+            T[1][1] = n[0];
+          }
         else
-        {
-          // First tangent: the axis least aligned with n, made orthogonal.
-          unsigned int axis = 0;
-          for (unsigned int d = 1; d < dim; ++d)
-            if (std::abs(n[d]) < std::abs(n[axis]))
-              axis = d;
-          Tensor<1, dim> e;
-          e[axis]          = 1.;
-          Tensor<1, dim> a = e - (e * n) * n;
-          a /= a.norm();
-          T[1] = a;
-          Tensor<1, dim> b;
-          b[0] = n[1] * a[2] - n[2] * a[1];
-          b[1] = n[2] * a[0] - n[0] * a[2];
-          b[2] = n[0] * a[1] - n[1] * a[0];
-          T[2] = b;
-        }
+          {
+            // First tangent: the axis least aligned with n, made orthogonal.
+            unsigned int axis = 0;
+            for (unsigned int d = 1; d < dim; ++d)
+              if (std::abs(n[d]) < std::abs(n[axis]))
+                axis = d;
+            Tensor<1, dim> e;
+            e[axis]          = 1.;
+            Tensor<1, dim> a = e - (e * n) * n;
+            a /= a.norm();
+            T[1] = a;
+            Tensor<1, dim> b;
+            b[0] = n[1] * a[2] - n[2] * a[1];
+            b[1] = n[2] * a[0] - n[0] * a[2];
+            b[2] = n[0] * a[1] - n[1] * a[0];
+            T[2] = b;
+          }
         return T;
       }
     } // namespace
@@ -110,79 +110,79 @@ namespace igabde
 
       pair_list.clear();
       for (const auto &s : slave)
-      {
-        PointPair<dim> pair;
-        pair.x1   = s.location;
-        pair.op1  = s.op;
-        pair.area = s.tributary_area;
-        Tensor<1, dim> n;
-        if (settings.rigid_plane)
         {
-          n       = settings.plane_normal;
-          pair.x2 = s.location - ((s.location - settings.plane_point) * n) * n;
-        }
-        else
-        {
-          // The nearest master point; where the surfaces do not match,
-          // the slave point projected on the master tangent plane.
-          unsigned int best = 0;
-          for (unsigned int m = 1; m < master.size(); ++m)
-            if ((master[m].location - s.location).norm() <
-                (master[best].location - s.location).norm())
-              best = m;
-          const auto &m = master[best];
-          n             = m.normal;
-          if ((m.location - s.location).norm() <= 1e-8 * size)
-          {
-            pair.x2  = m.location;
-            pair.op2 = m.op;
-          }
+          PointPair<dim> pair;
+          pair.x1   = s.location;
+          pair.op1  = s.op;
+          pair.area = s.tributary_area;
+          Tensor<1, dim> n;
+          if (settings.rigid_plane)
+            {
+              n = settings.plane_normal;
+              pair.x2 =
+                s.location - ((s.location - settings.plane_point) * n) * n;
+            }
           else
-          {
-            pair.x2 = s.location - ((s.location - m.location) * n) * n;
-            try
             {
-              pair.op2 = bodies[1]->point_operator(pair.x2);
+              // The nearest master point; where the surfaces do not match,
+              // the slave point projected on the master tangent plane.
+              unsigned int best = 0;
+              for (unsigned int m = 1; m < master.size(); ++m)
+                if ((master[m].location - s.location).norm() <
+                    (master[best].location - s.location).norm())
+                  best = m;
+              const auto &m = master[best];
+              n             = m.normal;
+              if ((m.location - s.location).norm() <= 1e-8 * size)
+                {
+                  pair.x2  = m.location;
+                  pair.op2 = m.op;
+                }
+              else
+                {
+                  pair.x2 = s.location - ((s.location - m.location) * n) * n;
+                  try
+                    {
+                      pair.op2 = bodies[1]->point_operator(pair.x2);
+                    }
+                  catch (...)
+                    {
+                      pair.x2  = m.location;
+                      pair.op2 = m.op;
+                    }
+                }
             }
-            catch (...)
-            {
-              pair.x2  = m.location;
-              pair.op2 = m.op;
-            }
-          }
+          AssertThrow(
+            s.normal * n < 0.,
+            base::ExcInput(
+              settings.scene_file +
+              ": the contact surfaces do not "
+              "face each other at (" +
+              [&] {
+                std::ostringstream o;
+                o << s.location;
+                return o.str();
+              }() +
+              "): the outward normal of Body 1's face " +
+              std::to_string(settings.slave_face) + " points away from " +
+              (settings.rigid_plane ?
+                 std::string("the rigid plane (check Body 2/Plane "
+                             "normal: it must point towards Body "
+                             "1)") :
+                 "Body 2's face " + std::to_string(settings.master_face)) +
+              "; check Contact/Slave face and Contact/Master "
+              "face."));
+          pair.frame = local_frame<dim>(n);
+          pair.gap   = (pair.x1 - pair.x2) * n;
+          AssertThrow(pair.gap >= -1e-10 * size,
+                      base::ExcInput(settings.scene_file +
+                                     ": Body 1 initially penetrates Body 2 "
+                                     "(gap " +
+                                     std::to_string(pair.gap) +
+                                     "); move the bodies apart."));
+          pair.gap = std::max(pair.gap, 0.);
+          pair_list.push_back(pair);
         }
-        AssertThrow(
-          s.normal * n < 0.,
-          base::ExcInput(
-            settings.scene_file +
-            ": the contact surfaces do not "
-            "face each other at (" +
-            [&]
-            {
-              std::ostringstream o;
-              o << s.location;
-              return o.str();
-            }() +
-            "): the outward normal of Body 1's face " +
-            std::to_string(settings.slave_face) + " points away from " +
-            (settings.rigid_plane ?
-               std::string("the rigid plane (check Body 2/Plane "
-                           "normal: it must point towards Body "
-                           "1)") :
-               "Body 2's face " + std::to_string(settings.master_face)) +
-            "; check Contact/Slave face and Contact/Master "
-            "face."));
-        pair.frame = local_frame<dim>(n);
-        pair.gap   = (pair.x1 - pair.x2) * n;
-        AssertThrow(pair.gap >= -1e-10 * size,
-                    base::ExcInput(settings.scene_file +
-                                   ": Body 1 initially penetrates Body 2 "
-                                   "(gap " +
-                                   std::to_string(pair.gap) +
-                                   "); move the bodies apart."));
-        pair.gap = std::max(pair.gap, 0.);
-        pair_list.push_back(pair);
-      }
     }
 
 
@@ -191,52 +191,35 @@ namespace igabde
     void
     ContactStage<dim>::condense()
     {
-      // Unit force pairs: +e_d on Body 1 at x1_j, -e_d on Body 2 at x2_j.
-      // One factorisation per body serves all dim * NC right-hand sides.
+      // Unit force pairs along the local directions that carry unknowns:
+      // +T_j[s] on Body 1 at x1_j, -T_j[s] on Body 2 at x2_j, so that
+      // F^L = T^T F^G T comes out directly and a frictionless scene needs
+      // only NC solves. One factorisation per body serves all columns.
       const unsigned int nc = pair_list.size();
       const unsigned int m  = n_components;
-      Eigen::MatrixXd    FG(dim * nc, dim * nc);
-      FG.setZero();
+      Eigen::MatrixXd    FL(m * nc, m * nc);
+      FL.setZero();
       for (unsigned int b = 0; b < bodies.size(); ++b)
-      {
-        const double                sign = (b == 0 ? 1. : -1.);
-        std::vector<Vector<double>> columns(dim * nc,
-                                            Vector<double>(
-                                              bodies[b]->n_dofs()));
-        for (unsigned int j = 0; j < nc; ++j)
-          for (unsigned int d = 0; d < dim; ++d)
-          {
-            Tensor<1, dim> e;
-            e[d] = sign;
-            (b == 0 ? pair_list[j].op1 : pair_list[j].op2)
-              .distribute(e, columns[dim * j + d]);
-          }
-        bodies[b]->solve(columns);
-        for (unsigned int col = 0; col < dim * nc; ++col)
-          for (unsigned int i = 0; i < nc; ++i)
-          {
-            const Tensor<1, dim> w =
-              (b == 0 ? pair_list[i].op1 : pair_list[i].op2)
-                .displacement(columns[col]);
-            for (unsigned int c = 0; c < dim; ++c)
-              FG(dim * i + c, col) += sign * w[c];
-          }
-      }
-
-      // Local frames: F^L_ij = T_i F^G_ij T_j^T, first m rows of each T.
-      Eigen::MatrixXd FL(m * nc, m * nc);
-      for (unsigned int i = 0; i < nc; ++i)
-        for (unsigned int j = 0; j < nc; ++j)
-          for (unsigned int r = 0; r < m; ++r)
+        {
+          const double                sign = (b == 0 ? 1. : -1.);
+          std::vector<Vector<double>> columns(m * nc,
+                                              Vector<double>(
+                                                bodies[b]->n_dofs()));
+          for (unsigned int j = 0; j < nc; ++j)
             for (unsigned int s = 0; s < m; ++s)
-            {
-              double v = 0.;
-              for (unsigned int c = 0; c < dim; ++c)
-                for (unsigned int d = 0; d < dim; ++d)
-                  v += pair_list[i].frame[r][c] * FG(dim * i + c, dim * j + d) *
-                       pair_list[j].frame[s][d];
-              FL(m * i + r, m * j + s) = v;
-            }
+              (b == 0 ? pair_list[j].op1 : pair_list[j].op2)
+                .distribute(sign * pair_list[j].frame[s], columns[m * j + s]);
+          bodies[b]->solve(columns);
+          for (unsigned int col = 0; col < m * nc; ++col)
+            for (unsigned int i = 0; i < nc; ++i)
+              {
+                const Tensor<1, dim> w =
+                  (b == 0 ? pair_list[i].op1 : pair_list[i].op2)
+                    .displacement(columns[col]);
+                for (unsigned int r = 0; r < m; ++r)
+                  FL(m * i + r, col) += sign * (pair_list[i].frame[r] * w);
+              }
+        }
 
       // Rigid modes left free by the supports: u = K^+ f + R alpha, with the
       // equilibrium R^T (f_ext + f_contact) = 0 joining the BDE system.
@@ -247,23 +230,24 @@ namespace igabde
       Eigen::MatrixXd GL(m * nc, alpha_modes.size());
       rigid_mode_loads.resize(alpha_modes.size());
       for (unsigned int a = 0; a < alpha_modes.size(); ++a)
-      {
-        const auto [b, k]   = alpha_modes[a];
-        const auto  &mode   = bodies[b]->free_rigid_modes()[k];
-        const double sign   = (b == 0 ? 1. : -1.);
-        rigid_mode_loads(a) = mode * bodies[b]->load_vector();
-        for (unsigned int i = 0; i < nc; ++i)
         {
-          const Tensor<1, dim> r =
-            (b == 0 ? pair_list[i].op1 : pair_list[i].op2).displacement(mode);
-          for (unsigned int s = 0; s < m; ++s)
-            GL(m * i + s, a) = sign * (pair_list[i].frame[s] * r);
+          const auto [b, k]   = alpha_modes[a];
+          const auto  &mode   = bodies[b]->free_rigid_modes()[k];
+          const double sign   = (b == 0 ? 1. : -1.);
+          rigid_mode_loads(a) = mode * bodies[b]->load_vector();
+          for (unsigned int i = 0; i < nc; ++i)
+            {
+              const Tensor<1, dim> r =
+                (b == 0 ? pair_list[i].op1 : pair_list[i].op2)
+                  .displacement(mode);
+              for (unsigned int s = 0; s < m; ++s)
+                GL(m * i + s, a) = sign * (pair_list[i].frame[s] * r);
+            }
+          log << "  " << bodies[b]->description().name << ": free rigid mode '"
+              << bodies[b]->free_rigid_mode_names()[k]
+              << "' closed by the contact equilibrium (exact, no springs)"
+              << std::endl;
         }
-        log << "  " << bodies[b]->description().name << ": free rigid mode '"
-            << bodies[b]->free_rigid_mode_names()[k]
-            << "' closed by the contact equilibrium (exact, no springs)"
-            << std::endl;
-      }
 
       // Pairs whose two points are both held by supports carry no
       // information: their flexibility rows and rigid-mode rows vanish.
@@ -276,12 +260,12 @@ namespace igabde
         max_g = GL.cwiseAbs().maxCoeff();
       std::vector<unsigned int> keep;
       for (unsigned int i = 0; i < nc; ++i)
-      {
-        const double g_row =
-          (GL.cols() > 0 ? GL.row(m * i).cwiseAbs().maxCoeff() : 0.);
-        if (FL(m * i, m * i) > 1e-12 * max_diag || g_row > 1e-12 * max_g)
-          keep.push_back(i);
-      }
+        {
+          const double g_row =
+            (GL.cols() > 0 ? GL.row(m * i).cwiseAbs().maxCoeff() : 0.);
+          if (FL(m * i, m * i) > 1e-12 * max_diag || g_row > 1e-12 * max_g)
+            keep.push_back(i);
+        }
       n_dropped = nc - keep.size();
       AssertThrow(!keep.empty(),
                   base::ExcInput(settings.scene_file +
@@ -291,13 +275,13 @@ namespace igabde
       Eigen::MatrixXd             W(m * keep.size(), m * keep.size());
       problem.G.resize(m * keep.size(), alpha_modes.size());
       for (unsigned int i = 0; i < keep.size(); ++i)
-      {
-        kept_pairs.push_back(pair_list[keep[i]]);
-        for (unsigned int j = 0; j < keep.size(); ++j)
-          W.block(m * i, m * j, m, m) =
-            FL.block(m * keep[i], m * keep[j], m, m);
-        problem.G.middleRows(m * i, m) = GL.middleRows(m * keep[i], m);
-      }
+        {
+          kept_pairs.push_back(pair_list[keep[i]]);
+          for (unsigned int j = 0; j < keep.size(); ++j)
+            W.block(m * i, m * j, m, m) =
+              FL.block(m * keep[i], m * keep[j], m, m);
+          problem.G.middleRows(m * i, m) = GL.middleRows(m * keep[i], m);
+        }
       pair_list = kept_pairs;
       const double asymmetry =
         (W - W.transpose()).norm() / std::max(W.norm(), 1e-300);
@@ -359,13 +343,13 @@ namespace igabde
       const unsigned int m = n_components;
       Eigen::VectorXd    result(m * pair_list.size());
       for (unsigned int i = 0; i < pair_list.size(); ++i)
-      {
-        Tensor<1, dim> du = pair_list[i].op1.displacement(u[0]);
-        if (!settings.rigid_plane)
-          du -= pair_list[i].op2.displacement(u[1]);
-        for (unsigned int s = 0; s < m; ++s)
-          result(m * i + s) = pair_list[i].frame[s] * du;
-      }
+        {
+          Tensor<1, dim> du = pair_list[i].op1.displacement(u[0]);
+          if (!settings.rigid_plane)
+            du -= pair_list[i].op2.displacement(u[1]);
+          for (unsigned int s = 0; s < m; ++s)
+            result(m * i + s) = pair_list[i].frame[s] * du;
+        }
       return result;
     }
 
@@ -401,12 +385,12 @@ namespace igabde
       // Normal rows: total relative displacement, gap included. Tangential
       // rows: increments of this step (friction is incremental).
       for (unsigned int i = 0; i < pair_list.size(); ++i)
-      {
-        problem.q(m * i) = pair_list[i].gap + U(m * i);
-        for (unsigned int s = 1; s < m; ++s)
-          problem.q(m * i + s) =
-            U(m * i + s) - previous_external(m * i + s) - carry(m * i + s);
-      }
+        {
+          problem.q(m * i) = pair_list[i].gap + U(m * i);
+          for (unsigned int s = 1; s < m; ++s)
+            problem.q(m * i + s) =
+              U(m * i + s) - previous_external(m * i + s) - carry(m * i + s);
+        }
       problem.b = -load_factor * rigid_mode_loads;
 
       BNewtonSolver::Result result;
@@ -466,24 +450,24 @@ namespace igabde
           loads.emplace_back(body->n_dofs());
         Tensor<1, dim> total;
         for (unsigned int i = 0; i < pair_list.size(); ++i)
-        {
-          const Tensor<1, dim> f = global_force(i, p);
-          total += f;
-          pair_list[i].op1.distribute(f, loads[0]);
-          if (!settings.rigid_plane)
-            pair_list[i].op2.distribute(-f, loads[1]);
-        }
+          {
+            const Tensor<1, dim> f = global_force(i, p);
+            total += f;
+            pair_list[i].op1.distribute(f, loads[0]);
+            if (!settings.rigid_plane)
+              pair_list[i].op2.distribute(-f, loads[1]);
+          }
         for (unsigned int b = 0; b < bodies.size(); ++b)
-        {
-          std::vector<Vector<double>> column(1, loads[b]);
-          bodies[b]->solve(column);
-          u[b] += column[0];
-        }
+          {
+            std::vector<Vector<double>> column(1, loads[b]);
+            bodies[b]->solve(column);
+            u[b] += column[0];
+          }
         for (unsigned int a = 0; a < alpha_modes.size(); ++a)
-        {
-          const auto [b, k] = alpha_modes[a];
-          u[b].add(alpha(a), bodies[b]->free_rigid_modes()[k]);
-        }
+          {
+            const auto [b, k] = alpha_modes[a];
+            u[b].add(alpha(a), bodies[b]->free_rigid_modes()[k]);
+          }
         base::Json force = base::Json::array();
         for (unsigned int c = 0; c < dim; ++c)
           force.push_back(total[c]);
@@ -521,18 +505,18 @@ namespace igabde
         csv << ",slip_t" << s;
       csv << ",status\n" << std::setprecision(12);
       for (unsigned int i = 0; i < pair_list.size(); ++i)
-      {
-        csv << i;
-        for (unsigned int d = 0; d < dim; ++d)
-          csv << "," << pair_list[i].x1[d];
-        csv << "," << pair_list[i].area << "," << u_rel(m * i);
-        for (unsigned int s = 0; s < m; ++s)
-          csv << "," << p(m * i + s);
-        csv << "," << p(m * i) / pair_list[i].area;
-        for (unsigned int s = 1; s < m; ++s)
-          csv << "," << u_rel(m * i + s);
-        csv << "," << to_string(status[i]) << "\n";
-      }
+        {
+          csv << i;
+          for (unsigned int d = 0; d < dim; ++d)
+            csv << "," << pair_list[i].x1[d];
+          csv << "," << pair_list[i].area << "," << u_rel(m * i);
+          for (unsigned int s = 0; s < m; ++s)
+            csv << "," << p(m * i + s);
+          csv << "," << p(m * i) / pair_list[i].area;
+          for (unsigned int s = 1; s < m; ++s)
+            csv << "," << u_rel(m * i + s);
+          csv << "," << to_string(status[i]) << "\n";
+        }
 
       // VTU point cloud for ParaView.
       std::ofstream      vtu(stem.str() + ".vtu");
@@ -545,11 +529,11 @@ namespace igabde
            "NumberOfComponents=\"3\" format=\"ascii\">\n"
         << std::setprecision(12);
       for (const auto &pair : pair_list)
-      {
-        for (unsigned int d = 0; d < 3; ++d)
-          vtu << (d < dim ? pair.x1[d] : 0.) << " ";
-        vtu << "\n";
-      }
+        {
+          for (unsigned int d = 0; d < 3; ++d)
+            vtu << (d < dim ? pair.x1[d] : 0.) << " ";
+          vtu << "\n";
+        }
       vtu << "</DataArray>\n</Points>\n<Cells>\n<DataArray type=\"Int32\" "
              "Name=\"connectivity\" format=\"ascii\">\n";
       for (unsigned int i = 0; i < n; ++i)
@@ -563,52 +547,45 @@ namespace igabde
       for (unsigned int i = 0; i < n; ++i)
         vtu << "1 ";
       vtu << "\n</DataArray>\n</Cells>\n<PointData>\n";
-      auto scalar = [&](const std::string &name, auto value)
-      {
+      auto scalar = [&](const std::string &name, auto value) {
         vtu << "<DataArray type=\"Float64\" Name=\"" << name
             << "\" format=\"ascii\">\n";
         for (unsigned int i = 0; i < n; ++i)
           vtu << value(i) << " ";
         vtu << "\n</DataArray>\n";
       };
-      scalar("pressure",
-             [&](unsigned int i)
-             {
-               return p(m * i) / pair_list[i].area;
-             });
-      scalar("gap",
-             [&](unsigned int i)
-             {
-               return u_rel(m * i);
-             });
-      scalar("status",
-             [&](unsigned int i)
-             {
-               return static_cast<double>(static_cast<int>(status[i]));
-             });
+      scalar("pressure", [&](unsigned int i) {
+        return p(m * i) / pair_list[i].area;
+      });
+      scalar("gap", [&](unsigned int i) {
+        return u_rel(m * i);
+      });
+      scalar("status", [&](unsigned int i) {
+        return static_cast<double>(static_cast<int>(status[i]));
+      });
       vtu << "<DataArray type=\"Float64\" Name=\"contact_force\" "
              "NumberOfComponents=\"3\" format=\"ascii\">\n";
       for (unsigned int i = 0; i < n; ++i)
-      {
-        const Tensor<1, dim> f = global_force(i, p);
-        for (unsigned int d = 0; d < 3; ++d)
-          vtu << (d < dim ? f[d] : 0.) << " ";
-      }
+        {
+          const Tensor<1, dim> f = global_force(i, p);
+          for (unsigned int d = 0; d < 3; ++d)
+            vtu << (d < dim ? f[d] : 0.) << " ";
+        }
       vtu << "\n</DataArray>\n";
       if (m > 1)
-      {
-        vtu << "<DataArray type=\"Float64\" Name=\"slip\" "
-               "NumberOfComponents=\"3\" format=\"ascii\">\n";
-        for (unsigned int i = 0; i < n; ++i)
         {
-          Tensor<1, dim> s;
-          for (unsigned int k = 1; k < m; ++k)
-            s += u_rel(m * i + k) * pair_list[i].frame[k];
-          for (unsigned int d = 0; d < 3; ++d)
-            vtu << (d < dim ? s[d] : 0.) << " ";
+          vtu << "<DataArray type=\"Float64\" Name=\"slip\" "
+                 "NumberOfComponents=\"3\" format=\"ascii\">\n";
+          for (unsigned int i = 0; i < n; ++i)
+            {
+              Tensor<1, dim> s;
+              for (unsigned int k = 1; k < m; ++k)
+                s += u_rel(m * i + k) * pair_list[i].frame[k];
+              for (unsigned int d = 0; d < 3; ++d)
+                vtu << (d < dim ? s[d] : 0.) << " ";
+            }
+          vtu << "\n</DataArray>\n";
         }
-        vtu << "\n</DataArray>\n";
-      }
       vtu << "</PointData>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n";
     }
 
@@ -647,101 +624,103 @@ namespace igabde
     {
       const unsigned int m = n_components;
       if (settings.uniform_pressure > 0.)
-      {
-        double worst = 0.;
-        for (unsigned int i = 0; i < pair_list.size(); ++i)
-          worst = std::max(worst,
-                           std::abs(p(m * i) / pair_list[i].area /
-                                      settings.uniform_pressure -
-                                    1.));
-        checks["pressure_uniformity"] = worst;
-        log << "  pressure uniformity max |p_i/p - 1| = "
-            << std::setprecision(3) << std::scientific << worst
-            << std::defaultfloat << std::setprecision(6) << std::endl;
-      }
+        {
+          double worst = 0.;
+          for (unsigned int i = 0; i < pair_list.size(); ++i)
+            worst = std::max(worst,
+                             std::abs(p(m * i) / pair_list[i].area /
+                                        settings.uniform_pressure -
+                                      1.));
+          checks["pressure_uniformity"] = worst;
+          log << "  pressure uniformity max |p_i/p - 1| = "
+              << std::setprecision(3) << std::scientific << worst
+              << std::defaultfloat << std::setprecision(6) << std::endl;
+        }
 
       if (settings.hertz_line_load > 0.)
-      {
-        // Johnson: a = sqrt(4 P R / (pi E*)), p0 = 2 P / (pi a), rigid
-        // flat, E* = E / (1 - nu^2).
-        const auto  &material = bodies[0]->description().material;
-        const double E_star =
-          material.youngs_modulus /
-          (1. - material.poisson_ratio * material.poisson_ratio);
-        const double P = settings.hertz_line_load, R = settings.hertz_radius;
-        const double a  = std::sqrt(4. * P * R / (M_PI * E_star));
-        const double p0 = 2. * P / (M_PI * a);
-
-        // Pair pressures by distance from the symmetry axis.
-        std::vector<std::pair<double, double>> profile;
-        for (unsigned int i = 0; i < pair_list.size(); ++i)
-          profile.emplace_back(std::abs(pair_list[i].x1[0]),
-                               p(m * i) / pair_list[i].area);
-        std::sort(profile.begin(), profile.end());
-        double peak = 0.;
-        for (const auto &[x, pr] : profile)
-          peak = std::max(peak, pr);
-
-        // Half-width: the last loaded pair, refined by the ellipse
-        // p^2 = c (a^2 - x^2) through the last two loaded pairs, kept
-        // between the last loaded and the first open pair.
-        int last = -1;
-        for (unsigned int k = 0; k < profile.size(); ++k)
-          if (profile[k].second > 1e-6 * peak)
-            last = k;
-        double a_h = (last >= 0 ? profile[last].first : 0.);
-        if (last >= 1)
         {
-          const double x1 = profile[last - 1].first,
-                       p1 = profile[last - 1].second;
-          const double x2 = profile[last].first, p2 = profile[last].second;
-          if (p1 > p2)
-          {
-            const double a2 =
-              (p1 * p1 * x2 * x2 - p2 * p2 * x1 * x1) / (p1 * p1 - p2 * p2);
-            double       estimate = std::sqrt(std::max(a2, 0.));
-            const double upper =
-              (last + 1 < int(profile.size()) ? profile[last + 1].first :
-                                                estimate);
-            a_h = std::min(std::max(estimate, x2), upper);
-          }
-        }
+          // Johnson: a = sqrt(4 P R / (pi E*)), p0 = 2 P / (pi a), rigid
+          // flat, E* = E / (1 - nu^2).
+          const auto  &material = bodies[0]->description().material;
+          const double E_star =
+            material.youngs_modulus /
+            (1. - material.poisson_ratio * material.poisson_ratio);
+          const double P = settings.hertz_line_load, R = settings.hertz_radius;
+          const double a  = std::sqrt(4. * P * R / (M_PI * E_star));
+          const double p0 = 2. * P / (M_PI * a);
 
-        // L2 distance of the piecewise linear pair profile to Johnson's
-        // over |x| <= 1.2 a.
-        auto p_h = [&](const double x)
-        {
-          if (x <= profile.front().first)
-            return profile.front().second;
-          for (unsigned int k = 1; k < profile.size(); ++k)
-            if (x <= profile[k].first)
+          // Pair pressures by distance from the symmetry axis.
+          std::vector<std::pair<double, double>> profile;
+          for (unsigned int i = 0; i < pair_list.size(); ++i)
+            profile.emplace_back(std::abs(pair_list[i].x1[0]),
+                                 p(m * i) / pair_list[i].area);
+          std::sort(profile.begin(), profile.end());
+          double peak = 0.;
+          for (const auto &[x, pr] : profile)
+            peak = std::max(peak, pr);
+
+          // Half-width: the last loaded pair, refined by the ellipse
+          // p^2 = c (a^2 - x^2) through the last two loaded pairs, kept
+          // between the last loaded and the first open pair.
+          int last = -1;
+          for (unsigned int k = 0; k < profile.size(); ++k)
+            if (profile[k].second > 1e-6 * peak)
+              last = k;
+          double a_h = (last >= 0 ? profile[last].first : 0.);
+          if (last >= 1)
             {
-              const double t = (x - profile[k - 1].first) /
-                               (profile[k].first - profile[k - 1].first);
-              return (1 - t) * profile[k - 1].second + t * profile[k].second;
+              const double x1 = profile[last - 1].first,
+                           p1 = profile[last - 1].second;
+              const double x2 = profile[last].first, p2 = profile[last].second;
+              if (p1 > p2)
+                {
+                  const double a2 = (p1 * p1 * x2 * x2 - p2 * p2 * x1 * x1) /
+                                    (p1 * p1 - p2 * p2);
+                  double       estimate = std::sqrt(std::max(a2, 0.));
+                  const double upper =
+                    (last + 1 < int(profile.size()) ? profile[last + 1].first :
+                                                      estimate);
+                  a_h = std::min(std::max(estimate, x2), upper);
+                }
             }
-          return profile.back().second;
-        };
-        double             e2 = 0., n2 = 0.;
-        const unsigned int n_samples = 4000;
-        for (unsigned int k = 0; k < n_samples; ++k)
-        {
-          const double x  = 1.2 * a * (k + 0.5) / n_samples;
-          const double pe = (x < a ? p0 * std::sqrt(1. - x * x / (a * a)) : 0.);
-          e2 += std::pow(p_h(x) - pe, 2);
-          n2 += pe * pe;
+
+          // L2 distance of the piecewise linear pair profile to Johnson's
+          // over |x| <= 1.2 a.
+          auto p_h = [&](const double x) {
+            if (x <= profile.front().first)
+              return profile.front().second;
+            for (unsigned int k = 1; k < profile.size(); ++k)
+              if (x <= profile[k].first)
+                {
+                  const double t = (x - profile[k - 1].first) /
+                                   (profile[k].first - profile[k - 1].first);
+                  return (1 - t) * profile[k - 1].second +
+                         t * profile[k].second;
+                }
+            return profile.back().second;
+          };
+          double             e2 = 0., n2 = 0.;
+          const unsigned int n_samples = 4000;
+          for (unsigned int k = 0; k < n_samples; ++k)
+            {
+              const double x = 1.2 * a * (k + 0.5) / n_samples;
+              const double pe =
+                (x < a ? p0 * std::sqrt(1. - x * x / (a * a)) : 0.);
+              e2 += std::pow(p_h(x) - pe, 2);
+              n2 += pe * pe;
+            }
+          checks["hertz_half_width"]          = a_h;
+          checks["hertz_half_width_exact"]    = a;
+          checks["hertz_half_width_error"]    = std::abs(a_h / a - 1.);
+          checks["hertz_peak_pressure"]       = peak;
+          checks["hertz_peak_pressure_exact"] = p0;
+          checks["pressure_l2_rel_error"]     = std::sqrt(e2 / n2);
+          log << "  Hertz: half-width " << std::setprecision(5) << a_h
+              << " (Johnson " << a << "), peak pressure " << peak
+              << " (Johnson " << p0 << "), profile L2 error "
+              << std::setprecision(3) << std::sqrt(e2 / n2)
+              << std::setprecision(6) << std::endl;
         }
-        checks["hertz_half_width"]          = a_h;
-        checks["hertz_half_width_exact"]    = a;
-        checks["hertz_half_width_error"]    = std::abs(a_h / a - 1.);
-        checks["hertz_peak_pressure"]       = peak;
-        checks["hertz_peak_pressure_exact"] = p0;
-        checks["pressure_l2_rel_error"]     = std::sqrt(e2 / n2);
-        log << "  Hertz: half-width " << std::setprecision(5) << a_h
-            << " (Johnson " << a << "), peak pressure " << peak << " (Johnson "
-            << p0 << "), profile L2 error " << std::setprecision(3)
-            << std::sqrt(e2 / n2) << std::setprecision(6) << std::endl;
-      }
     }
 
 

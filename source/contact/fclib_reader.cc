@@ -51,12 +51,12 @@ namespace igabde
           H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
           id = H5Fopen(filename.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
           if (id < 0)
-          {
-            H5Eset_auto2(H5E_DEFAULT, old_func, old_data);
-            AssertThrow(false,
-                        dealii::ExcMessage("FCLIB reader: cannot open '" +
-                                           filename + "' as an HDF5 file"));
-          }
+            {
+              H5Eset_auto2(H5E_DEFAULT, old_func, old_data);
+              AssertThrow(false,
+                          dealii::ExcMessage("FCLIB reader: cannot open '" +
+                                             filename + "' as an HDF5 file"));
+            }
         }
 
         ~Hdf5File()
@@ -77,15 +77,15 @@ namespace igabde
           std::string partial;
           std::size_t start = 1;
           while (start <= path.size())
-          {
-            std::size_t end = path.find('/', start);
-            if (end == std::string::npos)
-              end = path.size();
-            partial = path.substr(0, end);
-            if (H5Lexists(id, partial.c_str(), H5P_DEFAULT) <= 0)
-              return false;
-            start = end + 1;
-          }
+            {
+              std::size_t end = path.find('/', start);
+              if (end == std::string::npos)
+                end = path.size();
+              partial = path.substr(0, end);
+              if (H5Lexists(id, partial.c_str(), H5P_DEFAULT) <= 0)
+                return false;
+              start = end + 1;
+            }
           return true;
         }
 
@@ -158,8 +158,7 @@ namespace igabde
           AssertThrow(m >= 0 && n >= 0,
                       dealii::ExcMessage(where + "negative size"));
           std::vector<Eigen::Triplet<double>> entries;
-          auto add = [&](const long row, const long col, const double v)
-          {
+          auto add = [&](const long row, const long col, const double v) {
             AssertThrow(row >= 0 && row < m && col >= 0 && col < n,
                         dealii::ExcMessage(
                           where + "entry (" + std::to_string(row) + ", " +
@@ -170,40 +169,40 @@ namespace igabde
             entries.emplace_back(row, col, v);
           };
           if (nz >= 0)
-          {
-            AssertThrow(p.size() >= std::size_t(nz) &&
-                          i.size() >= std::size_t(nz) &&
-                          x.size() >= std::size_t(nz),
-                        dealii::ExcMessage(where + "triplet arrays shorter "
-                                                   "than nz"));
-            for (int k = 0; k < nz; ++k)
-              add(i[k], p[k], x[k]); // CSparse: i = row, p = column
-          }
-          else if (nz == -1 || nz == -2)
-          {
-            const int outer = nz == -1 ? n : m;
-            AssertThrow(p.size() >= std::size_t(outer + 1),
-                        dealii::ExcMessage(where + "pointer array too "
-                                                   "short"));
-            const int nnz = p[outer];
-            AssertThrow(nnz >= 0 && i.size() >= std::size_t(nnz) &&
-                          x.size() >= std::size_t(nnz),
-                        dealii::ExcMessage(where + "index arrays shorter "
-                                                   "than the pointers say"));
-            for (int o = 0; o < outer; ++o)
             {
-              AssertThrow(p[o] <= p[o + 1] && p[o] >= 0,
-                          dealii::ExcMessage(where + "pointers not "
-                                                     "monotone"));
-              for (int k = p[o]; k < p[o + 1]; ++k)
-              {
-                if (nz == -1)
-                  add(i[k], o, x[k]);
-                else
-                  add(o, i[k], x[k]);
-              }
+              AssertThrow(p.size() >= std::size_t(nz) &&
+                            i.size() >= std::size_t(nz) &&
+                            x.size() >= std::size_t(nz),
+                          dealii::ExcMessage(where + "triplet arrays shorter "
+                                                     "than nz"));
+              for (int k = 0; k < nz; ++k)
+                add(i[k], p[k], x[k]); // CSparse: i = row, p = column
             }
-          }
+          else if (nz == -1 || nz == -2)
+            {
+              const int outer = nz == -1 ? n : m;
+              AssertThrow(p.size() >= std::size_t(outer + 1),
+                          dealii::ExcMessage(where + "pointer array too "
+                                                     "short"));
+              const int nnz = p[outer];
+              AssertThrow(nnz >= 0 && i.size() >= std::size_t(nnz) &&
+                            x.size() >= std::size_t(nnz),
+                          dealii::ExcMessage(where + "index arrays shorter "
+                                                     "than the pointers say"));
+              for (int o = 0; o < outer; ++o)
+                {
+                  AssertThrow(p[o] <= p[o + 1] && p[o] >= 0,
+                              dealii::ExcMessage(where + "pointers not "
+                                                         "monotone"));
+                  for (int k = p[o]; k < p[o + 1]; ++k)
+                    {
+                      if (nz == -1)
+                        add(i[k], o, x[k]);
+                      else
+                        add(o, i[k], x[k]);
+                    }
+                }
+            }
           else
             AssertThrow(false,
                         dealii::ExcMessage(where + "unknown storage nz = " +
@@ -247,17 +246,17 @@ namespace igabde
       {
         problem.name = base_name(filename);
         try
-        {
-          problem.check_consistency();
-        }
+          {
+            problem.check_consistency();
+          }
         catch (const std::exception &e)
-        {
-          AssertThrow(false,
-                      dealii::ExcMessage("FCLIB reader: '" + filename +
-                                         "' gives an inconsistent "
-                                         "problem: " +
-                                         e.what()));
-        }
+          {
+            AssertThrow(false,
+                        dealii::ExcMessage("FCLIB reader: '" + filename +
+                                           "' gives an inconsistent "
+                                           "problem: " +
+                                           e.what()));
+          }
       }
 
 
@@ -318,44 +317,45 @@ namespace igabde
         long                                nnz = -1, col = -1;
         std::vector<Eigen::Triplet<double>> entries;
         while ((nnz < 0 || long(entries.size()) < nnz) && s.line(l))
-        {
-          if (l.find("-by-") != std::string::npos)
           {
-            const auto pos = l.find("nnz:");
-            AssertThrow(pos != std::string::npos,
+            if (l.find("-by-") != std::string::npos)
+              {
+                const auto pos = l.find("nnz:");
+                AssertThrow(pos != std::string::npos,
+                            dealii::ExcMessage("Siconos reader: '" +
+                                               s.filename +
+                                               "': no nnz in the CSparse "
+                                               "header"));
+                nnz = std::stol(l.substr(pos + 4));
+                continue;
+              }
+            if (l.find("col") != std::string::npos &&
+                l.find("locations") != std::string::npos)
+              {
+                std::istringstream ls(l.substr(l.find("col") + 3));
+                ls >> col;
+                continue;
+              }
+            const auto colon = l.find(':');
+            if (colon == std::string::npos || nnz < 0)
+              continue;
+            std::istringstream left(l.substr(0, colon));
+            std::istringstream right(l.substr(colon + 1));
+            long               a, b;
+            double             v;
+            left >> a;
+            const bool triplet = static_cast<bool>(left >> b);
+            right >> v;
+            AssertThrow(!right.fail(),
                         dealii::ExcMessage("Siconos reader: '" + s.filename +
-                                           "': no nnz in the CSparse "
-                                           "header"));
-            nnz = std::stol(l.substr(pos + 4));
-            continue;
+                                           "': bad sparse entry line '" + l +
+                                           "'"));
+            const long row = a, c = triplet ? b : col;
+            AssertThrow(row >= 0 && row < rows && c >= 0 && c < cols,
+                        dealii::ExcMessage("Siconos reader: '" + s.filename +
+                                           "': sparse entry out of range"));
+            entries.emplace_back(row, c, v);
           }
-          if (l.find("col") != std::string::npos &&
-              l.find("locations") != std::string::npos)
-          {
-            std::istringstream ls(l.substr(l.find("col") + 3));
-            ls >> col;
-            continue;
-          }
-          const auto colon = l.find(':');
-          if (colon == std::string::npos || nnz < 0)
-            continue;
-          std::istringstream left(l.substr(0, colon));
-          std::istringstream right(l.substr(colon + 1));
-          long               a, b;
-          double             v;
-          left >> a;
-          const bool triplet = static_cast<bool>(left >> b);
-          right >> v;
-          AssertThrow(!right.fail(),
-                      dealii::ExcMessage("Siconos reader: '" + s.filename +
-                                         "': bad sparse entry line '" + l +
-                                         "'"));
-          const long row = a, c = triplet ? b : col;
-          AssertThrow(row >= 0 && row < rows && c >= 0 && c < cols,
-                      dealii::ExcMessage("Siconos reader: '" + s.filename +
-                                         "': sparse entry out of range"));
-          entries.emplace_back(row, c, v);
-        }
         AssertThrow(nnz >= 0 && long(entries.size()) == nnz,
                     dealii::ExcMessage("Siconos reader: '" + s.filename +
                                        "': truncated sparse matrix"));
@@ -372,28 +372,27 @@ namespace igabde
     {
       const std::string name = base_name(filename);
       if (ends_with(name, ".hdf5") || ends_with(name, ".h5"))
-      {
-        try
         {
-          Hdf5File f(filename);
-          if (f.exists("/fclib_local"))
-            return FclibFileKind::hdf5_local;
-          if (f.exists("/fclib_global"))
-            return FclibFileKind::hdf5_global;
-          if (f.exists("/fclib_global_rolling"))
-            return FclibFileKind::hdf5_global_rolling;
+          try
+            {
+              Hdf5File f(filename);
+              if (f.exists("/fclib_local"))
+                return FclibFileKind::hdf5_local;
+              if (f.exists("/fclib_global"))
+                return FclibFileKind::hdf5_global;
+              if (f.exists("/fclib_global_rolling"))
+                return FclibFileKind::hdf5_global_rolling;
+            }
+          catch (...)
+            {}
+          return FclibFileKind::unknown;
         }
-        catch (...)
-        {
-        }
-        return FclibFileKind::unknown;
-      }
       if (ends_with(name, ".dat"))
-      {
-        if (name.rfind("GFC", 0) == 0 || name.rfind("gfc", 0) == 0)
-          return FclibFileKind::siconos_global_dat;
-        return FclibFileKind::siconos_local_dat;
-      }
+        {
+          if (name.rfind("GFC", 0) == 0 || name.rfind("gfc", 0) == 0)
+            return FclibFileKind::siconos_global_dat;
+          return FclibFileKind::siconos_local_dat;
+        }
       return FclibFileKind::unknown;
     }
 
@@ -478,20 +477,20 @@ namespace igabde
       Eigen::VectorXd                     Minvf;
       Eigen::SimplicialLDLT<SparseMatrix> ldlt(M);
       if (ldlt.info() == Eigen::Success)
-      {
-        const SparseMatrix X = ldlt.solve(Hc);
-        Minvf                = ldlt.solve(fv);
-        MinvH                = Eigen::MatrixXd(X);
-      }
+        {
+          const SparseMatrix X = ldlt.solve(Hc);
+          Minvf                = ldlt.solve(fv);
+          MinvH                = Eigen::MatrixXd(X);
+        }
       if (ldlt.info() != Eigen::Success || !MinvH.allFinite() ||
           !Minvf.allFinite())
-      {
-        Eigen::SparseLU<SparseMatrix> lu(M);
-        AssertThrow(lu.info() == Eigen::Success,
-                    dealii::ExcMessage(where + "M is singular"));
-        MinvH = lu.solve(Eigen::MatrixXd(Hc));
-        Minvf = lu.solve(fv);
-      }
+        {
+          Eigen::SparseLU<SparseMatrix> lu(M);
+          AssertThrow(lu.info() == Eigen::Success,
+                      dealii::ExcMessage(where + "M is singular"));
+          MinvH = lu.solve(Eigen::MatrixXd(Hc));
+          Minvf = lu.solve(fv);
+        }
       ContactProblem problem;
       problem.n_components = d;
       problem.n_contacts   = H.cols() / d;
@@ -536,69 +535,72 @@ namespace igabde
       problem.n_contacts   = nc;
       problem.W.setZero(n, n);
       if (storage == 0)
-      {
-        const long r = s.integer("the dense size"),
-                   c = s.integer("the dense size");
-        AssertThrow(r == n && c == n,
-                    dealii::ExcMessage("Siconos reader: '" + filename +
-                                       "': dense sizes disagree"));
-        for (long j = 0; j < n; ++j) // column major
-          for (long i = 0; i < n; ++i)
-            problem.W(i, j) = s.number("a dense matrix entry");
-      }
-      else if (storage == 1)
-      {
-        const long nbblocks = s.integer("the number of blocks");
-        if (nbblocks > 0)
         {
-          const long bn0 = s.integer("blocknumber0");
-          const long bn1 = s.integer("blocknumber1");
-          AssertThrow(bn0 > 0 && bn1 > 0 && bn0 <= n && bn1 <= n,
+          const long r = s.integer("the dense size"),
+                     c = s.integer("the dense size");
+          AssertThrow(r == n && c == n,
                       dealii::ExcMessage("Siconos reader: '" + filename +
-                                         "': bad block counts"));
-          std::vector<long> bs0(bn0), bs1(bn1);
-          for (auto &v : bs0)
-            v = s.integer("blocksize0");
-          for (auto &v : bs1)
-            v = s.integer("blocksize1");
-          AssertThrow(bs0.back() == n && bs1.back() == n,
-                      dealii::ExcMessage("Siconos reader: '" + filename +
-                                         "': block sizes do not add up "
-                                         "to the matrix size"));
-          const long filled1 = s.integer("filled1");
-          const long filled2 = s.integer("filled2");
-          AssertThrow(filled1 == bn0 + 1 && filled2 == nbblocks,
-                      dealii::ExcMessage("Siconos reader: '" + filename +
-                                         "': bad sparse-block index "
-                                         "sizes"));
-          std::vector<long> index1(filled1), index2(filled2);
-          for (auto &v : index1)
-            v = s.integer("index1_data");
-          for (auto &v : index2)
-            v = s.integer("index2_data");
-          for (long row = 0; row + 1 < filled1; ++row)
-            for (long blk = index1[row]; blk < index1[row + 1]; ++blk)
+                                         "': dense sizes disagree"));
+          for (long j = 0; j < n; ++j) // column major
+            for (long i = 0; i < n; ++i)
+              problem.W(i, j) = s.number("a dense matrix entry");
+        }
+      else if (storage == 1)
+        {
+          const long nbblocks = s.integer("the number of blocks");
+          if (nbblocks > 0)
             {
-              AssertThrow(blk >= 0 && blk < filled2,
+              const long bn0 = s.integer("blocknumber0");
+              const long bn1 = s.integer("blocknumber1");
+              AssertThrow(bn0 > 0 && bn1 > 0 && bn0 <= n && bn1 <= n,
                           dealii::ExcMessage("Siconos reader: '" + filename +
-                                             "': bad block index"));
-              const long col = index2[blk];
-              AssertThrow(col >= 0 && col < bn1,
+                                             "': bad block counts"));
+              std::vector<long> bs0(bn0), bs1(bn1);
+              for (auto &v : bs0)
+                v = s.integer("blocksize0");
+              for (auto &v : bs1)
+                v = s.integer("blocksize1");
+              AssertThrow(bs0.back() == n && bs1.back() == n,
                           dealii::ExcMessage("Siconos reader: '" + filename +
-                                             "': bad block column"));
-              const long r0 = row == 0 ? 0 : bs0[row - 1];
-              const long c0 = col == 0 ? 0 : bs1[col - 1];
-              const long nr = bs0[row] - r0, ncol = bs1[col] - c0;
-              const long number = s.integer("the block number");
-              AssertThrow(number == blk,
+                                             "': block sizes do not add up "
+                                             "to the matrix size"));
+              const long filled1 = s.integer("filled1");
+              const long filled2 = s.integer("filled2");
+              AssertThrow(filled1 == bn0 + 1 && filled2 == nbblocks,
                           dealii::ExcMessage("Siconos reader: '" + filename +
-                                             "': block numbering"));
-              for (long j = 0; j < ncol; ++j) // column major
-                for (long i = 0; i < nr; ++i)
-                  problem.W(r0 + i, c0 + j) = s.number("a block entry");
+                                             "': bad sparse-block index "
+                                             "sizes"));
+              std::vector<long> index1(filled1), index2(filled2);
+              for (auto &v : index1)
+                v = s.integer("index1_data");
+              for (auto &v : index2)
+                v = s.integer("index2_data");
+              for (long row = 0; row + 1 < filled1; ++row)
+                for (long blk = index1[row]; blk < index1[row + 1]; ++blk)
+                  {
+                    AssertThrow(blk >= 0 && blk < filled2,
+                                dealii::ExcMessage("Siconos reader: '" +
+                                                   filename +
+                                                   "': bad block index"));
+                    const long col = index2[blk];
+                    AssertThrow(col >= 0 && col < bn1,
+                                dealii::ExcMessage("Siconos reader: '" +
+                                                   filename +
+                                                   "': bad block column"));
+                    const long r0 = row == 0 ? 0 : bs0[row - 1];
+                    const long c0 = col == 0 ? 0 : bs1[col - 1];
+                    const long nr = bs0[row] - r0, ncol = bs1[col] - c0;
+                    const long number = s.integer("the block number");
+                    AssertThrow(number == blk,
+                                dealii::ExcMessage("Siconos reader: '" +
+                                                   filename +
+                                                   "': block numbering"));
+                    for (long j = 0; j < ncol; ++j) // column major
+                      for (long i = 0; i < nr; ++i)
+                        problem.W(r0 + i, c0 + j) = s.number("a block entry");
+                  }
             }
         }
-      }
       else if (storage == 2)
         problem.W = Eigen::MatrixXd(read_csparse_print(s, n, n));
       else
@@ -624,32 +626,32 @@ namespace igabde
     read_fclib_problem(const std::string &filename)
     {
       switch (classify_fclib_file(filename))
-      {
-        case FclibFileKind::hdf5_local:
-          return read_fclib_local(filename);
-        case FclibFileKind::hdf5_global:
-          return read_fclib_global(filename);
-        case FclibFileKind::siconos_local_dat:
-          return read_siconos_dat(filename);
-        case FclibFileKind::hdf5_global_rolling:
-          AssertThrow(false,
-                      dealii::ExcMessage("FCLIB reader: '" + filename +
-                                         "' is a rolling-friction problem "
-                                         "(not supported)"));
-          break;
-        case FclibFileKind::siconos_global_dat:
-          AssertThrow(false,
-                      dealii::ExcMessage("FCLIB reader: '" + filename +
-                                         "' is a Siconos global problem "
-                                         "(not supported)"));
-          break;
-        case FclibFileKind::unknown:
-          AssertThrow(false,
-                      dealii::ExcMessage("FCLIB reader: '" + filename +
-                                         "' is not a recognised problem "
-                                         "file"));
-          break;
-      }
+        {
+          case FclibFileKind::hdf5_local:
+            return read_fclib_local(filename);
+          case FclibFileKind::hdf5_global:
+            return read_fclib_global(filename);
+          case FclibFileKind::siconos_local_dat:
+            return read_siconos_dat(filename);
+          case FclibFileKind::hdf5_global_rolling:
+            AssertThrow(false,
+                        dealii::ExcMessage("FCLIB reader: '" + filename +
+                                           "' is a rolling-friction problem "
+                                           "(not supported)"));
+            break;
+          case FclibFileKind::siconos_global_dat:
+            AssertThrow(false,
+                        dealii::ExcMessage("FCLIB reader: '" + filename +
+                                           "' is a Siconos global problem "
+                                           "(not supported)"));
+            break;
+          case FclibFileKind::unknown:
+            AssertThrow(false,
+                        dealii::ExcMessage("FCLIB reader: '" + filename +
+                                           "' is not a recognised problem "
+                                           "file"));
+            break;
+        }
       return ContactProblem();
     }
 
@@ -661,11 +663,11 @@ namespace igabde
       FclibSolution sol;
       Hdf5File      f(filename);
       if (f.exists("/solution/r") && f.exists("/solution/u"))
-      {
-        sol.r         = f.read_eigen_vector("/solution/r");
-        sol.u         = f.read_eigen_vector("/solution/u");
-        sol.available = true;
-      }
+        {
+          sol.r         = f.read_eigen_vector("/solution/r");
+          sol.u         = f.read_eigen_vector("/solution/u");
+          sol.available = true;
+        }
       return sol;
     }
 

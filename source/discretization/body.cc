@@ -3,6 +3,8 @@
 #include <igabde/discretization/lagrange_body.h>
 
 #include <deal.II/base/exceptions.h>
+#include <deal.II/base/multithread_info.h>
+#include <deal.II/base/thread_management.h>
 
 #include <Eigen/Dense>
 
@@ -165,8 +167,7 @@ namespace igabde
       size = std::max(size, 1e-300);
 
       auto mode_value = [&](const unsigned int            mode,
-                            const types::global_dof_index i) -> double
-      {
+                            const types::global_dof_index i) -> double {
         const unsigned int   c = dof_components[i];
         const Tensor<1, dim> x = (dof_locations[i] - centre) / size;
         if (mode < dim)
@@ -174,17 +175,17 @@ namespace igabde
         // Rotation about axis a (3D) or about z (2D): u = e_a x x.
         Tensor<1, dim> u;
         if (dim == 2)
-        {
-          u[0] = -x[1];
-          u[1] = x[0];
-        }
+          {
+            u[0] = -x[1];
+            u[1] = x[0];
+          }
         else
-        {
-          const unsigned int a = mode - dim;
-          const unsigned int b = (a + 1) % 3, d = (a + 2) % 3;
-          u[b] = -x[d];
-          u[d] = x[b];
-        }
+          {
+            const unsigned int a = mode - dim;
+            const unsigned int b = (a + 1) % 3, d = (a + 2) % 3;
+            u[b] = -x[d];
+            u[d] = x[b];
+          }
         return u[c];
       };
 
@@ -203,11 +204,12 @@ namespace igabde
       const Eigen::VectorXd            &s = svd.singularValues();
       std::vector<Eigen::VectorXd>      free;
       for (unsigned int m = 0; m < n_modes; ++m)
-      {
-        const double sigma = (m < s.size() ? s(m) : 0.);
-        if (sigma < 1e-8 * std::max(1., std::sqrt(double(constrained.size()))))
-          free.push_back(svd.matrixV().col(m));
-      }
+        {
+          const double sigma = (m < s.size() ? s(m) : 0.);
+          if (sigma <
+              1e-8 * std::max(1., std::sqrt(double(constrained.size()))))
+            free.push_back(svd.matrixV().col(m));
+        }
 
       static const char *names2[] = {"translation x",
                                      "translation y",
@@ -221,23 +223,23 @@ namespace igabde
       rigid_modes.clear();
       rigid_mode_names.clear();
       for (const auto &v : free)
-      {
-        Vector<double> mode(n_unknowns);
-        for (types::global_dof_index i = 0; i < n_unknowns; ++i)
-          if (!constraints.is_constrained(i))
-            for (unsigned int m = 0; m < n_modes; ++m)
-              mode[i] += v(m) * mode_value(m, i);
-        rigid_modes.push_back(mode);
+        {
+          Vector<double> mode(n_unknowns);
+          for (types::global_dof_index i = 0; i < n_unknowns; ++i)
+            if (!constraints.is_constrained(i))
+              for (unsigned int m = 0; m < n_modes; ++m)
+                mode[i] += v(m) * mode_value(m, i);
+          rigid_modes.push_back(mode);
 
-        unsigned int dominant = 0;
-        Eigen::Index arg      = 0;
-        const double vmax     = v.cwiseAbs().maxCoeff(&arg);
-        dominant              = static_cast<unsigned int>(arg);
-        const bool pure       = std::abs(vmax - 1.) < 1e-10;
-        rigid_mode_names.push_back(
-          std::string(dim == 2 ? names2[dominant] : names3[dominant]) +
-          (pure ? "" : " (combined)"));
-      }
+          unsigned int dominant = 0;
+          Eigen::Index arg      = 0;
+          const double vmax     = v.cwiseAbs().maxCoeff(&arg);
+          dominant              = static_cast<unsigned int>(arg);
+          const bool pure       = std::abs(vmax - 1.) < 1e-10;
+          rigid_mode_names.push_back(
+            std::string(dim == 2 ? names2[dominant] : names3[dominant]) +
+            (pure ? "" : " (combined)"));
+        }
 
       // Pins: one unknown per free mode, chosen by column-pivoted QR on the
       // free modes so that they are independent there. With balanced loads
@@ -246,23 +248,23 @@ namespace igabde
       solve_constraints.clear();
       solve_constraints.copy_from(constraints);
       if (!rigid_modes.empty())
-      {
-        Eigen::MatrixXd Rt(rigid_modes.size(), n_unknowns);
-        for (unsigned int k = 0; k < rigid_modes.size(); ++k)
-          for (types::global_dof_index i = 0; i < n_unknowns; ++i)
-            Rt(k, i) = rigid_modes[k][i];
-        Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(Rt);
-        const auto               &perm = qr.colsPermutation().indices();
-        AffineConstraints<double> pins;
-        for (unsigned int k = 0; k < rigid_modes.size(); ++k)
         {
-          const types::global_dof_index i = perm(k);
-          Assert(!constraints.is_constrained(i), ExcInternalError());
-          pins.add_line(i);
+          Eigen::MatrixXd Rt(rigid_modes.size(), n_unknowns);
+          for (unsigned int k = 0; k < rigid_modes.size(); ++k)
+            for (types::global_dof_index i = 0; i < n_unknowns; ++i)
+              Rt(k, i) = rigid_modes[k][i];
+          Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(Rt);
+          const auto               &perm = qr.colsPermutation().indices();
+          AffineConstraints<double> pins;
+          for (unsigned int k = 0; k < rigid_modes.size(); ++k)
+            {
+              const types::global_dof_index i = perm(k);
+              Assert(!constraints.is_constrained(i), ExcInternalError());
+              pins.add_line(i);
+            }
+          pins.close();
+          solve_constraints.merge(pins);
         }
-        pins.close();
-        solve_constraints.merge(pins);
-      }
       solve_constraints.close();
     }
 
@@ -282,15 +284,15 @@ namespace igabde
       diagonal_scale /= std::max<types::global_dof_index>(n_unknowns, 1);
 
       for (types::global_dof_index row = 0; row < n_unknowns; ++row)
-      {
-        const bool row_constrained = solve_constraints.is_constrained(row);
-        for (auto entry = constrained_matrix.begin(row);
-             entry != constrained_matrix.end(row);
-             ++entry)
-          if (row_constrained ||
-              solve_constraints.is_constrained(entry->column()))
-            entry->value() = (entry->column() == row ? diagonal_scale : 0.);
-      }
+        {
+          const bool row_constrained = solve_constraints.is_constrained(row);
+          for (auto entry = constrained_matrix.begin(row);
+               entry != constrained_matrix.end(row);
+               ++entry)
+            if (row_constrained ||
+                solve_constraints.is_constrained(entry->column()))
+              entry->value() = (entry->column() == row ? diagonal_scale : 0.);
+        }
       direct_solver.initialize(constrained_matrix);
     }
 
@@ -300,13 +302,36 @@ namespace igabde
     void
     Body<dim>::solve(std::vector<Vector<double>> &rhs_and_solutions) const
     {
-      for (auto &v : rhs_and_solutions)
-      {
-        AssertDimension(v.size(), n_unknowns);
-        solve_constraints.set_zero(v);
-        direct_solver.solve(v);
-        solve_constraints.set_zero(v);
-      }
+      // The factorisation is shared; the columns are independent and are
+      // solved in parallel chunks (UMFPACK's solve phase only reads it).
+      auto solve_range = [&](const std::size_t begin, const std::size_t end) {
+        for (std::size_t k = begin; k < end; ++k)
+          {
+            Vector<double> &v = rhs_and_solutions[k];
+            AssertDimension(v.size(), n_unknowns);
+            solve_constraints.set_zero(v);
+            direct_solver.solve(v);
+            solve_constraints.set_zero(v);
+          }
+      };
+      const std::size_t n = rhs_and_solutions.size();
+      const std::size_t n_chunks =
+        std::min<std::size_t>(MultithreadInfo::n_threads(), n);
+      if (n_chunks <= 1)
+        {
+          solve_range(0, n);
+          return;
+        }
+      Threads::TaskGroup<void> tasks;
+      for (std::size_t c = 0; c < n_chunks; ++c)
+        {
+          const std::size_t begin = c * n / n_chunks;
+          const std::size_t end   = (c + 1) * n / n_chunks;
+          tasks += Threads::new_task([&solve_range, begin, end]() {
+            solve_range(begin, end);
+          });
+        }
+      tasks.join_all();
     }
 
 

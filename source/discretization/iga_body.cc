@@ -33,25 +33,25 @@ namespace igabde
       {
         Tensor<1, dim> n;
         if constexpr (dim == 2)
-        {
-          if (d == 0)
           {
-            n[0] = J[1][1];
-            n[1] = -J[0][1];
+            if (d == 0)
+              {
+                n[0] = J[1][1];
+                n[1] = -J[0][1];
+              }
+            else
+              {
+                n[0] = -J[1][0];
+                n[1] = J[0][0];
+              }
           }
-          else
-          {
-            n[0] = -J[1][0];
-            n[1] = J[0][0];
-          }
-        }
         else
-        {
-          const unsigned int d1 = (d + 1) % 3, d2 = (d + 2) % 3;
-          n[0] = J[1][d1] * J[2][d2] - J[2][d1] * J[1][d2];
-          n[1] = J[2][d1] * J[0][d2] - J[0][d1] * J[2][d2];
-          n[2] = J[0][d1] * J[1][d2] - J[1][d1] * J[0][d2];
-        }
+          {
+            const unsigned int d1 = (d + 1) % 3, d2 = (d + 2) % 3;
+            n[0] = J[1][d1] * J[2][d2] - J[2][d1] * J[1][d2];
+            n[1] = J[2][d1] * J[0][d2] - J[0][d1] * J[2][d2];
+            n[2] = J[0][d1] * J[1][d2] - J[1][d1] * J[0][d2];
+          }
         return n;
       }
 
@@ -73,10 +73,10 @@ namespace igabde
       {
         std::array<unsigned int, dim> a;
         for (unsigned int d = 0; d < dim; ++d)
-        {
-          a[d] = l % n[d];
-          l /= n[d];
-        }
+          {
+            a[d] = l % n[d];
+            l /= n[d];
+          }
         return a;
       }
     } // namespace
@@ -103,24 +103,24 @@ namespace igabde
       nurbs::make_parametric_triangulation(geometry, parametric_mesh);
 
       for (unsigned int d = 0; d < dim; ++d)
-      {
-        const nurbs::KnotVector &kv = geometry.knot_vector(d);
-        extraction[d]               = kv.bezier_extraction_operators();
-        breaks[d]                   = kv.breakpoints();
-        span_knot_index[d].resize(kv.n_spans());
-        for (unsigned int e = 0; e < kv.n_spans(); ++e)
-          span_knot_index[d][e] = kv.span_knot_index(e);
-        bernstein[d] = generate_complete_bernstein_basis<double>(kv.degree());
-      }
+        {
+          const nurbs::KnotVector &kv = geometry.knot_vector(d);
+          extraction[d]               = kv.bezier_extraction_operators();
+          breaks[d]                   = kv.breakpoints();
+          span_knot_index[d].resize(kv.n_spans());
+          for (unsigned int e = 0; e < kv.n_spans(); ++e)
+            span_knot_index[d][e] = kv.span_knot_index(e);
+          bernstein[d] = generate_complete_bernstein_basis<double>(kv.degree());
+        }
       orientation = geometry.orientation();
 
       Point<dim> lo = geometry.control_point(0), hi = lo;
       for (unsigned int a = 0; a < geometry.n_control_points(); ++a)
         for (unsigned int d = 0; d < dim; ++d)
-        {
-          lo[d] = std::min(lo[d], geometry.control_point(a)[d]);
-          hi[d] = std::max(hi[d], geometry.control_point(a)[d]);
-        }
+          {
+            lo[d] = std::min(lo[d], geometry.control_point(a)[d]);
+            hi[d] = std::max(hi[d], geometry.control_point(a)[d]);
+          }
       diameter = (hi - lo).norm();
 
       // Newton starts for the point inversion: breakpoints and span
@@ -128,27 +128,27 @@ namespace igabde
       std::array<std::vector<double>, dim> samples;
       unsigned int                         n_samples = 1;
       for (unsigned int d = 0; d < dim; ++d)
-      {
-        for (unsigned int e = 0; e + 1 < breaks[d].size(); ++e)
         {
-          samples[d].push_back(breaks[d][e]);
-          samples[d].push_back(0.5 * (breaks[d][e] + breaks[d][e + 1]));
+          for (unsigned int e = 0; e + 1 < breaks[d].size(); ++e)
+            {
+              samples[d].push_back(breaks[d][e]);
+              samples[d].push_back(0.5 * (breaks[d][e] + breaks[d][e + 1]));
+            }
+          samples[d].push_back(breaks[d].back());
+          n_samples *= samples[d].size();
         }
-        samples[d].push_back(breaks[d].back());
-        n_samples *= samples[d].size();
-      }
       sample_parametric.resize(n_samples);
       sample_physical.resize(n_samples);
       for (unsigned int s = 0; s < n_samples; ++s)
-      {
-        unsigned int rest = s;
-        for (unsigned int d = 0; d < dim; ++d)
         {
-          sample_parametric[s][d] = samples[d][rest % samples[d].size()];
-          rest /= samples[d].size();
+          unsigned int rest = s;
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              sample_parametric[s][d] = samples[d][rest % samples[d].size()];
+              rest /= samples[d].size();
+            }
+          sample_physical[s] = geometry.value(sample_parametric[s]);
         }
-        sample_physical[s] = geometry.value(sample_parametric[s]);
-      }
     }
 
 
@@ -234,21 +234,21 @@ namespace igabde
       std::array<unsigned int, dim> n_1d;
       unsigned int                  n_local = 1;
       for (unsigned int d = 0; d < dim; ++d)
-      {
-        n_1d[d] = geometry.degree(d) + 1;
-        n_local *= n_1d[d];
-      }
+        {
+          n_1d[d] = geometry.degree(d) + 1;
+          n_local *= n_1d[d];
+        }
       const Tensor<1, dim> h = span_lengths(span);
 
       result.control_points.resize(n_local);
       for (unsigned int l = 0; l < n_local; ++l)
-      {
-        const auto                    a = local_index<dim>(l, n_1d);
-        std::array<unsigned int, dim> global;
-        for (unsigned int d = 0; d < dim; ++d)
-          global[d] = span_knot_index[d][span[d]] - geometry.degree(d) + a[d];
-        result.control_points[l] = geometry.control_point_index(global);
-      }
+        {
+          const auto                    a = local_index<dim>(l, n_1d);
+          std::array<unsigned int, dim> global;
+          for (unsigned int d = 0; d < dim; ++d)
+            global[d] = span_knot_index[d][span[d]] - geometry.degree(d) + a[d];
+          result.control_points[l] = geometry.control_point_index(global);
+        }
 
       const unsigned int n_q = reference.size();
       result.values.resize(n_q);
@@ -261,75 +261,75 @@ namespace igabde
       std::vector<double>                  bv(2);
       std::vector<double>                  B, dB;
       for (unsigned int q = 0; q < n_q; ++q)
-      {
-        // 1D B-splines on the span: N = C^e B (Bernstein on [0, 1]).
-        for (unsigned int d = 0; d < dim; ++d)
         {
-          const unsigned int        p = geometry.degree(d);
-          const FullMatrix<double> &C = extraction[d][span[d]];
-          B.resize(p + 1);
-          dB.resize(p + 1);
-          for (unsigned int j = 0; j <= p; ++j)
-          {
-            bernstein[d][j].value(reference[q][d], bv);
-            B[j]  = bv[0];
-            dB[j] = bv[1];
-          }
-          N[d].assign(p + 1, 0.);
-          dN[d].assign(p + 1, 0.);
-          for (unsigned int a = 0; a <= p; ++a)
-            for (unsigned int j = 0; j <= p; ++j)
-            {
-              N[d][a] += C(a, j) * B[j];
-              dN[d][a] += C(a, j) * dB[j] / h[d];
-            }
-          result.parametric_points[q][d] =
-            breaks[d][span[d]] + h[d] * reference[q][d];
-        }
-
-        // Tensor product, then the NURBS quotient rule.
-        auto &R  = result.values[q];
-        auto &dR = result.parametric_gradients[q];
-        R.resize(n_local);
-        dR.resize(n_local);
-        double         W = 0.;
-        Tensor<1, dim> dW;
-        for (unsigned int l = 0; l < n_local; ++l)
-        {
-          const auto   a = local_index<dim>(l, n_1d);
-          const double w = geometry.weight(result.control_points[l]);
-          double       v = w;
+          // 1D B-splines on the span: N = C^e B (Bernstein on [0, 1]).
           for (unsigned int d = 0; d < dim; ++d)
-            v *= N[d][a[d]];
-          Tensor<1, dim> g;
-          for (unsigned int b = 0; b < dim; ++b)
-          {
-            double gb = w;
-            for (unsigned int d = 0; d < dim; ++d)
-              gb *= (d == b ? dN[d][a[d]] : N[d][a[d]]);
-            g[b] = gb;
-          }
-          R[l]  = v;
-          dR[l] = g;
-          W += v;
-          dW += g;
+            {
+              const unsigned int        p = geometry.degree(d);
+              const FullMatrix<double> &C = extraction[d][span[d]];
+              B.resize(p + 1);
+              dB.resize(p + 1);
+              for (unsigned int j = 0; j <= p; ++j)
+                {
+                  bernstein[d][j].value(reference[q][d], bv);
+                  B[j]  = bv[0];
+                  dB[j] = bv[1];
+                }
+              N[d].assign(p + 1, 0.);
+              dN[d].assign(p + 1, 0.);
+              for (unsigned int a = 0; a <= p; ++a)
+                for (unsigned int j = 0; j <= p; ++j)
+                  {
+                    N[d][a] += C(a, j) * B[j];
+                    dN[d][a] += C(a, j) * dB[j] / h[d];
+                  }
+              result.parametric_points[q][d] =
+                breaks[d][span[d]] + h[d] * reference[q][d];
+            }
+
+          // Tensor product, then the NURBS quotient rule.
+          auto &R  = result.values[q];
+          auto &dR = result.parametric_gradients[q];
+          R.resize(n_local);
+          dR.resize(n_local);
+          double         W = 0.;
+          Tensor<1, dim> dW;
+          for (unsigned int l = 0; l < n_local; ++l)
+            {
+              const auto   a = local_index<dim>(l, n_1d);
+              const double w = geometry.weight(result.control_points[l]);
+              double       v = w;
+              for (unsigned int d = 0; d < dim; ++d)
+                v *= N[d][a[d]];
+              Tensor<1, dim> g;
+              for (unsigned int b = 0; b < dim; ++b)
+                {
+                  double gb = w;
+                  for (unsigned int d = 0; d < dim; ++d)
+                    gb *= (d == b ? dN[d][a[d]] : N[d][a[d]]);
+                  g[b] = gb;
+                }
+              R[l]  = v;
+              dR[l] = g;
+              W += v;
+              dW += g;
+            }
+          Point<dim>     x;
+          Tensor<2, dim> J;
+          for (unsigned int l = 0; l < n_local; ++l)
+            {
+              dR[l] = (dR[l] * W - R[l] * dW) / (W * W);
+              R[l] /= W;
+              const Point<dim> &P =
+                geometry.control_point(result.control_points[l]);
+              x += R[l] * P;
+              for (unsigned int i = 0; i < dim; ++i)
+                for (unsigned int j = 0; j < dim; ++j)
+                  J[i][j] += P[i] * dR[l][j];
+            }
+          result.points[q]    = x;
+          result.jacobians[q] = J;
         }
-        Point<dim>     x;
-        Tensor<2, dim> J;
-        for (unsigned int l = 0; l < n_local; ++l)
-        {
-          dR[l] = (dR[l] * W - R[l] * dW) / (W * W);
-          R[l] /= W;
-          const Point<dim> &P =
-            geometry.control_point(result.control_points[l]);
-          x += R[l] * P;
-          for (unsigned int i = 0; i < dim; ++i)
-            for (unsigned int j = 0; j < dim; ++j)
-              J[i][j] += P[i] * dR[l][j];
-        }
-        result.points[q]    = x;
-        result.jacobians[q] = J;
-      }
     }
 
 
@@ -346,15 +346,15 @@ namespace igabde
       points.resize(q.size());
       weights.resize(q.size());
       for (unsigned int i = 0; i < q.size(); ++i)
-      {
-        unsigned int k = 0;
-        for (unsigned int e = 0; e < dim; ++e)
-          if (e == d)
-            points[i][e] = (face % 2 == 0 ? 0. : 1.);
-          else
-            points[i][e] = q.point(i)[k++];
-        weights[i] = q.weight(i);
-      }
+        {
+          unsigned int k = 0;
+          for (unsigned int e = 0; e < dim; ++e)
+            if (e == d)
+              points[i][e] = (face % 2 == 0 ? 0. : 1.);
+            else
+              points[i][e] = q.point(i)[k++];
+          weights[i] = q.weight(i);
+        }
     }
 
 
@@ -386,10 +386,10 @@ namespace igabde
       this->dof_components.resize(this->n_unknowns);
       for (unsigned int a = 0; a < n_cp; ++a)
         for (unsigned int c = 0; c < dim; ++c)
-        {
-          this->dof_locations[dim * a + c]  = geometry.control_point(a);
-          this->dof_components[dim * a + c] = c;
-        }
+          {
+            this->dof_locations[dim * a + c]  = geometry.control_point(a);
+            this->dof_components[dim * a + c] = c;
+          }
 
       // Supports: with open knot vectors only the face's control points
       // have a nonzero trace there, and sum R = 1 makes a constant value
@@ -399,56 +399,56 @@ namespace igabde
       this->prescribed_constraints.clear();
       std::map<types::global_dof_index, double> values;
       for (const auto &bc : this->body_description.dirichlet)
-      {
-        AssertThrow(bc.boundary_id < 2 * dim,
-                    ExcMessage("Body '" + name + "': Dirichlet face " +
-                               std::to_string(bc.boundary_id) +
-                               " does not exist; patch faces are 0.." +
-                               std::to_string(2 * dim - 1) + "."));
-        for (const unsigned int a :
-             geometry.face_control_points(bc.boundary_id))
-          for (unsigned int c = 0; c < dim; ++c)
-            if (bc.components[c])
-            {
-              const types::global_dof_index i  = dim * a + c;
-              const auto                    it = values.find(i);
-              if (it != values.end())
-                AssertThrow(std::abs(it->second - bc.value[c]) <=
-                              1e-12 * std::max(1., std::abs(bc.value[c])),
-                            ExcMessage(
-                              "Body '" + name +
-                              "': two supports prescribe different "
-                              "values of component " +
-                              std::to_string(c) +
-                              " where their faces meet (face " +
-                              std::to_string(bc.boundary_id) +
-                              "); make them agree on the common edge."));
-              values[i] = bc.value[c];
-            }
-      }
+        {
+          AssertThrow(bc.boundary_id < 2 * dim,
+                      ExcMessage("Body '" + name + "': Dirichlet face " +
+                                 std::to_string(bc.boundary_id) +
+                                 " does not exist; patch faces are 0.." +
+                                 std::to_string(2 * dim - 1) + "."));
+          for (const unsigned int a :
+               geometry.face_control_points(bc.boundary_id))
+            for (unsigned int c = 0; c < dim; ++c)
+              if (bc.components[c])
+                {
+                  const types::global_dof_index i  = dim * a + c;
+                  const auto                    it = values.find(i);
+                  if (it != values.end())
+                    AssertThrow(std::abs(it->second - bc.value[c]) <=
+                                  1e-12 * std::max(1., std::abs(bc.value[c])),
+                                ExcMessage(
+                                  "Body '" + name +
+                                  "': two supports prescribe different "
+                                  "values of component " +
+                                  std::to_string(c) +
+                                  " where their faces meet (face " +
+                                  std::to_string(bc.boundary_id) +
+                                  "); make them agree on the common edge."));
+                  values[i] = bc.value[c];
+                }
+        }
       for (const auto &[i, v] : values)
-      {
-        this->constraints.add_line(i);
-        this->prescribed_constraints.add_line(i);
-        this->prescribed_constraints.set_inhomogeneity(i, v);
-      }
+        {
+          this->constraints.add_line(i);
+          this->prescribed_constraints.add_line(i);
+          this->prescribed_constraints.set_inhomogeneity(i, v);
+        }
       this->constraints.close();
       this->prescribed_constraints.close();
 
       DynamicSparsityPattern dsp(this->n_unknowns, this->n_unknowns);
       CellEvaluation         eval;
       for (const auto &cell : parametric_mesh.active_cell_iterators())
-      {
-        const auto span = nurbs::span_of_point<dim>(breaks, cell->center());
-        evaluate_cell(span, {}, eval);
-        std::vector<types::global_dof_index> dofs;
-        for (const unsigned int a : eval.control_points)
-          for (unsigned int c = 0; c < dim; ++c)
-            dofs.push_back(dim * a + c);
-        std::sort(dofs.begin(), dofs.end());
-        for (const auto i : dofs)
-          dsp.add_entries(i, dofs.begin(), dofs.end(), true);
-      }
+        {
+          const auto span = nurbs::span_of_point<dim>(breaks, cell->center());
+          evaluate_cell(span, {}, eval);
+          std::vector<types::global_dof_index> dofs;
+          for (const unsigned int a : eval.control_points)
+            for (unsigned int c = 0; c < dim; ++c)
+              dofs.push_back(dim * a + c);
+          std::sort(dofs.begin(), dofs.end());
+          for (const auto i : dofs)
+            dsp.add_entries(i, dofs.begin(), dofs.end(), true);
+        }
       this->sparsity.copy_from(dsp);
     }
 
@@ -489,101 +489,102 @@ namespace igabde
       auto worker =
         [&](const typename Triangulation<dim>::active_cell_iterator &cell,
             Scratch                                                 &scratch,
-            Copy                                                    &copy)
-      {
-        const auto span = nurbs::span_of_point<dim>(breaks, cell->center());
-        const Tensor<1, dim> h     = span_lengths(span);
-        double               hprod = 1.;
-        for (unsigned int d = 0; d < dim; ++d)
-          hprod *= h[d];
+            Copy                                                    &copy) {
+          const auto span = nurbs::span_of_point<dim>(breaks, cell->center());
+          const Tensor<1, dim> h     = span_lengths(span);
+          double               hprod = 1.;
+          for (unsigned int d = 0; d < dim; ++d)
+            hprod *= h[d];
 
-        CellEvaluation &ev = scratch.eval;
-        evaluate_cell(span, quadrature.get_points(), ev);
-        const unsigned int n_local = ev.control_points.size();
-        const unsigned int n_dofs  = dim * n_local;
-        copy.matrix.reinit(n_dofs, n_dofs);
-        copy.rhs.reinit(n_dofs);
-        copy.dofs.resize(n_dofs);
-        for (unsigned int l = 0; l < n_local; ++l)
-          for (unsigned int c = 0; c < dim; ++c)
-            copy.dofs[dim * l + c] = dim * ev.control_points[l] + c;
-
-        std::vector<SymmetricTensor<2, dim>> eps(n_dofs);
-        for (unsigned int q = 0; q < quadrature.size(); ++q)
-        {
-          const Tensor<2, dim> &J    = ev.jacobians[q];
-          const double          detJ = determinant(J);
-          AssertThrow(detJ * orientation > 0.,
-                      ExcMessage("Body '" + desc.name +
-                                 "': the NURBS map folds or degenerates "
-                                 "inside a knot span (det J = " +
-                                 std::to_string(detJ) +
-                                 "); check the control net."));
-          const double JxW = std::abs(detJ) * hprod * quadrature.weight(q);
-          const Tensor<2, dim> Jinv = invert(J);
+          CellEvaluation &ev = scratch.eval;
+          evaluate_cell(span, quadrature.get_points(), ev);
+          const unsigned int n_local = ev.control_points.size();
+          const unsigned int n_dofs  = dim * n_local;
+          copy.matrix.reinit(n_dofs, n_dofs);
+          copy.rhs.reinit(n_dofs);
+          copy.dofs.resize(n_dofs);
           for (unsigned int l = 0; l < n_local; ++l)
-          {
-            const Tensor<1, dim> g =
-              transpose(Jinv) * ev.parametric_gradients[q][l];
             for (unsigned int c = 0; c < dim; ++c)
-              eps[dim * l + c] = basis_strain<dim>(g, c);
-          }
-          for (unsigned int i = 0; i < n_dofs; ++i)
-          {
-            const SymmetricTensor<2, dim> Ceps = C * eps[i];
-            for (unsigned int j = i; j < n_dofs; ++j)
-              copy.matrix(i, j) += (Ceps * eps[j]) * JxW;
-          }
-          if (has_body_force)
-            for (unsigned int l = 0; l < n_local; ++l)
-              for (unsigned int c = 0; c < dim; ++c)
-                copy.rhs[dim * l + c] += ev.values[q][l] * body_force[c] * JxW;
-        }
-        for (unsigned int i = 0; i < n_dofs; ++i)
-          for (unsigned int j = 0; j < i; ++j)
-            copy.matrix(i, j) = copy.matrix(j, i);
+              copy.dofs[dim * l + c] = dim * ev.control_points[l] + c;
 
-        // Tractions on the patch faces this span touches.
-        for (const unsigned int f : cell->face_indices())
-          if (cell->face(f)->at_boundary())
-            for (const auto &neumann : desc.tractions)
-              if (neumann.boundary_id == cell->face(f)->boundary_id())
-              {
-                const unsigned int      face = neumann.boundary_id;
-                std::vector<Point<dim>> points;
-                std::vector<double>     weights;
-                face_rule(face, n_face_1d, points, weights);
-                double hface = 1.;
-                for (unsigned int d = 0; d < dim; ++d)
-                  if (d != face / 2)
-                    hface *= h[d];
-                CellEvaluation &fe = scratch.face_eval;
-                evaluate_cell(span, points, fe);
-                for (unsigned int q = 0; q < points.size(); ++q)
+          std::vector<SymmetricTensor<2, dim>> eps(n_dofs);
+          for (unsigned int q = 0; q < quadrature.size(); ++q)
+            {
+              const Tensor<2, dim> &J    = ev.jacobians[q];
+              const double          detJ = determinant(J);
+              AssertThrow(detJ * orientation > 0.,
+                          ExcMessage("Body '" + desc.name +
+                                     "': the NURBS map folds or degenerates "
+                                     "inside a knot span (det J = " +
+                                     std::to_string(detJ) +
+                                     "); check the control net."));
+              const double JxW = std::abs(detJ) * hprod * quadrature.weight(q);
+              const Tensor<2, dim> Jinv = invert(J);
+              for (unsigned int l = 0; l < n_local; ++l)
                 {
-                  const auto [ds, n] =
-                    face_measure_and_normal(face, fe.jacobians[q]);
-                  if (ds == 0.)
-                    continue;
-                  const Tensor<1, dim> t  = neumann.traction(fe.points[q], n);
-                  const double         dA = ds * hface * weights[q];
-                  for (unsigned int l = 0; l < n_local; ++l)
-                    for (unsigned int c = 0; c < dim; ++c)
-                      copy.rhs[dim * l + c] += fe.values[q][l] * t[c] * dA;
+                  const Tensor<1, dim> g =
+                    transpose(Jinv) * ev.parametric_gradients[q][l];
+                  for (unsigned int c = 0; c < dim; ++c)
+                    eps[dim * l + c] = basis_strain<dim>(g, c);
                 }
-              }
-      };
+              for (unsigned int i = 0; i < n_dofs; ++i)
+                {
+                  const SymmetricTensor<2, dim> Ceps = C * eps[i];
+                  for (unsigned int j = i; j < n_dofs; ++j)
+                    copy.matrix(i, j) += (Ceps * eps[j]) * JxW;
+                }
+              if (has_body_force)
+                for (unsigned int l = 0; l < n_local; ++l)
+                  for (unsigned int c = 0; c < dim; ++c)
+                    copy.rhs[dim * l + c] +=
+                      ev.values[q][l] * body_force[c] * JxW;
+            }
+          for (unsigned int i = 0; i < n_dofs; ++i)
+            for (unsigned int j = 0; j < i; ++j)
+              copy.matrix(i, j) = copy.matrix(j, i);
 
-      auto copier = [&](const Copy &copy)
-      {
+          // Tractions on the patch faces this span touches.
+          for (const unsigned int f : cell->face_indices())
+            if (cell->face(f)->at_boundary())
+              for (const auto &neumann : desc.tractions)
+                if (neumann.boundary_id == cell->face(f)->boundary_id())
+                  {
+                    const unsigned int      face = neumann.boundary_id;
+                    std::vector<Point<dim>> points;
+                    std::vector<double>     weights;
+                    face_rule(face, n_face_1d, points, weights);
+                    double hface = 1.;
+                    for (unsigned int d = 0; d < dim; ++d)
+                      if (d != face / 2)
+                        hface *= h[d];
+                    CellEvaluation &fe = scratch.face_eval;
+                    evaluate_cell(span, points, fe);
+                    for (unsigned int q = 0; q < points.size(); ++q)
+                      {
+                        const auto [ds, n] =
+                          face_measure_and_normal(face, fe.jacobians[q]);
+                        if (ds == 0.)
+                          continue;
+                        const Tensor<1, dim> t =
+                          neumann.traction(fe.points[q], n);
+                        const double dA = ds * hface * weights[q];
+                        for (unsigned int l = 0; l < n_local; ++l)
+                          for (unsigned int c = 0; c < dim; ++c)
+                            copy.rhs[dim * l + c] +=
+                              fe.values[q][l] * t[c] * dA;
+                      }
+                  }
+        };
+
+      auto copier = [&](const Copy &copy) {
         for (unsigned int i = 0; i < copy.dofs.size(); ++i)
-        {
-          for (unsigned int j = 0; j < copy.dofs.size(); ++j)
-            this->system_matrix.add(copy.dofs[i],
-                                    copy.dofs[j],
-                                    copy.matrix(i, j));
-          this->load_rhs[copy.dofs[i]] += copy.rhs[i];
-        }
+          {
+            for (unsigned int j = 0; j < copy.dofs.size(); ++j)
+              this->system_matrix.add(copy.dofs[i],
+                                      copy.dofs[j],
+                                      copy.matrix(i, j));
+            this->load_rhs[copy.dofs[i]] += copy.rhs[i];
+          }
       };
 
       WorkStream::run(parametric_mesh.begin_active(),
@@ -607,28 +608,28 @@ namespace igabde
       unsigned int best   = 0;
       double       best_d = std::numeric_limits<double>::max();
       for (unsigned int s = 0; s < sample_physical.size(); ++s)
-      {
-        const double d = (sample_physical[s] - location).norm_square();
-        if (d < best_d)
         {
-          best_d = d;
-          best   = s;
+          const double d = (sample_physical[s] - location).norm_square();
+          if (d < best_d)
+            {
+              best_d = d;
+              best   = s;
+            }
         }
-      }
       double           distance = 0.;
       const Point<dim> xi =
         geometry.closest_parametric_point(location,
                                           &sample_parametric[best],
                                           &distance);
       if (distance > 1e-8 * diameter)
-      {
-        std::ostringstream s;
-        s << "Body '" << this->body_description.name << "': the point ("
-          << location << ") is not in the body (distance " << distance
-          << " from its closest point (" << geometry.value(xi)
-          << ")); point loads and probes must lie in or on the body.";
-        AssertThrow(false, ExcMessage(s.str()));
-      }
+        {
+          std::ostringstream s;
+          s << "Body '" << this->body_description.name << "': the point ("
+            << location << ") is not in the body (distance " << distance
+            << " from its closest point (" << geometry.value(xi)
+            << ")); point loads and probes must lie in or on the body.";
+          AssertThrow(false, ExcMessage(s.str()));
+        }
       return xi;
     }
 
@@ -698,42 +699,42 @@ namespace igabde
 
       auto integrate = [&](const unsigned int       n_1d,
                            std::vector<Point<dim>> *points_out,
-                           std::vector<double>     *weights_out)
-      {
+                           std::vector<double>     *weights_out) {
         face_rule(face, n_1d, face_ref, face_w);
         CellEvaluation ev;
         for (const auto &cell : parametric_mesh.active_cell_iterators())
           for (const unsigned int f : cell->face_indices())
             if (cell->face(f)->at_boundary() &&
                 cell->face(f)->boundary_id() == face)
-            {
-              const auto span =
-                nurbs::span_of_point<dim>(breaks, cell->center());
-              const Tensor<1, dim> h     = span_lengths(span);
-              double               hface = 1.;
-              for (unsigned int e = 0; e < dim; ++e)
-                if (e != d)
-                  hface *= h[e];
-              evaluate_cell(span, face_ref, ev);
-              for (unsigned int q = 0; q < face_ref.size(); ++q)
               {
-                const double dA =
-                  face_measure_and_normal(face, ev.jacobians[q]).first * hface *
-                  face_w[q];
-                if (points_out != nullptr)
-                {
-                  points_out->push_back(ev.parametric_points[q]);
-                  weights_out->push_back(dA);
-                }
-                else
-                  for (unsigned int l = 0; l < ev.control_points.size(); ++l)
+                const auto span =
+                  nurbs::span_of_point<dim>(breaks, cell->center());
+                const Tensor<1, dim> h     = span_lengths(span);
+                double               hface = 1.;
+                for (unsigned int e = 0; e < dim; ++e)
+                  if (e != d)
+                    hface *= h[e];
+                evaluate_cell(span, face_ref, ev);
+                for (unsigned int q = 0; q < face_ref.size(); ++q)
                   {
-                    const auto it = local_of.find(ev.control_points[l]);
-                    if (it != local_of.end())
-                      integrals[it->second] += ev.values[q][l] * dA;
+                    const double dA =
+                      face_measure_and_normal(face, ev.jacobians[q]).first *
+                      hface * face_w[q];
+                    if (points_out != nullptr)
+                      {
+                        points_out->push_back(ev.parametric_points[q]);
+                        weights_out->push_back(dA);
+                      }
+                    else
+                      for (unsigned int l = 0; l < ev.control_points.size();
+                           ++l)
+                        {
+                          const auto it = local_of.find(ev.control_points[l]);
+                          if (it != local_of.end())
+                            integrals[it->second] += ev.values[q][l] * dA;
+                        }
                   }
               }
-            }
       };
 
       // The points, in the face's lexicographic order.
@@ -741,68 +742,68 @@ namespace igabde
       if (placement == PairPlacement::gauss)
         integrate(p + 1, &xis, &qweights);
       else
-      {
-        std::array<std::vector<double>, dim> coords;
-        for (unsigned int e = 0; e < dim; ++e)
-          if (e == d)
-            coords[e] = {fixed};
-          else if (placement == PairPlacement::greville)
-            coords[e] = geometry.knot_vector(e).greville_abscissae();
-          else
-            coords[e] = breaks[e];
-        unsigned int n = 1;
-        for (unsigned int e = 0; e < dim; ++e)
-          n *= coords[e].size();
-        for (unsigned int s = 0; s < n; ++s)
         {
-          Point<dim>   xi;
-          unsigned int rest = s;
+          std::array<std::vector<double>, dim> coords;
           for (unsigned int e = 0; e < dim; ++e)
-          {
-            xi[e] = coords[e][rest % coords[e].size()];
-            rest /= coords[e].size();
-          }
-          xis.push_back(xi);
+            if (e == d)
+              coords[e] = {fixed};
+            else if (placement == PairPlacement::greville)
+              coords[e] = geometry.knot_vector(e).greville_abscissae();
+            else
+              coords[e] = breaks[e];
+          unsigned int n = 1;
+          for (unsigned int e = 0; e < dim; ++e)
+            n *= coords[e].size();
+          for (unsigned int s = 0; s < n; ++s)
+            {
+              Point<dim>   xi;
+              unsigned int rest = s;
+              for (unsigned int e = 0; e < dim; ++e)
+                {
+                  xi[e] = coords[e][rest % coords[e].size()];
+                  rest /= coords[e].size();
+                }
+              xis.push_back(xi);
+            }
         }
-      }
 
       std::vector<SurfacePoint<dim>> result(xis.size());
       for (unsigned int i = 0; i < xis.size(); ++i)
-      {
-        result[i].parametric = xis[i];
-        result[i].location   = geometry.value(xis[i]);
-        result[i].normal =
-          face_measure_and_normal(face, geometry.jacobian(xis[i])).second;
-        result[i].op = parametric_point_operator(xis[i]);
-      }
+        {
+          result[i].parametric = xis[i];
+          result[i].location   = geometry.value(xis[i]);
+          result[i].normal =
+            face_measure_and_normal(face, geometry.jacobian(xis[i])).second;
+          result[i].op = parametric_point_operator(xis[i]);
+        }
 
       if (placement == PairPlacement::gauss)
-      {
-        for (unsigned int i = 0; i < xis.size(); ++i)
-          result[i].tributary_area = qweights[i];
-        return result;
-      }
+        {
+          for (unsigned int i = 0; i < xis.size(); ++i)
+            result[i].tributary_area = qweights[i];
+          return result;
+        }
 
       integrate(n_quadrature_points_1d() + 1, nullptr, nullptr);
       Eigen::MatrixXd M = Eigen::MatrixXd::Zero(face_cps.size(), xis.size());
       for (unsigned int i = 0; i < xis.size(); ++i)
         for (unsigned int k = 0; k < result[i].op.weights.size(); ++k)
-        {
-          const auto it = local_of.find(result[i].op.dofs[k][0] / dim);
-          if (it != local_of.end())
-            M(it->second, i) += result[i].op.weights[k];
-        }
+          {
+            const auto it = local_of.find(result[i].op.dofs[k][0] / dim);
+            if (it != local_of.end())
+              M(it->second, i) += result[i].op.weights[k];
+          }
       Eigen::VectorXd areas;
       if (placement == PairPlacement::greville)
-      {
-        Eigen::FullPivLU<Eigen::MatrixXd> lu(M);
-        AssertThrow(lu.isInvertible(),
-                    ExcMessage("Body '" + this->body_description.name +
-                               "': the Greville collocation matrix of face " +
-                               std::to_string(face) +
-                               " is singular; this should not happen."));
-        areas = lu.solve(integrals);
-      }
+        {
+          Eigen::FullPivLU<Eigen::MatrixXd> lu(M);
+          AssertThrow(lu.isInvertible(),
+                      ExcMessage("Body '" + this->body_description.name +
+                                 "': the Greville collocation matrix of face " +
+                                 std::to_string(face) +
+                                 " is singular; this should not happen."));
+          areas = lu.solve(integrals);
+        }
       else
         areas = M.completeOrthogonalDecomposition().solve(integrals);
       for (unsigned int i = 0; i < xis.size(); ++i)
@@ -830,45 +831,45 @@ namespace igabde
       double         e_l2 = 0., u_l2 = 0., e_en = 0., u_en = 0., vol = 0.;
       CellEvaluation ev;
       for (const auto &cell : parametric_mesh.active_cell_iterators())
-      {
-        const auto span = nurbs::span_of_point<dim>(breaks, cell->center());
-        const Tensor<1, dim> h     = span_lengths(span);
-        double               hprod = 1.;
-        for (unsigned int d = 0; d < dim; ++d)
-          hprod *= h[d];
-        evaluate_cell(span, quadrature.get_points(), ev);
-        for (unsigned int q = 0; q < quadrature.size(); ++q)
         {
-          const Tensor<2, dim> &J = ev.jacobians[q];
-          const double          JxW =
-            std::abs(determinant(J)) * hprod * quadrature.weight(q);
-          const Tensor<2, dim>    Jinv = invert(J);
-          Tensor<1, dim>          uh;
-          SymmetricTensor<2, dim> eps;
-          for (unsigned int l = 0; l < ev.control_points.size(); ++l)
-          {
-            const Tensor<1, dim> g =
-              transpose(Jinv) * ev.parametric_gradients[q][l];
-            for (unsigned int c = 0; c < dim; ++c)
+          const auto span = nurbs::span_of_point<dim>(breaks, cell->center());
+          const Tensor<1, dim> h     = span_lengths(span);
+          double               hprod = 1.;
+          for (unsigned int d = 0; d < dim; ++d)
+            hprod *= h[d];
+          evaluate_cell(span, quadrature.get_points(), ev);
+          for (unsigned int q = 0; q < quadrature.size(); ++q)
             {
-              const double uc = u[dim * ev.control_points[l] + c];
-              uh[c] += ev.values[q][l] * uc;
-              eps += uc * basis_strain<dim>(g, c);
+              const Tensor<2, dim> &J = ev.jacobians[q];
+              const double          JxW =
+                std::abs(determinant(J)) * hprod * quadrature.weight(q);
+              const Tensor<2, dim>    Jinv = invert(J);
+              Tensor<1, dim>          uh;
+              SymmetricTensor<2, dim> eps;
+              for (unsigned int l = 0; l < ev.control_points.size(); ++l)
+                {
+                  const Tensor<1, dim> g =
+                    transpose(Jinv) * ev.parametric_gradients[q][l];
+                  for (unsigned int c = 0; c < dim; ++c)
+                    {
+                      const double uc = u[dim * ev.control_points[l] + c];
+                      uh[c] += ev.values[q][l] * uc;
+                      eps += uc * basis_strain<dim>(g, c);
+                    }
+                }
+              const Tensor<1, dim> ue = exact.displacement(ev.points[q]);
+              e_l2 += (ue - uh).norm_square() * JxW;
+              u_l2 += ue.norm_square() * JxW;
+              vol += JxW;
+              if (with_stress)
+                {
+                  const SymmetricTensor<2, dim> se = exact.stress(ev.points[q]);
+                  const SymmetricTensor<2, dim> ds = se - C * eps;
+                  e_en += (ds * (S * ds)) * JxW;
+                  u_en += (se * (S * se)) * JxW;
+                }
             }
-          }
-          const Tensor<1, dim> ue = exact.displacement(ev.points[q]);
-          e_l2 += (ue - uh).norm_square() * JxW;
-          u_l2 += ue.norm_square() * JxW;
-          vol += JxW;
-          if (with_stress)
-          {
-            const SymmetricTensor<2, dim> se = exact.stress(ev.points[q]);
-            const SymmetricTensor<2, dim> ds = se - C * eps;
-            e_en += (ds * (S * ds)) * JxW;
-            u_en += (se * (S * se)) * JxW;
-          }
         }
-      }
       ErrorNorms result;
       result.l2_relative     = std::sqrt(e_l2 / std::max(u_l2, 1e-300));
       result.energy_relative = with_stress ?
@@ -895,13 +896,13 @@ namespace igabde
       Point<dim>       xi     = xi_in;
       Tensor<2, dim>   J      = geometry.jacobian(xi);
       for (unsigned int k = 0; k < 8; ++k)
-      {
-        const double scale = std::pow(J.norm(), dim);
-        if (std::abs(determinant(J)) > 1e-10 * scale && scale > 0.)
-          break;
-        xi = xi + std::pow(10., -8. + k) * (centre - xi_in);
-        J  = geometry.jacobian(xi);
-      }
+        {
+          const double scale = std::pow(J.norm(), dim);
+          if (std::abs(determinant(J)) > 1e-10 * scale && scale > 0.)
+            break;
+          xi = xi + std::pow(10., -8. + k) * (centre - xi_in);
+          J  = geometry.jacobian(xi);
+        }
       std::vector<unsigned int>   indices;
       std::vector<double>         R;
       std::vector<Tensor<1, dim>> dR;
@@ -909,11 +910,11 @@ namespace igabde
       const Tensor<2, dim>    Jinv = invert(J);
       SymmetricTensor<2, dim> eps;
       for (unsigned int l = 0; l < indices.size(); ++l)
-      {
-        const Tensor<1, dim> g = transpose(Jinv) * dR[l];
-        for (unsigned int c = 0; c < dim; ++c)
-          eps += u[dim * indices[l] + c] * basis_strain<dim>(g, c);
-      }
+        {
+          const Tensor<1, dim> g = transpose(Jinv) * dR[l];
+          for (unsigned int c = 0; c < dim; ++c)
+            eps += u[dim * indices[l] + c] * basis_strain<dim>(g, c);
+        }
       return eps;
     }
 
@@ -942,17 +943,17 @@ namespace igabde
       double            vol = 0.;
       CellEvaluation    ev;
       for (const auto &cell : parametric_mesh.active_cell_iterators())
-      {
-        const auto span = nurbs::span_of_point<dim>(breaks, cell->center());
-        const Tensor<1, dim> h     = span_lengths(span);
-        double               hprod = 1.;
-        for (unsigned int d = 0; d < dim; ++d)
-          hprod *= h[d];
-        evaluate_cell(span, quadrature.get_points(), ev);
-        for (unsigned int q = 0; q < quadrature.size(); ++q)
-          vol += std::abs(determinant(ev.jacobians[q])) * hprod *
-                 quadrature.weight(q);
-      }
+        {
+          const auto span = nurbs::span_of_point<dim>(breaks, cell->center());
+          const Tensor<1, dim> h     = span_lengths(span);
+          double               hprod = 1.;
+          for (unsigned int d = 0; d < dim; ++d)
+            hprod *= h[d];
+          evaluate_cell(span, quadrature.get_points(), ev);
+          for (unsigned int q = 0; q < quadrature.size(); ++q)
+            vol += std::abs(determinant(ev.jacobians[q])) * hprod *
+                   quadrature.weight(q);
+        }
       return vol;
     }
 
@@ -983,14 +984,14 @@ namespace igabde
           n *= n1;
         ref.resize(n);
         for (unsigned int s = 0; s < n; ++s)
-        {
-          unsigned int rest = s;
-          for (unsigned int d = 0; d < dim; ++d)
           {
-            ref[s][d] = static_cast<double>(rest % n1) / n_sub;
-            rest /= n1;
+            unsigned int rest = s;
+            for (unsigned int d = 0; d < dim; ++d)
+              {
+                ref[s][d] = static_cast<double>(rest % n1) / n_sub;
+                rest /= n1;
+              }
           }
-        }
       }
 
       static const char       *axis = "xyz";
@@ -1014,76 +1015,79 @@ namespace igabde
       CellEvaluation                            ev;
       unsigned int                              index = 0;
       for (const auto &cell : parametric_mesh.active_cell_iterators())
-      {
-        const auto span = nurbs::span_of_point<dim>(breaks, cell->center());
-        evaluate_cell(span, ref, ev);
-        DataOutBase::Patch<dim, dim> patch;
-        patch.n_subdivisions       = n_sub;
-        patch.points_are_available = true;
-        patch.patch_index          = index++;
-        patch.reference_cell       = ReferenceCells::get_hypercube<dim>();
-        for (unsigned int v = 0; v < GeometryInfo<dim>::vertices_per_cell; ++v)
         {
-          unsigned int s = 0, stride = 1;
-          for (unsigned int d = 0; d < dim; ++d)
-          {
-            s += ((v >> d) & 1u) * n_sub * stride;
-            stride *= n_sub + 1;
-          }
-          patch.vertices[v] = ev.points[s];
-        }
-        patch.data.reinit(n_data + dim, ref.size());
-        for (unsigned int q = 0; q < ref.size(); ++q)
-        {
-          const Tensor<2, dim>   &J    = ev.jacobians[q];
-          const double            detJ = determinant(J);
-          Tensor<1, dim>          uh;
-          SymmetricTensor<2, dim> eps;
-          const bool regular = std::abs(detJ) > 1e-10 * std::pow(J.norm(), dim);
-          const Tensor<2, dim> Jinv = regular ? invert(J) : Tensor<2, dim>();
-          for (unsigned int l = 0; l < ev.control_points.size(); ++l)
-          {
-            const Tensor<1, dim> g =
-              transpose(Jinv) * ev.parametric_gradients[q][l];
-            for (unsigned int c = 0; c < dim; ++c)
+          const auto span = nurbs::span_of_point<dim>(breaks, cell->center());
+          evaluate_cell(span, ref, ev);
+          DataOutBase::Patch<dim, dim> patch;
+          patch.n_subdivisions       = n_sub;
+          patch.points_are_available = true;
+          patch.patch_index          = index++;
+          patch.reference_cell       = ReferenceCells::get_hypercube<dim>();
+          for (unsigned int v = 0; v < GeometryInfo<dim>::vertices_per_cell;
+               ++v)
             {
-              const double uc = u[dim * ev.control_points[l] + c];
-              uh[c] += ev.values[q][l] * uc;
-              if (regular)
-                eps += uc * basis_strain<dim>(g, c);
+              unsigned int s = 0, stride = 1;
+              for (unsigned int d = 0; d < dim; ++d)
+                {
+                  s += ((v >> d) & 1u) * n_sub * stride;
+                  stride *= n_sub + 1;
+                }
+              patch.vertices[v] = ev.points[s];
             }
-          }
-          if (!regular)
-            eps = strain_at_parametric(u, ev.parametric_points[q]);
-          const SymmetricTensor<2, dim> sigma = C * eps;
-          // Von Mises with the out-of-plane stress of plane strain.
-          const double s33 =
-            plane_strain ? nu * (sigma[0][0] + sigma[1][1]) : 0.;
-          const double tr = trace(sigma) + s33;
-          double       j2 = 0.;
-          for (unsigned int i = 0; i < dim; ++i)
-            for (unsigned int j = 0; j < dim; ++j)
+          patch.data.reinit(n_data + dim, ref.size());
+          for (unsigned int q = 0; q < ref.size(); ++q)
             {
-              const double dev = sigma[i][j] - (i == j ? tr / 3. : 0.);
-              j2 += dev * dev;
-            }
-          if (dim == 2)
-            j2 += (s33 - tr / 3.) * (s33 - tr / 3.);
-          const double vm = std::sqrt(1.5 * j2);
+              const Tensor<2, dim>   &J    = ev.jacobians[q];
+              const double            detJ = determinant(J);
+              Tensor<1, dim>          uh;
+              SymmetricTensor<2, dim> eps;
+              const bool              regular =
+                std::abs(detJ) > 1e-10 * std::pow(J.norm(), dim);
+              const Tensor<2, dim> Jinv =
+                regular ? invert(J) : Tensor<2, dim>();
+              for (unsigned int l = 0; l < ev.control_points.size(); ++l)
+                {
+                  const Tensor<1, dim> g =
+                    transpose(Jinv) * ev.parametric_gradients[q][l];
+                  for (unsigned int c = 0; c < dim; ++c)
+                    {
+                      const double uc = u[dim * ev.control_points[l] + c];
+                      uh[c] += ev.values[q][l] * uc;
+                      if (regular)
+                        eps += uc * basis_strain<dim>(g, c);
+                    }
+                }
+              if (!regular)
+                eps = strain_at_parametric(u, ev.parametric_points[q]);
+              const SymmetricTensor<2, dim> sigma = C * eps;
+              // Von Mises with the out-of-plane stress of plane strain.
+              const double s33 =
+                plane_strain ? nu * (sigma[0][0] + sigma[1][1]) : 0.;
+              const double tr = trace(sigma) + s33;
+              double       j2 = 0.;
+              for (unsigned int i = 0; i < dim; ++i)
+                for (unsigned int j = 0; j < dim; ++j)
+                  {
+                    const double dev = sigma[i][j] - (i == j ? tr / 3. : 0.);
+                    j2 += dev * dev;
+                  }
+              if (dim == 2)
+                j2 += (s33 - tr / 3.) * (s33 - tr / 3.);
+              const double vm = std::sqrt(1.5 * j2);
 
-          unsigned int row = 0;
-          for (unsigned int c = 0; c < dim; ++c)
-            patch.data(row++, q) = uh[c];
-          for (const auto &[i, j] : comps)
-            patch.data(row++, q) = eps[i][j];
-          for (const auto &[i, j] : comps)
-            patch.data(row++, q) = sigma[i][j];
-          patch.data(row++, q) = vm;
-          for (unsigned int d = 0; d < dim; ++d)
-            patch.data(row++, q) = ev.points[q][d];
+              unsigned int row = 0;
+              for (unsigned int c = 0; c < dim; ++c)
+                patch.data(row++, q) = uh[c];
+              for (const auto &[i, j] : comps)
+                patch.data(row++, q) = eps[i][j];
+              for (const auto &[i, j] : comps)
+                patch.data(row++, q) = sigma[i][j];
+              patch.data(row++, q) = vm;
+              for (unsigned int d = 0; d < dim; ++d)
+                patch.data(row++, q) = ev.points[q][d];
+            }
+          patches.push_back(std::move(patch));
         }
-        patches.push_back(std::move(patch));
-      }
 
       std::vector<
         std::tuple<unsigned int,

@@ -35,8 +35,7 @@ namespace igabde
       public:
         explicit StressPostprocessor(const SymmetricTensor<4, dim> &C)
           : C(C)
-        {
-        }
+        {}
 
         void
         evaluate_vector_field(
@@ -44,22 +43,22 @@ namespace igabde
           std::vector<Vector<double>> &computed_quantities) const override
         {
           for (unsigned int q = 0; q < inputs.solution_gradients.size(); ++q)
-          {
-            Tensor<2, dim> grad;
-            for (unsigned int c = 0; c < dim; ++c)
-              grad[c] = inputs.solution_gradients[q][c];
-            const SymmetricTensor<2, dim> eps   = symmetrize(grad);
-            const SymmetricTensor<2, dim> sigma = C * eps;
-            unsigned int                  k     = 0;
-            for (unsigned int i = 0; i < dim; ++i)
-              for (unsigned int j = i; j < dim; ++j)
-                computed_quantities[q][k++] = eps[i][j];
-            for (unsigned int i = 0; i < dim; ++i)
-              for (unsigned int j = i; j < dim; ++j)
-                computed_quantities[q][k++] = sigma[i][j];
-            const SymmetricTensor<2, dim> s = deviator(sigma);
-            computed_quantities[q][k]       = std::sqrt(1.5 * (s * s));
-          }
+            {
+              Tensor<2, dim> grad;
+              for (unsigned int c = 0; c < dim; ++c)
+                grad[c] = inputs.solution_gradients[q][c];
+              const SymmetricTensor<2, dim> eps   = symmetrize(grad);
+              const SymmetricTensor<2, dim> sigma = C * eps;
+              unsigned int                  k     = 0;
+              for (unsigned int i = 0; i < dim; ++i)
+                for (unsigned int j = i; j < dim; ++j)
+                  computed_quantities[q][k++] = eps[i][j];
+              for (unsigned int i = 0; i < dim; ++i)
+                for (unsigned int j = i; j < dim; ++j)
+                  computed_quantities[q][k++] = sigma[i][j];
+              const SymmetricTensor<2, dim> s = deviator(sigma);
+              computed_quantities[q][k]       = std::sqrt(1.5 * (s * s));
+            }
         }
 
         std::vector<std::string>
@@ -143,19 +142,19 @@ namespace igabde
       {
         std::vector<types::global_dof_index> local(fe.n_dofs_per_cell());
         for (const auto &cell : dof_handler.active_cell_iterators())
-        {
-          cell->get_dof_indices(local);
-          for (unsigned int i = 0; i < local.size(); ++i)
-            this->dof_components[local[i]] =
-              fe.system_to_component_index(i).first;
-        }
+          {
+            cell->get_dof_indices(local);
+            for (unsigned int i = 0; i < local.size(); ++i)
+              this->dof_components[local[i]] =
+                fe.system_to_component_index(i).first;
+          }
       }
       for (types::global_dof_index i = 0; i < this->n_unknowns; ++i)
-      {
-        const Point<dim> x     = patch.value(parametric[i]);
-        euler_vector[i]        = x[this->dof_components[i]];
-        this->dof_locations[i] = x;
-      }
+        {
+          const Point<dim> x     = patch.value(parametric[i]);
+          euler_vector[i]        = x[this->dof_components[i]];
+          this->dof_locations[i] = x;
+        }
       mapping =
         std::make_unique<MappingFEField<dim, dim>>(dof_handler, euler_vector);
 
@@ -163,22 +162,22 @@ namespace igabde
       this->constraints.clear();
       this->prescribed_constraints.clear();
       for (const auto &bc : this->body_description.dirichlet)
-      {
-        std::vector<bool> mask(bc.components.begin(), bc.components.end());
-        const IndexSet    dofs =
-          DoFTools::extract_boundary_dofs(dof_handler,
-                                          ComponentMask(mask),
-                                          {bc.boundary_id});
-        for (const auto i : dofs)
         {
-          if (!this->constraints.is_constrained(i))
-            this->constraints.add_line(i);
-          if (!this->prescribed_constraints.is_constrained(i))
-            this->prescribed_constraints.add_line(i);
-          this->prescribed_constraints
-            .set_inhomogeneity(i, bc.value[this->dof_components[i]]);
+          std::vector<bool> mask(bc.components.begin(), bc.components.end());
+          const IndexSet    dofs =
+            DoFTools::extract_boundary_dofs(dof_handler,
+                                            ComponentMask(mask),
+                                            {bc.boundary_id});
+          for (const auto i : dofs)
+            {
+              if (!this->constraints.is_constrained(i))
+                this->constraints.add_line(i);
+              if (!this->prescribed_constraints.is_constrained(i))
+                this->prescribed_constraints.add_line(i);
+              this->prescribed_constraints
+                .set_inhomogeneity(i, bc.value[this->dof_components[i]]);
+            }
         }
-      }
       this->constraints.close();
       this->prescribed_constraints.close();
 
@@ -207,8 +206,7 @@ namespace igabde
                            QGauss<dim - 1>(degree + 1),
                            update_values | update_quadrature_points |
                              update_normal_vectors | update_JxW_values)
-        {
-        }
+        {}
 
         ScratchData(const ScratchData &other)
           : fe_values(other.fe_values.get_mapping(),
@@ -219,8 +217,7 @@ namespace igabde
                            other.fe_face_values.get_fe(),
                            other.fe_face_values.get_quadrature(),
                            other.fe_face_values.get_update_flags())
-        {
-        }
+        {}
 
         FEValues<dim>     fe_values;
         FEFaceValues<dim> fe_face_values;
@@ -250,61 +247,59 @@ namespace igabde
       auto worker =
         [&](const typename DoFHandler<dim>::active_cell_iterator &cell,
             ScratchData<dim>                                     &scratch,
-            CopyData                                             &copy)
-      {
-        const unsigned int n = fe.n_dofs_per_cell();
-        copy.cell_matrix.reinit(n, n);
-        copy.cell_rhs.reinit(n);
-        copy.dof_indices.resize(n);
-        cell->get_dof_indices(copy.dof_indices);
+            CopyData                                             &copy) {
+          const unsigned int n = fe.n_dofs_per_cell();
+          copy.cell_matrix.reinit(n, n);
+          copy.cell_rhs.reinit(n);
+          copy.dof_indices.resize(n);
+          cell->get_dof_indices(copy.dof_indices);
 
-        scratch.fe_values.reinit(cell);
-        const auto                          &fv = scratch.fe_values;
-        std::vector<SymmetricTensor<2, dim>> eps(n);
-        for (const unsigned int q : fv.quadrature_point_indices())
-        {
-          for (unsigned int i = 0; i < n; ++i)
-            eps[i] = fv[displacement].symmetric_gradient(i, q);
-          for (unsigned int i = 0; i < n; ++i)
-          {
-            const SymmetricTensor<2, dim> Ceps = C * eps[i];
-            for (unsigned int j = 0; j < n; ++j)
-              copy.cell_matrix(i, j) += (Ceps * eps[j]) * fv.JxW(q);
-            copy.cell_rhs(i) +=
-              (fv[displacement].value(i, q) * description.body_force) *
-              fv.JxW(q);
-          }
-        }
-
-        for (const auto f : cell->face_indices())
-          if (cell->face(f)->at_boundary())
-            for (const auto &neumann : description.tractions)
-              if (cell->face(f)->boundary_id() == neumann.boundary_id)
-              {
-                scratch.fe_face_values.reinit(cell, f);
-                const auto &ffv = scratch.fe_face_values;
-                for (const unsigned int q : ffv.quadrature_point_indices())
+          scratch.fe_values.reinit(cell);
+          const auto                          &fv = scratch.fe_values;
+          std::vector<SymmetricTensor<2, dim>> eps(n);
+          for (const unsigned int q : fv.quadrature_point_indices())
+            {
+              for (unsigned int i = 0; i < n; ++i)
+                eps[i] = fv[displacement].symmetric_gradient(i, q);
+              for (unsigned int i = 0; i < n; ++i)
                 {
-                  const Tensor<1, dim> t =
-                    neumann.traction(ffv.quadrature_point(q),
-                                     ffv.normal_vector(q));
-                  for (unsigned int i = 0; i < n; ++i)
-                    copy.cell_rhs(i) +=
-                      (ffv[displacement].value(i, q) * t) * ffv.JxW(q);
+                  const SymmetricTensor<2, dim> Ceps = C * eps[i];
+                  for (unsigned int j = 0; j < n; ++j)
+                    copy.cell_matrix(i, j) += (Ceps * eps[j]) * fv.JxW(q);
+                  copy.cell_rhs(i) +=
+                    (fv[displacement].value(i, q) * description.body_force) *
+                    fv.JxW(q);
                 }
-              }
-      };
+            }
 
-      auto copier = [&](const CopyData &copy)
-      {
+          for (const auto f : cell->face_indices())
+            if (cell->face(f)->at_boundary())
+              for (const auto &neumann : description.tractions)
+                if (cell->face(f)->boundary_id() == neumann.boundary_id)
+                  {
+                    scratch.fe_face_values.reinit(cell, f);
+                    const auto &ffv = scratch.fe_face_values;
+                    for (const unsigned int q : ffv.quadrature_point_indices())
+                      {
+                        const Tensor<1, dim> t =
+                          neumann.traction(ffv.quadrature_point(q),
+                                           ffv.normal_vector(q));
+                        for (unsigned int i = 0; i < n; ++i)
+                          copy.cell_rhs(i) +=
+                            (ffv[displacement].value(i, q) * t) * ffv.JxW(q);
+                      }
+                  }
+        };
+
+      auto copier = [&](const CopyData &copy) {
         for (unsigned int i = 0; i < copy.dof_indices.size(); ++i)
-        {
-          for (unsigned int j = 0; j < copy.dof_indices.size(); ++j)
-            this->system_matrix.add(copy.dof_indices[i],
-                                    copy.dof_indices[j],
-                                    copy.cell_matrix(i, j));
-          this->load_rhs(copy.dof_indices[i]) += copy.cell_rhs(i);
-        }
+          {
+            for (unsigned int j = 0; j < copy.dof_indices.size(); ++j)
+              this->system_matrix.add(copy.dof_indices[i],
+                                      copy.dof_indices[j],
+                                      copy.cell_matrix(i, j));
+            this->load_rhs(copy.dof_indices[i]) += copy.cell_rhs(i);
+          }
       };
 
       WorkStream::run(dof_handler.begin_active(),
@@ -341,12 +336,12 @@ namespace igabde
       op.weights.resize(base.n_dofs_per_cell());
       op.dofs.resize(base.n_dofs_per_cell());
       for (unsigned int i = 0; i < fe.n_dofs_per_cell(); ++i)
-      {
-        const auto [component, k] = fe.system_to_component_index(i);
-        op.dofs[k][component]     = local[i];
-        if (component == 0)
-          op.weights[k] = base.shape_value(k, unit);
-      }
+        {
+          const auto [component, k] = fe.system_to_component_index(i);
+          op.dofs[k][component]     = local[i];
+          if (component == 0)
+            op.weights[k] = base.shape_value(k, unit);
+        }
       return op;
     }
 
@@ -382,39 +377,40 @@ namespace igabde
         for (const auto f : cell->face_indices())
           if (cell->face(f)->at_boundary() &&
               cell->face(f)->boundary_id() == face)
-          {
-            cell->get_dof_indices(local);
-            node_values.reinit(cell, f);
-            area_values.reinit(cell, f);
-            for (unsigned int j = 0; j < base.n_dofs_per_face(); ++j)
             {
-              const unsigned int i_base = base.face_to_cell_index(j, f);
-              const unsigned int i_sys =
-                fe.component_to_system_index(0, i_base);
-              const types::global_dof_index key   = local[i_sys];
-              auto                         &point = nodes[key];
-              if (point.op.weights.empty())
-              {
-                point.location   = node_values.quadrature_point(j);
-                point.op.weights = {1.};
-                point.op.dofs.resize(1);
-                for (unsigned int c = 0; c < dim; ++c)
-                  point.op.dofs[0][c] =
-                    local[fe.component_to_system_index(c, i_base)];
-              }
-              normals[key] += node_values.normal_vector(j);
-              for (unsigned int q = 0; q < area_values.n_quadrature_points; ++q)
-                point.tributary_area +=
-                  area_values.shape_value(i_sys, q) * area_values.JxW(q);
+              cell->get_dof_indices(local);
+              node_values.reinit(cell, f);
+              area_values.reinit(cell, f);
+              for (unsigned int j = 0; j < base.n_dofs_per_face(); ++j)
+                {
+                  const unsigned int i_base = base.face_to_cell_index(j, f);
+                  const unsigned int i_sys =
+                    fe.component_to_system_index(0, i_base);
+                  const types::global_dof_index key   = local[i_sys];
+                  auto                         &point = nodes[key];
+                  if (point.op.weights.empty())
+                    {
+                      point.location   = node_values.quadrature_point(j);
+                      point.op.weights = {1.};
+                      point.op.dofs.resize(1);
+                      for (unsigned int c = 0; c < dim; ++c)
+                        point.op.dofs[0][c] =
+                          local[fe.component_to_system_index(c, i_base)];
+                    }
+                  normals[key] += node_values.normal_vector(j);
+                  for (unsigned int q = 0; q < area_values.n_quadrature_points;
+                       ++q)
+                    point.tributary_area +=
+                      area_values.shape_value(i_sys, q) * area_values.JxW(q);
+                }
             }
-          }
 
       std::vector<SurfacePoint<dim>> result;
       for (auto &[key, point] : nodes)
-      {
-        point.normal = normals[key] / normals[key].norm();
-        result.push_back(point);
-      }
+        {
+          point.normal = normals[key] / normals[key].norm();
+          result.push_back(point);
+        }
       return result;
     }
 
@@ -440,24 +436,24 @@ namespace igabde
 
       double e_l2 = 0, u_l2 = 0, e_en = 0, u_en = 0, measure = 0;
       for (const auto &cell : dof_handler.active_cell_iterators())
-      {
-        fe_values.reinit(cell);
-        fe_values[displacement].get_function_values(u, u_h);
-        fe_values[displacement].get_function_symmetric_gradients(u, eps_h);
-        for (const unsigned int q : fe_values.quadrature_point_indices())
         {
-          const Point<dim> &x  = fe_values.quadrature_point(q);
-          const double      dx = fe_values.JxW(q);
-          const auto        ue = exact.displacement(x);
-          const auto        se = exact.stress(x);
-          const auto        de = se - C * eps_h[q];
-          e_l2 += (ue - u_h[q]).norm_square() * dx;
-          u_l2 += ue.norm_square() * dx;
-          e_en += (de * (S * de)) * dx;
-          u_en += (se * (S * se)) * dx;
-          measure += dx;
+          fe_values.reinit(cell);
+          fe_values[displacement].get_function_values(u, u_h);
+          fe_values[displacement].get_function_symmetric_gradients(u, eps_h);
+          for (const unsigned int q : fe_values.quadrature_point_indices())
+            {
+              const Point<dim> &x  = fe_values.quadrature_point(q);
+              const double      dx = fe_values.JxW(q);
+              const auto        ue = exact.displacement(x);
+              const auto        se = exact.stress(x);
+              const auto        de = se - C * eps_h[q];
+              e_l2 += (ue - u_h[q]).norm_square() * dx;
+              u_l2 += ue.norm_square() * dx;
+              e_en += (de * (S * de)) * dx;
+              u_en += (se * (S * se)) * dx;
+              measure += dx;
+            }
         }
-      }
       ErrorNorms norms;
       norms.l2_relative     = std::sqrt(e_l2 / u_l2);
       norms.energy_relative = std::sqrt(e_en / u_en);
@@ -527,11 +523,11 @@ namespace igabde
                               update_JxW_values);
       double        result = 0.;
       for (const auto &cell : dof_handler.active_cell_iterators())
-      {
-        fe_values.reinit(cell);
-        for (const unsigned int q : fe_values.quadrature_point_indices())
-          result += fe_values.JxW(q);
-      }
+        {
+          fe_values.reinit(cell);
+          for (const unsigned int q : fe_values.quadrature_point_indices())
+            result += fe_values.JxW(q);
+        }
       return result;
     }
 

@@ -78,28 +78,28 @@ namespace igabde
     {
       const NurbsPatch<2> annulus = make_quarter_annulus(r0, r1);
       if constexpr (dim == 2)
-      {
-        (void)height;
-        return annulus;
-      }
+        {
+          (void)height;
+          return annulus;
+        }
       else
-      {
-        AssertThrow(height > 0.,
-                    ExcMessage("make_thick_cylinder_quarter: the height "
-                               "must be positive."));
-        std::vector<Point<3>> points;
-        std::vector<double>   weights;
-        for (unsigned int k = 0; k < 2; ++k)
-          for (unsigned int a = 0; a < annulus.n_control_points(); ++a)
-          {
-            const Point<2> &p = annulus.control_point(a);
-            points.emplace_back(p[0], p[1], k * height);
-            weights.push_back(annulus.weight(a));
-          }
-        return NurbsPatch<3>({{linear(), quadratic(), linear()}},
-                             points,
-                             weights);
-      }
+        {
+          AssertThrow(height > 0.,
+                      ExcMessage("make_thick_cylinder_quarter: the height "
+                                 "must be positive."));
+          std::vector<Point<3>> points;
+          std::vector<double>   weights;
+          for (unsigned int k = 0; k < 2; ++k)
+            for (unsigned int a = 0; a < annulus.n_control_points(); ++a)
+              {
+                const Point<2> &p = annulus.control_point(a);
+                points.emplace_back(p[0], p[1], k * height);
+                weights.push_back(annulus.weight(a));
+              }
+          return NurbsPatch<3>({{linear(), quadratic(), linear()}},
+                               points,
+                               weights);
+        }
     }
 
 
@@ -114,12 +114,12 @@ namespace igabde
       std::vector<double>   weights;
       for (unsigned int k = 0; k < 2; ++k)
         for (unsigned int a = 0; a < annulus.n_control_points(); ++a)
-        {
-          // (x, y) of the annulus becomes (x, z) of the beam.
-          const Point<2> &p = annulus.control_point(a);
-          points.emplace_back(p[0], k * width, p[1]);
-          weights.push_back(annulus.weight(a));
-        }
+          {
+            // (x, y) of the annulus becomes (x, z) of the beam.
+            const Point<2> &p = annulus.control_point(a);
+            points.emplace_back(p[0], k * width, p[1]);
+            weights.push_back(annulus.weight(a));
+          }
       return NurbsPatch<3>({{linear(), quadratic(), linear()}},
                            points,
                            weights);
@@ -156,14 +156,14 @@ namespace igabde
       std::vector<Point<2>> points;
       std::vector<double>   weights;
       for (unsigned int j = 0; j < 4; ++j)
-      {
-        points.push_back(hole[j]);
-        weights.push_back(whole[j]);
-        points.push_back(mid[j]);
-        weights.push_back(1.);
-        points.push_back(outer[j]);
-        weights.push_back(1.);
-      }
+        {
+          points.push_back(hole[j]);
+          weights.push_back(whole[j]);
+          points.push_back(mid[j]);
+          weights.push_back(1.);
+          points.push_back(outer[j]);
+          weights.push_back(1.);
+        }
       const KnotVector angular(2, {0., 0., 0., 0.5, 1., 1., 1.});
       return NurbsPatch<2>({{quadratic(), angular}}, points, weights);
     }
@@ -202,11 +202,11 @@ namespace igabde
       // Pw11 = (edge midpoints)/2 - (corners)/4.
       Tensor<1, 2> pw;
       double       ww = 0.;
-      auto add = [&](const unsigned int i, const unsigned int j, const double c)
-      {
-        pw += c * w[i][j] * static_cast<const Tensor<1, 2> &>(P[i][j]);
-        ww += c * w[i][j];
-      };
+      auto         add =
+        [&](const unsigned int i, const unsigned int j, const double c) {
+          pw += c * w[i][j] * static_cast<const Tensor<1, 2> &>(P[i][j]);
+          ww += c * w[i][j];
+        };
       add(0, 1, 0.5);
       add(2, 1, 0.5);
       add(1, 0, 0.5);
@@ -222,10 +222,10 @@ namespace igabde
       std::vector<double>   weights;
       for (unsigned int j = 0; j < 3; ++j)
         for (unsigned int i = 0; i < 3; ++i)
-        {
-          points.push_back(P[i][j]);
-          weights.push_back(w[i][j]);
-        }
+          {
+            points.push_back(P[i][j]);
+            weights.push_back(w[i][j]);
+          }
       return NurbsPatch<2>({{quadratic(), quadratic()}}, points, weights);
     }
 
@@ -249,17 +249,17 @@ namespace igabde
       const std::array<unsigned int, static_cast<std::size_t>(dim)> &n_spans)
     {
       for (unsigned int d = 0; d < dim; ++d)
-      {
-        AssertThrow(n_spans[d] >= 1,
-                    ExcMessage("subdivide: every direction needs at least "
-                               "one part per span."));
-        const std::vector<double> b = patch.breakpoints(d);
-        std::vector<double>       new_knots;
-        for (unsigned int e = 0; e + 1 < b.size(); ++e)
-          for (unsigned int j = 1; j < n_spans[d]; ++j)
-            new_knots.push_back(b[e] + (b[e + 1] - b[e]) * j / n_spans[d]);
-        patch.insert_knots(d, new_knots);
-      }
+        {
+          AssertThrow(n_spans[d] >= 1,
+                      ExcMessage("subdivide: every direction needs at least "
+                                 "one part per span."));
+          const std::vector<double> b = patch.breakpoints(d);
+          std::vector<double>       new_knots;
+          for (unsigned int e = 0; e + 1 < b.size(); ++e)
+            for (unsigned int j = 1; j < n_spans[d]; ++j)
+              new_knots.push_back(b[e] + (b[e + 1] - b[e]) * j / n_spans[d]);
+          patch.insert_knots(d, new_knots);
+        }
     }
 
 

@@ -170,10 +170,10 @@ namespace igabde
       std::vector<unsigned int> m;
       for (const double x : u)
         if (b.empty() || x != b.back())
-        {
-          b.push_back(x);
-          m.push_back(1);
-        }
+          {
+            b.push_back(x);
+            m.push_back(1);
+          }
         else
           ++m.back();
       return m;
@@ -195,11 +195,11 @@ namespace igabde
       unsigned int count = 0;
       for (unsigned int k = p; k + 1 < u.size(); ++k)
         if (u[k] < u[k + 1])
-        {
-          if (count == e)
-            return k;
-          ++count;
-        }
+          {
+            if (count == e)
+              return k;
+            ++count;
+          }
       AssertThrow(false,
                   ExcMessage("KnotVector::span_knot_index: span " +
                              std::to_string(e) + " does not exist; there are " +
@@ -228,12 +228,12 @@ namespace igabde
       const unsigned int  n = n_basis_functions();
       std::vector<double> g(n);
       for (unsigned int i = 0; i < n; ++i)
-      {
-        double s = 0.;
-        for (unsigned int j = 1; j <= p; ++j)
-          s += u[i + j];
-        g[i] = s / p;
-      }
+        {
+          double s = 0.;
+          for (unsigned int j = 1; j <= p; ++j)
+            s += u[i + j];
+          g[i] = s / p;
+        }
       // Round-off may leave the end values a hair off the interval.
       g.front() = u.front();
       g.back()  = u.back();
@@ -251,18 +251,18 @@ namespace igabde
       std::vector<double> left(p + 1), right(p + 1);
       N[0] = 1.;
       for (unsigned int j = 1; j <= p; ++j)
-      {
-        left[j]      = x - u[span + 1 - j];
-        right[j]     = u[span + j] - x;
-        double saved = 0.;
-        for (unsigned int r = 0; r < j; ++r)
         {
-          const double temp = N[r] / (right[r + 1] + left[j - r]);
-          N[r]              = saved + right[r + 1] * temp;
-          saved             = left[j - r] * temp;
+          left[j]      = x - u[span + 1 - j];
+          right[j]     = u[span + j] - x;
+          double saved = 0.;
+          for (unsigned int r = 0; r < j; ++r)
+            {
+              const double temp = N[r] / (right[r + 1] + left[j - r]);
+              N[r]              = saved + right[r + 1] * temp;
+              saved             = left[j - r] * temp;
+            }
+          N[j] = saved;
         }
-        N[j] = saved;
-      }
     }
 
 
@@ -281,62 +281,62 @@ namespace igabde
       std::vector<double>              left(p + 1), right(p + 1);
       ndu[0][0] = 1.;
       for (unsigned int j = 1; j <= p; ++j)
-      {
-        left[j]      = x - u[span + 1 - j];
-        right[j]     = u[span + j] - x;
-        double saved = 0.;
-        for (unsigned int r = 0; r < j; ++r)
         {
-          // Lower triangle: knot differences.
-          ndu[j][r]         = right[r + 1] + left[j - r];
-          const double temp = ndu[r][j - 1] / ndu[j][r];
-          // Upper triangle: basis functions.
-          ndu[r][j] = saved + right[r + 1] * temp;
-          saved     = left[j - r] * temp;
+          left[j]      = x - u[span + 1 - j];
+          right[j]     = u[span + j] - x;
+          double saved = 0.;
+          for (unsigned int r = 0; r < j; ++r)
+            {
+              // Lower triangle: knot differences.
+              ndu[j][r]         = right[r + 1] + left[j - r];
+              const double temp = ndu[r][j - 1] / ndu[j][r];
+              // Upper triangle: basis functions.
+              ndu[r][j] = saved + right[r + 1] * temp;
+              saved     = left[j - r] * temp;
+            }
+          ndu[j][j] = saved;
         }
-        ndu[j][j] = saved;
-      }
       for (unsigned int j = 0; j <= p; ++j)
         ders[0][j] = ndu[j][p];
 
       std::vector<std::vector<double>> a(2, std::vector<double>(p + 1));
       for (int r = 0; r <= static_cast<int>(p); ++r)
-      {
-        int s1 = 0, s2 = 1;
-        a[0][0] = 1.;
-        for (int k = 1; k <= static_cast<int>(n); ++k)
         {
-          double    d  = 0.;
-          const int rk = r - k;
-          const int pk = static_cast<int>(p) - k;
-          if (r >= k)
-          {
-            a[s2][0] = a[s1][0] / ndu[pk + 1][rk];
-            d        = a[s2][0] * ndu[rk][pk];
-          }
-          const int j1 = (rk >= -1 ? 1 : -rk);
-          const int j2 = (r - 1 <= pk ? k - 1 : static_cast<int>(p) - r);
-          for (int j = j1; j <= j2; ++j)
-          {
-            a[s2][j] = (a[s1][j] - a[s1][j - 1]) / ndu[pk + 1][rk + j];
-            d += a[s2][j] * ndu[rk + j][pk];
-          }
-          if (r <= pk)
-          {
-            a[s2][k] = -a[s1][k - 1] / ndu[pk + 1][r];
-            d += a[s2][k] * ndu[r][pk];
-          }
-          ders[k][r] = d;
-          std::swap(s1, s2);
+          int s1 = 0, s2 = 1;
+          a[0][0] = 1.;
+          for (int k = 1; k <= static_cast<int>(n); ++k)
+            {
+              double    d  = 0.;
+              const int rk = r - k;
+              const int pk = static_cast<int>(p) - k;
+              if (r >= k)
+                {
+                  a[s2][0] = a[s1][0] / ndu[pk + 1][rk];
+                  d        = a[s2][0] * ndu[rk][pk];
+                }
+              const int j1 = (rk >= -1 ? 1 : -rk);
+              const int j2 = (r - 1 <= pk ? k - 1 : static_cast<int>(p) - r);
+              for (int j = j1; j <= j2; ++j)
+                {
+                  a[s2][j] = (a[s1][j] - a[s1][j - 1]) / ndu[pk + 1][rk + j];
+                  d += a[s2][j] * ndu[rk + j][pk];
+                }
+              if (r <= pk)
+                {
+                  a[s2][k] = -a[s1][k - 1] / ndu[pk + 1][r];
+                  d += a[s2][k] * ndu[r][pk];
+                }
+              ders[k][r] = d;
+              std::swap(s1, s2);
+            }
         }
-      }
       double factor = p;
       for (unsigned int k = 1; k <= n; ++k)
-      {
-        for (unsigned int j = 0; j <= p; ++j)
-          ders[k][j] *= factor;
-        factor *= static_cast<double>(p) - k;
-      }
+        {
+          for (unsigned int j = 0; j <= p; ++j)
+            ders[k][j] *= factor;
+          factor *= static_cast<double>(p) - k;
+        }
     }
 
 
@@ -355,40 +355,40 @@ namespace igabde
       unsigned int b  = a + 1;
       unsigned int nb = 0;
       while (b < m - 1)
-      {
-        const unsigned int i = b;
-        while (b < m - 1 && u[b + 1] == u[b])
-          ++b;
-        const unsigned int mult = b - i + 1;
-        if (mult < p)
         {
-          const double numer = u[b] - u[a];
-          for (unsigned int j = p; j > mult; --j)
-            alphas[j - mult - 1] = numer / (u[a + j] - u[a]);
-          const unsigned int r = p - mult;
-          for (unsigned int j = 1; j <= r; ++j)
-          {
-            const unsigned int save = r - j; // 0-based column
-            const unsigned int s    = mult + j;
-            for (unsigned int k = p; k >= s; --k)
+          const unsigned int i = b;
+          while (b < m - 1 && u[b + 1] == u[b])
+            ++b;
+          const unsigned int mult = b - i + 1;
+          if (mult < p)
             {
-              const double alpha = alphas[k - s];
-              for (unsigned int row = 0; row <= p; ++row)
-                C[nb](row, k) =
-                  alpha * C[nb](row, k) + (1. - alpha) * C[nb](row, k - 1);
+              const double numer = u[b] - u[a];
+              for (unsigned int j = p; j > mult; --j)
+                alphas[j - mult - 1] = numer / (u[a + j] - u[a]);
+              const unsigned int r = p - mult;
+              for (unsigned int j = 1; j <= r; ++j)
+                {
+                  const unsigned int save = r - j; // 0-based column
+                  const unsigned int s    = mult + j;
+                  for (unsigned int k = p; k >= s; --k)
+                    {
+                      const double alpha = alphas[k - s];
+                      for (unsigned int row = 0; row <= p; ++row)
+                        C[nb](row, k) = alpha * C[nb](row, k) +
+                                        (1. - alpha) * C[nb](row, k - 1);
+                    }
+                  if (b < m - 1)
+                    for (unsigned int l = 0; l <= j; ++l)
+                      C[nb + 1](save + l, save) = C[nb](p - j + l, p);
+                }
             }
-            if (b < m - 1)
-              for (unsigned int l = 0; l <= j; ++l)
-                C[nb + 1](save + l, save) = C[nb](p - j + l, p);
-          }
+          ++nb;
+          if (b < m - 1)
+            {
+              a = b;
+              ++b;
+            }
         }
-        ++nb;
-        if (b < m - 1)
-        {
-          a = b;
-          ++b;
-        }
-      }
       C.resize(ne);
       return C;
     }

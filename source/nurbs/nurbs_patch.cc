@@ -25,31 +25,31 @@ namespace igabde
       {
         Tensor<1, dim> n;
         if constexpr (dim == 2)
-        {
-          if (d == 0)
           {
-            n[0] = J[1][1];
-            n[1] = -J[0][1];
+            if (d == 0)
+              {
+                n[0] = J[1][1];
+                n[1] = -J[0][1];
+              }
+            else
+              {
+                n[0] = -J[1][0];
+                n[1] = J[0][0];
+              }
           }
-          else
-          {
-            n[0] = -J[1][0];
-            n[1] = J[0][0];
-          }
-        }
         else if constexpr (dim == 3)
-        {
-          const unsigned int d1 = (d + 1) % 3, d2 = (d + 2) % 3;
-          Tensor<1, 3>       t1, t2;
-          for (unsigned int i = 0; i < 3; ++i)
           {
-            t1[i] = J[i][d1];
-            t2[i] = J[i][d2];
+            const unsigned int d1 = (d + 1) % 3, d2 = (d + 2) % 3;
+            Tensor<1, 3>       t1, t2;
+            for (unsigned int i = 0; i < 3; ++i)
+              {
+                t1[i] = J[i][d1];
+                t2[i] = J[i][d2];
+              }
+            const Tensor<1, 3> c = cross_product_3d(t1, t2);
+            for (unsigned int i = 0; i < 3; ++i)
+              n[i] = c[i];
           }
-          const Tensor<1, 3> c = cross_product_3d(t1, t2);
-          for (unsigned int i = 0; i < 3; ++i)
-            n[i] = c[i];
-        }
         else
           Assert(false, ExcNotImplemented());
         return n;
@@ -68,12 +68,12 @@ namespace igabde
     {
       unsigned int n = 1;
       for (unsigned int d = 0; d < dim; ++d)
-      {
-        AssertThrow(knots[d].knots().size() > 0,
-                    ExcMessage("NurbsPatch: the knot vector of direction " +
-                               std::to_string(d) + " is empty."));
-        n *= knots[d].n_basis_functions();
-      }
+        {
+          AssertThrow(knots[d].knots().size() > 0,
+                      ExcMessage("NurbsPatch: the knot vector of direction " +
+                                 std::to_string(d) + " is empty."));
+          n *= knots[d].n_basis_functions();
+        }
       AssertThrow(points.size() == n,
                   ExcMessage("NurbsPatch: the knot vectors define " +
                              std::to_string(n) + " control points, but " +
@@ -151,10 +151,10 @@ namespace igabde
     {
       unsigned int a = 0;
       for (int d = dim - 1; d >= 0; --d)
-      {
-        AssertIndexRange(ijk[d], n_control_points(d));
-        a = a * n_control_points(d) + ijk[d];
-      }
+        {
+          AssertIndexRange(ijk[d], n_control_points(d));
+          a = a * n_control_points(d) + ijk[d];
+        }
       return a;
     }
 
@@ -167,10 +167,10 @@ namespace igabde
       std::array<unsigned int, dim> ijk;
       unsigned int                  rest = a;
       for (unsigned int d = 0; d < dim; ++d)
-      {
-        ijk[d] = rest % n_control_points(d);
-        rest /= n_control_points(d);
-      }
+        {
+          ijk[d] = rest % n_control_points(d);
+          rest /= n_control_points(d);
+        }
       return ijk;
     }
 
@@ -220,14 +220,14 @@ namespace igabde
       std::array<std::vector<std::vector<double>>, dim> ders;
       unsigned int                                      n_local = 1;
       for (unsigned int d = 0; d < dim; ++d)
-      {
-        AssertThrow(!knots[d].knots().empty(),
-                    ExcMessage("NurbsPatch: evaluating an empty patch."));
-        const double x = std::clamp(xi[d], knots[d].front(), knots[d].back());
-        span[d]        = knots[d].find_span(x);
-        knots[d].basis_function_derivatives(x, span[d], 1, ders[d]);
-        n_local *= knots[d].degree() + 1;
-      }
+        {
+          AssertThrow(!knots[d].knots().empty(),
+                      ExcMessage("NurbsPatch: evaluating an empty patch."));
+          const double x = std::clamp(xi[d], knots[d].front(), knots[d].back());
+          span[d]        = knots[d].find_span(x);
+          knots[d].basis_function_derivatives(x, span[d], 1, ders[d]);
+          n_local *= knots[d].degree() + 1;
+        }
 
       indices.resize(n_local);
       values.resize(n_local);
@@ -235,38 +235,38 @@ namespace igabde
       double                      W = 0.;
       Tensor<1, dim>              dW;
       for (unsigned int l = 0; l < n_local; ++l)
-      {
-        std::array<unsigned int, dim> local, global;
-        unsigned int                  rest = l;
-        for (unsigned int d = 0; d < dim; ++d)
         {
-          local[d]  = rest % (knots[d].degree() + 1);
-          rest      = rest / (knots[d].degree() + 1);
-          global[d] = span[d] - knots[d].degree() + local[d];
-        }
-        const unsigned int a = control_point_index(global);
-        double             N = 1.;
-        for (unsigned int d = 0; d < dim; ++d)
-          N *= ders[d][0][local[d]];
-        for (unsigned int b = 0; b < dim; ++b)
-        {
-          double g = 1.;
+          std::array<unsigned int, dim> local, global;
+          unsigned int                  rest = l;
           for (unsigned int d = 0; d < dim; ++d)
-            g *= ders[d][d == b ? 1 : 0][local[d]];
-          dN[l][b] = weights[a] * g;
+            {
+              local[d]  = rest % (knots[d].degree() + 1);
+              rest      = rest / (knots[d].degree() + 1);
+              global[d] = span[d] - knots[d].degree() + local[d];
+            }
+          const unsigned int a = control_point_index(global);
+          double             N = 1.;
+          for (unsigned int d = 0; d < dim; ++d)
+            N *= ders[d][0][local[d]];
+          for (unsigned int b = 0; b < dim; ++b)
+            {
+              double g = 1.;
+              for (unsigned int d = 0; d < dim; ++d)
+                g *= ders[d][d == b ? 1 : 0][local[d]];
+              dN[l][b] = weights[a] * g;
+            }
+          indices[l] = a;
+          values[l]  = weights[a] * N;
+          W += values[l];
+          dW += dN[l];
         }
-        indices[l] = a;
-        values[l]  = weights[a] * N;
-        W += values[l];
-        dW += dN[l];
-      }
 
       if (gradients != nullptr)
-      {
-        gradients->resize(n_local);
-        for (unsigned int l = 0; l < n_local; ++l)
-          (*gradients)[l] = (dN[l] * W - values[l] * dW) / (W * W);
-      }
+        {
+          gradients->resize(n_local);
+          for (unsigned int l = 0; l < n_local; ++l)
+            (*gradients)[l] = (dN[l] * W - values[l] * dW) / (W * W);
+        }
       for (unsigned int l = 0; l < n_local; ++l)
         values[l] /= W;
     }
@@ -321,11 +321,11 @@ namespace igabde
     {
       std::vector<std::array<double, dim + 1>> pw(points.size());
       for (unsigned int a = 0; a < points.size(); ++a)
-      {
-        for (unsigned int c = 0; c < dim; ++c)
-          pw[a][c] = weights[a] * points[a][c];
-        pw[a][dim] = weights[a];
-      }
+        {
+          for (unsigned int c = 0; c < dim; ++c)
+            pw[a][c] = weights[a] * points[a][c];
+          pw[a][dim] = weights[a];
+        }
       return pw;
     }
 
@@ -346,10 +346,10 @@ namespace igabde
 
       std::array<unsigned int, dim> n_old_dir, n_new_dir;
       for (unsigned int e = 0; e < dim; ++e)
-      {
-        n_old_dir[e] = n_control_points(e);
-        n_new_dir[e] = (e == d ? n_new : n_old_dir[e]);
-      }
+        {
+          n_old_dir[e] = n_control_points(e);
+          n_new_dir[e] = (e == d ? n_new : n_old_dir[e]);
+        }
       unsigned int n_total_new = 1;
       for (unsigned int e = 0; e < dim; ++e)
         n_total_new *= n_new_dir[e];
@@ -361,44 +361,44 @@ namespace igabde
 
       std::vector<std::array<double, dim + 1>> qw(n_total_new);
       for (unsigned int b = 0; b < n_total_new; ++b)
-      {
-        // Tensor index of the new point; its line in direction d.
-        std::array<unsigned int, dim> ijk;
-        unsigned int                  rest = b;
-        for (unsigned int e = 0; e < dim; ++e)
         {
-          ijk[e] = rest % n_new_dir[e];
-          rest /= n_new_dir[e];
+          // Tensor index of the new point; its line in direction d.
+          std::array<unsigned int, dim> ijk;
+          unsigned int                  rest = b;
+          for (unsigned int e = 0; e < dim; ++e)
+            {
+              ijk[e] = rest % n_new_dir[e];
+              rest /= n_new_dir[e];
+            }
+          const unsigned int row = ijk[d];
+          ijk[d]                 = 0;
+          unsigned int base      = 0;
+          for (int e = dim - 1; e >= 0; --e)
+            base = base * n_old_dir[e] + ijk[e];
+          std::array<double, dim + 1> q{};
+          for (const auto &[col, value] : T[row])
+            {
+              Assert(col < n_old, ExcInternalError());
+              const auto &p = pw[base + col * stride];
+              for (unsigned int c = 0; c <= dim; ++c)
+                q[c] += value * p[c];
+            }
+          qw[b] = q;
         }
-        const unsigned int row = ijk[d];
-        ijk[d]                 = 0;
-        unsigned int base      = 0;
-        for (int e = dim - 1; e >= 0; --e)
-          base = base * n_old_dir[e] + ijk[e];
-        std::array<double, dim + 1> q{};
-        for (const auto &[col, value] : T[row])
-        {
-          Assert(col < n_old, ExcInternalError());
-          const auto &p = pw[base + col * stride];
-          for (unsigned int c = 0; c <= dim; ++c)
-            q[c] += value * p[c];
-        }
-        qw[b] = q;
-      }
 
       knots[d] = new_kv;
       points.resize(n_total_new);
       weights.resize(n_total_new);
       for (unsigned int b = 0; b < n_total_new; ++b)
-      {
-        AssertThrow(qw[b][dim] > 0.,
-                    ExcMessage("NurbsPatch: refinement produced a "
-                               "non-positive weight; this cannot happen "
-                               "for a valid patch."));
-        weights[b] = qw[b][dim];
-        for (unsigned int c = 0; c < dim; ++c)
-          points[b][c] = qw[b][c] / qw[b][dim];
-      }
+        {
+          AssertThrow(qw[b][dim] > 0.,
+                      ExcMessage("NurbsPatch: refinement produced a "
+                                 "non-positive weight; this cannot happen "
+                                 "for a valid patch."));
+          weights[b] = qw[b][dim];
+          for (unsigned int c = 0; c < dim; ++c)
+            points[b][c] = qw[b][c] / qw[b][dim];
+        }
     }
 
 
@@ -426,57 +426,55 @@ namespace igabde
         T[i] = {{i, 1.}};
 
       for (const double x : sorted)
-      {
-        AssertThrow(x > u.front() && x < u.back(),
-                    ExcMessage("NurbsPatch::insert_knots: knot " +
-                               std::to_string(x) +
-                               " is not strictly inside the parametric "
-                               "interval [" +
-                               std::to_string(u.front()) + ", " +
-                               std::to_string(u.back()) + "] of direction " +
-                               std::to_string(d) + "."));
-        const KnotVector   kv(p, u);
-        const unsigned int k = kv.find_span(x);
-        const unsigned int n = u.size() - p - 1;
-        std::vector<std::vector<std::pair<unsigned int, double>>> Tn(n + 1);
-        auto combine = [](const std::vector<std::pair<unsigned int, double>> &a,
-                          const double alpha,
-                          const std::vector<std::pair<unsigned int, double>> &b,
-                          const double beta)
         {
-          std::vector<std::pair<unsigned int, double>> r;
-          for (const auto &e : a)
-            r.emplace_back(e.first, alpha * e.second);
-          for (const auto &e : b)
-          {
-            auto it = std::find_if(r.begin(),
-                                   r.end(),
-                                   [&](const auto &f)
-                                   {
-                                     return f.first == e.first;
-                                   });
-            if (it != r.end())
-              it->second += beta * e.second;
-            else
-              r.emplace_back(e.first, beta * e.second);
-          }
-          return r;
-        };
-        for (unsigned int i = 0; i <= n; ++i)
-        {
-          if (i + p <= k)
-            Tn[i] = T[i];
-          else if (i >= k + 1)
-            Tn[i] = T[i - 1];
-          else
-          {
-            const double alpha = (x - u[i]) / (u[i + p] - u[i]);
-            Tn[i]              = combine(T[i], alpha, T[i - 1], 1. - alpha);
-          }
+          AssertThrow(x > u.front() && x < u.back(),
+                      ExcMessage("NurbsPatch::insert_knots: knot " +
+                                 std::to_string(x) +
+                                 " is not strictly inside the parametric "
+                                 "interval [" +
+                                 std::to_string(u.front()) + ", " +
+                                 std::to_string(u.back()) + "] of direction " +
+                                 std::to_string(d) + "."));
+          const KnotVector   kv(p, u);
+          const unsigned int k = kv.find_span(x);
+          const unsigned int n = u.size() - p - 1;
+          std::vector<std::vector<std::pair<unsigned int, double>>> Tn(n + 1);
+          auto                                                      combine =
+            [](const std::vector<std::pair<unsigned int, double>> &a,
+               const double                                        alpha,
+               const std::vector<std::pair<unsigned int, double>> &b,
+               const double                                        beta) {
+              std::vector<std::pair<unsigned int, double>> r;
+              for (const auto &e : a)
+                r.emplace_back(e.first, alpha * e.second);
+              for (const auto &e : b)
+                {
+                  auto it =
+                    std::find_if(r.begin(), r.end(), [&](const auto &f) {
+                      return f.first == e.first;
+                    });
+                  if (it != r.end())
+                    it->second += beta * e.second;
+                  else
+                    r.emplace_back(e.first, beta * e.second);
+                }
+              return r;
+            };
+          for (unsigned int i = 0; i <= n; ++i)
+            {
+              if (i + p <= k)
+                Tn[i] = T[i];
+              else if (i >= k + 1)
+                Tn[i] = T[i - 1];
+              else
+                {
+                  const double alpha = (x - u[i]) / (u[i + p] - u[i]);
+                  Tn[i] = combine(T[i], alpha, T[i - 1], 1. - alpha);
+                }
+            }
+          T = std::move(Tn);
+          u.insert(u.begin() + k + 1, x);
         }
-        T = std::move(Tn);
-        u.insert(u.begin() + k + 1, x);
-      }
       // Validates the multiplicities (at most p in the interior).
       const KnotVector new_kv(p, u);
       transform_direction(d, new_kv, T);
@@ -491,15 +489,15 @@ namespace igabde
       if (n_per_span == 0)
         return;
       for (unsigned int d = 0; d < dim; ++d)
-      {
-        const std::vector<double> b = breakpoints(d);
-        std::vector<double>       new_knots;
-        for (unsigned int e = 0; e + 1 < b.size(); ++e)
-          for (unsigned int j = 1; j <= n_per_span; ++j)
-            new_knots.push_back(b[e] +
-                                (b[e + 1] - b[e]) * j / (n_per_span + 1.));
-        insert_knots(d, new_knots);
-      }
+        {
+          const std::vector<double> b = breakpoints(d);
+          std::vector<double>       new_knots;
+          for (unsigned int e = 0; e + 1 < b.size(); ++e)
+            for (unsigned int j = 1; j <= n_per_span; ++j)
+              new_knots.push_back(b[e] +
+                                  (b[e + 1] - b[e]) * j / (n_per_span + 1.));
+          insert_knots(d, new_knots);
+        }
     }
 
 
@@ -524,16 +522,16 @@ namespace igabde
       FullMatrix<double>  A(n_new, n_new), B(n_new, n_old);
       std::vector<double> N;
       for (unsigned int i = 0; i < n_new; ++i)
-      {
-        unsigned int k = new_kv.find_span(g[i]);
-        new_kv.basis_functions(g[i], k, N);
-        for (unsigned int j = 0; j <= new_kv.degree(); ++j)
-          A(i, k - new_kv.degree() + j) = N[j];
-        k = old_kv.find_span(g[i]);
-        old_kv.basis_functions(g[i], k, N);
-        for (unsigned int j = 0; j <= old_kv.degree(); ++j)
-          B(i, k - old_kv.degree() + j) = N[j];
-      }
+        {
+          unsigned int k = new_kv.find_span(g[i]);
+          new_kv.basis_functions(g[i], k, N);
+          for (unsigned int j = 0; j <= new_kv.degree(); ++j)
+            A(i, k - new_kv.degree() + j) = N[j];
+          k = old_kv.find_span(g[i]);
+          old_kv.basis_functions(g[i], k, N);
+          for (unsigned int j = 0; j <= old_kv.degree(); ++j)
+            B(i, k - old_kv.degree() + j) = N[j];
+        }
       A.gauss_jordan();
       FullMatrix<double> M(n_new, n_old);
       A.mmult(M, B);
@@ -573,14 +571,14 @@ namespace igabde
       const Point<dim> centre = 0.5 * (parametric_lower() + parametric_upper());
       double           det    = determinant(jacobian(centre));
       if (det == 0.)
-      {
-        // Degenerate centre: look at a point off the middle.
-        Point<dim> xi;
-        for (unsigned int d = 0; d < dim; ++d)
-          xi[d] = parametric_lower()[d] +
-                  0.3 * (parametric_upper()[d] - parametric_lower()[d]);
-        det = determinant(jacobian(xi));
-      }
+        {
+          // Degenerate centre: look at a point off the middle.
+          Point<dim> xi;
+          for (unsigned int d = 0; d < dim; ++d)
+            xi[d] = parametric_lower()[d] +
+                    0.3 * (parametric_upper()[d] - parametric_lower()[d]);
+          det = determinant(jacobian(xi));
+        }
       AssertThrow(det != 0.,
                   ExcMessage("NurbsPatch: the parametrization is singular "
                              "inside the patch."));
@@ -632,104 +630,102 @@ namespace igabde
         size = std::max(size, (p - points[0]).norm());
       size = std::max(size, 1e-300);
 
-      auto objective = [&](const Point<dim> &z)
-      {
+      auto objective = [&](const Point<dim> &z) {
         return 0.5 * (value(z) - x).norm_square();
       };
 
       double f = objective(xi);
       for (unsigned int it = 0; it < 100; ++it)
-      {
-        const Tensor<1, dim> r = value(xi) - x;
-        const Tensor<2, dim> J = jacobian(xi);
-        const Tensor<1, dim> g = transpose(J) * r;
-
-        // Hessian of f: J^T J + sum_i r_i d^2 x_i / dxi^2, the second
-        // derivatives by central differences of J (they only affect the
-        // convergence rate, not the converged point).
-        Tensor<2, dim> H = transpose(J) * J;
-        Tensor<2, dim> H2;
-        const double   h = 1e-6 * scale;
-        for (unsigned int b = 0; b < dim; ++b)
         {
-          Point<dim> xp = xi, xm = xi;
-          xp[b] = std::min(xi[b] + h, hi[b]);
-          xm[b] = std::max(xi[b] - h, lo[b]);
-          const Tensor<2, dim> dJ =
-            (jacobian(xp) - jacobian(xm)) / (xp[b] - xm[b]);
-          for (unsigned int a = 0; a < dim; ++a)
-            for (unsigned int i = 0; i < dim; ++i)
-              H2[a][b] += r[i] * dJ[i][a];
-        }
-        H2 = 0.5 * (H2 + transpose(H2));
+          const Tensor<1, dim> r = value(xi) - x;
+          const Tensor<2, dim> J = jacobian(xi);
+          const Tensor<1, dim> g = transpose(J) * r;
 
-        // Active set: fixed coordinates and bounds the gradient pushes on.
-        std::array<bool, dim> active;
-        for (unsigned int d = 0; d < dim; ++d)
-          active[d] = fixed[d] || (xi[d] <= lo[d] && g[d] > 0.) ||
-                      (xi[d] >= hi[d] && g[d] < 0.);
+          // Hessian of f: J^T J + sum_i r_i d^2 x_i / dxi^2, the second
+          // derivatives by central differences of J (they only affect the
+          // convergence rate, not the converged point).
+          Tensor<2, dim> H = transpose(J) * J;
+          Tensor<2, dim> H2;
+          const double   h = 1e-6 * scale;
+          for (unsigned int b = 0; b < dim; ++b)
+            {
+              Point<dim> xp = xi, xm = xi;
+              xp[b] = std::min(xi[b] + h, hi[b]);
+              xm[b] = std::max(xi[b] - h, lo[b]);
+              const Tensor<2, dim> dJ =
+                (jacobian(xp) - jacobian(xm)) / (xp[b] - xm[b]);
+              for (unsigned int a = 0; a < dim; ++a)
+                for (unsigned int i = 0; i < dim; ++i)
+                  H2[a][b] += r[i] * dJ[i][a];
+            }
+          H2 = 0.5 * (H2 + transpose(H2));
 
-        auto solve_free = [&](const Tensor<2, dim> &M, Tensor<1, dim> &s)
-        {
-          FullMatrix<double> Mf(dim, dim);
-          for (unsigned int a = 0; a < dim; ++a)
-            for (unsigned int b = 0; b < dim; ++b)
-              Mf(a, b) =
-                (active[a] || active[b]) ? (a == b ? 1. : 0.) : M[a][b];
-          // Positive definite? Cholesky-like check through the
-          // determinants of the leading minors is overkill: test s.g < 0.
-          const double detM = Mf.determinant();
-          if (!(std::abs(detM) > 0.) || !std::isfinite(detM))
-            return false;
-          Mf.gauss_jordan();
-          Vector<double> rhs(dim), sol(dim);
-          for (unsigned int a = 0; a < dim; ++a)
-            rhs[a] = active[a] ? 0. : -g[a];
-          Mf.vmult(sol, rhs);
-          for (unsigned int a = 0; a < dim; ++a)
-            s[a] = active[a] ? 0. : sol[a];
-          return s * g < 0.;
-        };
-
-        Tensor<1, dim> step;
-        bool           ok = solve_free(H + H2, step);
-        if (!ok)
-        {
-          // Gauss-Newton with a little regularisation.
-          Tensor<2, dim> M  = H;
-          double         tr = 0.;
-          for (unsigned int a = 0; a < dim; ++a)
-            tr += H[a][a];
-          for (unsigned int a = 0; a < dim; ++a)
-            M[a][a] += 1e-12 * tr + 1e-300;
-          ok = solve_free(M, step);
-        }
-        if (!ok)
-          break;
-
-        // Backtracking on f along the projected path.
-        double     t = 1.;
-        Point<dim> trial;
-        double     f_trial = f;
-        for (unsigned int ls = 0; ls < 40; ++ls, t *= 0.5)
-        {
-          trial = xi;
+          // Active set: fixed coordinates and bounds the gradient pushes on.
+          std::array<bool, dim> active;
           for (unsigned int d = 0; d < dim; ++d)
-            trial[d] = std::clamp(xi[d] + t * step[d], lo[d], hi[d]);
-          f_trial = objective(trial);
-          if (f_trial <= f)
+            active[d] = fixed[d] || (xi[d] <= lo[d] && g[d] > 0.) ||
+                        (xi[d] >= hi[d] && g[d] < 0.);
+
+          auto solve_free = [&](const Tensor<2, dim> &M, Tensor<1, dim> &s) {
+            FullMatrix<double> Mf(dim, dim);
+            for (unsigned int a = 0; a < dim; ++a)
+              for (unsigned int b = 0; b < dim; ++b)
+                Mf(a, b) =
+                  (active[a] || active[b]) ? (a == b ? 1. : 0.) : M[a][b];
+            // Positive definite? Cholesky-like check through the
+            // determinants of the leading minors is overkill: test s.g < 0.
+            const double detM = Mf.determinant();
+            if (!(std::abs(detM) > 0.) || !std::isfinite(detM))
+              return false;
+            Mf.gauss_jordan();
+            Vector<double> rhs(dim), sol(dim);
+            for (unsigned int a = 0; a < dim; ++a)
+              rhs[a] = active[a] ? 0. : -g[a];
+            Mf.vmult(sol, rhs);
+            for (unsigned int a = 0; a < dim; ++a)
+              s[a] = active[a] ? 0. : sol[a];
+            return s * g < 0.;
+          };
+
+          Tensor<1, dim> step;
+          bool           ok = solve_free(H + H2, step);
+          if (!ok)
+            {
+              // Gauss-Newton with a little regularisation.
+              Tensor<2, dim> M  = H;
+              double         tr = 0.;
+              for (unsigned int a = 0; a < dim; ++a)
+                tr += H[a][a];
+              for (unsigned int a = 0; a < dim; ++a)
+                M[a][a] += 1e-12 * tr + 1e-300;
+              ok = solve_free(M, step);
+            }
+          if (!ok)
+            break;
+
+          // Backtracking on f along the projected path.
+          double     t = 1.;
+          Point<dim> trial;
+          double     f_trial = f;
+          for (unsigned int ls = 0; ls < 40; ++ls, t *= 0.5)
+            {
+              trial = xi;
+              for (unsigned int d = 0; d < dim; ++d)
+                trial[d] = std::clamp(xi[d] + t * step[d], lo[d], hi[d]);
+              f_trial = objective(trial);
+              if (f_trial <= f)
+                break;
+            }
+          const double moved = (trial - xi).norm();
+          if (f_trial > f)
+            break;
+          xi                 = trial;
+          const double f_old = f;
+          f                  = f_trial;
+          if (moved <= 1e-15 * scale || std::sqrt(2. * f) <= 1e-15 * size ||
+              (f_old - f) <= 1e-30 * size * size)
             break;
         }
-        const double moved = (trial - xi).norm();
-        if (f_trial > f)
-          break;
-        xi                 = trial;
-        const double f_old = f;
-        f                  = f_trial;
-        if (moved <= 1e-15 * scale || std::sqrt(2. * f) <= 1e-15 * size ||
-            (f_old - f) <= 1e-30 * size * size)
-          break;
-      }
       if (distance != nullptr)
         *distance = (value(xi) - x).norm();
       return xi;
@@ -747,39 +743,39 @@ namespace igabde
       if (start != nullptr)
         xi = *start;
       else
-      {
-        // Sample the images of the breakpoints and span midpoints.
-        std::array<std::vector<double>, dim> samples;
-        unsigned int                         n = 1;
-        for (unsigned int d = 0; d < dim; ++d)
         {
-          const auto b = breakpoints(d);
-          for (unsigned int e = 0; e + 1 < b.size(); ++e)
-          {
-            samples[d].push_back(b[e]);
-            samples[d].push_back(0.5 * (b[e] + b[e + 1]));
-          }
-          samples[d].push_back(b.back());
-          n *= samples[d].size();
-        }
-        double best = std::numeric_limits<double>::max();
-        for (unsigned int s = 0; s < n; ++s)
-        {
-          Point<dim>   z;
-          unsigned int rest = s;
+          // Sample the images of the breakpoints and span midpoints.
+          std::array<std::vector<double>, dim> samples;
+          unsigned int                         n = 1;
           for (unsigned int d = 0; d < dim; ++d)
-          {
-            z[d] = samples[d][rest % samples[d].size()];
-            rest /= samples[d].size();
-          }
-          const double dist = (value(z) - x).norm_square();
-          if (dist < best)
-          {
-            best = dist;
-            xi   = z;
-          }
+            {
+              const auto b = breakpoints(d);
+              for (unsigned int e = 0; e + 1 < b.size(); ++e)
+                {
+                  samples[d].push_back(b[e]);
+                  samples[d].push_back(0.5 * (b[e] + b[e + 1]));
+                }
+              samples[d].push_back(b.back());
+              n *= samples[d].size();
+            }
+          double best = std::numeric_limits<double>::max();
+          for (unsigned int s = 0; s < n; ++s)
+            {
+              Point<dim>   z;
+              unsigned int rest = s;
+              for (unsigned int d = 0; d < dim; ++d)
+                {
+                  z[d] = samples[d][rest % samples[d].size()];
+                  rest /= samples[d].size();
+                }
+              const double dist = (value(z) - x).norm_square();
+              if (dist < best)
+                {
+                  best = dist;
+                  xi   = z;
+                }
+            }
         }
-      }
       std::array<bool, dim> fixed;
       fixed.fill(false);
       return minimize_distance(x, xi, fixed, distance);
@@ -804,37 +800,37 @@ namespace igabde
       std::array<std::vector<double>, dim> samples;
       unsigned int                         n = 1;
       for (unsigned int e = 0; e < dim; ++e)
-      {
-        if (e == d)
-          samples[e] = {value_d};
-        else
         {
-          const auto b = breakpoints(e);
-          for (unsigned int s = 0; s + 1 < b.size(); ++s)
-            for (unsigned int j = 0; j < 4; ++j)
-              samples[e].push_back(b[s] + (b[s + 1] - b[s]) * j / 4.);
-          samples[e].push_back(b.back());
+          if (e == d)
+            samples[e] = {value_d};
+          else
+            {
+              const auto b = breakpoints(e);
+              for (unsigned int s = 0; s + 1 < b.size(); ++s)
+                for (unsigned int j = 0; j < 4; ++j)
+                  samples[e].push_back(b[s] + (b[s + 1] - b[s]) * j / 4.);
+              samples[e].push_back(b.back());
+            }
+          n *= samples[e].size();
         }
-        n *= samples[e].size();
-      }
       Point<dim> xi;
       double     best = std::numeric_limits<double>::max();
       for (unsigned int s = 0; s < n; ++s)
-      {
-        Point<dim>   z;
-        unsigned int rest = s;
-        for (unsigned int e = 0; e < dim; ++e)
         {
-          z[e] = samples[e][rest % samples[e].size()];
-          rest /= samples[e].size();
+          Point<dim>   z;
+          unsigned int rest = s;
+          for (unsigned int e = 0; e < dim; ++e)
+            {
+              z[e] = samples[e][rest % samples[e].size()];
+              rest /= samples[e].size();
+            }
+          const double dist = (value(z) - x).norm_square();
+          if (dist < best)
+            {
+              best = dist;
+              xi   = z;
+            }
         }
-        const double dist = (value(z) - x).norm_square();
-        if (dist < best)
-        {
-          best = dist;
-          xi   = z;
-        }
-      }
       std::array<bool, dim> fixed;
       fixed.fill(false);
       fixed[d] = true;

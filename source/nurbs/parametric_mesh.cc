@@ -17,14 +17,14 @@ namespace igabde
     {
       std::vector<std::vector<double>> steps(dim);
       for (unsigned int d = 0; d < dim; ++d)
-      {
-        const std::vector<double> b = patch.breakpoints(d);
-        AssertThrow(b.size() >= 2,
-                    ExcMessage("make_parametric_triangulation: direction " +
-                               std::to_string(d) + " has no knot span."));
-        for (unsigned int e = 0; e + 1 < b.size(); ++e)
-          steps[d].push_back(b[e + 1] - b[e]);
-      }
+        {
+          const std::vector<double> b = patch.breakpoints(d);
+          AssertThrow(b.size() >= 2,
+                      ExcMessage("make_parametric_triangulation: direction " +
+                                 std::to_string(d) + " has no knot span."));
+          for (unsigned int e = 0; e + 1 < b.size(); ++e)
+            steps[d].push_back(b[e + 1] - b[e]);
+        }
       triangulation.clear();
       GridGenerator::subdivided_hyper_rectangle(triangulation,
                                                 steps,
@@ -42,13 +42,13 @@ namespace igabde
     {
       std::array<unsigned int, dim> span;
       for (unsigned int d = 0; d < dim; ++d)
-      {
-        const auto &b  = breakpoints[d];
-        const auto  it = std::upper_bound(b.begin(), b.end(), centre[d]);
-        const long  e  = static_cast<long>(it - b.begin()) - 1;
-        span[d]        = static_cast<unsigned int>(
-          std::clamp<long>(e, 0, static_cast<long>(b.size()) - 2));
-      }
+        {
+          const auto &b  = breakpoints[d];
+          const auto  it = std::upper_bound(b.begin(), b.end(), centre[d]);
+          const long  e  = static_cast<long>(it - b.begin()) - 1;
+          span[d]        = static_cast<unsigned int>(
+            std::clamp<long>(e, 0, static_cast<long>(b.size()) - 2));
+        }
       return span;
     }
 

@@ -20,8 +20,7 @@ namespace igabde
            (3. - nu) / (1. + nu));
 
       discretization::ExactSolution<2> exact;
-      exact.displacement = [=](const Point<2> &x)
-      {
+      exact.displacement = [=](const Point<2> &x) {
         const double r = x.norm(), theta = std::atan2(x[1], x[0]);
         const double c = T * a / (8. * mu);
         Tensor<1, 2> u;
@@ -35,8 +34,7 @@ namespace igabde
                     2. * std::pow(a / r, 3) * std::sin(3. * theta));
         return u;
       };
-      exact.stress = [=](const Point<2> &x)
-      {
+      exact.stress = [=](const Point<2> &x) {
         const double          r = x.norm(), theta = std::atan2(x[1], x[0]);
         const double          a2 = a * a / (r * r), a4 = a2 * a2;
         SymmetricTensor<2, 2> s;
@@ -68,8 +66,7 @@ namespace igabde
       const double k  = a * a * p / (b * b - a * a);
 
       discretization::ExactSolution<dim> exact;
-      exact.displacement = [=](const Point<dim> &x)
-      {
+      exact.displacement = [=](const Point<dim> &x) {
         const double r   = std::hypot(x[0], x[1]);
         const double u_r = (1. + nu) * k / E * ((1. - 2. * nu) * r + b * b / r);
         Tensor<1, dim> u;
@@ -77,8 +74,7 @@ namespace igabde
         u[1] = u_r * x[1] / r;
         return u;
       };
-      exact.stress = [=](const Point<dim> &x)
-      {
+      exact.stress = [=](const Point<dim> &x) {
         const double            r    = std::hypot(x[0], x[1]);
         const double            s_rr = k * (1. - b * b / (r * r));
         const double            s_tt = k * (1. + b * b / (r * r));

@@ -12,17 +12,17 @@ namespace igabde
   {
     template <int dim>
     nurbs::NurbsPatch<dim>
-    make_geometry(const BodyParameters &body, const std::string &where)
+    make_geometry(const BodyParameters &body,
+                  const std::string    &where,
+                  const unsigned int    degree)
     {
-      const auto need_2d = [&]()
-      {
+      const auto need_2d = [&]() {
         AssertThrow(dim == 2,
                     base::ExcInput(where + "Geometry = " + body.geometry +
                                    " is a 2D geometry; set Dimension = 2 "
                                    "or choose a 3D geometry."));
       };
-      const auto need_3d = [&]()
-      {
+      const auto need_3d = [&]() {
         AssertThrow(dim == 3,
                     base::ExcInput(where + "Geometry = " + body.geometry +
                                    " is a 3D geometry; set Dimension = 3."));
@@ -38,50 +38,50 @@ namespace igabde
 
       nurbs::NurbsPatch<dim> patch;
       if (body.geometry == "box")
-      {
-        const Point<dim> lo =
-          base::parse_point<dim>(body.lower_corner, where + "Lower corner");
-        const Point<dim> hi =
-          base::parse_point<dim>(body.upper_corner, where + "Upper corner");
-        for (unsigned int d = 0; d < dim; ++d)
-          AssertThrow(lo[d] < hi[d],
-                      base::ExcInput(where + "Lower corner must be below "
-                                             "Upper corner in every "
-                                             "coordinate."));
-        patch = nurbs::make_box<dim>(lo, hi);
-      }
+        {
+          const Point<dim> lo =
+            base::parse_point<dim>(body.lower_corner, where + "Lower corner");
+          const Point<dim> hi =
+            base::parse_point<dim>(body.upper_corner, where + "Upper corner");
+          for (unsigned int d = 0; d < dim; ++d)
+            AssertThrow(lo[d] < hi[d],
+                        base::ExcInput(where + "Lower corner must be below "
+                                               "Upper corner in every "
+                                               "coordinate."));
+          patch = nurbs::make_box<dim>(lo, hi);
+        }
       else if (body.geometry == "quarter annulus" ||
                body.geometry == "thick cylinder")
-      {
-        if constexpr (dim == 2)
-          patch =
-            nurbs::make_quarter_annulus(body.inner_radius, body.outer_radius);
-        else
-          patch = nurbs::make_thick_cylinder_quarter<dim>(body.inner_radius,
-                                                          body.outer_radius,
-                                                          body.width);
-      }
+        {
+          if constexpr (dim == 2)
+            patch =
+              nurbs::make_quarter_annulus(body.inner_radius, body.outer_radius);
+          else
+            patch = nurbs::make_thick_cylinder_quarter<dim>(body.inner_radius,
+                                                            body.outer_radius,
+                                                            body.width);
+        }
       else if (body.geometry == "plate with hole")
-      {
-        need_2d();
-        if constexpr (dim == 2)
-          patch =
-            nurbs::make_plate_with_hole(body.inner_radius, body.plate_size);
-      }
+        {
+          need_2d();
+          if constexpr (dim == 2)
+            patch =
+              nurbs::make_plate_with_hole(body.inner_radius, body.plate_size);
+        }
       else if (body.geometry == "hertz quarter disc")
-      {
-        need_2d();
-        if constexpr (dim == 2)
-          patch = nurbs::make_hertz_quarter_disc(body.radius);
-      }
+        {
+          need_2d();
+          if constexpr (dim == 2)
+            patch = nurbs::make_hertz_quarter_disc(body.radius);
+        }
       else if (body.geometry == "curved beam")
-      {
-        need_3d();
-        if constexpr (dim == 3)
-          patch = nurbs::make_curved_beam(body.inner_radius,
-                                          body.outer_radius,
-                                          body.width);
-      }
+        {
+          need_3d();
+          if constexpr (dim == 3)
+            patch = nurbs::make_curved_beam(body.inner_radius,
+                                            body.outer_radius,
+                                            body.width);
+        }
       else
         AssertThrow(false,
                     base::ExcInput(where + "Geometry = '" + body.geometry +
@@ -95,14 +95,18 @@ namespace igabde
                                  "': give one count or one per direction."));
       std::array<unsigned int, dim> n_spans;
       for (unsigned int d = 0; d < dim; ++d)
-      {
-        const double count = (n.size() == 1 ? n[0] : n[d]);
-        AssertThrow(count >= 1 && count == std::floor(count) && count < 1e4,
-                    base::ExcInput(where + "Subdivisions = '" +
-                                   body.subdivisions +
-                                   "': counts must be integers >= 1."));
-        n_spans[d] = static_cast<unsigned int>(count);
-      }
+        {
+          const double count = (n.size() == 1 ? n[0] : n[d]);
+          AssertThrow(count >= 1 && count == std::floor(count) && count < 1e4,
+                      base::ExcInput(where + "Subdivisions = '" +
+                                     body.subdivisions +
+                                     "': counts must be integers >= 1."));
+          n_spans[d] = static_cast<unsigned int>(count);
+        }
+      // k-refinement: elevate first, then insert knots, so that the base
+      // subdivisions (and later refinements) give C^{p-1} spaces, not the C0
+      // space that inserting before elevating would leave.
+      nurbs::elevate_to_degree(patch, degree);
       nurbs::subdivide(patch, n_spans);
       return patch;
     }
@@ -110,8 +114,8 @@ namespace igabde
 
 
     template nurbs::NurbsPatch<2>
-    make_geometry<2>(const BodyParameters &, const std::string &);
+    make_geometry<2>(const BodyParameters &, const std::string &, unsigned int);
     template nurbs::NurbsPatch<3>
-    make_geometry<3>(const BodyParameters &, const std::string &);
+    make_geometry<3>(const BodyParameters &, const std::string &, unsigned int);
   } // namespace scene
 } // namespace igabde

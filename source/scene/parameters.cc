@@ -417,11 +417,11 @@ namespace igabde
     {
       std::vector<std::pair<double, double>> result;
       if (load_factors.empty() && displacement_factors.empty())
-      {
-        for (unsigned int s = 1; s <= n_steps; ++s)
-          result.emplace_back(double(s) / n_steps, double(s) / n_steps);
-        return result;
-      }
+        {
+          for (unsigned int s = 1; s <= n_steps; ++s)
+            result.emplace_back(double(s) / n_steps, double(s) / n_steps);
+          return result;
+        }
       const std::vector<double> &lf =
         load_factors.empty() ? displacement_factors : load_factors;
       const std::vector<double> &df =

@@ -28,8 +28,7 @@ namespace igabde
         TeeBuffer(std::streambuf *a, std::streambuf *b)
           : a(a)
           , b(b)
-        {
-        }
+        {}
 
       protected:
         int
@@ -102,138 +101,138 @@ namespace igabde
                                      elasticity::PlaneModel::plane_strain);
       d.material.validate(scene_file + ": " + name);
 
-      d.geometry = make_geometry<dim>(body, where);
+      d.geometry =
+        make_geometry<dim>(body, where, parameters.discretization.degree);
 
       // Supports: "face: x y=0.1; face: z".
       for (const std::string &item : base::split(body.supports, ';'))
-      {
-        const auto colon = item.find(':');
-        AssertThrow(colon != std::string::npos,
-                    base::ExcInput(where + "Supports: '" + item +
-                                   "' must read 'face: components', e.g. "
-                                   "'0: x y'."));
-        discretization::DirichletCondition<dim> bc;
-        const auto                              face =
-          base::parse_doubles(item.substr(0, colon), where + "Supports");
-        AssertThrow(face.size() == 1 && face[0] >= 0 && face[0] < 2 * dim &&
-                      face[0] == std::floor(face[0]),
-                    base::ExcInput(where + "Supports: face in '" + item +
-                                   "' must be a patch face 0.." +
-                                   std::to_string(2 * dim - 1) + "."));
-        bc.boundary_id   = static_cast<types::boundary_id>(face[0]);
-        std::string rest = item.substr(colon + 1);
-        for (char &c : rest)
-          if (c == ',')
-            c = ' ';
-        std::istringstream in(rest);
-        std::string        token;
-        bool               any = false;
-        while (in >> token)
         {
-          const auto        eq   = token.find('=');
-          const std::string comp = token.substr(0, eq);
-          const int         c    = (comp == "x" ? 0 :
-                                    comp == "y" ? 1 :
-                                    comp == "z" ? 2 :
-                                                  -1);
-          AssertThrow(c >= 0 && c < dim,
-                      base::ExcInput(where + "Supports: '" + token + "' in '" +
-                                     item + "' is not a component; use " +
-                                     component_names(dim) +
-                                     ", optionally with =value."));
-          bc.components[c] = true;
-          if (eq != std::string::npos)
-          {
-            const auto v =
-              base::parse_doubles(token.substr(eq + 1), where + "Supports");
-            AssertThrow(v.size() == 1,
-                        base::ExcInput(where + "Supports: '" + token +
-                                       "' needs one value."));
-            bc.value[c] = v[0];
-          }
-          any = true;
+          const auto colon = item.find(':');
+          AssertThrow(colon != std::string::npos,
+                      base::ExcInput(where + "Supports: '" + item +
+                                     "' must read 'face: components', e.g. "
+                                     "'0: x y'."));
+          discretization::DirichletCondition<dim> bc;
+          const auto                              face =
+            base::parse_doubles(item.substr(0, colon), where + "Supports");
+          AssertThrow(face.size() == 1 && face[0] >= 0 && face[0] < 2 * dim &&
+                        face[0] == std::floor(face[0]),
+                      base::ExcInput(where + "Supports: face in '" + item +
+                                     "' must be a patch face 0.." +
+                                     std::to_string(2 * dim - 1) + "."));
+          bc.boundary_id   = static_cast<types::boundary_id>(face[0]);
+          std::string rest = item.substr(colon + 1);
+          for (char &c : rest)
+            if (c == ',')
+              c = ' ';
+          std::istringstream in(rest);
+          std::string        token;
+          bool               any = false;
+          while (in >> token)
+            {
+              const auto        eq   = token.find('=');
+              const std::string comp = token.substr(0, eq);
+              const int         c    = (comp == "x" ? 0 :
+                                        comp == "y" ? 1 :
+                                        comp == "z" ? 2 :
+                                                      -1);
+              AssertThrow(c >= 0 && c < dim,
+                          base::ExcInput(where + "Supports: '" + token +
+                                         "' in '" + item +
+                                         "' is not a component; use " +
+                                         component_names(dim) +
+                                         ", optionally with =value."));
+              bc.components[c] = true;
+              if (eq != std::string::npos)
+                {
+                  const auto v = base::parse_doubles(token.substr(eq + 1),
+                                                     where + "Supports");
+                  AssertThrow(v.size() == 1,
+                              base::ExcInput(where + "Supports: '" + token +
+                                             "' needs one value."));
+                  bc.value[c] = v[0];
+                }
+              any = true;
+            }
+          AssertThrow(any,
+                      base::ExcInput(where + "Supports: '" + item +
+                                     "' names no component."));
+          d.dirichlet.push_back(bc);
         }
-        AssertThrow(any,
-                    base::ExcInput(where + "Supports: '" + item +
-                                   "' names no component."));
-        d.dirichlet.push_back(bc);
-      }
 
       // Tractions.
       for (const std::string &item : base::split(body.tractions, ';'))
-      {
-        const auto colon = item.find(':');
-        AssertThrow(colon != std::string::npos,
-                    base::ExcInput(where + "Tractions: '" + item +
-                                   "' must read 'face: pressure p', "
-                                   "'face: vector tx, ty' or 'face: "
-                                   "exact'."));
-        const auto face =
-          base::parse_doubles(item.substr(0, colon), where + "Tractions");
-        AssertThrow(face.size() == 1 && face[0] >= 0 && face[0] < 2 * dim,
-                    base::ExcInput(where + "Tractions: face in '" + item +
-                                   "' must be a patch face 0.." +
-                                   std::to_string(2 * dim - 1) + "."));
-        discretization::NeumannCondition<dim> bc;
-        bc.boundary_id         = static_cast<types::boundary_id>(face[0]);
-        const std::string rest = base::trim(item.substr(colon + 1));
-        if (rest.rfind("pressure", 0) == 0)
         {
-          const auto v =
-            base::parse_doubles(rest.substr(8), where + "Tractions");
-          AssertThrow(v.size() == 1,
+          const auto colon = item.find(':');
+          AssertThrow(colon != std::string::npos,
                       base::ExcInput(where + "Tractions: '" + item +
-                                     "' needs one pressure value."));
-          const double p = v[0];
-          bc.traction    = [p](const Point<dim> &, const Tensor<1, dim> &n)
-          {
-            return -p * n;
-          };
+                                     "' must read 'face: pressure p', "
+                                     "'face: vector tx, ty' or 'face: "
+                                     "exact'."));
+          const auto face =
+            base::parse_doubles(item.substr(0, colon), where + "Tractions");
+          AssertThrow(face.size() == 1 && face[0] >= 0 && face[0] < 2 * dim,
+                      base::ExcInput(where + "Tractions: face in '" + item +
+                                     "' must be a patch face 0.." +
+                                     std::to_string(2 * dim - 1) + "."));
+          discretization::NeumannCondition<dim> bc;
+          bc.boundary_id         = static_cast<types::boundary_id>(face[0]);
+          const std::string rest = base::trim(item.substr(colon + 1));
+          if (rest.rfind("pressure", 0) == 0)
+            {
+              const auto v =
+                base::parse_doubles(rest.substr(8), where + "Tractions");
+              AssertThrow(v.size() == 1,
+                          base::ExcInput(where + "Tractions: '" + item +
+                                         "' needs one pressure value."));
+              const double p = v[0];
+              bc.traction = [p](const Point<dim> &, const Tensor<1, dim> &n) {
+                return -p * n;
+              };
+            }
+          else if (rest.rfind("vector", 0) == 0)
+            {
+              const Tensor<1, dim> t =
+                base::parse_tensor<dim>(rest.substr(6), where + "Tractions");
+              bc.traction = [t](const Point<dim> &, const Tensor<1, dim> &) {
+                return t;
+              };
+            }
+          else if (rest == "exact")
+            {
+              AssertThrow(exact.has_value(),
+                          base::ExcInput(where + "Tractions: 'exact' needs "
+                                                 "Exact solution/Type other "
+                                                 "than none."));
+              const auto stress = exact->stress;
+              bc.traction       = [stress](const Point<dim>     &x,
+                                     const Tensor<1, dim> &n) {
+                return stress(x) * n;
+              };
+            }
+          else
+            AssertThrow(false,
+                        base::ExcInput(where + "Tractions: '" + rest +
+                                       "' is not 'pressure p', 'vector tx, "
+                                       "ty[, tz]' or 'exact'."));
+          d.tractions.push_back(bc);
         }
-        else if (rest.rfind("vector", 0) == 0)
-        {
-          const Tensor<1, dim> t =
-            base::parse_tensor<dim>(rest.substr(6), where + "Tractions");
-          bc.traction = [t](const Point<dim> &, const Tensor<1, dim> &)
-          {
-            return t;
-          };
-        }
-        else if (rest == "exact")
-        {
-          AssertThrow(exact.has_value(),
-                      base::ExcInput(where + "Tractions: 'exact' needs "
-                                             "Exact solution/Type other "
-                                             "than none."));
-          const auto stress = exact->stress;
-          bc.traction = [stress](const Point<dim> &x, const Tensor<1, dim> &n)
-          {
-            return stress(x) * n;
-          };
-        }
-        else
-          AssertThrow(false,
-                      base::ExcInput(where + "Tractions: '" + rest +
-                                     "' is not 'pressure p', 'vector tx, "
-                                     "ty[, tz]' or 'exact'."));
-        d.tractions.push_back(bc);
-      }
 
       // Point loads.
       for (const std::string &item : base::split(body.point_loads, ';'))
-      {
-        const auto colon = item.find(':');
-        AssertThrow(colon != std::string::npos,
-                    base::ExcInput(where + "Point loads: '" + item +
-                                   "' must read 'x, y[, z] : fx, fy[, "
-                                   "fz]'."));
-        discretization::PointLoad<dim> load;
-        load.location =
-          base::parse_point<dim>(item.substr(0, colon), where + "Point loads");
-        load.force = base::parse_tensor<dim>(item.substr(colon + 1),
-                                             where + "Point loads");
-        d.point_loads.push_back(load);
-      }
+        {
+          const auto colon = item.find(':');
+          AssertThrow(colon != std::string::npos,
+                      base::ExcInput(where + "Point loads: '" + item +
+                                     "' must read 'x, y[, z] : fx, fy[, "
+                                     "fz]'."));
+          discretization::PointLoad<dim> load;
+          load.location = base::parse_point<dim>(item.substr(0, colon),
+                                                 where + "Point loads");
+          load.force    = base::parse_tensor<dim>(item.substr(colon + 1),
+                                               where + "Point loads");
+          d.point_loads.push_back(load);
+        }
       d.body_force =
         base::parse_tensor<dim>(body.body_force, where + "Body force");
       return d;
@@ -256,16 +255,16 @@ namespace igabde
                                      elasticity::PlaneModel::plane_strain);
         const auto &e           = parameters.exact;
         if (e.type == "kirsch")
-        {
-          AssertThrow(dim == 2,
-                      base::ExcInput(scene_file +
-                                     ": Exact solution/Type = kirsch is a "
-                                     "2D solution; set Dimension = 2."));
-          if constexpr (dim == 2)
-            exact = postprocess::kirsch_solution(e.remote_tension,
-                                                 e.hole_radius,
-                                                 material);
-        }
+          {
+            AssertThrow(dim == 2,
+                        base::ExcInput(scene_file +
+                                       ": Exact solution/Type = kirsch is a "
+                                       "2D solution; set Dimension = 2."));
+            if constexpr (dim == 2)
+              exact = postprocess::kirsch_solution(e.remote_tension,
+                                                   e.hole_radius,
+                                                   material);
+          }
         else if (e.type == "lame")
           exact = postprocess::lame_solution<dim>(e.inner_radius,
                                                   e.outer_radius,
@@ -285,33 +284,33 @@ namespace igabde
       types::global_dof_index n_dofs     = 0;
       unsigned int            n_elements = 0;
       for (auto &body : bodies)
-      {
-        body->setup();
-        n_dofs += body->n_dofs();
-        n_elements += body->n_elements();
-        log << "  " << body->description().name << ": " << body->n_elements()
-            << " elements, " << body->n_dofs() << " unknowns ("
-            << body->discretization_name() << ", degree "
-            << parameters.discretization.degree << ")" << std::endl;
-        for (const auto &name : body->free_rigid_mode_names())
-          log << "    free rigid mode left by the supports: " << name
-              << " (closed by the contact equilibrium)" << std::endl;
-      }
+        {
+          body->setup();
+          n_dofs += body->n_dofs();
+          n_elements += body->n_elements();
+          log << "  " << body->description().name << ": " << body->n_elements()
+              << " elements, " << body->n_dofs() << " unknowns ("
+              << body->discretization_name() << ", degree "
+              << parameters.discretization.degree << ")" << std::endl;
+          for (const auto &name : body->free_rigid_mode_names())
+            log << "    free rigid mode left by the supports: " << name
+                << " (closed by the contact equilibrium)" << std::endl;
+        }
       summary["n_dofs"]     = static_cast<unsigned long long>(n_dofs);
       summary["n_elements"] = n_elements;
       base::Json per_body   = base::Json::array();
       for (const auto &body : bodies)
-      {
-        base::Json b;
-        b["name"]        = body->description().name;
-        b["n_dofs"]      = static_cast<unsigned long long>(body->n_dofs());
-        b["n_elements"]  = body->n_elements();
-        base::Json modes = base::Json::array();
-        for (const auto &name : body->free_rigid_mode_names())
-          modes.push_back(name);
-        b["free_rigid_modes"] = modes;
-        per_body.push_back(b);
-      }
+        {
+          base::Json b;
+          b["name"]        = body->description().name;
+          b["n_dofs"]      = static_cast<unsigned long long>(body->n_dofs());
+          b["n_elements"]  = body->n_elements();
+          base::Json modes = base::Json::array();
+          for (const auto &name : body->free_rigid_mode_names())
+            modes.push_back(name);
+          b["free_rigid_modes"] = modes;
+          per_body.push_back(b);
+        }
       summary["bodies"] = per_body;
 
       // Every body without supports that fix it must be held by contact.
@@ -332,85 +331,85 @@ namespace igabde
     {
       const auto steps = parameters.load_path.steps();
       if (parameters.contact.enabled)
-      {
-        TimerOutput::Scope            t(timer, "contact: setup");
-        contact::ContactSettings<dim> cs;
-        const auto                   &c = parameters.contact;
-        cs.friction_coefficient         = c.friction_coefficient;
-        cs.slave_face                   = c.slave_face;
-        cs.master_face                  = c.master_face;
-        cs.placement                    = (c.pair_placement == "knots" ?
-                                             discretization::PairPlacement::knots :
-                                           c.pair_placement == "gauss" ?
-                                             discretization::PairPlacement::gauss :
-                                             discretization::PairPlacement::greville);
-        cs.rigid_plane = (parameters.body2.type == "rigid plane");
-        if (cs.rigid_plane)
         {
-          const std::string where = scene_file + ": Body 2/";
-          cs.plane_point = base::parse_point<dim>(parameters.body2.plane_point,
-                                                  where + "Plane point");
-          cs.plane_normal =
-            base::parse_tensor<dim>(parameters.body2.plane_normal,
-                                    where + "Plane normal");
-          AssertThrow(cs.plane_normal.norm() > 0.,
-                      base::ExcInput(where + "Plane normal must not be "
-                                             "zero."));
-          cs.plane_normal /= cs.plane_normal.norm();
+          contact::ContactSettings<dim> cs;
+          const auto                   &c = parameters.contact;
+          cs.friction_coefficient         = c.friction_coefficient;
+          cs.slave_face                   = c.slave_face;
+          cs.master_face                  = c.master_face;
+          cs.placement                    = (c.pair_placement == "knots" ?
+                                               discretization::PairPlacement::knots :
+                                             c.pair_placement == "gauss" ?
+                                               discretization::PairPlacement::gauss :
+                                               discretization::PairPlacement::greville);
+          cs.rigid_plane = (parameters.body2.type == "rigid plane");
+          if (cs.rigid_plane)
+            {
+              const std::string where = scene_file + ": Body 2/";
+              cs.plane_point =
+                base::parse_point<dim>(parameters.body2.plane_point,
+                                       where + "Plane point");
+              cs.plane_normal =
+                base::parse_tensor<dim>(parameters.body2.plane_normal,
+                                        where + "Plane normal");
+              AssertThrow(cs.plane_normal.norm() > 0.,
+                          base::ExcInput(where + "Plane normal must not be "
+                                                 "zero."));
+              cs.plane_normal /= cs.plane_normal.norm();
+            }
+          cs.solver.tolerance      = c.tolerance;
+          cs.solver.max_iterations = c.max_iterations;
+          cs.solver.r_factor       = c.r_scale;
+          cs.solver.log            = c.verbose;
+          cs.solver.log_stream     = &log;
+          cs.uniform_pressure      = parameters.checks.uniform_pressure;
+          cs.hertz_line_load       = parameters.checks.hertz_line_load;
+          cs.hertz_radius          = parameters.body1.radius;
+          cs.scene_file            = scene_file;
+          contact_stage =
+            std::make_unique<contact::ContactStage<dim>>(cs, bodies, log);
+          contact_stage->setup(timer);
+          contact_stage->add_summary(summary);
         }
-        cs.solver.tolerance      = c.tolerance;
-        cs.solver.max_iterations = c.max_iterations;
-        cs.solver.r_factor       = c.r_scale;
-        cs.solver.log            = c.verbose;
-        cs.solver.log_stream     = &log;
-        cs.uniform_pressure      = parameters.checks.uniform_pressure;
-        cs.hertz_line_load       = parameters.checks.hertz_line_load;
-        cs.hertz_radius          = parameters.body1.radius;
-        cs.scene_file            = scene_file;
-        contact_stage =
-          std::make_unique<contact::ContactStage<dim>>(cs, bodies, log);
-        contact_stage->setup(timer);
-        contact_stage->add_summary(summary);
-      }
       else
-      {
-        base::Json effects;
-        effects["contact"]    = false;
-        effects["friction"]   = false;
-        effects["load_steps"] = steps.size();
-        summary["effects"]    = effects;
-      }
+        {
+          base::Json effects;
+          effects["contact"]    = false;
+          effects["friction"]   = false;
+          effects["load_steps"] = steps.size();
+          summary["effects"]    = effects;
+        }
 
       for (unsigned int s = 0; s < steps.size(); ++s)
-      {
-        const auto [load_factor, displacement_factor] = steps[s];
-        log << "Load step " << s + 1 << "/" << steps.size() << ": load factor "
-            << load_factor << ", displacement factor " << displacement_factor
-            << std::endl;
-        std::vector<Vector<double>> u(bodies.size());
-        for (unsigned int b = 0; b < bodies.size(); ++b)
         {
-          u[b] = bodies[b]->load_solution();
-          u[b] *= load_factor;
-          u[b].add(displacement_factor, bodies[b]->prescribed_solution());
+          const auto [load_factor, displacement_factor] = steps[s];
+          log << "Load step " << s + 1 << "/" << steps.size()
+              << ": load factor " << load_factor << ", displacement factor "
+              << displacement_factor << std::endl;
+          std::vector<Vector<double>> u(bodies.size());
+          for (unsigned int b = 0; b < bodies.size(); ++b)
+            {
+              u[b] = bodies[b]->load_solution();
+              u[b] *= load_factor;
+              u[b].add(displacement_factor, bodies[b]->prescribed_solution());
+            }
+          base::Json record;
+          record["step"]                = s + 1;
+          record["load_factor"]         = load_factor;
+          record["displacement_factor"] = displacement_factor;
+          if (contact_stage)
+            contact_stage->solve_step(s + 1,
+                                      load_factor,
+                                      displacement_factor,
+                                      u,
+                                      record,
+                                      timer);
+          step_records.push_back(record);
+          summary["load_steps"] = step_records;
+          output_step(s + 1, u);
+          if (s + 1 == steps.size())
+            postprocess_final(u);
         }
-        base::Json record;
-        record["step"]                = s + 1;
-        record["load_factor"]         = load_factor;
-        record["displacement_factor"] = displacement_factor;
-        if (contact_stage)
-          contact_stage->solve_step(s + 1,
-                                    load_factor,
-                                    displacement_factor,
-                                    u,
-                                    record,
-                                    timer);
-        step_records.push_back(record);
-        summary["load_steps"] = step_records;
-        output_step(s + 1, u);
-        if (s + 1 == steps.size())
-          postprocess_final(u);
-      }
     }
 
 
@@ -424,16 +423,16 @@ namespace igabde
       if (!parameters.output.write_vtu)
         return;
       for (unsigned int b = 0; b < bodies.size(); ++b)
-      {
-        std::ostringstream name;
-        name << "solution-" << bodies[b]->description().name << "-"
-             << std::setw(4) << std::setfill('0') << step << ".vtu";
-        bodies[b]->write_vtu(u[b], output_directory + "/" + name.str());
-        pvd_records[b].emplace_back(double(step), name.str());
-        std::ofstream pvd(output_directory + "/solution-" +
-                          bodies[b]->description().name + ".pvd");
-        DataOutBase::write_pvd_record(pvd, pvd_records[b]);
-      }
+        {
+          std::ostringstream name;
+          name << "solution-" << bodies[b]->description().name << "-"
+               << std::setw(4) << std::setfill('0') << step << ".vtu";
+          bodies[b]->write_vtu(u[b], output_directory + "/" + name.str());
+          pvd_records[b].emplace_back(double(step), name.str());
+          std::ofstream pvd(output_directory + "/solution-" +
+                            bodies[b]->description().name + ".pvd");
+          DataOutBase::write_pvd_record(pvd, pvd_records[b]);
+        }
       if (contact_stage)
         contact_stage->write_step_output(step, output_directory);
     }
@@ -447,39 +446,39 @@ namespace igabde
       TimerOutput::Scope t(timer, "postprocess");
       base::Json         checks = base::Json::object();
       if (exact)
-      {
-        const auto norms       = bodies[0]->compute_errors(u[0], *exact);
-        checks["l2_error"]     = norms.l2_relative;
-        checks["energy_error"] = norms.energy_relative;
-        log << "  relative L2 error " << std::setprecision(4) << std::scientific
-            << norms.l2_relative << ", relative energy error "
-            << norms.energy_relative << std::defaultfloat
-            << std::setprecision(6) << std::endl;
-      }
+        {
+          const auto norms       = bodies[0]->compute_errors(u[0], *exact);
+          checks["l2_error"]     = norms.l2_relative;
+          checks["energy_error"] = norms.energy_relative;
+          log << "  relative L2 error " << std::setprecision(4)
+              << std::scientific << norms.l2_relative
+              << ", relative energy error " << norms.energy_relative
+              << std::defaultfloat << std::setprecision(6) << std::endl;
+        }
       if (contact_stage)
         contact_stage->add_checks(checks);
       summary["checks"] = checks;
 
       base::Json points = base::Json::object();
       for (const std::string &item : base::split(parameters.probes, ';'))
-      {
-        const auto colon = item.find(':');
-        AssertThrow(colon != std::string::npos,
-                    base::ExcInput(scene_file + ": Probe points: '" + item +
-                                   "' must read 'name: x, y[, z]'."));
-        const std::string name = base::trim(item.substr(0, colon));
-        const Point<dim>  x =
-          base::parse_point<dim>(item.substr(colon + 1),
-                                 scene_file + ": Probe points");
-        const Tensor<1, dim> d =
-          bodies[0]->point_operator(x).displacement(u[0]);
-        base::Json value = base::Json::array();
-        for (unsigned int c = 0; c < dim; ++c)
-          value.push_back(d[c]);
-        points[name] = value;
-        log << "  probe " << name << ": displacement " << std::setprecision(5)
-            << d << std::setprecision(6) << std::endl;
-      }
+        {
+          const auto colon = item.find(':');
+          AssertThrow(colon != std::string::npos,
+                      base::ExcInput(scene_file + ": Probe points: '" + item +
+                                     "' must read 'name: x, y[, z]'."));
+          const std::string name = base::trim(item.substr(0, colon));
+          const Point<dim>  x =
+            base::parse_point<dim>(item.substr(colon + 1),
+                                   scene_file + ": Probe points");
+          const Tensor<1, dim> d =
+            bodies[0]->point_operator(x).displacement(u[0]);
+          base::Json value = base::Json::array();
+          for (unsigned int c = 0; c < dim; ++c)
+            value.push_back(d[c]);
+          points[name] = value;
+          log << "  probe " << name << ": displacement " << std::setprecision(5)
+              << d << std::setprecision(6) << std::endl;
+        }
       summary["points"] = points;
     }
 
@@ -497,10 +496,10 @@ namespace igabde
       double     total  = 0.;
       for (const auto &[phase, seconds] :
            timer.get_summary_data(TimerOutput::total_wall_time))
-      {
-        timing[phase] = seconds;
-        total += seconds;
-      }
+        {
+          timing[phase] = seconds;
+          total += seconds;
+        }
       timing["total"]   = total;
       summary["timing"] = timing;
 
@@ -592,17 +591,17 @@ namespace igabde
         for (unsigned int i = 0; i + 1 < parts.size(); ++i)
           prm.enter_subsection(parts[i]);
         try
-        {
-          prm.set(parts.back(), value);
-        }
+          {
+            prm.set(parts.back(), value);
+          }
         catch (const ExceptionBase &e)
-        {
-          for (unsigned int i = 0; i + 1 < parts.size(); ++i)
-            prm.leave_subsection();
-          AssertThrow(false,
-                      base::ExcInput("--set " + path + "=" + value + ": " +
-                                     base::exception_message(e)));
-        }
+          {
+            for (unsigned int i = 0; i + 1 < parts.size(); ++i)
+              prm.leave_subsection();
+            AssertThrow(false,
+                        base::ExcInput("--set " + path + "=" + value + ": " +
+                                       base::exception_message(e)));
+          }
         for (unsigned int i = 0; i + 1 < parts.size(); ++i)
           prm.leave_subsection();
       }
@@ -620,19 +619,19 @@ namespace igabde
         for (unsigned int j = 0; j <= b.size(); ++j)
           row[j] = j;
         for (unsigned int i = 1; i <= a.size(); ++i)
-        {
-          unsigned int diagonal = row[0];
-          row[0]                = i;
-          for (unsigned int j = 1; j <= b.size(); ++j)
           {
-            const unsigned int up = row[j];
-            row[j]                = std::min(
-              {row[j] + 1,
-                              row[j - 1] + 1,
-                              diagonal + (std::tolower(a[i - 1]) != std::tolower(b[j - 1]))});
-            diagonal = up;
+            unsigned int diagonal = row[0];
+            row[0]                = i;
+            for (unsigned int j = 1; j <= b.size(); ++j)
+              {
+                const unsigned int up = row[j];
+                row[j]                = std::min({row[j] + 1,
+                                                  row[j - 1] + 1,
+                                                  diagonal + (std::tolower(a[i - 1]) !=
+                                               std::tolower(b[j - 1]))});
+                diagonal              = up;
+              }
           }
-        }
         return row[b.size()];
       }
 
@@ -658,19 +657,19 @@ namespace igabde
         std::string        line, best;
         unsigned int       best_distance = 1000;
         while (std::getline(in, line))
-        {
-          line = base::trim(line);
-          if (line.rfind("set ", 0) != 0)
-            continue;
-          const std::string candidate =
-            base::trim(line.substr(4, line.find('=') - 4));
-          const unsigned int d = edit_distance(name, candidate);
-          if (d < best_distance)
           {
-            best_distance = d;
-            best          = candidate;
+            line = base::trim(line);
+            if (line.rfind("set ", 0) != 0)
+              continue;
+            const std::string candidate =
+              base::trim(line.substr(4, line.find('=') - 4));
+            const unsigned int d = edit_distance(name, candidate);
+            if (d < best_distance)
+              {
+                best_distance = d;
+                best          = candidate;
+              }
           }
-        }
         std::string result = message;
         if (best_distance <= std::max<std::size_t>(3, name.size() / 3))
           result += " Did you mean '" + best + "'?";
@@ -689,24 +688,24 @@ namespace igabde
       AllParameters::declare_parameters(prm);
       AllParameters parameters;
       try
-      {
-        AssertThrow(std::filesystem::exists(scene_file),
-                    base::ExcInput(scene_file +
-                                   ": no such scene file; give the path "
-                                   "of a .prm file (see prm/)."));
-        prm.parse_input(scene_file);
-        for (const auto &[path, value] : overrides)
-          set_override(prm, path, value);
-        parameters.parse_parameters(prm, scene_file);
-      }
+        {
+          AssertThrow(std::filesystem::exists(scene_file),
+                      base::ExcInput(scene_file +
+                                     ": no such scene file; give the path "
+                                     "of a .prm file (see prm/)."));
+          prm.parse_input(scene_file);
+          for (const auto &[path, value] : overrides)
+            set_override(prm, path, value);
+          parameters.parse_parameters(prm, scene_file);
+        }
       catch (const ExceptionBase &e)
-      {
-        std::string message =
-          suggest_parameter(prm, base::exception_message(e));
-        if (message.find(scene_file) == std::string::npos)
-          message = scene_file + ": " + message;
-        throw base::ExcInput(message);
-      }
+        {
+          std::string message =
+            suggest_parameter(prm, base::exception_message(e));
+          if (message.find(scene_file) == std::string::npos)
+            message = scene_file + ": " + message;
+          throw base::ExcInput(message);
+        }
       if (parameters.name.empty())
         parameters.name = std::filesystem::path(scene_file).stem();
       if (parameters.output.directory.empty())
@@ -725,19 +724,18 @@ namespace igabde
       ParameterHandler    prm;
       const AllParameters parameters = parse_scene(prm, scene_file, overrides);
       std::filesystem::create_directories(parameters.output.directory);
-      auto run = [&](auto &simulator)
-      {
+      auto run = [&](auto &simulator) {
         simulator.run();
         return simulator.get_summary();
       };
       if (parameters.dimension == 2)
-      {
-        Simulator<2> simulator(parameters,
-                               scene_file,
-                               parameters.output.directory,
-                               log);
-        return run(simulator);
-      }
+        {
+          Simulator<2> simulator(parameters,
+                                 scene_file,
+                                 parameters.output.directory,
+                                 log);
+          return run(simulator);
+        }
       Simulator<3> simulator(parameters,
                              scene_file,
                              parameters.output.directory,
@@ -754,26 +752,27 @@ namespace igabde
       ParameterHandler prm;
       AllParameters    parameters;
       try
-      {
-        parameters = parse_scene(prm, scene_file, overrides);
-      }
+        {
+          parameters = parse_scene(prm, scene_file, overrides);
+        }
       catch (const ExceptionBase &e)
-      {
-        std::cerr << "igabde: error: " << base::exception_message(e)
-                  << std::endl;
-        return 2;
-      }
+        {
+          std::cerr << "igabde: error: " << base::exception_message(e)
+                    << std::endl;
+          return 2;
+        }
 
       const std::string dir = parameters.output.directory;
       std::error_code   ec;
       std::filesystem::create_directories(dir, ec);
       if (ec)
-      {
-        std::cerr << "igabde: error: " << scene_file << ": Output/Directory = '"
-                  << dir << "' cannot be created (" << ec.message()
-                  << "); choose a writable folder." << std::endl;
-        return 2;
-      }
+        {
+          std::cerr << "igabde: error: " << scene_file
+                    << ": Output/Directory = '" << dir
+                    << "' cannot be created (" << ec.message()
+                    << "); choose a writable folder." << std::endl;
+          return 2;
+        }
       {
         std::ofstream echo(dir + "/parameters.prm");
         prm.print_parameters(echo, ParameterHandler::PRM);
@@ -786,39 +785,38 @@ namespace igabde
       std::ostream  log(&tee);
       log << std::setprecision(6);
 
-      auto run = [&](auto &simulator) -> int
-      {
+      auto run = [&](auto &simulator) -> int {
         try
-        {
-          simulator.run();
-          return 0;
-        }
+          {
+            simulator.run();
+            return 0;
+          }
         catch (const ExceptionBase &e)
-        {
-          const std::string message = base::exception_message(e);
-          log << "igabde: error: " << message << std::endl;
-          std::cerr << "igabde: error: " << message << std::endl;
-          simulator.write_failed_summary(message);
-        }
+          {
+            const std::string message = base::exception_message(e);
+            log << "igabde: error: " << message << std::endl;
+            std::cerr << "igabde: error: " << message << std::endl;
+            simulator.write_failed_summary(message);
+          }
         catch (const std::exception &e)
-        {
-          log << "igabde: error: " << e.what() << std::endl;
-          std::cerr << "igabde: error: " << e.what() << std::endl;
-          simulator.write_failed_summary(e.what());
-        }
+          {
+            log << "igabde: error: " << e.what() << std::endl;
+            std::cerr << "igabde: error: " << e.what() << std::endl;
+            simulator.write_failed_summary(e.what());
+          }
         return 1;
       };
 
       if (parameters.dimension == 2)
-      {
-        Simulator<2> simulator(parameters, scene_file, dir, log);
-        return run(simulator);
-      }
+        {
+          Simulator<2> simulator(parameters, scene_file, dir, log);
+          return run(simulator);
+        }
       else
-      {
-        Simulator<3> simulator(parameters, scene_file, dir, log);
-        return run(simulator);
-      }
+        {
+          Simulator<3> simulator(parameters, scene_file, dir, log);
+          return run(simulator);
+        }
     }
   } // namespace scene
 } // namespace igabde

@@ -107,17 +107,18 @@ TEST(ContactBNewton, SingleContactSlip3D)
                                               {0.5});
   for (const FrictionRadius radius :
        {FrictionRadius::christensen_pang, FrictionRadius::alart_curnier})
-  {
-    BNewtonSolver::Settings settings;
-    settings.radius                    = radius;
-    const BNewtonSolver::Result result = BNewtonSolver(settings).solve(problem);
-    expect_solution_ok(problem, result);
-    EXPECT_NEAR(result.p[0], 1., 1e-12);
-    EXPECT_NEAR(result.p[1], 0.4, 1e-12);
-    EXPECT_NEAR(result.p[2], 0.3, 1e-12);
-    EXPECT_NEAR(result.u[1], -0.4, 1e-12);
-    EXPECT_EQ(result.status[0], ContactStatus::slip);
-  }
+    {
+      BNewtonSolver::Settings settings;
+      settings.radius = radius;
+      const BNewtonSolver::Result result =
+        BNewtonSolver(settings).solve(problem);
+      expect_solution_ok(problem, result);
+      EXPECT_NEAR(result.p[0], 1., 1e-12);
+      EXPECT_NEAR(result.p[1], 0.4, 1e-12);
+      EXPECT_NEAR(result.p[2], 0.3, 1e-12);
+      EXPECT_NEAR(result.u[1], -0.4, 1e-12);
+      EXPECT_EQ(result.status[0], ContactStatus::slip);
+    }
 }
 
 
@@ -179,20 +180,20 @@ TEST(ContactBNewton, FrictionlessNormalOnly)
 TEST(ContactBNewton, GrazingTies)
 {
   for (const double qt : {0., -0.1})
-  {
-    const ContactProblem        problem = make_problem(3,
-                                                Eigen::Matrix3d::Identity(),
-                                                Eigen::Vector3d(0., qt, 0.),
-                                                {0.5});
-    const BNewtonSolver::Result result =
-      BNewtonSolver().solve(problem, Eigen::VectorXd());
-    EXPECT_TRUE(result.converged) << result.summary();
-    EXPECT_EQ(result.p.norm(), 0.);
-    EXPECT_EQ(result.status[0], ContactStatus::open);
-    const ConditionReport report =
-      check_contact_conditions(problem, result.p, result.u, 1e-8);
-    EXPECT_TRUE(report.passed()) << report.first_violation();
-  }
+    {
+      const ContactProblem        problem = make_problem(3,
+                                                  Eigen::Matrix3d::Identity(),
+                                                  Eigen::Vector3d(0., qt, 0.),
+                                                  {0.5});
+      const BNewtonSolver::Result result =
+        BNewtonSolver().solve(problem, Eigen::VectorXd());
+      EXPECT_TRUE(result.converged) << result.summary();
+      EXPECT_EQ(result.p.norm(), 0.);
+      EXPECT_EQ(result.status[0], ContactStatus::open);
+      const ConditionReport report =
+        check_contact_conditions(problem, result.p, result.u, 1e-8);
+      EXPECT_TRUE(report.passed()) << report.first_violation();
+    }
   // A grazing pair next to a closed one: W = I (3 pairs), pair 1 grazing.
   Eigen::VectorXd q(9);
   q << -1., -0.3, 0.2, 0., 0., 0., 0.5, 0., 0.;
@@ -224,13 +225,14 @@ TEST(ContactBNewton, HighFriction)
     make_problem(3, W, q, std::vector<double>(nc, 2.));
   for (const FrictionRadius radius :
        {FrictionRadius::christensen_pang, FrictionRadius::alart_curnier})
-  {
-    BNewtonSolver::Settings settings;
-    settings.radius                    = radius;
-    const BNewtonSolver::Result result = BNewtonSolver(settings).solve(problem);
-    expect_solution_ok(problem, result);
-    EXPECT_GT(result.n_open + result.n_stick + result.n_slip, 0u);
-  }
+    {
+      BNewtonSolver::Settings settings;
+      settings.radius = radius;
+      const BNewtonSolver::Result result =
+        BNewtonSolver(settings).solve(problem);
+      expect_solution_ok(problem, result);
+      EXPECT_GT(result.n_open + result.n_stick + result.n_slip, 0u);
+    }
 }
 
 
@@ -253,23 +255,23 @@ TEST(ContactBNewton, ScaledProblems)
   expect_solution_ok(problem, reference);
   for (const double f : {1e-6, 1., 1e6})
     for (const double dsp : {1e-6, 1e6})
-    {
-      const ContactProblem        scaled = problem.scaled(f, dsp);
-      const BNewtonSolver::Result result = solver.solve(scaled);
-      EXPECT_TRUE(result.converged) << result.summary();
-      EXPECT_LE((result.p - f * reference.p).norm(),
-                1e-9 * f * reference.p.norm());
-      EXPECT_LE((result.u - dsp * reference.u).norm(),
-                1e-9 * dsp * reference.u.norm());
-      // The iterates scale exactly; only the FCLIB part of the stopping
-      // test (not scale invariant) may ask for a few more iterations,
-      // until the rounding floor of the balanced error is detected.
-      EXPECT_LE(result.iterations, reference.iterations + 3);
-      EXPECT_LE(result.balanced_residual, 1e-10);
-      const ConditionReport report =
-        check_contact_conditions(scaled, result.p, result.u, 1e-8);
-      EXPECT_TRUE(report.passed()) << report.first_violation();
-    }
+      {
+        const ContactProblem        scaled = problem.scaled(f, dsp);
+        const BNewtonSolver::Result result = solver.solve(scaled);
+        EXPECT_TRUE(result.converged) << result.summary();
+        EXPECT_LE((result.p - f * reference.p).norm(),
+                  1e-9 * f * reference.p.norm());
+        EXPECT_LE((result.u - dsp * reference.u).norm(),
+                  1e-9 * dsp * reference.u.norm());
+        // The iterates scale exactly; only the FCLIB part of the stopping
+        // test (not scale invariant) may ask for a few more iterations,
+        // until the rounding floor of the balanced error is detected.
+        EXPECT_LE(result.iterations, reference.iterations + 3);
+        EXPECT_LE(result.balanced_residual, 1e-10);
+        const ConditionReport report =
+          check_contact_conditions(scaled, result.p, result.u, 1e-8);
+        EXPECT_TRUE(report.passed()) << report.first_violation();
+      }
 }
 
 

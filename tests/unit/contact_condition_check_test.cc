@@ -45,11 +45,11 @@ namespace
     bool found = false;
     for (const ConditionViolation &cv : report.conditions)
       if (cv.name.rfind(name, 0) == 0)
-      {
-        found = true;
-        EXPECT_GT(cv.max_violation, report.tolerance) << cv.name;
-        EXPECT_EQ(cv.contact, contact) << cv.name;
-      }
+        {
+          found = true;
+          EXPECT_GT(cv.max_violation, report.tolerance) << cv.name;
+          EXPECT_EQ(cv.contact, contact) << cv.name;
+        }
     EXPECT_TRUE(found) << name;
     EXPECT_EQ(report.first_violation().rfind(name, 0), 0u)
       << report.first_violation();
@@ -160,15 +160,15 @@ TEST(ContactConditionCheck, ScaleAware)
   p_small[1] += 1e-9;
   for (const double f : {1e-6, 1., 1e6})
     for (const double d : {1e-6, 1., 1e6})
-    {
-      const ContactProblem scaled = problem.scaled(f, d);
-      EXPECT_TRUE(
-        check_contact_conditions(scaled, f * p0, d * u0, 1e-6).passed());
-      EXPECT_TRUE(
-        check_contact_conditions(scaled, f * p_small, d * u0, 1e-6).passed());
-      const ConditionReport bad =
-        check_contact_conditions(scaled, f * p_bad, d * u0, 1e-6);
-      EXPECT_FALSE(bad.passed());
-      EXPECT_EQ(bad.first_violation().rfind("slip direction", 0), 0u);
-    }
+      {
+        const ContactProblem scaled = problem.scaled(f, d);
+        EXPECT_TRUE(
+          check_contact_conditions(scaled, f * p0, d * u0, 1e-6).passed());
+        EXPECT_TRUE(
+          check_contact_conditions(scaled, f * p_small, d * u0, 1e-6).passed());
+        const ConditionReport bad =
+          check_contact_conditions(scaled, f * p_bad, d * u0, 1e-6);
+        EXPECT_FALSE(bad.passed());
+        EXPECT_EQ(bad.first_violation().rfind("slip direction", 0), 0u);
+      }
 }

@@ -61,20 +61,20 @@ TEST(NurbsIgaBody, MeasureIsExactOnCurvedGeometry)
   const double exact_area = M_PI * (r1 * r1 - r0 * r0) / 4.;
   for (unsigned int p = 2; p <= 3; ++p)
     for (unsigned int ref = 0; ref <= 4; ++ref)
-    {
-      IgaBody<2> body(describe<2>(nurbs::make_quarter_annulus(r0, r1)),
-                      settings(p, ref));
-      EXPECT_EQ(body.n_elements(), 1u << (2 * ref));
-      EXPECT_NEAR(body.measure(), exact_area, 1e-12 * exact_area)
-        << "degree " << p << " refinements " << ref;
-    }
+      {
+        IgaBody<2> body(describe<2>(nurbs::make_quarter_annulus(r0, r1)),
+                        settings(p, ref));
+        EXPECT_EQ(body.n_elements(), 1u << (2 * ref));
+        EXPECT_NEAR(body.measure(), exact_area, 1e-12 * exact_area)
+          << "degree " << p << " refinements " << ref;
+      }
   const double exact_volume = M_PI * (25. - 16.) / 4. * 1.;
   for (unsigned int ref = 0; ref <= 2; ++ref)
-  {
-    IgaBody<3> beam(describe<3>(nurbs::make_curved_beam(4., 5., 1.)),
-                    settings(2, ref));
-    EXPECT_NEAR(beam.measure(), exact_volume, 1e-12 * exact_volume);
-  }
+    {
+      IgaBody<3> beam(describe<3>(nurbs::make_curved_beam(4., 5., 1.)),
+                      settings(2, ref));
+      EXPECT_NEAR(beam.measure(), exact_volume, 1e-12 * exact_volume);
+    }
   IgaBody<2> plate(describe<2>(nurbs::make_plate_with_hole(1., 4.)),
                    settings(2, 2));
   EXPECT_NEAR(plate.measure(), 16. - M_PI / 4., 1e-12 * 16.);
@@ -104,20 +104,20 @@ TEST(NurbsIgaBody, PointLoadDistribution)
   double       moment = 0.;
   Point<2>     image;
   for (unsigned int k = 0; k < op.weights.size(); ++k)
-  {
-    EXPECT_GE(op.weights[k], -1e-15);
-    weight_sum += op.weights[k];
-    const unsigned int a = op.dofs[k][0] / 2;
-    EXPECT_EQ(op.dofs[k][1], op.dofs[k][0] + 1);
-    image += op.weights[k] * body.patch().control_point(a);
-  }
+    {
+      EXPECT_GE(op.weights[k], -1e-15);
+      weight_sum += op.weights[k];
+      const unsigned int a = op.dofs[k][0] / 2;
+      EXPECT_EQ(op.dofs[k][1], op.dofs[k][0] + 1);
+      image += op.weights[k] * body.patch().control_point(a);
+    }
   for (unsigned int a = 0; a < body.patch().n_control_points(); ++a)
-  {
-    const Tensor<1, 2> Pa({f[2 * a], f[2 * a + 1]});
-    force_sum += Pa;
-    const Point<2> &x = body.patch().control_point(a);
-    moment += x[0] * Pa[1] - x[1] * Pa[0];
-  }
+    {
+      const Tensor<1, 2> Pa({f[2 * a], f[2 * a + 1]});
+      force_sum += Pa;
+      const Point<2> &x = body.patch().control_point(a);
+      moment += x[0] * Pa[1] - x[1] * Pa[0];
+    }
   EXPECT_NEAR(weight_sum, 1., 1e-14);
   EXPECT_NEAR((force_sum - P).norm(), 0., 1e-13);
   EXPECT_NEAR(moment, X[0] * P[1] - X[1] * P[0], 1e-12);
@@ -130,10 +130,10 @@ TEST(NurbsIgaBody, PointLoadDistribution)
   body.patch().basis(xi, idx, R);
   ASSERT_EQ(idx.size(), op.weights.size());
   for (unsigned int k = 0; k < idx.size(); ++k)
-  {
-    EXPECT_EQ(2 * idx[k], op.dofs[k][0]);
-    EXPECT_NEAR(R[k], op.weights[k], 1e-15);
-  }
+    {
+      EXPECT_EQ(2 * idx[k], op.dofs[k][0]);
+      EXPECT_NEAR(R[k], op.weights[k], 1e-15);
+    }
 
   // A point outside the body is refused with a clear error.
   EXPECT_THROW(body.point_operator(Point<2>(3., 3.)), std::exception);
@@ -152,36 +152,36 @@ TEST(NurbsIgaBody, SurfacePointsAndTributaryAreas)
   const double inner_length = M_PI / 2.;
   for (const auto placement :
        {PairPlacement::greville, PairPlacement::knots, PairPlacement::gauss})
-  {
-    const auto points = body.surface_points(0, placement);
-    double     total  = 0.;
-    for (const auto &sp : points)
     {
-      EXPECT_NEAR(sp.location.norm(), 1., 1e-14);
-      EXPECT_NEAR((sp.normal + sp.location / sp.location.norm()).norm(),
-                  0.,
-                  1e-13);
-      EXPECT_NEAR((body.patch().value(sp.parametric) - sp.location).norm(),
-                  0.,
-                  1e-15);
-      EXPECT_NEAR(sp.op.weights.size(), 9u, 0);
-      total += sp.tributary_area;
+      const auto points = body.surface_points(0, placement);
+      double     total  = 0.;
+      for (const auto &sp : points)
+        {
+          EXPECT_NEAR(sp.location.norm(), 1., 1e-14);
+          EXPECT_NEAR((sp.normal + sp.location / sp.location.norm()).norm(),
+                      0.,
+                      1e-13);
+          EXPECT_NEAR((body.patch().value(sp.parametric) - sp.location).norm(),
+                      0.,
+                      1e-15);
+          EXPECT_NEAR(sp.op.weights.size(), 9u, 0);
+          total += sp.tributary_area;
+        }
+      EXPECT_NEAR(total, inner_length, 1e-9)
+        << "placement " << static_cast<int>(placement);
+      if (placement == PairPlacement::greville)
+        {
+          EXPECT_EQ(points.size(), body.patch().n_control_points(1));
+        }
+      else if (placement == PairPlacement::knots)
+        {
+          EXPECT_EQ(points.size(), 9u);
+        }
+      else
+        {
+          EXPECT_EQ(points.size(), 8u * 3u);
+        }
     }
-    EXPECT_NEAR(total, inner_length, 1e-9)
-      << "placement " << static_cast<int>(placement);
-    if (placement == PairPlacement::greville)
-    {
-      EXPECT_EQ(points.size(), body.patch().n_control_points(1));
-    }
-    else if (placement == PairPlacement::knots)
-    {
-      EXPECT_EQ(points.size(), 9u);
-    }
-    else
-    {
-      EXPECT_EQ(points.size(), 8u * 3u);
-    }
-  }
 
   // Greville areas reproduce a uniform pressure exactly: the pair forces of
   // a unit pressure, distributed to the control points, equal int R_A n
@@ -194,8 +194,7 @@ TEST(NurbsIgaBody, SurfacePointsAndTributaryAreas)
   auto                desc = describe<2>(nurbs::make_quarter_annulus(1., 2.));
   NeumannCondition<2> pressure;
   pressure.boundary_id = 2;
-  pressure.traction    = [](const Point<2> &, const Tensor<1, 2> &n)
-  {
+  pressure.traction    = [](const Point<2> &, const Tensor<1, 2> &n) {
     return n;
   };
   desc.tractions.push_back(pressure);
@@ -228,32 +227,29 @@ namespace
     for (const auto &[face, c] : rollers)
       desc.dirichlet.push_back(roller<dim>(face, c));
     for (const unsigned int face : loaded_faces)
-    {
-      NeumannCondition<dim> t;
-      t.boundary_id = face;
-      t.traction    = [s](const Point<dim> &, const Tensor<1, dim> &n)
       {
-        Tensor<1, dim> r;
-        r[0] = s * n[0];
-        return r;
-      };
-      desc.tractions.push_back(t);
-    }
+        NeumannCondition<dim> t;
+        t.boundary_id = face;
+        t.traction    = [s](const Point<dim> &, const Tensor<1, dim> &n) {
+          Tensor<1, dim> r;
+          r[0] = s * n[0];
+          return r;
+        };
+        desc.tractions.push_back(t);
+      }
     // Plane strain in 2D: eps_xx = (1 - nu^2) s / E, eps_yy = -nu (1 + nu)
     // s / E; 3D: eps_xx = s / E, eps_yy = eps_zz = -nu s / E.
     const double       exx = (dim == 2 ? (1. - nu * nu) : 1.) * s / E;
     const double       eyy = (dim == 2 ? -nu * (1. + nu) : -nu) * s / E;
     ExactSolution<dim> exact;
-    exact.displacement = [=](const Point<dim> &x)
-    {
+    exact.displacement = [=](const Point<dim> &x) {
       Tensor<1, dim> u;
       u[0] = exx * x[0];
       for (unsigned int d = 1; d < dim; ++d)
         u[d] = eyy * x[d];
       return u;
     };
-    exact.stress = [=](const Point<dim> &)
-    {
+    exact.stress = [=](const Point<dim> &) {
       SymmetricTensor<2, dim> sigma;
       sigma[0][0] = s;
       return sigma;
@@ -265,12 +261,12 @@ namespace
     const Vector<double> &u       = body.load_solution();
     double                max_err = 0.;
     for (unsigned int a = 0; a < body.patch().n_control_points(); ++a)
-    {
-      const Tensor<1, dim> ue =
-        exact.displacement(body.patch().control_point(a));
-      for (unsigned int c = 0; c < dim; ++c)
-        max_err = std::max(max_err, std::abs(u[dim * a + c] - ue[c]));
-    }
+      {
+        const Tensor<1, dim> ue =
+          exact.displacement(body.patch().control_point(a));
+        for (unsigned int c = 0; c < dim; ++c)
+          max_err = std::max(max_err, std::abs(u[dim * a + c] - ue[c]));
+      }
     EXPECT_LT(max_err, tolerance * exx * 4.);
     const ErrorNorms errors = body.compute_errors(u, exact);
     EXPECT_LT(errors.l2_relative, tolerance);
@@ -329,15 +325,13 @@ TEST(NurbsIgaBody, LameCylinderConverges)
 {
   const double     a = 1., b = 2., p = 1., E = 1000., nu = 0.3;
   ExactSolution<2> exact;
-  exact.displacement = [=](const Point<2> &x)
-  {
+  exact.displacement = [=](const Point<2> &x) {
     const double r  = x.norm();
     const double ur = (1. + nu) * a * a * p / (E * (b * b - a * a)) *
                       ((1. - 2. * nu) * r + b * b / r);
     return Tensor<1, 2>(ur * x / r);
   };
-  exact.stress = [=](const Point<2> &x)
-  {
+  exact.stress = [=](const Point<2> &x) {
     const double          r2  = x.norm_square();
     const double          c   = a * a * p / (b * b - a * a);
     const double          srr = c * (1. - b * b / r2);
@@ -355,28 +349,27 @@ TEST(NurbsIgaBody, LameCylinderConverges)
   desc.dirichlet.push_back(roller<2>(3, 0));
   NeumannCondition<2> inner;
   inner.boundary_id = 0;
-  inner.traction    = [p](const Point<2> &, const Tensor<1, 2> &n)
-  {
+  inner.traction    = [p](const Point<2> &, const Tensor<1, 2> &n) {
     return Tensor<1, 2>(-p * n);
   };
   desc.tractions.push_back(inner);
 
   std::vector<ErrorNorms> errors;
   for (unsigned int ref = 1; ref <= 4; ++ref)
-  {
-    IgaBody<2> body(desc, settings(2, ref));
-    body.setup();
-    errors.push_back(body.compute_errors(body.load_solution(), exact));
-  }
+    {
+      IgaBody<2> body(desc, settings(2, ref));
+      body.setup();
+      errors.push_back(body.compute_errors(body.load_solution(), exact));
+    }
   for (unsigned int i = 1; i < errors.size(); ++i)
-  {
-    const double l2_rate =
-      std::log2(errors[i - 1].l2_relative / errors[i].l2_relative);
-    const double en_rate =
-      std::log2(errors[i - 1].energy_relative / errors[i].energy_relative);
-    EXPECT_GT(l2_rate, 2.7) << "refinement " << i + 1;
-    EXPECT_GT(en_rate, 1.8) << "refinement " << i + 1;
-  }
+    {
+      const double l2_rate =
+        std::log2(errors[i - 1].l2_relative / errors[i].l2_relative);
+      const double en_rate =
+        std::log2(errors[i - 1].energy_relative / errors[i].energy_relative);
+      EXPECT_GT(l2_rate, 2.7) << "refinement " << i + 1;
+      EXPECT_GT(en_rate, 1.8) << "refinement " << i + 1;
+    }
   EXPECT_LT(errors.back().l2_relative, 1e-5);
 }
 
@@ -422,13 +415,13 @@ TEST(NurbsIgaBody, HertzContactFace)
   EXPECT_EQ(points.size(), body.patch().n_control_points(0));
   double total = 0.;
   for (const auto &sp : points)
-  {
-    const Tensor<1, 2> radial = (sp.location - Point<2>(0., R)) / R;
-    EXPECT_NEAR(radial.norm(), 1., 1e-14);
-    EXPECT_NEAR((sp.normal - radial).norm(), 0., 1e-13);
-    EXPECT_GT(sp.tributary_area, 0.);
-    total += sp.tributary_area;
-  }
+    {
+      const Tensor<1, 2> radial = (sp.location - Point<2>(0., R)) / R;
+      EXPECT_NEAR(radial.norm(), 1., 1e-14);
+      EXPECT_NEAR((sp.normal - radial).norm(), 0., 1e-13);
+      EXPECT_GT(sp.tributary_area, 0.);
+      total += sp.tributary_area;
+    }
   EXPECT_NEAR(total, R * M_PI / 4., 1e-9 * R);
   EXPECT_NEAR(points.front().location.norm(), 0., 1e-14);
   EXPECT_NEAR(points.back().location[0], R / std::sqrt(2.), 1e-13);

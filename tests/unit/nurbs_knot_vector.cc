@@ -22,23 +22,23 @@ namespace
                  const std::string         &text)
   {
     try
-    {
-      KnotVector kv(p, u);
-      FAIL() << "no exception for a knot vector that should be invalid ("
-             << text << ")";
-    }
+      {
+        KnotVector kv(p, u);
+        FAIL() << "no exception for a knot vector that should be invalid ("
+               << text << ")";
+      }
     catch (const std::exception &e)
-    {
-      // deal.II wraps long messages: compare with whitespace collapsed.
-      std::string message;
-      for (const char c : std::string(e.what()))
-        if (!std::isspace(static_cast<unsigned char>(c)))
-          message += c;
-        else if (!message.empty() && message.back() != ' ')
-          message += ' ';
-      EXPECT_NE(message.find(text), std::string::npos)
-        << "message was: " << e.what();
-    }
+      {
+        // deal.II wraps long messages: compare with whitespace collapsed.
+        std::string message;
+        for (const char c : std::string(e.what()))
+          if (!std::isspace(static_cast<unsigned char>(c)))
+            message += c;
+          else if (!message.empty() && message.back() != ' ')
+            message += ' ';
+        EXPECT_NE(message.find(text), std::string::npos)
+          << "message was: " << e.what();
+      }
   }
 
   std::vector<KnotVector>
@@ -107,60 +107,60 @@ TEST(NurbsKnotVector, PartitionOfUnityAndDerivatives)
   std::mt19937                           rng(42);
   std::uniform_real_distribution<double> unit(0., 1.);
   for (const auto &kv : sample_knot_vectors())
-  {
-    const unsigned int p = kv.degree();
-    for (unsigned int s = 0; s < 200; ++s)
     {
-      const double       x = kv.front() + (kv.back() - kv.front()) * unit(rng);
-      const unsigned int k = kv.find_span(x);
-      ASSERT_LE(kv.knots()[k], x);
-      ASSERT_LT(x, kv.knots()[k + 1]);
-
-      std::vector<double> N;
-      kv.basis_functions(x, k, N);
-      double sum = 0.;
-      for (const double v : N)
-      {
-        EXPECT_GE(v, -1e-15);
-        sum += v;
-      }
-      EXPECT_NEAR(sum, 1., 1e-14);
-
-      std::vector<std::vector<double>> ders;
-      kv.basis_function_derivatives(x, k, 2, ders);
-      double dsum = 0.;
-      for (unsigned int j = 0; j <= p; ++j)
-      {
-        EXPECT_NEAR(ders[0][j], N[j], 1e-14);
-        dsum += ders[1][j];
-      }
-      EXPECT_NEAR(dsum, 0., 1e-11);
-
-      // Central differences inside the span (the basis is polynomial
-      // there, so the difference quotient is accurate).
-      const double h = 1e-6 * (kv.knots()[k + 1] - kv.knots()[k]);
-      if (x - h > kv.knots()[k] && x + h < kv.knots()[k + 1])
-      {
-        std::vector<double> Np, Nm;
-        kv.basis_functions(x + h, k, Np);
-        kv.basis_functions(x - h, k, Nm);
-        for (unsigned int j = 0; j <= p; ++j)
-          EXPECT_NEAR(ders[1][j],
-                      (Np[j] - Nm[j]) / (2. * h),
-                      1e-6 * (1. + std::abs(ders[1][j])));
-        if (p >= 2)
+      const unsigned int p = kv.degree();
+      for (unsigned int s = 0; s < 200; ++s)
         {
-          std::vector<std::vector<double>> dp, dm;
-          kv.basis_function_derivatives(x + h, k, 1, dp);
-          kv.basis_function_derivatives(x - h, k, 1, dm);
+          const double x = kv.front() + (kv.back() - kv.front()) * unit(rng);
+          const unsigned int k = kv.find_span(x);
+          ASSERT_LE(kv.knots()[k], x);
+          ASSERT_LT(x, kv.knots()[k + 1]);
+
+          std::vector<double> N;
+          kv.basis_functions(x, k, N);
+          double sum = 0.;
+          for (const double v : N)
+            {
+              EXPECT_GE(v, -1e-15);
+              sum += v;
+            }
+          EXPECT_NEAR(sum, 1., 1e-14);
+
+          std::vector<std::vector<double>> ders;
+          kv.basis_function_derivatives(x, k, 2, ders);
+          double dsum = 0.;
           for (unsigned int j = 0; j <= p; ++j)
-            EXPECT_NEAR(ders[2][j],
-                        (dp[1][j] - dm[1][j]) / (2. * h),
-                        1e-5 * (1. + std::abs(ders[2][j])));
+            {
+              EXPECT_NEAR(ders[0][j], N[j], 1e-14);
+              dsum += ders[1][j];
+            }
+          EXPECT_NEAR(dsum, 0., 1e-11);
+
+          // Central differences inside the span (the basis is polynomial
+          // there, so the difference quotient is accurate).
+          const double h = 1e-6 * (kv.knots()[k + 1] - kv.knots()[k]);
+          if (x - h > kv.knots()[k] && x + h < kv.knots()[k + 1])
+            {
+              std::vector<double> Np, Nm;
+              kv.basis_functions(x + h, k, Np);
+              kv.basis_functions(x - h, k, Nm);
+              for (unsigned int j = 0; j <= p; ++j)
+                EXPECT_NEAR(ders[1][j],
+                            (Np[j] - Nm[j]) / (2. * h),
+                            1e-6 * (1. + std::abs(ders[1][j])));
+              if (p >= 2)
+                {
+                  std::vector<std::vector<double>> dp, dm;
+                  kv.basis_function_derivatives(x + h, k, 1, dp);
+                  kv.basis_function_derivatives(x - h, k, 1, dm);
+                  for (unsigned int j = 0; j <= p; ++j)
+                    EXPECT_NEAR(ders[2][j],
+                                (dp[1][j] - dm[1][j]) / (2. * h),
+                                1e-5 * (1. + std::abs(ders[2][j])));
+                }
+            }
         }
-      }
     }
-  }
 }
 
 
@@ -170,30 +170,31 @@ TEST(NurbsKnotVector, BezierExtractionReproducesBSplines)
   std::mt19937                           rng(7);
   std::uniform_real_distribution<double> unit(0., 1.);
   for (const auto &kv : sample_knot_vectors())
-  {
-    const unsigned int p = kv.degree();
-    const auto         C = kv.bezier_extraction_operators();
-    ASSERT_EQ(C.size(), kv.n_spans());
-    const auto bernstein = dealii::generate_complete_bernstein_basis<double>(p);
-    const auto b         = kv.breakpoints();
-    for (unsigned int e = 0; e < kv.n_spans(); ++e)
     {
-      const unsigned int k = kv.span_knot_index(e);
-      for (unsigned int s = 0; s < 20; ++s)
-      {
-        const double        t = unit(rng);
-        const double        x = b[e] + t * (b[e + 1] - b[e]);
-        std::vector<double> N;
-        kv.basis_functions(x, k, N);
-        for (unsigned int a = 0; a <= p; ++a)
+      const unsigned int p = kv.degree();
+      const auto         C = kv.bezier_extraction_operators();
+      ASSERT_EQ(C.size(), kv.n_spans());
+      const auto bernstein =
+        dealii::generate_complete_bernstein_basis<double>(p);
+      const auto b = kv.breakpoints();
+      for (unsigned int e = 0; e < kv.n_spans(); ++e)
         {
-          double v = 0.;
-          for (unsigned int j = 0; j <= p; ++j)
-            v += C[e](a, j) * bernstein[j].value(t);
-          EXPECT_NEAR(v, N[a], 1e-13)
-            << "span " << e << " function " << a << " degree " << p;
+          const unsigned int k = kv.span_knot_index(e);
+          for (unsigned int s = 0; s < 20; ++s)
+            {
+              const double        t = unit(rng);
+              const double        x = b[e] + t * (b[e + 1] - b[e]);
+              std::vector<double> N;
+              kv.basis_functions(x, k, N);
+              for (unsigned int a = 0; a <= p; ++a)
+                {
+                  double v = 0.;
+                  for (unsigned int j = 0; j <= p; ++j)
+                    v += C[e](a, j) * bernstein[j].value(t);
+                  EXPECT_NEAR(v, N[a], 1e-13)
+                    << "span " << e << " function " << a << " degree " << p;
+                }
+            }
         }
-      }
     }
-  }
 }

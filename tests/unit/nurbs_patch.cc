@@ -51,13 +51,13 @@ namespace
                   const double           tol)
   {
     for (const auto &xi : random_parametric_points(a, 100, 3))
-    {
-      const Point<dim> xa = a.value(xi), xb = b.value(xi);
-      EXPECT_LT((xa - xb).norm(), tol) << "at xi = " << xi;
-      EXPECT_LT((a.jacobian(xi) - b.jacobian(xi)).norm(),
-                1e3 * tol * (1. + a.jacobian(xi).norm()))
-        << "at xi = " << xi;
-    }
+      {
+        const Point<dim> xa = a.value(xi), xb = b.value(xi);
+        EXPECT_LT((xa - xb).norm(), tol) << "at xi = " << xi;
+        EXPECT_LT((a.jacobian(xi) - b.jacobian(xi)).norm(),
+                  1e3 * tol * (1. + a.jacobian(xi).norm()))
+          << "at xi = " << xi;
+      }
   }
 } // namespace
 
@@ -70,40 +70,39 @@ TEST(NurbsPatch, RationalBasisPartitionOfUnityAndGradients)
   elevate_to_degree(beam, 2);
   beam.refine_uniformly(1);
 
-  auto check = [](const auto &patch)
-  {
+  auto check = [](const auto &patch) {
     constexpr int dim = std::decay_t<decltype(patch)>::dimension;
     for (const auto &xi : random_parametric_points(patch, 50, 11))
-    {
-      std::vector<unsigned int>   idx;
-      std::vector<double>         R;
-      std::vector<Tensor<1, dim>> dR;
-      patch.basis(xi, idx, R, &dR);
-      double         sum = 0.;
-      Tensor<1, dim> dsum;
-      for (unsigned int l = 0; l < R.size(); ++l)
       {
-        EXPECT_GE(R[l], -1e-15);
-        sum += R[l];
-        dsum += dR[l];
-      }
-      EXPECT_NEAR(sum, 1., 1e-14);
-      EXPECT_LT(dsum.norm(), 1e-11);
+        std::vector<unsigned int>   idx;
+        std::vector<double>         R;
+        std::vector<Tensor<1, dim>> dR;
+        patch.basis(xi, idx, R, &dR);
+        double         sum = 0.;
+        Tensor<1, dim> dsum;
+        for (unsigned int l = 0; l < R.size(); ++l)
+          {
+            EXPECT_GE(R[l], -1e-15);
+            sum += R[l];
+            dsum += dR[l];
+          }
+        EXPECT_NEAR(sum, 1., 1e-14);
+        EXPECT_LT(dsum.norm(), 1e-11);
 
-      // Finite differences of the map x(xi) against the Jacobian.
-      const Tensor<2, dim> J = patch.jacobian(xi);
-      for (unsigned int d = 0; d < dim; ++d)
-      {
-        const double h  = 1e-6;
-        Point<dim>   xp = xi, xm = xi;
-        xp[d] = std::min(xi[d] + h, patch.parametric_upper()[d]);
-        xm[d] = std::max(xi[d] - h, patch.parametric_lower()[d]);
-        const Tensor<1, dim> fd =
-          (patch.value(xp) - patch.value(xm)) / (xp[d] - xm[d]);
-        for (unsigned int i = 0; i < dim; ++i)
-          EXPECT_NEAR(J[i][d], fd[i], 1e-5 * (1. + std::abs(fd[i])));
+        // Finite differences of the map x(xi) against the Jacobian.
+        const Tensor<2, dim> J = patch.jacobian(xi);
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            const double h  = 1e-6;
+            Point<dim>   xp = xi, xm = xi;
+            xp[d] = std::min(xi[d] + h, patch.parametric_upper()[d]);
+            xm[d] = std::max(xi[d] - h, patch.parametric_lower()[d]);
+            const Tensor<1, dim> fd =
+              (patch.value(xp) - patch.value(xm)) / (xp[d] - xm[d]);
+            for (unsigned int i = 0; i < dim; ++i)
+              EXPECT_NEAR(J[i][d], fd[i], 1e-5 * (1. + std::abs(fd[i])));
+          }
       }
-    }
   };
   check(plate);
   check(beam);
@@ -159,27 +158,27 @@ TEST(NurbsBuilders, CirclesAreExact)
   {
     NurbsPatch<2> annulus = make_quarter_annulus(1., 2.);
     for (unsigned int level = 0; level < 3; ++level)
-    {
-      for (unsigned int s = 0; s < 100; ++s)
       {
-        const double t = unit(rng);
-        EXPECT_NEAR(annulus.value(Point<2>(0., t)).norm(), 1., 1e-14);
-        EXPECT_NEAR(annulus.value(Point<2>(1., t)).norm(), 2., 1e-14);
-        const Point<2> x = annulus.value(Point<2>(unit(rng), t));
-        EXPECT_GE(x.norm(), 1. - 1e-14);
-        EXPECT_LE(x.norm(), 2. + 1e-14);
-        // Normals: inward on the hole side, outward on the outer arc.
-        const Tensor<1, 2> n0 = annulus.outward_normal(0, Point<2>(0., t));
-        const Point<2>     x0 = annulus.value(Point<2>(0., t));
-        EXPECT_NEAR((n0 + x0 / x0.norm()).norm(), 0., 1e-13);
-        const Tensor<1, 2> n1 = annulus.outward_normal(1, Point<2>(1., t));
-        const Point<2>     x1 = annulus.value(Point<2>(1., t));
-        EXPECT_NEAR((n1 - x1 / x1.norm()).norm(), 0., 1e-13);
+        for (unsigned int s = 0; s < 100; ++s)
+          {
+            const double t = unit(rng);
+            EXPECT_NEAR(annulus.value(Point<2>(0., t)).norm(), 1., 1e-14);
+            EXPECT_NEAR(annulus.value(Point<2>(1., t)).norm(), 2., 1e-14);
+            const Point<2> x = annulus.value(Point<2>(unit(rng), t));
+            EXPECT_GE(x.norm(), 1. - 1e-14);
+            EXPECT_LE(x.norm(), 2. + 1e-14);
+            // Normals: inward on the hole side, outward on the outer arc.
+            const Tensor<1, 2> n0 = annulus.outward_normal(0, Point<2>(0., t));
+            const Point<2>     x0 = annulus.value(Point<2>(0., t));
+            EXPECT_NEAR((n0 + x0 / x0.norm()).norm(), 0., 1e-13);
+            const Tensor<1, 2> n1 = annulus.outward_normal(1, Point<2>(1., t));
+            const Point<2>     x1 = annulus.value(Point<2>(1., t));
+            EXPECT_NEAR((n1 - x1 / x1.norm()).norm(), 0., 1e-13);
+          }
+        EXPECT_EQ(annulus.orientation(), 1.);
+        elevate_to_degree(annulus, 2 + level);
+        annulus.refine_uniformly(1);
       }
-      EXPECT_EQ(annulus.orientation(), 1.);
-      elevate_to_degree(annulus, 2 + level);
-      annulus.refine_uniformly(1);
-    }
     // Straight faces.
     const Tensor<1, 2> n2 = annulus.outward_normal(2, Point<2>(0.3, 0.));
     EXPECT_NEAR(n2[1], -1., 1e-14);
@@ -192,17 +191,17 @@ TEST(NurbsBuilders, CirclesAreExact)
     const NurbsPatch<2> plate = make_plate_with_hole(1., 4.);
     EXPECT_EQ(plate.orientation(), 1.);
     for (unsigned int s = 0; s < 100; ++s)
-    {
-      const double t = unit(rng);
-      EXPECT_NEAR(plate.value(Point<2>(0., t)).norm(), 1., 1e-14);
-      const Point<2> x = plate.value(Point<2>(1., t));
-      EXPECT_NEAR(std::max(x[0], x[1]), 4., 1e-14);
-      EXPECT_NEAR(plate.value(Point<2>(t, 0.))[1], 0., 1e-14);
-      EXPECT_NEAR(plate.value(Point<2>(t, 1.))[0], 0., 1e-14);
-      const Tensor<1, 2> n0 = plate.outward_normal(0, Point<2>(0., t));
-      const Point<2>     x0 = plate.value(Point<2>(0., t));
-      EXPECT_NEAR((n0 + x0 / x0.norm()).norm(), 0., 1e-13);
-    }
+      {
+        const double t = unit(rng);
+        EXPECT_NEAR(plate.value(Point<2>(0., t)).norm(), 1., 1e-14);
+        const Point<2> x = plate.value(Point<2>(1., t));
+        EXPECT_NEAR(std::max(x[0], x[1]), 4., 1e-14);
+        EXPECT_NEAR(plate.value(Point<2>(t, 0.))[1], 0., 1e-14);
+        EXPECT_NEAR(plate.value(Point<2>(t, 1.))[0], 0., 1e-14);
+        const Tensor<1, 2> n0 = plate.outward_normal(0, Point<2>(0., t));
+        const Point<2>     x0 = plate.value(Point<2>(0., t));
+        EXPECT_NEAR((n0 + x0 / x0.norm()).norm(), 0., 1e-13);
+      }
     // The published control net at R = 1, L = 4.
     EXPECT_NEAR(plate.control_point(4)[0], 2.5, 1e-15);
     EXPECT_NEAR(plate.control_point(4)[1], 0.75, 1e-15);
@@ -217,27 +216,27 @@ TEST(NurbsBuilders, CirclesAreExact)
     EXPECT_EQ(disc.orientation(), 1.);
     EXPECT_NEAR(disc.value(Point<2>(0., 0.)).norm(), 0., 1e-14);
     for (unsigned int s = 0; s <= 100; ++s)
-    {
-      const double   t     = s / 100.;
-      const Point<2> lower = disc.value(Point<2>(t, 0.));
-      const Point<2> upper = disc.value(Point<2>(1., t));
-      EXPECT_NEAR((lower - c).norm(), R, 1e-13);
-      EXPECT_NEAR((upper - c).norm(), R, 1e-13);
-      EXPECT_LE(lower[0], R / std::sqrt(2.) + 1e-13);
-      EXPECT_GE(upper[0], R / std::sqrt(2.) - 1e-13);
-      EXPECT_NEAR(disc.value(Point<2>(0., t))[0], 0., 1e-14);
-      EXPECT_NEAR(disc.value(Point<2>(t, 1.))[1], R, 1e-14);
-      const Tensor<1, 2> n = disc.outward_normal(2, Point<2>(t, 0.));
-      EXPECT_NEAR((n - (lower - c) / R).norm(), 0., 1e-13);
-      // det J > 0 except at the corner xi = (1, 0), the 45-degree point,
-      // where the two arcs meet at a straight angle (J has rank 1 there).
-      for (unsigned int r = 0; r <= 20; ++r)
-        if (s < 100 || r > 0)
-        {
-          EXPECT_GT(determinant(disc.jacobian(Point<2>(t, r / 20.))), 0.)
-            << "det J <= 0 at (" << t << ", " << r / 20. << ")";
-        }
-    }
+      {
+        const double   t     = s / 100.;
+        const Point<2> lower = disc.value(Point<2>(t, 0.));
+        const Point<2> upper = disc.value(Point<2>(1., t));
+        EXPECT_NEAR((lower - c).norm(), R, 1e-13);
+        EXPECT_NEAR((upper - c).norm(), R, 1e-13);
+        EXPECT_LE(lower[0], R / std::sqrt(2.) + 1e-13);
+        EXPECT_GE(upper[0], R / std::sqrt(2.) - 1e-13);
+        EXPECT_NEAR(disc.value(Point<2>(0., t))[0], 0., 1e-14);
+        EXPECT_NEAR(disc.value(Point<2>(t, 1.))[1], R, 1e-14);
+        const Tensor<1, 2> n = disc.outward_normal(2, Point<2>(t, 0.));
+        EXPECT_NEAR((n - (lower - c) / R).norm(), 0., 1e-13);
+        // det J > 0 except at the corner xi = (1, 0), the 45-degree point,
+        // where the two arcs meet at a straight angle (J has rank 1 there).
+        for (unsigned int r = 0; r <= 20; ++r)
+          if (s < 100 || r > 0)
+            {
+              EXPECT_GT(determinant(disc.jacobian(Point<2>(t, r / 20.))), 0.)
+                << "det J <= 0 at (" << t << ", " << r / 20. << ")";
+            }
+      }
   }
 
   // Curved beam: arcs in the x-z plane, y along the width.
@@ -245,18 +244,18 @@ TEST(NurbsBuilders, CirclesAreExact)
     const NurbsPatch<3> beam = make_curved_beam(4., 5., 1.);
     EXPECT_EQ(beam.orientation(), -1.);
     for (unsigned int s = 0; s < 50; ++s)
-    {
-      const double   t = unit(rng), y = unit(rng);
-      const Point<3> x = beam.value(Point<3>(1., t, y));
-      EXPECT_NEAR(std::hypot(x[0], x[2]), 5., 1e-14);
-      EXPECT_NEAR(x[1], y, 1e-14);
-      const Tensor<1, 3> n  = beam.outward_normal(0, Point<3>(0., t, y));
-      const Point<3>     x0 = beam.value(Point<3>(0., t, y));
-      const Tensor<1, 3> radial({x0[0] / 4., 0., x0[2] / 4.});
-      EXPECT_NEAR((n + radial).norm(), 0., 1e-13);
-      EXPECT_NEAR(beam.outward_normal(2, Point<3>(t, 0., y))[2], -1., 1e-14);
-      EXPECT_NEAR(beam.outward_normal(5, Point<3>(t, y, 1.))[1], 1., 1e-14);
-    }
+      {
+        const double   t = unit(rng), y = unit(rng);
+        const Point<3> x = beam.value(Point<3>(1., t, y));
+        EXPECT_NEAR(std::hypot(x[0], x[2]), 5., 1e-14);
+        EXPECT_NEAR(x[1], y, 1e-14);
+        const Tensor<1, 3> n  = beam.outward_normal(0, Point<3>(0., t, y));
+        const Point<3>     x0 = beam.value(Point<3>(0., t, y));
+        const Tensor<1, 3> radial({x0[0] / 4., 0., x0[2] / 4.});
+        EXPECT_NEAR((n + radial).norm(), 0., 1e-13);
+        EXPECT_NEAR(beam.outward_normal(2, Point<3>(t, 0., y))[2], -1., 1e-14);
+        EXPECT_NEAR(beam.outward_normal(5, Point<3>(t, y, 1.))[1], 1., 1e-14);
+      }
     EXPECT_NEAR(beam.value(Point<3>(1., 1., 0.))[2], 5., 1e-14);
   }
 }
@@ -312,17 +311,17 @@ TEST(NurbsParametricMesh, CellsAreKnotSpans)
   EXPECT_EQ(tria.n_active_cells(), 2u * 2u);
   std::set<std::pair<unsigned int, unsigned int>> seen;
   for (const auto &cell : tria.active_cell_iterators())
-  {
-    const auto span = span_of_cell(plate, cell);
-    seen.insert({span[0], span[1]});
-    const auto b0 = plate.breakpoints(0), b1 = plate.breakpoints(1);
-    EXPECT_NEAR(cell->vertex(0)[0], b0[span[0]], 1e-15);
-    EXPECT_NEAR(cell->vertex(3)[1], b1[span[1] + 1], 1e-15);
-    for (const unsigned int f : cell->face_indices())
-      if (cell->face(f)->at_boundary())
-      {
-        EXPECT_EQ(cell->face(f)->boundary_id(), f);
-      }
-  }
+    {
+      const auto span = span_of_cell(plate, cell);
+      seen.insert({span[0], span[1]});
+      const auto b0 = plate.breakpoints(0), b1 = plate.breakpoints(1);
+      EXPECT_NEAR(cell->vertex(0)[0], b0[span[0]], 1e-15);
+      EXPECT_NEAR(cell->vertex(3)[1], b1[span[1] + 1], 1e-15);
+      for (const unsigned int f : cell->face_indices())
+        if (cell->face(f)->at_boundary())
+          {
+            EXPECT_EQ(cell->face(f)->boundary_id(), f);
+          }
+    }
   EXPECT_EQ(seen.size(), 4u);
 }

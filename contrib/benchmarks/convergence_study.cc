@@ -1,0 +1,73 @@
+// Accuracy against cost for an elasticity scene with an exact solution:
+// runs the scene over a range of uniform refinements and prints a Markdown
+// table of DOFs, relative L2 and energy errors, observed rates and wall time
+// per phase.
+//
+// Usage: convergence_study SCENE.prm TYPE DEGREE FIRST LAST
+//   e.g. convergence_study prm/v1-plate-with-hole.prm nurbs 2 1 5
+
+#include <igabde/scene/simulator.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+
+int
+main(int argc, char **argv)
+{
+  using namespace igabde;
+  if (argc != 6)
+    {
+      std::cerr
+        << "Usage: convergence_study SCENE.prm TYPE DEGREE FIRST LAST\n";
+      return 2;
+    }
+  const std::string  scene  = argv[1];
+  const std::string  type   = argv[2];
+  const std::string  degree = argv[3];
+  const unsigned int first  = std::atoi(argv[4]);
+  const unsigned int last   = std::atoi(argv[5]);
+
+  std::cout << "| refinements | elements | DOFs | L2 error | rate | energy "
+               "error | rate | setup s | total s |\n"
+               "|---|---|---|---|---|---|---|---|---|\n";
+  double previous_l2 = 0., previous_energy = 0.;
+  for (unsigned int r = first; r <= last; ++r)
+    {
+      std::ostringstream log;
+      const auto         summary = scene::run_scene_in_process(
+        scene,
+        {{"Discretization/Type", type},
+                 {"Discretization/Degree", degree},
+                 {"Discretization/Refinements", std::to_string(r)},
+                 {"Output/Directory", "output/convergence-study"},
+                 {"Output/Write vtu", "false"},
+                 {"Output/Print timing", "false"}},
+        log);
+      const double l2     = summary.at("checks").at("l2_error").number();
+      const double energy = summary.at("checks").at("energy_error").number();
+      std::cout << std::defaultfloat << "| " << r << " | "
+                << static_cast<long long>(summary.at("n_elements").number())
+                << " | "
+                << static_cast<long long>(summary.at("n_dofs").number())
+                << " | " << std::scientific << std::setprecision(3) << l2
+                << " | " << std::fixed << std::setprecision(2);
+      if (r > first)
+        std::cout << std::log2(previous_l2 / l2);
+      else
+        std::cout << "-";
+      std::cout << " | " << std::scientific << std::setprecision(3) << energy
+                << " | " << std::fixed << std::setprecision(2);
+      if (r > first)
+        std::cout << std::log2(previous_energy / energy);
+      else
+        std::cout << "-";
+      std::cout << " | " << std::setprecision(3)
+                << summary.at("timing").at("setup").number() << " | "
+                << summary.at("timing").at("total").number() << " |\n";
+      previous_l2     = l2;
+      previous_energy = energy;
+    }
+}
