@@ -369,6 +369,93 @@ namespace igabde
 
 
     template <int dim>
+    std::pair<Eigen::VectorXd, Eigen::VectorXd>
+    ContactStage<dim>::initial_guess() const
+    {
+      // Candidate 1: no force, rigid modes placed so that the closest pair
+      // just touches (with every pair open the alpha columns of the Newton
+      // matrix vanish).
+      const unsigned int m  = n_components;
+      Eigen::VectorXd    p0 = Eigen::VectorXd::Zero(problem.n_rows());
+      Eigen::VectorXd    a0 = (problem.n_alpha() > 0 ? touching_alpha(problem) :
+                                                       Eigen::VectorXd::Zero(0));
+
+      // Candidate 2: the pairs that touch in the undeformed geometry held
+      // closed and sticking (bilateral), W_cc p_c + G_c alpha = -q_c and
+      // G_c^T p_c = b. On flat matching surfaces with zero gap every pair
+      // is at a tie of the min function, where the first Newton matrix is
+      // a poor model; this start is exact there. The better candidate by
+      // the natural-map residual is used.
+      std::vector<unsigned int> rows;
+      double                    size = 0.;
+      for (const auto &pair : pair_list)
+        size = std::max(size, (pair.x1 - pair_list[0].x1).norm());
+      // Directions held by supports on both sides (zero flexibility, no
+      // rigid motion) carry no force and are left out of this start.
+      const double max_diag = problem.W.diagonal().cwiseAbs().maxCoeff();
+      const double max_g =
+        (problem.G.size() > 0 ? problem.G.cwiseAbs().maxCoeff() : 0.);
+      for (unsigned int i = 0; i < pair_list.size(); ++i)
+        if (pair_list[i].gap <= 1e-12 * std::max(size, 1e-300))
+          for (unsigned int s = 0; s < m; ++s)
+            {
+              const unsigned int r = m * i + s;
+              const double       g =
+                (problem.G.cols() > 0 ? problem.G.row(r).cwiseAbs().maxCoeff() :
+                                        0.);
+              if (problem.W(r, r) > 1e-12 * max_diag || g > 1e-12 * max_g)
+                rows.push_back(r);
+            }
+      if (rows.empty())
+        return {p0, a0};
+      const unsigned int nr = rows.size(), na = problem.n_alpha();
+      Eigen::MatrixXd    A = Eigen::MatrixXd::Zero(nr + na, nr + na);
+      Eigen::VectorXd    rhs(nr + na);
+      for (unsigned int i = 0; i < nr; ++i)
+        {
+          for (unsigned int j = 0; j < nr; ++j)
+            A(i, j) = problem.W(rows[i], rows[j]);
+          for (unsigned int k = 0; k < na; ++k)
+            {
+              A(i, nr + k) = problem.G(rows[i], k);
+              A(nr + k, i) = problem.G(rows[i], k);
+            }
+          rhs(i) = -problem.q(rows[i]);
+        }
+      for (unsigned int k = 0; k < na; ++k)
+        rhs(nr + k) = problem.b(k);
+      const Eigen::FullPivLU<Eigen::MatrixXd> lu(A);
+      if (!lu.isInvertible())
+        return {p0, a0};
+      const Eigen::VectorXd x = lu.solve(rhs);
+      if (!x.allFinite())
+        return {p0, a0};
+      Eigen::VectorXd p1 = Eigen::VectorXd::Zero(problem.n_rows());
+      for (unsigned int i = 0; i < nr; ++i)
+        p1(rows[i]) = x(i);
+      const Eigen::VectorXd a1 = x.tail(na);
+
+      // Natural-map residual plus the equilibrium of floating bodies (the
+      // natural map alone is zero for p = 0 with every pair open).
+      const auto error = [&](const Eigen::VectorXd &pp,
+                             const Eigen::VectorXd &aa) {
+        double e =
+          relative_natural_map_error(problem,
+                                     pp,
+                                     problem.relative_displacement(pp, aa));
+        if (na > 0)
+          e += (problem.G.transpose() * pp - problem.b).norm() /
+               std::max(problem.b.norm(), 1e-300);
+        return e;
+      };
+      if (error(p1, a1) < error(p0, a0))
+        return {p1, a1};
+      return {p0, a0};
+    }
+
+
+
+    template <int dim>
     void
     ContactStage<dim>::solve_step(const unsigned int step,
                                   const double       load_factor,
@@ -397,11 +484,14 @@ namespace igabde
       {
         TimerOutput::Scope t(timer, "contact: B-Newton");
         BNewtonSolver      solver(settings.solver);
-        result = has_previous ? solver.solve(problem, p, alpha) :
-                                solver.solve(problem);
+        if (has_previous)
+          result = solver.solve(problem, p, alpha);
+        else
+          {
+            const auto [p0, alpha0] = initial_guess();
+            result                  = solver.solve(problem, p0, alpha0);
+          }
       }
-      if (settings.solver.log)
-        result.print_history(log);
       log << "  B-Newton: " << result.summary() << std::endl;
 
       record["newton_iterations"] = result.iterations;

@@ -6,6 +6,9 @@
 #include <deal.II/base/multithread_info.h>
 #include <deal.II/base/thread_management.h>
 
+#include <deal.II/lac/solver_cg.h>
+#include <deal.II/lac/solver_control.h>
+
 #include <Eigen/Dense>
 
 #include <algorithm>
@@ -293,7 +296,26 @@ namespace igabde
                 solve_constraints.is_constrained(entry->column()))
               entry->value() = (entry->column() == row ? diagonal_scale : 0.);
         }
-      direct_solver.initialize(constrained_matrix);
+      if (settings.linear_solver == "cg-amg")
+        {
+          // ML with the displacement components as near-null space (one
+          // constant mode per component) and the higher-order smoother
+          // setting for p > 1.
+          amg_matrix = std::make_unique<TrilinosWrappers::SparseMatrix>();
+          amg_matrix->reinit(constrained_matrix);
+          TrilinosWrappers::PreconditionAMG::AdditionalData data;
+          data.elliptic              = true;
+          data.higher_order_elements = (settings.degree > 1);
+          data.smoother_sweeps       = 2;
+          data.aggregation_threshold = 0.02;
+          data.constant_modes.assign(dim, std::vector<bool>(n_unknowns));
+          for (types::global_dof_index i = 0; i < n_unknowns; ++i)
+            data.constant_modes[dof_components[i]][i] = true;
+          amg = std::make_unique<TrilinosWrappers::PreconditionAMG>();
+          amg->initialize(*amg_matrix, data);
+        }
+      else
+        direct_solver.initialize(constrained_matrix);
     }
 
 
@@ -315,6 +337,27 @@ namespace igabde
           }
       };
       const std::size_t n = rhs_and_solutions.size();
+      if (amg)
+        {
+          // CG to a relative residual of Linear tolerance; one column after
+          // the other (the ML preconditioner is not shared across threads).
+          for (auto &v : rhs_and_solutions)
+            {
+              AssertDimension(v.size(), n_unknowns);
+              solve_constraints.set_zero(v);
+              const Vector<double> rhs = v;
+              v                        = 0.;
+              if (rhs.l2_norm() == 0.)
+                continue;
+              SolverControl control(
+                std::max<types::global_dof_index>(1000, n_unknowns),
+                settings.linear_tolerance * rhs.l2_norm());
+              SolverCG<Vector<double>> cg(control);
+              cg.solve(*amg_matrix, v, rhs, *amg);
+              solve_constraints.set_zero(v);
+            }
+          return;
+        }
       const std::size_t n_chunks =
         std::min<std::size_t>(MultithreadInfo::n_threads(), n);
       if (n_chunks <= 1)

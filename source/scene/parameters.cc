@@ -456,9 +456,15 @@ namespace igabde
                           "knot span / cell).");
         prm.declare_entry("Linear solver",
                           "direct",
-                          Patterns::Selection("direct"),
+                          Patterns::Selection("direct|cg-amg"),
                           "direct: sparse LU (UMFPACK), one factorisation "
-                          "per body serving all right-hand sides.");
+                          "per body serving all right-hand sides. cg-amg: "
+                          "conjugate gradients with Trilinos ML algebraic "
+                          "multigrid, for large models.");
+        prm.declare_entry("Linear tolerance",
+                          "1e-12",
+                          Patterns::Double(0.),
+                          "cg-amg: relative residual at which CG stops.");
         prm.declare_entry("Output subdivisions",
                           "4",
                           Patterns::Integer(1, 16),
@@ -481,6 +487,7 @@ namespace igabde
         settings.degree              = prm.get_integer("Degree");
         settings.refinements         = prm.get_integer("Refinements");
         settings.linear_solver       = prm.get("Linear solver");
+        settings.linear_tolerance    = prm.get_double("Linear tolerance");
         settings.output_subdivisions = prm.get_integer("Output subdivisions");
       }
       prm.leave_subsection();

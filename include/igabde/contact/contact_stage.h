@@ -151,6 +151,10 @@ namespace igabde
       Eigen::VectorXd
       relative_displacement(const std::vector<Vector<double>> &u) const;
 
+      /// Start of the first load step's B-Newton iteration (p, alpha).
+      std::pair<Eigen::VectorXd, Eigen::VectorXd>
+      initial_guess() const;
+
       Tensor<1, dim>
       global_force(const unsigned int i, const Eigen::VectorXd &p) const;
 

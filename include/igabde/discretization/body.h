@@ -11,6 +11,8 @@
 #include <deal.II/lac/sparse_direct.h>
 #include <deal.II/lac/sparse_matrix.h>
 #include <deal.II/lac/sparsity_pattern.h>
+#include <deal.II/lac/trilinos_precondition.h>
+#include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/vector.h>
 
 #include <array>
@@ -251,13 +253,18 @@ namespace igabde
       void
       factorize();
 
-      SparseMatrix<double>        constrained_matrix;
-      AffineConstraints<double>   solve_constraints;
-      SparseDirectUMFPACK         direct_solver;
-      Vector<double>              u_load;
-      Vector<double>              u_prescribed;
-      std::vector<Vector<double>> rigid_modes;
-      std::vector<std::string>    rigid_mode_names;
+      SparseMatrix<double>      constrained_matrix;
+      AffineConstraints<double> solve_constraints;
+      /// Direct path (Linear solver = direct).
+      SparseDirectUMFPACK direct_solver;
+      /// Iterative path (Linear solver = cg-amg): the constrained matrix as
+      /// a Trilinos matrix and its ML algebraic multigrid preconditioner.
+      std::unique_ptr<TrilinosWrappers::SparseMatrix>    amg_matrix;
+      std::unique_ptr<TrilinosWrappers::PreconditionAMG> amg;
+      Vector<double>                                     u_load;
+      Vector<double>                                     u_prescribed;
+      std::vector<Vector<double>>                        rigid_modes;
+      std::vector<std::string>                           rigid_mode_names;
     };
 
     /**
