@@ -398,12 +398,24 @@ namespace igabde
           record["load_factor"]         = load_factor;
           record["displacement_factor"] = displacement_factor;
           if (contact_stage)
-            contact_stage->solve_step(s + 1,
-                                      load_factor,
-                                      displacement_factor,
-                                      u,
-                                      record,
-                                      timer);
+            try
+              {
+                contact_stage->solve_step(s + 1,
+                                          load_factor,
+                                          displacement_factor,
+                                          u,
+                                          record,
+                                          timer);
+              }
+            catch (...)
+              {
+                // Keep the failed step's figures (iterations, residual) in
+                // the summary next to the finished steps.
+                record["status"] = "failed";
+                step_records.push_back(record);
+                summary["load_steps"] = step_records;
+                throw;
+              }
           step_records.push_back(record);
           summary["load_steps"] = step_records;
           output_step(s + 1, u);

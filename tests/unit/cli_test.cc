@@ -152,3 +152,50 @@ TEST(Cli, SetOverridesAValue)
   EXPECT_NE(wrong.output.find("Refinementz"), std::string::npos)
     << wrong.output;
 }
+
+
+
+TEST(Cli, LateFailureKeepsFinishedResults)
+{
+  // Two B-Newton iterations are too few for the stick phase of V4's second
+  // step: the run must fail loudly, keep step 1 and say why in summary.json.
+  const std::string folder = scratch("late");
+  const std::string scene =
+    std::string(IGABDE_SOURCE_DIR) + "/prm/v4-sliding-block.prm";
+  const auto result = run_igabde("'" + scene +
+                                   "' --set 'Contact/Max iterations=2' "
+                                   "--set 'Output/Directory=out'",
+                                 folder);
+  EXPECT_NE(result.status, 0);
+  EXPECT_NE(result.output.find("did not converge"), std::string::npos)
+    << result.output;
+  std::ifstream     in(folder + "/out/summary.json");
+  const std::string summary((std::istreambuf_iterator<char>(in)),
+                            std::istreambuf_iterator<char>());
+  EXPECT_NE(summary.find("\"status\": \"failed\""), std::string::npos);
+  EXPECT_NE(summary.find("load step 2"), std::string::npos) << summary;
+  EXPECT_TRUE(std::filesystem::exists(folder + "/out/contact-0001.csv"));
+  EXPECT_TRUE(std::filesystem::exists(folder + "/out/solution-body1-0001.vtu"));
+  EXPECT_FALSE(std::filesystem::exists(folder + "/out/contact-0002.csv"));
+  // The failed step is recorded with its iterations and residual.
+  EXPECT_NE(summary.find("\"status\": \"failed\"", summary.find("load_steps")),
+            std::string::npos);
+}
+
+
+
+TEST(Cli, SurfacesThatDoNotFaceEachOther)
+{
+  const std::string folder = scratch("facing");
+  const std::string scene =
+    std::string(IGABDE_SOURCE_DIR) + "/prm/v5-hertz-2d.prm";
+  const auto result = run_igabde("'" + scene +
+                                   "' --set 'Body 2/Plane normal=0,-1' "
+                                   "--set 'Output/Directory=out'",
+                                 folder);
+  EXPECT_NE(result.status, 0);
+  EXPECT_NE(result.output.find("do not face each other"), std::string::npos)
+    << result.output;
+  EXPECT_NE(result.output.find("Plane normal"), std::string::npos)
+    << result.output;
+}

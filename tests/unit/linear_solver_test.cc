@@ -14,10 +14,9 @@ namespace
   run_v2(const std::string &type, const std::string &solver)
   {
     std::ostringstream log;
-    const std::string  folder =
-      (std::filesystem::temp_directory_path() /
-       ("igabde-linear-solver-" + type + "-" + solver))
-        .string();
+    const std::string  folder = (std::filesystem::temp_directory_path() /
+                                ("igabde-linear-solver-" + type + "-" + solver))
+                                 .string();
     return igabde::scene::run_scene_in_process(
       std::string(IGABDE_SOURCE_DIR) + "/prm/v2-lame-cylinder.prm",
       {{"Discretization/Type", type},
