@@ -93,6 +93,31 @@ main()
               << yes(std::abs(last_ratio - 1.) <= 1e-8) << std::endl;
     }
 
+  // V4 reversed and unloaded (hard case "a load step that unloads"): the
+  // top goes to +0.05, back to -0.025, then the pressure is halved; the
+  // friction force follows the slip direction and stays on the cone.
+  {
+    const auto summary =
+      run("v4-sliding-block",
+          "v4-reversal",
+          {{"Load path/Load factors", "1, 1, 1, 1, 1, 0.5"},
+           {"Load path/Displacement factors", "0, 0.5, 1, 0, -0.5, -0.5"}});
+    const auto  &steps = summary.at("load_steps");
+    const double mu    = 0.4;
+    auto         ratio = [&](const unsigned int s) {
+      const auto &f = steps.at(s).at("total_contact_force");
+      return f.at(0).number() / (mu * f.at(1).number());
+    };
+    deallog << "V4 reversal: forward slip F_t = -mu F_n: "
+            << yes(std::abs(ratio(2) + 1.) <= 1e-8)
+            << ", backward slip F_t = +mu F_n: "
+            << yes(std::abs(ratio(4) - 1.) <= 1e-8)
+            << ", after halving the pressure F_t = +mu F_n: "
+            << yes(std::abs(ratio(5) - 1.) <= 1e-8) << ", final F_n "
+            << steps.at(5).at("total_contact_force").at(1).number()
+            << std::endl;
+  }
+
   // V5 Hertz: half-width within 1 % (NURBS) / 2 % (FE_Q(2)) of 1.4915,
   // profile L2 error <= 3 % (NURBS) / within 2 % ... of Johnson's.
   for (const std::string type : {"nurbs", "lagrange"})

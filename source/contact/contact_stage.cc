@@ -78,6 +78,47 @@ namespace igabde
 
 
     template <int dim>
+    typename ContactStage<dim>::State
+    ContactStage<dim>::save_state() const
+    {
+      return {p, alpha, u_rel, previous_external, status, has_previous};
+    }
+
+
+
+    template <int dim>
+    void
+    ContactStage<dim>::restore_state(const State &state)
+    {
+      p                 = state.p;
+      alpha             = state.alpha;
+      u_rel             = state.u_rel;
+      previous_external = state.previous_external;
+      status            = state.status;
+      has_previous      = state.has_previous;
+    }
+
+
+
+    template <int dim>
+    const ContactProblem &
+    ContactStage<dim>::condensed_problem() const
+    {
+      return problem;
+    }
+
+
+
+    template <int dim>
+    double
+    ContactStage<dim>::flexibility_asymmetry() const
+    {
+      return asymmetry;
+    }
+
+
+
+    template <int dim>
     const Eigen::VectorXd &
     ContactStage<dim>::forces() const
     {
@@ -283,9 +324,8 @@ namespace igabde
           problem.G.middleRows(m * i, m) = GL.middleRows(m * keep[i], m);
         }
       pair_list = kept_pairs;
-      const double asymmetry =
-        (W - W.transpose()).norm() / std::max(W.norm(), 1e-300);
-      W = 0.5 * (W + W.transpose());
+      asymmetry = (W - W.transpose()).norm() / std::max(W.norm(), 1e-300);
+      W         = 0.5 * (W + W.transpose());
 
       problem.n_contacts   = pair_list.size();
       problem.n_components = m;
@@ -372,20 +412,30 @@ namespace igabde
     std::pair<Eigen::VectorXd, Eigen::VectorXd>
     ContactStage<dim>::initial_guess() const
     {
-      // Candidate 1: no force, rigid modes placed so that the closest pair
-      // just touches (with every pair open the alpha columns of the Newton
-      // matrix vanish).
+      // Candidate 1, first step: no force, rigid modes placed so that the
+      // closest pair just touches (with every pair open the alpha columns of
+      // the Newton matrix vanish). Later steps: the previous step's forces
+      // and rigid-mode amplitudes (warm start).
       const unsigned int m  = n_components;
       Eigen::VectorXd    p0 = Eigen::VectorXd::Zero(problem.n_rows());
       Eigen::VectorXd    a0 = (problem.n_alpha() > 0 ? touching_alpha(problem) :
                                                        Eigen::VectorXd::Zero(0));
+      if (has_previous)
+        {
+          p0 = p;
+          a0 = alpha;
+        }
 
-      // Candidate 2: the pairs that touch in the undeformed geometry held
-      // closed and sticking (bilateral), W_cc p_c + G_c alpha = -q_c and
-      // G_c^T p_c = b. On flat matching surfaces with zero gap every pair
-      // is at a tie of the min function, where the first Newton matrix is
-      // a poor model; this start is exact there. The better candidate by
-      // the natural-map residual is used.
+      // Candidate 2: a bilateral solve, W_cc p_c + G_c alpha = -q_c and
+      // G_c^T p_c = b, over the pairs expected closed and sticking: in the
+      // first step those that touch in the undeformed geometry, later those
+      // closed at the end of the previous step. On flat matching surfaces
+      // with zero gap every pair is at a tie of the min function, where the
+      // first Newton matrix is a poor model, and after a load change the
+      // warm start violates the equilibrium of floating bodies by the whole
+      // change; this start is exact when the contact state does not change.
+      // The better candidate by natural-map plus equilibrium residual is
+      // used.
       std::vector<unsigned int> rows;
       double                    size = 0.;
       for (const auto &pair : pair_list)
@@ -396,7 +446,8 @@ namespace igabde
       const double max_g =
         (problem.G.size() > 0 ? problem.G.cwiseAbs().maxCoeff() : 0.);
       for (unsigned int i = 0; i < pair_list.size(); ++i)
-        if (pair_list[i].gap <= 1e-12 * std::max(size, 1e-300))
+        if (has_previous ? status[i] != ContactStatus::open :
+                           pair_list[i].gap <= 1e-12 * std::max(size, 1e-300))
           for (unsigned int s = 0; s < m; ++s)
             {
               const unsigned int r = m * i + s;
@@ -484,13 +535,8 @@ namespace igabde
       {
         TimerOutput::Scope t(timer, "contact: B-Newton");
         BNewtonSolver      solver(settings.solver);
-        if (has_previous)
-          result = solver.solve(problem, p, alpha);
-        else
-          {
-            const auto [p0, alpha0] = initial_guess();
-            result                  = solver.solve(problem, p0, alpha0);
-          }
+        const auto [p0, alpha0] = initial_guess();
+        result                  = solver.solve(problem, p0, alpha0);
       }
       log << "  B-Newton: " << result.summary() << std::endl;
 
@@ -502,12 +548,12 @@ namespace igabde
 
       AssertThrow(
         result.converged,
-        base::ExcInput(
+        ExcContactNotConverged(
           settings.scene_file + ": load step " + std::to_string(step) +
           ": the contact solver did not converge: " + result.diagnosis +
-          ". Try more load steps (Load path/Number of steps), a "
-          "larger Contact/Max iterations, or check that the "
-          "bodies are supported."));
+          ". Try more load steps (Load path/Number of steps) or step cuts "
+          "(Contact/Max step cuts), a larger Contact/Max iterations, or "
+          "check that the bodies are supported."));
 
       const ConditionReport report =
         check_contact_conditions(problem,

@@ -301,6 +301,14 @@ namespace igabde
                           "false",
                           Patterns::Bool(),
                           "Print every B-Newton iteration.");
+        prm.declare_entry("Max step cuts",
+                          "4",
+                          Patterns::Integer(0, 12),
+                          "When the contact solve of a load increment does "
+                          "not converge, the increment is halved (loads and "
+                          "prescribed displacements interpolated linearly) "
+                          "and retried, at most this many times in a row; "
+                          "0 stops at the first failure.");
       }
       prm.leave_subsection();
     }
@@ -323,6 +331,7 @@ namespace igabde
         max_iterations       = prm.get_integer("Max iterations");
         r_scale              = prm.get_double("r scale");
         verbose              = prm.get_bool("Verbose");
+        max_step_cuts        = prm.get_integer("Max step cuts");
       }
       prm.leave_subsection();
     }
@@ -561,6 +570,11 @@ namespace igabde
                   base::ExcInput(f + "Contact/Enabled is true but Body 2/Type "
                                      "is 'none'; set Body 2/Type to "
                                      "'deformable' or 'rigid plane'."));
+      AssertThrow(contact.path != "full",
+                  base::ExcInput(f + "Contact/Path = full (the uncondensed "
+                                     "semismooth Newton path) is not "
+                                     "available yet; use 'condensed' or "
+                                     "'auto'."));
       AssertThrow(contact.algorithm == "bde",
                   base::ExcInput(f +
                                  "Contact/Algorithm = " + contact.algorithm +

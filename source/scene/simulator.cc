@@ -12,6 +12,7 @@
 #include <cctype>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iomanip>
 #include <sstream>
 
@@ -380,19 +381,96 @@ namespace igabde
           summary["effects"]    = effects;
         }
 
+      // Displacement of every body under the external loads alone.
+      const auto external = [&](const double load_factor,
+                                const double displacement_factor) {
+        std::vector<Vector<double>> u(bodies.size());
+        for (unsigned int b = 0; b < bodies.size(); ++b)
+          {
+            u[b] = bodies[b]->load_solution();
+            u[b] *= load_factor;
+            u[b].add(displacement_factor, bodies[b]->prescribed_solution());
+          }
+        return u;
+      };
+
+      // The contact solve of the increment from (l0, d0) to (l1, d1); when
+      // it does not converge, the increment is halved (loads interpolated
+      // linearly) and both halves are solved, at most Max step cuts deep.
+      std::function<void(unsigned int,
+                         double,
+                         double,
+                         double,
+                         double,
+                         unsigned int,
+                         std::vector<Vector<double>> &,
+                         base::Json &)>
+        advance = [&](const unsigned int           step,
+                      const double                 l0,
+                      const double                 d0,
+                      const double                 l1,
+                      const double                 d1,
+                      const unsigned int           depth,
+                      std::vector<Vector<double>> &u,
+                      base::Json                  &record) {
+          const auto state = contact_stage->save_state();
+          u                = external(l1, d1);
+          base::Json attempt;
+          try
+            {
+              contact_stage->solve_step(step, l1, d1, u, attempt, timer);
+            }
+          catch (const contact::ExcContactNotConverged &)
+            {
+              if (depth >= parameters.contact.max_step_cuts)
+                {
+                  for (const auto key : {"newton_iterations",
+                                         "residual",
+                                         "n_open",
+                                         "n_stick",
+                                         "n_slip"})
+                    if (attempt.has(key))
+                      record[key] = attempt.at(key);
+                  throw;
+                }
+              contact_stage->restore_state(state);
+              log << "  contact solve did not converge: halving the "
+                     "increment (cut "
+                  << depth + 1 << " of at most "
+                  << parameters.contact.max_step_cuts << ")" << std::endl;
+              const double lm = 0.5 * (l0 + l1), dm = 0.5 * (d0 + d1);
+              advance(step, l0, d0, lm, dm, depth + 1, u, record);
+              advance(step, lm, dm, l1, d1, depth + 1, u, record);
+              return;
+            }
+          // Keep the last solve's figures, the iterations of all of them.
+          const double before = record.has("newton_iterations") ?
+                                  record.at("newton_iterations").number() :
+                                  0.;
+          for (const auto key : {"residual",
+                                 "n_open",
+                                 "n_stick",
+                                 "n_slip",
+                                 "condition_check_max_violation",
+                                 "total_contact_force"})
+            record[key] = attempt.at(key);
+          record["newton_iterations"] =
+            before + attempt.at("newton_iterations").number();
+          record["contact_solves"] = (record.has("contact_solves") ?
+                                        record.at("contact_solves").number() :
+                                        0.) +
+                                     1.;
+        };
+
+      double previous_load = 0., previous_displacement = 0.;
       for (unsigned int s = 0; s < steps.size(); ++s)
         {
           const auto [load_factor, displacement_factor] = steps[s];
           log << "Load step " << s + 1 << "/" << steps.size()
               << ": load factor " << load_factor << ", displacement factor "
               << displacement_factor << std::endl;
-          std::vector<Vector<double>> u(bodies.size());
-          for (unsigned int b = 0; b < bodies.size(); ++b)
-            {
-              u[b] = bodies[b]->load_solution();
-              u[b] *= load_factor;
-              u[b].add(displacement_factor, bodies[b]->prescribed_solution());
-            }
+          std::vector<Vector<double>> u =
+            external(load_factor, displacement_factor);
           base::Json record;
           record["step"]                = s + 1;
           record["load_factor"]         = load_factor;
@@ -400,12 +478,14 @@ namespace igabde
           if (contact_stage)
             try
               {
-                contact_stage->solve_step(s + 1,
-                                          load_factor,
-                                          displacement_factor,
-                                          u,
-                                          record,
-                                          timer);
+                advance(s + 1,
+                        previous_load,
+                        previous_displacement,
+                        load_factor,
+                        displacement_factor,
+                        0,
+                        u,
+                        record);
               }
             catch (...)
               {
@@ -416,8 +496,12 @@ namespace igabde
                 summary["load_steps"] = step_records;
                 throw;
               }
+          previous_load         = load_factor;
+          previous_displacement = displacement_factor;
           step_records.push_back(record);
           summary["load_steps"] = step_records;
+          if (contact_stage)
+            summary["total_contact_force"] = record.at("total_contact_force");
           output_step(s + 1, u);
           if (s + 1 == steps.size())
             postprocess_final(u);

@@ -164,6 +164,7 @@ TEST(Cli, LateFailureKeepsFinishedResults)
     std::string(IGABDE_SOURCE_DIR) + "/prm/v4-sliding-block.prm";
   const auto result = run_igabde("'" + scene +
                                    "' --set 'Contact/Max iterations=2' "
+                                   "--set 'Contact/Max step cuts=0' "
                                    "--set 'Output/Directory=out'",
                                  folder);
   EXPECT_NE(result.status, 0);

@@ -25,6 +25,12 @@ namespace igabde
     using namespace dealii;
 
     /**
+     * @brief The contact solver did not converge in a load step (the
+     * simulator may cut the increment and retry).
+     */
+    DeclException1(ExcContactNotConverged, std::string, << arg1);
+
+    /**
      * @brief What the contact layer needs from the scene.
      */
     template <int dim>
@@ -119,6 +125,34 @@ namespace igabde
                  base::Json                  &record,
                  TimerOutput                 &timer);
 
+      /**
+       * @brief The state a load step starts from (forces, rigid-mode
+       * amplitudes, the friction history), to retry a step.
+       */
+      struct State
+      {
+        /// Contact forces, local frames.
+        Eigen::VectorXd p;
+        /// Rigid-mode amplitudes.
+        Eigen::VectorXd alpha;
+        /// Relative displacements.
+        Eigen::VectorXd u_rel;
+        /// Relative displacement of the external loads (friction history).
+        Eigen::VectorXd previous_external;
+        /// Pair status.
+        std::vector<ContactStatus> status;
+        /// Whether a step has been solved.
+        bool has_previous = false;
+      };
+
+      /// The state after the last solved step.
+      State
+      save_state() const;
+
+      /// Returns to a saved state (after a failed attempt).
+      void
+      restore_state(const State &state);
+
       /// Writes contact-NNNN.csv and contact-NNNN.vtu for the last step.
       void
       write_step_output(const unsigned int step,
@@ -135,6 +169,15 @@ namespace igabde
       /// Pairs in use.
       const std::vector<PointPair<dim>> &
       pairs() const;
+
+      /// The condensed problem of the last step (W = F^L, q, mu, G, b).
+      const ContactProblem &
+      condensed_problem() const;
+
+      /// Relative asymmetry |F - F^T| / |F| of the flexibility before it
+      /// was symmetrised (round-off for a correct condensation).
+      double
+      flexibility_asymmetry() const;
 
       /// Contact forces of the last step, local frames (n_components per
       /// pair).
@@ -165,6 +208,7 @@ namespace igabde
       unsigned int                n_components = 1;
       std::vector<PointPair<dim>> pair_list;
       unsigned int                n_dropped = 0;
+      double                      asymmetry = 0.;
       ContactProblem              problem;
       /// Which body and mode each alpha belongs to.
       std::vector<std::pair<unsigned int, unsigned int>> alpha_modes;

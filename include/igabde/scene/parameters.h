@@ -142,6 +142,8 @@ namespace igabde
       double r_scale = 1.;
       /// Print every B-Newton iteration.
       bool verbose = false;
+      /// How often a load increment whose contact solve fails may be halved.
+      unsigned int max_step_cuts = 4;
 
       /// Declares the "Contact" subsection.
       static void
