@@ -26,34 +26,6 @@ namespace igabde
   {
     namespace
     {
-      /// Column d of cof(J) = det(J) J^{-T}, from the tangents.
-      template <int dim>
-      Tensor<1, dim>
-      cofactor_column(const Tensor<2, dim> &J, const unsigned int d)
-      {
-        Tensor<1, dim> n;
-        if constexpr (dim == 2)
-          {
-            if (d == 0)
-              {
-                n[0] = J[1][1];
-                n[1] = -J[0][1];
-              }
-            else
-              {
-                n[0] = -J[1][0];
-                n[1] = J[0][0];
-              }
-          }
-        else
-          {
-            const unsigned int d1 = (d + 1) % 3, d2 = (d + 2) % 3;
-            n[0] = J[1][d1] * J[2][d2] - J[2][d1] * J[1][d2];
-            n[1] = J[2][d1] * J[0][d2] - J[0][d1] * J[2][d2];
-            n[2] = J[0][d1] * J[1][d2] - J[1][d1] * J[0][d2];
-          }
-        return n;
-      }
 
       /// Symmetric gradient of the vector function R e_c.
       template <int dim>
@@ -366,7 +338,7 @@ namespace igabde
     {
       const unsigned int   d    = face / 2;
       const double         side = (face % 2 == 0 ? -1. : 1.);
-      const Tensor<1, dim> c    = cofactor_column(J, d);
+      const Tensor<1, dim> c    = nurbs::cofactor_column(J, d);
       const double         norm = c.norm();
       Tensor<1, dim>       n;
       if (norm > 0.)

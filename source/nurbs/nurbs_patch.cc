@@ -14,47 +14,45 @@ namespace igabde
   namespace nurbs
   {
     namespace
+    {} // namespace
+
+
+
+    template <int dim>
+    Tensor<1, dim>
+    cofactor_column(const Tensor<2, dim> &J, const unsigned int d)
     {
-      /// Column d of cof(J) = det(J) J^{-T}: the (unnormalised) normal of the
-      /// surface xi_d = const, pointing towards increasing xi_d when det J > 0.
-      /// Computed from the tangents so that it stays defined where J is
-      /// singular in another direction.
-      template <int dim>
-      Tensor<1, dim>
-      cofactor_column(const Tensor<2, dim> &J, const unsigned int d)
-      {
-        Tensor<1, dim> n;
-        if constexpr (dim == 2)
-          {
-            if (d == 0)
-              {
-                n[0] = J[1][1];
-                n[1] = -J[0][1];
-              }
-            else
-              {
-                n[0] = -J[1][0];
-                n[1] = J[0][0];
-              }
-          }
-        else if constexpr (dim == 3)
-          {
-            const unsigned int d1 = (d + 1) % 3, d2 = (d + 2) % 3;
-            Tensor<1, 3>       t1, t2;
-            for (unsigned int i = 0; i < 3; ++i)
-              {
-                t1[i] = J[i][d1];
-                t2[i] = J[i][d2];
-              }
-            const Tensor<1, 3> c = cross_product_3d(t1, t2);
-            for (unsigned int i = 0; i < 3; ++i)
-              n[i] = c[i];
-          }
-        else
-          Assert(false, ExcNotImplemented());
-        return n;
-      }
-    } // namespace
+      Tensor<1, dim> n;
+      if constexpr (dim == 2)
+        {
+          if (d == 0)
+            {
+              n[0] = J[1][1];
+              n[1] = -J[0][1];
+            }
+          else
+            {
+              n[0] = -J[1][0];
+              n[1] = J[0][0];
+            }
+        }
+      else if constexpr (dim == 3)
+        {
+          const unsigned int d1 = (d + 1) % 3, d2 = (d + 2) % 3;
+          Tensor<1, 3>       t1, t2;
+          for (unsigned int i = 0; i < 3; ++i)
+            {
+              t1[i] = J[i][d1];
+              t2[i] = J[i][d2];
+            }
+          const Tensor<1, 3> c = cross_product_3d(t1, t2);
+          for (unsigned int i = 0; i < 3; ++i)
+            n[i] = c[i];
+        }
+      else
+        Assert(false, ExcNotImplemented());
+      return n;
+    }
 
 
 
@@ -841,5 +839,9 @@ namespace igabde
 
     template class NurbsPatch<2>;
     template class NurbsPatch<3>;
+    template Tensor<1, 2>
+    cofactor_column<2>(const Tensor<2, 2> &, const unsigned int);
+    template Tensor<1, 3>
+    cofactor_column<3>(const Tensor<2, 3> &, const unsigned int);
   } // namespace nurbs
 } // namespace igabde

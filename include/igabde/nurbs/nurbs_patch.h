@@ -194,6 +194,16 @@ namespace igabde
       std::vector<Point<dim>>     points;
       std::vector<double>         weights;
     };
+
+    /**
+     * @brief Column @p d of cof(J) = det(J) J^{-T}: the (unnormalised)
+     * normal of the surface xi_d = const, pointing towards increasing xi_d
+     * when det J > 0. Computed from the tangents, so it stays defined where
+     * J is singular in another direction.
+     */
+    template <int dim>
+    Tensor<1, dim>
+    cofactor_column(const Tensor<2, dim> &J, const unsigned int d);
   } // namespace nurbs
 } // namespace igabde
 
