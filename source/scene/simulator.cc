@@ -371,6 +371,7 @@ namespace igabde
             std::make_unique<contact::ContactStage<dim>>(cs, bodies, log);
           contact_stage->setup(timer);
           contact_stage->add_summary(summary);
+          summary["effects"]["load_steps"] = steps.size();
         }
       else
         {
