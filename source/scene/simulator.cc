@@ -556,7 +556,8 @@ namespace igabde
         contact_stage->add_checks(checks);
       summary["checks"] = checks;
 
-      base::Json points = base::Json::object();
+      base::Json points   = base::Json::object();
+      base::Json stresses = base::Json::object();
       for (const std::string &item : base::split(parameters.probes, ';'))
         {
           const auto colon = item.find(':');
@@ -575,8 +576,17 @@ namespace igabde
           points[name] = value;
           log << "  probe " << name << ": displacement " << std::setprecision(5)
               << d << std::setprecision(6) << std::endl;
+
+          // Stress recovered at the probe: upper triangle, row by row.
+          const SymmetricTensor<2, dim> sigma      = bodies[0]->stress(u[0], x);
+          base::Json                    components = base::Json::array();
+          for (unsigned int i = 0; i < dim; ++i)
+            for (unsigned int j = i; j < dim; ++j)
+              components.push_back(sigma[i][j]);
+          stresses[name] = components;
         }
-      summary["points"] = points;
+      summary["points"]         = points;
+      summary["point_stresses"] = stresses;
     }
 
 
