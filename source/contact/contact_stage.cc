@@ -165,32 +165,27 @@ namespace igabde
             }
           else
             {
-              // The nearest master point; where the surfaces do not match,
-              // the slave point projected on the master tangent plane.
+              // The coincident master point where the surfaces match, else
+              // the closest point of the master face (exact on NURBS).
               unsigned int best = 0;
               for (unsigned int m = 1; m < master.size(); ++m)
                 if ((master[m].location - s.location).norm() <
                     (master[best].location - s.location).norm())
                   best = m;
-              const auto &m = master[best];
-              n             = m.normal;
-              if ((m.location - s.location).norm() <= 1e-8 * size)
+              if ((master[best].location - s.location).norm() <= 1e-8 * size)
                 {
-                  pair.x2  = m.location;
-                  pair.op2 = m.op;
+                  n        = master[best].normal;
+                  pair.x2  = master[best].location;
+                  pair.op2 = master[best].op;
                 }
               else
                 {
-                  pair.x2 = s.location - ((s.location - m.location) * n) * n;
-                  try
-                    {
-                      pair.op2 = bodies[1]->point_operator(pair.x2);
-                    }
-                  catch (...)
-                    {
-                      pair.x2  = m.location;
-                      pair.op2 = m.op;
-                    }
+                  const auto m =
+                    bodies[1]->closest_surface_point(settings.master_face,
+                                                     s.location);
+                  n        = m.normal;
+                  pair.x2  = m.location;
+                  pair.op2 = m.op;
                 }
             }
           AssertThrow(

@@ -380,6 +380,41 @@ namespace igabde
 
 
     template <int dim>
+    SurfacePoint<dim>
+    Body<dim>::closest_surface_point(const types::boundary_id face,
+                                     const Point<dim>        &location) const
+    {
+      const auto candidates = surface_points(face, PairPlacement::greville);
+      AssertThrow(!candidates.empty(),
+                  ExcMessage("Body '" + body_description.name +
+                             "' has no points on face " + std::to_string(face) +
+                             "."));
+      const SurfacePoint<dim> *nearest = &candidates[0];
+      for (const auto &c : candidates)
+        if ((c.location - location).norm() <
+            (nearest->location - location).norm())
+          nearest = &c;
+
+      SurfacePoint<dim> result = *nearest;
+      result.tributary_area    = 0.;
+      const Point<dim> projected =
+        location -
+        ((location - nearest->location) * nearest->normal) * nearest->normal;
+      try
+        {
+          result.op       = point_operator(projected);
+          result.location = projected;
+        }
+      catch (const ExceptionBase &)
+        {
+          // The projection left a curved face: keep the nearest point.
+        }
+      return result;
+    }
+
+
+
+    template <int dim>
     std::unique_ptr<Body<dim>>
     create_body(const BodyDescription<dim>   &description,
                 const DiscretizationSettings &settings)

@@ -1083,6 +1083,22 @@ namespace igabde
 
 
 
+    template <int dim>
+    SurfacePoint<dim>
+    IgaBody<dim>::closest_surface_point(const types::boundary_id face,
+                                        const Point<dim>        &location) const
+    {
+      const Point<dim>  xi = patch().closest_point_on_face(face, location);
+      SurfacePoint<dim> point;
+      point.parametric = xi;
+      point.location   = patch().value(xi);
+      point.normal     = patch().outward_normal(face, xi);
+      point.op         = parametric_point_operator(xi);
+      return point;
+    }
+
+
+
     template class IgaBody<2>;
     template class IgaBody<3>;
   } // namespace discretization

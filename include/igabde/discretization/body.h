@@ -152,6 +152,17 @@ namespace igabde
                      const PairPlacement      placement) const = 0;
 
       /**
+       * @brief The point of the patch face @p face closest to @p location,
+       * with its outward normal and operator (tributary area 0): the facing
+       * point of a pair on non-matching surfaces. The default projects
+       * @p location on the tangent plane of the nearest candidate point of
+       * the face; a discretisation with an exact surface overrides it.
+       */
+      virtual SurfacePoint<dim>
+      closest_surface_point(const types::boundary_id face,
+                            const Point<dim>        &location) const;
+
+      /**
        * @brief Solves K u = f for every column, with homogeneous supports
        * (and the pins that remove free rigid modes); one factorisation serves
        * all. On return each vector holds its solution.

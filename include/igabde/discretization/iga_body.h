@@ -136,6 +136,14 @@ namespace igabde
       Point<dim>
       parametric_point(const Point<dim> &location) const;
 
+      /**
+       * @brief The exact closest point of the NURBS face @p face to
+       * @p location (Newton on the patch), with the exact outward normal.
+       */
+      SurfacePoint<dim>
+      closest_surface_point(const types::boundary_id face,
+                            const Point<dim>        &location) const override;
+
       /// @brief Displacement/point-force operator at parametric point @p xi.
       PointOperator<dim>
       parametric_point_operator(const Point<dim> &xi) const;
