@@ -503,14 +503,12 @@ namespace igabde
 
     template <int dim>
     void
-    ContactStage<dim>::solve_step(const unsigned int step,
-                                  const double       load_factor,
-                                  const double       displacement_factor,
+    ContactStage<dim>::solve_step(const unsigned int           step,
+                                  const double                 load_factor,
                                   std::vector<Vector<double>> &u,
                                   base::Json                  &record,
                                   TimerOutput                 &timer)
     {
-      (void)displacement_factor;
       const unsigned int    m     = n_components;
       const Eigen::VectorXd U     = relative_displacement(u);
       const Eigen::VectorXd carry = problem.W * p + problem.G * alpha;

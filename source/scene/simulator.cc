@@ -419,7 +419,7 @@ namespace igabde
           base::Json attempt;
           try
             {
-              contact_stage->solve_step(step, l1, d1, u, attempt, timer);
+              contact_stage->solve_step(step, l1, u, attempt, timer);
             }
           catch (const contact::ExcContactNotConverged &)
             {

@@ -111,7 +111,9 @@ namespace igabde
       setup(TimerOutput &timer);
 
       /**
-       * @brief Solves the load step @p step: on entry @p u holds each body's
+       * @brief Solves the load step @p step at load factor @p load_factor
+       * (which scales the loads that the equilibrium of floating bodies
+       * balances): on entry @p u holds each body's
        * displacement under the external loads of this step, on exit the
        * total displacement with the contact forces. Throws, with a
        * diagnosis, when the solver does not converge or the solution
@@ -120,7 +122,6 @@ namespace igabde
       void
       solve_step(const unsigned int           step,
                  const double                 load_factor,
-                 const double                 displacement_factor,
                  std::vector<Vector<double>> &u,
                  base::Json                  &record,
                  TimerOutput                 &timer);
