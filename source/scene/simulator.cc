@@ -599,6 +599,45 @@ namespace igabde
       summary["status"] = status;
       if (!error.empty())
         summary["error"] = error;
+
+      // steps.csv: one row per load step, full precision, for plots.
+      {
+        std::ofstream csv(output_directory + "/steps.csv");
+        csv << "step,load_factor,displacement_factor";
+        if (contact_stage)
+          {
+            csv << ",status,contact_solves,newton_iterations,residual,n_open,"
+                   "n_stick,n_slip";
+            for (const char *c : {"x", "y", "z"})
+              if (c[0] - 'x' < dim)
+                csv << ",force_" << c;
+          }
+        csv << "\n" << std::setprecision(12);
+        for (unsigned int s = 0; s < step_records.size(); ++s)
+          {
+            const base::Json &r = step_records.at(s);
+            csv << r.at("step").number() << "," << r.at("load_factor").number()
+                << "," << r.at("displacement_factor").number();
+            if (contact_stage)
+              {
+                const auto value = [&](const char *key) {
+                  return r.has(key) ? r.at(key).number() : 0.;
+                };
+                csv << "," << (r.has("status") ? "failed" : "ok") << ","
+                    << value("contact_solves") << ","
+                    << value("newton_iterations") << "," << value("residual")
+                    << "," << value("n_open") << "," << value("n_stick") << ","
+                    << value("n_slip");
+                for (unsigned int c = 0; c < dim; ++c)
+                  csv << ","
+                      << (r.has("total_contact_force") ?
+                            r.at("total_contact_force").at(c).number() :
+                            0.);
+              }
+            csv << "\n";
+          }
+      }
+
       base::Json timing = base::Json::object();
       double     total  = 0.;
       for (const auto &[phase, seconds] :
