@@ -39,10 +39,16 @@ namespace igabde
       nurbs::NurbsPatch<dim> patch;
       if (body.geometry == "box")
         {
-          const Point<dim> lo =
-            base::parse_point<dim>(body.lower_corner, where + "Lower corner");
-          const Point<dim> hi =
-            base::parse_point<dim>(body.upper_corner, where + "Upper corner");
+          // Empty corners: the unit box [0, 1]^dim.
+          Point<dim> lo, hi;
+          for (unsigned int d = 0; d < dim; ++d)
+            hi[d] = 1.;
+          if (!base::trim(body.lower_corner).empty())
+            lo =
+              base::parse_point<dim>(body.lower_corner, where + "Lower corner");
+          if (!base::trim(body.upper_corner).empty())
+            hi =
+              base::parse_point<dim>(body.upper_corner, where + "Upper corner");
           for (unsigned int d = 0; d < dim; ++d)
             AssertThrow(lo[d] < hi[d],
                         base::ExcInput(where + "Lower corner must be below "

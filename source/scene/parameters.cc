@@ -76,13 +76,15 @@ namespace igabde
           "y = 0 at the origin. curved beam: quarter annulus in the x-z "
           "plane extruded in y by Width.");
         prm.declare_entry("Lower corner",
-                          "0, 0, 0",
+                          "",
                           Patterns::Anything(),
-                          "box: lower corner (m), comma-separated.");
+                          "box: lower corner (m), comma-separated; empty: "
+                          "the origin.");
         prm.declare_entry("Upper corner",
-                          "1, 1, 1",
+                          "",
                           Patterns::Anything(),
-                          "box: upper corner (m), comma-separated.");
+                          "box: upper corner (m), comma-separated; empty: "
+                          "(1, 1[, 1]).");
         prm.declare_entry("Inner radius",
                           "1",
                           Patterns::Double(0.),

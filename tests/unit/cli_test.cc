@@ -200,3 +200,34 @@ TEST(Cli, SurfacesThatDoNotFaceEachOther)
   EXPECT_NE(result.output.find("Plane normal"), std::string::npos)
     << result.output;
 }
+
+
+
+TEST(Cli, MinimalScenesRunWithDefaults)
+{
+  // A unit box with rollers and a pressure, everything else at its default,
+  // in 2D and 3D; and a support on a face the patch does not have.
+  const std::string folder = scratch("defaults");
+  std::filesystem::create_directories(folder);
+  write_file(folder + "/box2.prm",
+             "set Dimension = 2\nsubsection Body 1\n"
+             "  set Supports = 0: x; 2: y\n  set Tractions = 3: pressure 1\n"
+             "end\n");
+  write_file(folder + "/box3.prm",
+             "set Dimension = 3\nsubsection Body 1\n"
+             "  set Supports = 0: x; 2: y; 4: z\n"
+             "  set Tractions = 5: pressure 1\nend\n");
+  write_file(folder + "/face.prm",
+             "set Dimension = 2\nsubsection Body 1\n"
+             "  set Supports = 7: x\nend\n");
+  for (const std::string scene : {"box2.prm", "box3.prm"})
+    {
+      const auto result = run_igabde(scene, folder);
+      EXPECT_EQ(result.status, 0) << scene << "\n" << result.output;
+    }
+  const auto face = run_igabde("face.prm", folder);
+  EXPECT_NE(face.status, 0);
+  EXPECT_NE(face.output.find("Supports"), std::string::npos) << face.output;
+  EXPECT_NE(face.output.find("patch face 0..3"), std::string::npos)
+    << face.output;
+}

@@ -45,10 +45,10 @@ namespace igabde
       std::string type = "deformable";
       /// Geometry builder name.
       std::string geometry = "box";
-      /// Box corners (m), comma-separated coordinates.
-      std::string lower_corner = "0, 0, 0";
-      /// Box corners (m), comma-separated coordinates.
-      std::string upper_corner = "1, 1, 1";
+      /// Box lower corner (m), comma-separated; empty: the origin.
+      std::string lower_corner;
+      /// Box upper corner (m), comma-separated; empty: all ones.
+      std::string upper_corner;
       /// Radii of annulus-like geometries (m).
       double inner_radius = 1.;
       /// Radii of annulus-like geometries (m).
