@@ -50,7 +50,11 @@ int
 main(int argc, char **argv)
 {
   using namespace dealii;
-  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  // All cores for the task-based parts (WorkStream assembly, the parallel
+  // multi-RHS solves); one MPI rank is the supported case so far.
+  Utilities::MPI::MPI_InitFinalize mpi(argc,
+                                       argv,
+                                       numbers::invalid_unsigned_int);
   // deal.II would print a stack trace for every user error; user errors are
   // reported in one line instead.
   deal_II_exceptions::disable_abort_on_exception();

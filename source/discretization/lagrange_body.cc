@@ -127,6 +127,24 @@ namespace igabde
       for (unsigned int r = 0; r < this->settings.refinements; ++r)
         patch.refine_uniformly(1);
       nurbs::make_parametric_triangulation(patch, triangulation);
+
+      // deal.II cells need a positive Jacobian. A left-handed patch (the
+      // curved beam) is used with its last parametric direction reversed;
+      // the two faces of that direction swap their boundary ids so that
+      // every face keeps its patch face number.
+      const bool reflect = (patch.orientation() < 0);
+      if (reflect)
+        for (const auto &cell : triangulation.active_cell_iterators())
+          for (const auto f : cell->face_indices())
+            if (cell->face(f)->at_boundary() &&
+                cell->face(f)->boundary_id() / 2 == dim - 1)
+              cell->face(f)->set_boundary_id(cell->face(f)->boundary_id() ^ 1);
+      const auto to_patch = [&](Point<dim> xi) {
+        if (reflect)
+          xi[dim - 1] = patch.parametric_lower()[dim - 1] +
+                        patch.parametric_upper()[dim - 1] - xi[dim - 1];
+        return xi;
+      };
       dof_handler.reinit(triangulation);
       dof_handler.distribute_dofs(fe);
       this->n_unknowns = dof_handler.n_dofs();
@@ -151,7 +169,7 @@ namespace igabde
       }
       for (types::global_dof_index i = 0; i < this->n_unknowns; ++i)
         {
-          const Point<dim> x     = patch.value(parametric[i]);
+          const Point<dim> x     = patch.value(to_patch(parametric[i]));
           euler_vector[i]        = x[this->dof_components[i]];
           this->dof_locations[i] = x;
         }

@@ -1,0 +1,62 @@
+// The Lagrange path on the geometries of the scenes, including the
+// left-handed curved-beam patch (which the FE_Q mesh must use reflected):
+// positive Jacobians, the right volume, faces that keep their patch ids.
+
+#include <igabde/nurbs/geometry_builders.h>
+
+#include <igabde/discretization/body.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace
+{
+  using namespace igabde;
+  using namespace dealii;
+} // namespace
+
+
+
+TEST(LagrangeBody, CurvedBeamVolumeAndFaces)
+{
+  // Quarter annulus 5 <= r <= 6 in the x-z plane, extruded by 1 in y.
+  discretization::BodyDescription<3> d;
+  d.geometry = nurbs::make_curved_beam(5., 6., 1.);
+  nurbs::elevate_to_degree(d.geometry, 2);
+  nurbs::subdivide(d.geometry, std::array<unsigned int, 3>{{2, 4, 2}});
+  discretization::DirichletCondition<3> clamp; // theta = 0, the z = 0 end
+  clamp.boundary_id   = 2;
+  clamp.components[0] = clamp.components[1] = clamp.components[2] = true;
+  d.dirichlet.push_back(clamp);
+
+  discretization::DiscretizationSettings settings;
+  settings.type   = "lagrange";
+  settings.degree = 2;
+  auto body       = discretization::create_body<3>(d, settings);
+  body->setup();
+
+  // Quadratic interpolation of 22.5-degree arcs: relative volume error of
+  // order (pi/8)^4 / 100, about 2e-4; the sign would flip for a mesh with
+  // negative Jacobians.
+  const double exact = M_PI * (36. - 25.) / 4.;
+  EXPECT_NEAR(body->measure(), exact, 1e-3 * exact);
+
+  // Face ids keep their patch meaning: face 4 is y = 0, face 5 is y = 1,
+  // face 0 is r = 5 with the outward normal pointing to the axis.
+  for (const unsigned int face : {4u, 5u})
+    for (const auto &p :
+         body->surface_points(face, discretization::PairPlacement::greville))
+      {
+        EXPECT_NEAR(p.location[1], face == 4 ? 0. : 1., 1e-12);
+        EXPECT_NEAR(p.normal[1], face == 4 ? -1. : 1., 1e-8);
+      }
+  for (const auto &p :
+       body->surface_points(0, discretization::PairPlacement::greville))
+    {
+      const double r = std::hypot(p.location[0], p.location[2]);
+      EXPECT_NEAR(r, 5., 1e-12);
+      EXPECT_LT(p.normal[0] * p.location[0] + p.normal[2] * p.location[2],
+                0.);
+    }
+}
