@@ -56,7 +56,6 @@ TEST(LagrangeBody, CurvedBeamVolumeAndFaces)
     {
       const double r = std::hypot(p.location[0], p.location[2]);
       EXPECT_NEAR(r, 5., 1e-12);
-      EXPECT_LT(p.normal[0] * p.location[0] + p.normal[2] * p.location[2],
-                0.);
+      EXPECT_LT(p.normal[0] * p.location[0] + p.normal[2] * p.location[2], 0.);
     }
 }
