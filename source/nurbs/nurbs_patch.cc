@@ -733,6 +733,40 @@ namespace igabde
 
     template <int dim>
     Point<dim>
+    NurbsPatch<dim>::nearest_sample(
+      const std::array<std::vector<double>, dim> &samples,
+      const Point<dim>                           &x) const
+    {
+      // Every tensor combination of the sampled coordinates; the one whose
+      // image is nearest to x starts the Newton projection.
+      unsigned int n = 1;
+      for (unsigned int d = 0; d < dim; ++d)
+        n *= samples[d].size();
+      Point<dim> xi;
+      double     best = std::numeric_limits<double>::max();
+      for (unsigned int s = 0; s < n; ++s)
+        {
+          Point<dim>   z;
+          unsigned int rest = s;
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              z[d] = samples[d][rest % samples[d].size()];
+              rest /= samples[d].size();
+            }
+          const double dist = (value(z) - x).norm_square();
+          if (dist < best)
+            {
+              best = dist;
+              xi   = z;
+            }
+        }
+      return xi;
+    }
+
+
+
+    template <int dim>
+    Point<dim>
     NurbsPatch<dim>::closest_parametric_point(const Point<dim> &x,
                                               const Point<dim> *start,
                                               double           *distance) const
@@ -744,7 +778,6 @@ namespace igabde
         {
           // Sample the images of the breakpoints and span midpoints.
           std::array<std::vector<double>, dim> samples;
-          unsigned int                         n = 1;
           for (unsigned int d = 0; d < dim; ++d)
             {
               const auto b = breakpoints(d);
@@ -754,25 +787,8 @@ namespace igabde
                   samples[d].push_back(0.5 * (b[e] + b[e + 1]));
                 }
               samples[d].push_back(b.back());
-              n *= samples[d].size();
             }
-          double best = std::numeric_limits<double>::max();
-          for (unsigned int s = 0; s < n; ++s)
-            {
-              Point<dim>   z;
-              unsigned int rest = s;
-              for (unsigned int d = 0; d < dim; ++d)
-                {
-                  z[d] = samples[d][rest % samples[d].size()];
-                  rest /= samples[d].size();
-                }
-              const double dist = (value(z) - x).norm_square();
-              if (dist < best)
-                {
-                  best = dist;
-                  xi   = z;
-                }
-            }
+          xi = nearest_sample(samples, x);
         }
       std::array<bool, dim> fixed;
       fixed.fill(false);
@@ -796,7 +812,6 @@ namespace igabde
 
       // Sample the face at breakpoints and three points per span.
       std::array<std::vector<double>, dim> samples;
-      unsigned int                         n = 1;
       for (unsigned int e = 0; e < dim; ++e)
         {
           if (e == d)
@@ -809,26 +824,8 @@ namespace igabde
                   samples[e].push_back(b[s] + (b[s + 1] - b[s]) * j / 4.);
               samples[e].push_back(b.back());
             }
-          n *= samples[e].size();
         }
-      Point<dim> xi;
-      double     best = std::numeric_limits<double>::max();
-      for (unsigned int s = 0; s < n; ++s)
-        {
-          Point<dim>   z;
-          unsigned int rest = s;
-          for (unsigned int e = 0; e < dim; ++e)
-            {
-              z[e] = samples[e][rest % samples[e].size()];
-              rest /= samples[e].size();
-            }
-          const double dist = (value(z) - x).norm_square();
-          if (dist < best)
-            {
-              best = dist;
-              xi   = z;
-            }
-        }
+      const Point<dim>      xi = nearest_sample(samples, x);
       std::array<bool, dim> fixed;
       fixed.fill(false);
       fixed[d] = true;

@@ -171,6 +171,11 @@ namespace igabde
       homogeneous_control_points() const;
 
     private:
+      /// The tensor combination of @p samples whose image is nearest to @p x.
+      Point<dim>
+      nearest_sample(const std::array<std::vector<double>, dim> &samples,
+                     const Point<dim>                           &x) const;
+
       /**
        * @brief Minimises |x(xi) - x|^2 over the parametric box, keeping the
        * coordinates with @p fixed[d] == true at their start values.
