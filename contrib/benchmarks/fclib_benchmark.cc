@@ -4,7 +4,7 @@
 // Usage: fclib_benchmark [folder] [max_iterations] [seconds_per_problem]
 //                        [max_rows]
 //   folder               default $IGABDE_FCLIB_DIR, else
-//                        /work/shared/fclib/data
+//                        ../shared/fclib/data (run from the repository root)
 //   max_iterations       iteration budget per problem (default 300)
 //   seconds_per_problem  wall-time limit per solve (default 20)
 //   max_rows             larger problems (rows of the dense W) are skipped
@@ -32,7 +32,7 @@ using namespace igabde::contact;
 int
 main(int argc, char **argv)
 {
-  std::string folder = "/work/shared/fclib/data";
+  std::string folder = "../shared/fclib/data";
   if (const char *env = std::getenv("IGABDE_FCLIB_DIR"))
     folder = env;
   if (argc > 1)

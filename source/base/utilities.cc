@@ -69,6 +69,36 @@ namespace igabde
 
 
 
+    std::pair<std::string, std::string>
+    split_entry(const std::string &item,
+                const std::string &where,
+                const std::string &form)
+    {
+      const auto colon = item.find(':');
+      AssertThrow(colon != std::string::npos,
+                  ExcInput(where + ": '" + item + "' must read " + form + "."));
+      return {trim(item.substr(0, colon)), trim(item.substr(colon + 1))};
+    }
+
+
+
+    unsigned int
+    parse_face(const std::string &text,
+               const unsigned int n_faces,
+               const std::string &where,
+               const std::string &item)
+    {
+      const std::vector<double> face = parse_doubles(text, where);
+      AssertThrow(face.size() == 1 && face[0] >= 0 && face[0] < n_faces &&
+                    face[0] == std::floor(face[0]),
+                  ExcInput(where + ": face in '" + item +
+                           "' must be a patch face 0.." +
+                           std::to_string(n_faces - 1) + "."));
+      return static_cast<unsigned int>(face[0]);
+    }
+
+
+
     template <int dim>
     Tensor<1, dim>
     parse_tensor(const std::string &text, const std::string &where)

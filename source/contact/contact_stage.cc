@@ -182,7 +182,8 @@ namespace igabde
                 {
                   const auto m =
                     bodies[1]->closest_surface_point(settings.master_face,
-                                                     s.location);
+                                                     s.location,
+                                                     master[best]);
                   n        = m.normal;
                   pair.x2  = m.location;
                   pair.op2 = m.op;
@@ -411,15 +412,13 @@ namespace igabde
       // closest pair just touches (with every pair open the alpha columns of
       // the Newton matrix vanish). Later steps: the previous step's forces
       // and rigid-mode amplitudes (warm start).
-      const unsigned int m  = n_components;
-      Eigen::VectorXd    p0 = Eigen::VectorXd::Zero(problem.n_rows());
-      Eigen::VectorXd    a0 = (problem.n_alpha() > 0 ? touching_alpha(problem) :
-                                                       Eigen::VectorXd::Zero(0));
-      if (has_previous)
-        {
-          p0 = p;
-          a0 = alpha;
-        }
+      const unsigned int    m = n_components;
+      const Eigen::VectorXd p0 =
+        has_previous ? p : Eigen::VectorXd::Zero(problem.n_rows());
+      const Eigen::VectorXd a0 = has_previous ? alpha :
+                                 problem.n_alpha() > 0 ?
+                                                touching_alpha(problem) :
+                                                Eigen::VectorXd::Zero(0);
 
       // Candidate 2: a bilateral solve, W_cc p_c + G_c alpha = -q_c and
       // G_c^T p_c = b, over the pairs expected closed and sticking: in the

@@ -234,11 +234,9 @@ namespace igabde
                 mode[i] += v(m) * mode_value(m, i);
           rigid_modes.push_back(mode);
 
-          unsigned int dominant = 0;
-          Eigen::Index arg      = 0;
-          const double vmax     = v.cwiseAbs().maxCoeff(&arg);
-          dominant              = static_cast<unsigned int>(arg);
-          const bool pure       = std::abs(vmax - 1.) < 1e-10;
+          Eigen::Index dominant = 0;
+          const double vmax     = v.cwiseAbs().maxCoeff(&dominant);
+          const bool   pure     = std::abs(vmax - 1.) < 1e-10;
           rigid_mode_names.push_back(
             std::string(dim == 2 ? names2[dominant] : names3[dominant]) +
             (pure ? "" : " (combined)"));
@@ -381,25 +379,15 @@ namespace igabde
 
     template <int dim>
     SurfacePoint<dim>
-    Body<dim>::closest_surface_point(const types::boundary_id face,
-                                     const Point<dim>        &location) const
+    Body<dim>::closest_surface_point(const types::boundary_id,
+                                     const Point<dim>        &location,
+                                     const SurfacePoint<dim> &nearest) const
     {
-      const auto candidates = surface_points(face, PairPlacement::greville);
-      AssertThrow(!candidates.empty(),
-                  ExcMessage("Body '" + body_description.name +
-                             "' has no points on face " + std::to_string(face) +
-                             "."));
-      const SurfacePoint<dim> *nearest = &candidates[0];
-      for (const auto &c : candidates)
-        if ((c.location - location).norm() <
-            (nearest->location - location).norm())
-          nearest = &c;
-
-      SurfacePoint<dim> result = *nearest;
+      SurfacePoint<dim> result = nearest;
       result.tributary_area    = 0.;
       const Point<dim> projected =
         location -
-        ((location - nearest->location) * nearest->normal) * nearest->normal;
+        ((location - nearest.location) * nearest.normal) * nearest.normal;
       try
         {
           result.op       = point_operator(projected);

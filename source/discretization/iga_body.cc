@@ -723,20 +723,7 @@ namespace igabde
               coords[e] = geometry.knot_vector(e).greville_abscissae();
             else
               coords[e] = breaks[e];
-          unsigned int n = 1;
-          for (unsigned int e = 0; e < dim; ++e)
-            n *= coords[e].size();
-          for (unsigned int s = 0; s < n; ++s)
-            {
-              Point<dim>   xi;
-              unsigned int rest = s;
-              for (unsigned int e = 0; e < dim; ++e)
-                {
-                  xi[e] = coords[e][rest % coords[e].size()];
-                  rest /= coords[e].size();
-                }
-              xis.push_back(xi);
-            }
+          xis = nurbs::tensor_product_points<dim>(coords);
         }
 
       std::vector<SurfacePoint<dim>> result(xis.size());
@@ -1086,7 +1073,8 @@ namespace igabde
     template <int dim>
     SurfacePoint<dim>
     IgaBody<dim>::closest_surface_point(const types::boundary_id face,
-                                        const Point<dim>        &location) const
+                                        const Point<dim>        &location,
+                                        const SurfacePoint<dim> &) const
     {
       const Point<dim>  xi = patch().closest_point_on_face(face, location);
       SurfacePoint<dim> point;

@@ -732,27 +732,39 @@ namespace igabde
 
 
     template <int dim>
+    std::vector<Point<dim>>
+    tensor_product_points(const std::array<std::vector<double>, dim> &coords)
+    {
+      unsigned int n = 1;
+      for (unsigned int d = 0; d < dim; ++d)
+        n *= coords[d].size();
+      std::vector<Point<dim>> points(n);
+      for (unsigned int s = 0; s < n; ++s)
+        {
+          unsigned int rest = s;
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              points[s][d] = coords[d][rest % coords[d].size()];
+              rest /= coords[d].size();
+            }
+        }
+      return points;
+    }
+
+
+
+    template <int dim>
     Point<dim>
     NurbsPatch<dim>::nearest_sample(
       const std::array<std::vector<double>, dim> &samples,
       const Point<dim>                           &x) const
     {
-      // Every tensor combination of the sampled coordinates; the one whose
-      // image is nearest to x starts the Newton projection.
-      unsigned int n = 1;
-      for (unsigned int d = 0; d < dim; ++d)
-        n *= samples[d].size();
+      // The sampled point whose image is nearest to x starts the Newton
+      // projection.
       Point<dim> xi;
       double     best = std::numeric_limits<double>::max();
-      for (unsigned int s = 0; s < n; ++s)
+      for (const Point<dim> &z : tensor_product_points<dim>(samples))
         {
-          Point<dim>   z;
-          unsigned int rest = s;
-          for (unsigned int d = 0; d < dim; ++d)
-            {
-              z[d] = samples[d][rest % samples[d].size()];
-              rest /= samples[d].size();
-            }
           const double dist = (value(z) - x).norm_square();
           if (dist < best)
             {
@@ -840,5 +852,9 @@ namespace igabde
     cofactor_column<2>(const Tensor<2, 2> &, const unsigned int);
     template Tensor<1, 3>
     cofactor_column<3>(const Tensor<2, 3> &, const unsigned int);
+    template std::vector<Point<2>>
+    tensor_product_points<2>(const std::array<std::vector<double>, 2> &);
+    template std::vector<Point<3>>
+    tensor_product_points<3>(const std::array<std::vector<double>, 3> &);
   } // namespace nurbs
 } // namespace igabde

@@ -108,21 +108,14 @@ namespace igabde
       // Supports: "face: x y=0.1; face: z".
       for (const std::string &item : base::split(body.supports, ';'))
         {
-          const auto colon = item.find(':');
-          AssertThrow(colon != std::string::npos,
-                      base::ExcInput(where + "Supports: '" + item +
-                                     "' must read 'face: components', e.g. "
-                                     "'0: x y'."));
+          const auto [key, value] =
+            base::split_entry(item,
+                              where + "Supports",
+                              "'face: components', e.g. '0: x y'");
           discretization::DirichletCondition<dim> bc;
-          const auto                              face =
-            base::parse_doubles(item.substr(0, colon), where + "Supports");
-          AssertThrow(face.size() == 1 && face[0] >= 0 && face[0] < 2 * dim &&
-                        face[0] == std::floor(face[0]),
-                      base::ExcInput(where + "Supports: face in '" + item +
-                                     "' must be a patch face 0.." +
-                                     std::to_string(2 * dim - 1) + "."));
-          bc.boundary_id   = static_cast<types::boundary_id>(face[0]);
-          std::string rest = item.substr(colon + 1);
+          bc.boundary_id = static_cast<types::boundary_id>(
+            base::parse_face(key, 2 * dim, where + "Supports", item));
+          std::string rest = value;
           for (char &c : rest)
             if (c == ',')
               c = ' ';
@@ -164,21 +157,13 @@ namespace igabde
       // Tractions.
       for (const std::string &item : base::split(body.tractions, ';'))
         {
-          const auto colon = item.find(':');
-          AssertThrow(colon != std::string::npos,
-                      base::ExcInput(where + "Tractions: '" + item +
-                                     "' must read 'face: pressure p', "
-                                     "'face: vector tx, ty' or 'face: "
-                                     "exact'."));
-          const auto face =
-            base::parse_doubles(item.substr(0, colon), where + "Tractions");
-          AssertThrow(face.size() == 1 && face[0] >= 0 && face[0] < 2 * dim,
-                      base::ExcInput(where + "Tractions: face in '" + item +
-                                     "' must be a patch face 0.." +
-                                     std::to_string(2 * dim - 1) + "."));
+          const auto [key, rest] = base::split_entry(
+            item,
+            where + "Tractions",
+            "'face: pressure p', 'face: vector tx, ty' or 'face: exact'");
           discretization::NeumannCondition<dim> bc;
-          bc.boundary_id         = static_cast<types::boundary_id>(face[0]);
-          const std::string rest = base::trim(item.substr(colon + 1));
+          bc.boundary_id = static_cast<types::boundary_id>(
+            base::parse_face(key, 2 * dim, where + "Tractions", item));
           if (rest.rfind("pressure", 0) == 0)
             {
               const auto v =
@@ -222,16 +207,14 @@ namespace igabde
       // Point loads.
       for (const std::string &item : base::split(body.point_loads, ';'))
         {
-          const auto colon = item.find(':');
-          AssertThrow(colon != std::string::npos,
-                      base::ExcInput(where + "Point loads: '" + item +
-                                     "' must read 'x, y[, z] : fx, fy[, "
-                                     "fz]'."));
+          const auto [location, force] =
+            base::split_entry(item,
+                              where + "Point loads",
+                              "'x, y[, z] : fx, fy[, fz]'");
           discretization::PointLoad<dim> load;
-          load.location = base::parse_point<dim>(item.substr(0, colon),
-                                                 where + "Point loads");
-          load.force    = base::parse_tensor<dim>(item.substr(colon + 1),
-                                               where + "Point loads");
+          load.location =
+            base::parse_point<dim>(location, where + "Point loads");
+          load.force = base::parse_tensor<dim>(force, where + "Point loads");
           d.point_loads.push_back(load);
         }
       d.body_force =
@@ -560,14 +543,12 @@ namespace igabde
       base::Json stresses = base::Json::object();
       for (const std::string &item : base::split(parameters.probes, ';'))
         {
-          const auto colon = item.find(':');
-          AssertThrow(colon != std::string::npos,
-                      base::ExcInput(scene_file + ": Probe points: '" + item +
-                                     "' must read 'name: x, y[, z]'."));
-          const std::string name = base::trim(item.substr(0, colon));
-          const Point<dim>  x =
-            base::parse_point<dim>(item.substr(colon + 1),
-                                   scene_file + ": Probe points");
+          const auto [name, location] =
+            base::split_entry(item,
+                              scene_file + ": Probe points",
+                              "'name: x, y[, z]'");
+          const Point<dim> x =
+            base::parse_point<dim>(location, scene_file + ": Probe points");
           const Tensor<1, dim> d =
             bodies[0]->point_operator(x).displacement(u[0]);
           base::Json value = base::Json::array();

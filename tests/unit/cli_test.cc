@@ -48,6 +48,14 @@ namespace
   {
     std::ofstream(path) << text;
   }
+
+  std::string
+  read_file(const std::string &path)
+  {
+    std::ifstream in(path);
+    return std::string((std::istreambuf_iterator<char>(in)),
+                       std::istreambuf_iterator<char>());
+  }
 } // namespace
 
 
@@ -140,9 +148,7 @@ TEST(Cli, SetOverridesAValue)
                  "'Output/Directory=out' --set 'Output/Write vtu=false'",
                folder);
   ASSERT_EQ(result.status, 0) << result.output;
-  std::ifstream     in(folder + "/out/summary.json");
-  const std::string summary((std::istreambuf_iterator<char>(in)),
-                            std::istreambuf_iterator<char>());
+  const std::string summary = read_file(folder + "/out/summary.json");
   EXPECT_NE(summary.find("\"refinements\": 0"), std::string::npos) << summary;
   EXPECT_NE(summary.find("\"status\": \"ok\""), std::string::npos) << summary;
 
@@ -170,9 +176,7 @@ TEST(Cli, LateFailureKeepsFinishedResults)
   EXPECT_NE(result.status, 0);
   EXPECT_NE(result.output.find("did not converge"), std::string::npos)
     << result.output;
-  std::ifstream     in(folder + "/out/summary.json");
-  const std::string summary((std::istreambuf_iterator<char>(in)),
-                            std::istreambuf_iterator<char>());
+  const std::string summary = read_file(folder + "/out/summary.json");
   EXPECT_NE(summary.find("\"status\": \"failed\""), std::string::npos);
   EXPECT_NE(summary.find("load step 2"), std::string::npos) << summary;
   EXPECT_TRUE(std::filesystem::exists(folder + "/out/contact-0001.csv"));

@@ -6,6 +6,7 @@
 #include <deal.II/base/tensor.h>
 
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace igabde
@@ -34,6 +35,26 @@ namespace igabde
      */
     std::vector<double>
     parse_doubles(const std::string &text, const std::string &where);
+
+    /**
+     * @brief Splits a list item "key: value" at its first ':' into the
+     * trimmed key and value; throws naming @p where, the item and the
+     * expected @p form when there is no ':'.
+     */
+    std::pair<std::string, std::string>
+    split_entry(const std::string &item,
+                const std::string &where,
+                const std::string &form);
+
+    /**
+     * @brief Reads a patch face number 0..n_faces-1 from @p text (the key of
+     * @p item); throws naming @p where and the item otherwise.
+     */
+    unsigned int
+    parse_face(const std::string &text,
+               const unsigned int n_faces,
+               const std::string &where,
+               const std::string &item);
 
     /**
      * @brief Reads a tensor of dimension @p dim; extra trailing components

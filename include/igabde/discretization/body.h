@@ -154,13 +154,16 @@ namespace igabde
       /**
        * @brief The point of the patch face @p face closest to @p location,
        * with its outward normal and operator (tributary area 0): the facing
-       * point of a pair on non-matching surfaces. The default projects
-       * @p location on the tangent plane of the nearest candidate point of
-       * the face; a discretisation with an exact surface overrides it.
+       * point of a pair on non-matching surfaces. @p nearest is the
+       * face's candidate point nearest to @p location (from
+       * surface_points()). The default projects @p location on the tangent
+       * plane at @p nearest; a discretisation with an exact surface
+       * overrides it.
        */
       virtual SurfacePoint<dim>
       closest_surface_point(const types::boundary_id face,
-                            const Point<dim>        &location) const;
+                            const Point<dim>        &location,
+                            const SurfacePoint<dim> &nearest) const;
 
       /**
        * @brief Solves K u = f for every column, with homogeneous supports

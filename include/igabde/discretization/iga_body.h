@@ -142,7 +142,8 @@ namespace igabde
        */
       SurfacePoint<dim>
       closest_surface_point(const types::boundary_id face,
-                            const Point<dim>        &location) const override;
+                            const Point<dim>        &location,
+                            const SurfacePoint<dim> &nearest) const override;
 
       /// @brief Displacement/point-force operator at parametric point @p xi.
       PointOperator<dim>

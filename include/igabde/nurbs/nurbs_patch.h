@@ -209,6 +209,15 @@ namespace igabde
     template <int dim>
     Tensor<1, dim>
     cofactor_column(const Tensor<2, dim> &J, const unsigned int d);
+
+    /**
+     * @brief Every tensor combination of the per-direction coordinates
+     * @p coords, direction 0 fastest (the lexicographic order of the
+     * control points).
+     */
+    template <int dim>
+    std::vector<Point<dim>>
+    tensor_product_points(const std::array<std::vector<double>, dim> &coords);
   } // namespace nurbs
 } // namespace igabde
 
