@@ -23,7 +23,8 @@ namespace
   fclib_dir()
   {
     const char *env = std::getenv("IGABDE_FCLIB_DIR");
-    return env ? std::string(env) : std::string("/work/shared/fclib/data");
+    return env ? std::string(env) :
+                 std::string(IGABDE_SOURCE_DIR) + "/../shared/fclib/data";
   }
 
   // The elastic problems the solver targets (research/contact-solvers.md
