@@ -34,13 +34,15 @@ namespace
   void
   print_usage(std::ostream &out)
   {
-    out << "Usage: igabde SCENE.prm [--set \"Section/Name=value\"]...\n"
+    out << "Usage: igabde SCENE.prm [--quiet] "
+           "[--set \"Section/Name=value\"]...\n"
            "       igabde --print-parameters [prm|json]\n"
            "       igabde --help\n\n"
            "Runs the scene SCENE.prm and writes summary.json, tables, the "
            "log and\nVTU/PVD fields into its output folder (Output/Directory, "
            "default\noutput/<scene name>/). --set overrides any parameter "
-           "(repeatable).\nScenes live in prm/; doc/ explains every study.\n";
+           "(repeatable).\n--quiet leaves out the progress lines (Output/Progress = "
+           "false).\nScenes live in prm/; doc/ explains every study.\n";
   }
 } // namespace
 
@@ -89,6 +91,8 @@ main(int argc, char **argv)
                                                   ParameterHandler::PRM);
           return 0;
         }
+      else if (arg == "--quiet" || arg == "-q")
+        overrides.emplace_back("Output/Progress", "false");
       else if (arg == "--set")
         {
           if (i + 1 >= argc)

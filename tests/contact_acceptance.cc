@@ -3,6 +3,8 @@
 // contact issue and whether the run met it, with the measured figure
 // rounded so that the comparison is stable.
 
+#include <deal.II/base/mpi.h>
+
 #include "tests.h"
 
 #include <igabde/scene/simulator.h>
@@ -41,8 +43,10 @@ namespace
 
 
 int
-main()
+main(int argc, char **argv)
 {
+  // MUMPS (the direct solver) runs on MPI_COMM_SELF.
+  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   initlog();
 
   // V3: every pair's pressure equals the applied pressure to 1e-8.

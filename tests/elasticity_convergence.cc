@@ -2,6 +2,8 @@
 // V2 (Lame cylinder): observed L2 and energy rates over the last levels,
 // NURBS p = 2, 3 and FE_Q(2), and the NURBS-vs-FE_Q(2) error at equal DOFs.
 
+#include <deal.II/base/mpi.h>
+
 #include "tests.h"
 
 #include <igabde/scene/simulator.h>
@@ -44,8 +46,10 @@ namespace
 
 
 int
-main()
+main(int argc, char **argv)
 {
+  // MUMPS (the direct solver) runs on MPI_COMM_SELF.
+  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   initlog();
   deallog << std::fixed << std::setprecision(1);
 

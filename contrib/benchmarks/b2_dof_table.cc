@@ -4,6 +4,8 @@
 // the same knot-span mesh) and the 20-node serendipity count of ANSYS SOLID95
 // (vertices plus edges of that mesh). Per beam and for the two beams.
 
+#include <deal.II/base/mpi.h>
+
 #include <igabde/nurbs/geometry_builders.h>
 #include <igabde/nurbs/parametric_mesh.h>
 
@@ -18,8 +20,10 @@
 #include <iostream>
 
 int
-main()
+main(int argc, char **argv)
 {
+  // MUMPS (the direct solver) runs on MPI_COMM_SELF.
+  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   using namespace dealii;
   using namespace igabde;
   const std::array<std::array<unsigned int, 3>, 5> meshes = {

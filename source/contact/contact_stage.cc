@@ -129,7 +129,7 @@ namespace igabde
 
     template <int dim>
     void
-    ContactStage<dim>::build_pairs()
+    ContactStage<dim>::form_pairs()
     {
       const auto &body1 = *bodies[0];
       const auto  slave =
@@ -226,36 +226,44 @@ namespace igabde
 
     template <int dim>
     void
-    ContactStage<dim>::condense()
+    ContactStage<dim>::form_flexibility()
     {
       // Unit force pairs along the local directions that carry unknowns:
       // +T_j[s] on Body 1 at x1_j, -T_j[s] on Body 2 at x2_j, so that
-      // F^L = T^T F^G T comes out directly and a frictionless scene needs
-      // only NC solves. One factorisation per body serves all columns.
+      // F^L = T^T F^G T comes out directly (the signs cancel in each body's
+      // share) and a frictionless scene needs only the normal directions.
+      // Each body gives its share from its Schur complement on the contact
+      // face, or by one solve per column.
       const unsigned int nc = pair_list.size();
       const unsigned int m  = n_components;
       Eigen::MatrixXd    FL(m * nc, m * nc);
       FL.setZero();
       for (unsigned int b = 0; b < bodies.size(); ++b)
         {
-          const double                sign = (b == 0 ? 1. : -1.);
-          std::vector<Vector<double>> columns(m * nc,
-                                              Vector<double>(
-                                                bodies[b]->n_dofs()));
+          std::vector<discretization::PointOperator<dim>> ops;
+          std::vector<Tensor<1, dim>>                     directions;
+          ops.reserve(m * nc);
+          directions.reserve(m * nc);
           for (unsigned int j = 0; j < nc; ++j)
             for (unsigned int s = 0; s < m; ++s)
-              (b == 0 ? pair_list[j].op1 : pair_list[j].op2)
-                .distribute(sign * pair_list[j].frame[s], columns[m * j + s]);
-          bodies[b]->solve(columns);
-          for (unsigned int col = 0; col < m * nc; ++col)
-            for (unsigned int i = 0; i < nc; ++i)
               {
-                const Tensor<1, dim> w =
-                  (b == 0 ? pair_list[i].op1 : pair_list[i].op2)
-                    .displacement(columns[col]);
-                for (unsigned int r = 0; r < m; ++r)
-                  FL(m * i + r, col) += sign * (pair_list[i].frame[r] * w);
+                ops.push_back(b == 0 ? pair_list[j].op1 : pair_list[j].op2);
+                directions.push_back(pair_list[j].frame[s]);
               }
+          const FullMatrix<double> Fb =
+            bodies[b]->flexibility(ops, directions);
+          for (unsigned int i = 0; i < m * nc; ++i)
+            for (unsigned int j = 0; j < m * nc; ++j)
+              FL(i, j) += Fb(i, j);
+          if (settings.progress)
+            log << "  contact: " << bodies[b]->description().name
+                << " condensed onto " << m * nc << " pair directions"
+                << (bodies[b]->has_schur_complement() ?
+                      " (Schur complement on " +
+                        std::to_string(bodies[b]->n_interface_dofs()) +
+                        " face unknowns)" :
+                      " (one solve per column)")
+                << std::endl;
         }
 
       // Rigid modes left free by the supports: u = K^+ f + R alpha, with the
@@ -353,16 +361,34 @@ namespace igabde
 
     template <int dim>
     void
-    ContactStage<dim>::setup(TimerOutput &timer)
+    ContactStage<dim>::build_pairs(TimerOutput &timer)
     {
       n_components = (settings.friction_coefficient > 0. ? dim : 1);
-      {
-        TimerOutput::Scope t(timer, "contact: pairs");
-        build_pairs();
-      }
+      TimerOutput::Scope t(timer, "contact: pairs");
+      form_pairs();
+    }
+
+
+
+    template <int dim>
+    std::vector<discretization::PointOperator<dim>>
+    ContactStage<dim>::contact_operators(const unsigned int b) const
+    {
+      std::vector<discretization::PointOperator<dim>> ops;
+      for (const auto &pair : pair_list)
+        ops.push_back(b == 0 ? pair.op1 : pair.op2);
+      return ops;
+    }
+
+
+
+    template <int dim>
+    void
+    ContactStage<dim>::condense(TimerOutput &timer)
+    {
       {
         TimerOutput::Scope t(timer, "contact: condensation");
-        condense();
+        form_flexibility();
       }
       p                 = Eigen::VectorXd::Zero(problem.n_rows());
       alpha             = Eigen::VectorXd::Zero(problem.n_alpha());

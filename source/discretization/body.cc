@@ -58,16 +58,49 @@ namespace igabde
     void
     Body<dim>::setup()
     {
+      setup_system();
+      factorize();
+    }
+
+
+
+    template <int dim>
+    void
+    Body<dim>::setup_system()
+    {
       setup_space();
       AssertDimension(dof_locations.size(), n_unknowns);
       AssertDimension(dof_components.size(), n_unknowns);
       assemble();
       find_free_rigid_modes();
-      factorize();
+    }
+
+
+
+    template <int dim>
+    void
+    Body<dim>::factorize(const std::vector<PointOperator<dim>> &interface)
+    {
+      // The unknowns the contact points touch, less those held at zero.
+      std::vector<types::global_dof_index> interface_dofs;
+      if (settings.linear_solver == "direct")
+        {
+          std::vector<bool> touched(n_unknowns, false);
+          // A volume operator at a surface point lists every basis function
+          // of the cell; those that vanish on the face carry nothing.
+          for (const auto &op : interface)
+            for (unsigned int k = 0; k < op.weights.size(); ++k)
+              if (op.weights[k] != 0.)
+                for (const auto i : op.dofs[k])
+                  touched[i] = true;
+          for (types::global_dof_index i = 0; i < n_unknowns; ++i)
+            if (touched[i] && !solve_constraints.is_constrained(i))
+              interface_dofs.push_back(i);
+        }
+      factorize_matrix(interface_dofs);
 
       // Superposition: the external loads and the prescribed displacements
       // are two load cases, scaled separately by the load path.
-      u_load = load_rhs;
       std::vector<Vector<double>> columns(1, load_rhs);
 
       Vector<double> u_d(n_unknowns);
@@ -83,6 +116,86 @@ namespace igabde
       u_load       = columns[0];
       u_prescribed = columns[1];
       u_prescribed += u_d;
+    }
+
+
+
+    template <int dim>
+    FullMatrix<double>
+    Body<dim>::flexibility(const std::vector<PointOperator<dim>> &operators,
+                           const std::vector<Tensor<1, dim>> &directions) const
+    {
+      AssertDimension(operators.size(), directions.size());
+      const unsigned int n = operators.size();
+      FullMatrix<double> F(n, n);
+      if (n == 0)
+        return F;
+      if (has_schur_complement())
+        {
+          // Columns of point forces on the interface unknowns: F = C^T S^-1 C
+          // (the readout of a point displacement is the transpose of the
+          // point-force distribution).
+          const auto &dofs = cholesky->interface_dofs();
+          std::vector<int> position(n_unknowns, -1);
+          for (unsigned int a = 0; a < dofs.size(); ++a)
+            position[dofs[a]] = a;
+          FullMatrix<double> C(dofs.size(), n);
+          for (unsigned int j = 0; j < n; ++j)
+            {
+              const auto &op = operators[j];
+              for (unsigned int k = 0; k < op.weights.size(); ++k)
+                for (unsigned int c = 0; c < dim; ++c)
+                  {
+                    const auto i = op.dofs[k][c];
+                    if (position[i] >= 0)
+                      C(position[i], j) += op.weights[k] * directions[j][c];
+                    else
+                      Assert(op.weights[k] == 0. ||
+                               solve_constraints.is_constrained(i),
+                             ExcMessage("A point operator touches an "
+                                        "unknown outside the Schur "
+                                        "interface."));
+                  }
+            }
+          return cholesky->interface_flexibility(C);
+        }
+
+      // One solve per column on the shared factorisation.
+      std::vector<Vector<double>> columns(n, Vector<double>(n_unknowns));
+      for (unsigned int j = 0; j < n; ++j)
+        operators[j].distribute(directions[j], columns[j]);
+      solve(columns);
+      for (unsigned int j = 0; j < n; ++j)
+        for (unsigned int i = 0; i < n; ++i)
+          F(i, j) = directions[i] * operators[i].displacement(columns[j]);
+      return F;
+    }
+
+
+
+    template <int dim>
+    bool
+    Body<dim>::has_schur_complement() const
+    {
+      return cholesky && cholesky->n_interface() > 0;
+    }
+
+
+
+    template <int dim>
+    unsigned int
+    Body<dim>::n_interface_dofs() const
+    {
+      return (cholesky ? cholesky->n_interface() : 0);
+    }
+
+
+
+    template <int dim>
+    double
+    Body<dim>::factor_entries() const
+    {
+      return (cholesky ? cholesky->factor_entries() : 0.);
     }
 
 
@@ -273,8 +386,21 @@ namespace igabde
 
     template <int dim>
     void
-    Body<dim>::factorize()
+    Body<dim>::factorize_matrix(
+      const std::vector<types::global_dof_index> &interface_dofs)
     {
+      if (settings.linear_solver == "direct")
+        {
+          // MUMPS on the free block; constrained unknowns and pins are
+          // eliminated (zero in every solution).
+          std::vector<bool> eliminated(n_unknowns);
+          for (types::global_dof_index i = 0; i < n_unknowns; ++i)
+            eliminated[i] = solve_constraints.is_constrained(i);
+          cholesky = std::make_unique<elasticity::SparseCholesky>();
+          cholesky->initialize(system_matrix, eliminated, interface_dofs);
+          return;
+        }
+
       // Zero the constrained rows and columns and keep a positive diagonal:
       // the solution is then zero there and the rest is the reduced system.
       constrained_matrix.reinit(sparsity);
@@ -335,6 +461,16 @@ namespace igabde
           }
       };
       const std::size_t n = rhs_and_solutions.size();
+      if (cholesky)
+        {
+          // All columns in one multi-right-hand-side solve (BLAS-3).
+          for (auto &v : rhs_and_solutions)
+            solve_constraints.set_zero(v);
+          cholesky->solve(rhs_and_solutions);
+          for (auto &v : rhs_and_solutions)
+            solve_constraints.set_zero(v);
+          return;
+        }
       if (amg)
         {
           // CG to a relative residual of Linear tolerance; one column after

@@ -449,8 +449,23 @@ namespace igabde
 
       struct Scratch
       {
-        CellEvaluation eval, face_eval;
+        CellEvaluation              eval, face_eval;
+        std::vector<Tensor<1, dim>> gradients;
       };
+      // The stiffness is isotropic (plane strain, plane stress with its
+      // reduced lambda, or 3D): read lambda and mu off C and check the form.
+      const double lambda = C[0][0][1][1];
+      const double mu     = C[0][1][0][1];
+      for (unsigned int i = 0; i < dim; ++i)
+        for (unsigned int j = 0; j < dim; ++j)
+          for (unsigned int k = 0; k < dim; ++k)
+            for (unsigned int l = 0; l < dim; ++l)
+              Assert(std::abs(C[i][j][k][l] -
+                              (lambda * (i == j) * (k == l) +
+                               mu * ((i == k) * (j == l) +
+                                     (i == l) * (j == k)))) <=
+                       1e-12 * (std::abs(lambda) + mu),
+                     ExcMessage("The IGA assembly assumes an isotropic C."));
       struct Copy
       {
         FullMatrix<double>                   matrix;
@@ -479,7 +494,8 @@ namespace igabde
             for (unsigned int c = 0; c < dim; ++c)
               copy.dofs[dim * l + c] = dim * ev.control_points[l] + c;
 
-          std::vector<SymmetricTensor<2, dim>> eps(n_dofs);
+          std::vector<Tensor<1, dim>> &grads = scratch.gradients;
+          grads.resize(n_local);
           for (unsigned int q = 0; q < quadrature.size(); ++q)
             {
               const Tensor<2, dim> &J    = ev.jacobians[q];
@@ -493,17 +509,24 @@ namespace igabde
               const double JxW = std::abs(detJ) * hprod * quadrature.weight(q);
               const Tensor<2, dim> Jinv = invert(J);
               for (unsigned int l = 0; l < n_local; ++l)
+                grads[l] = transpose(Jinv) * ev.parametric_gradients[q][l];
+              // Isotropic C = lambda I x I + 2 mu I^s with the basis strains
+              // sym(g_a x e_c): K(ac, bd) = lambda g_a[c] g_b[d]
+              // + mu (delta_cd g_a . g_b + g_a[d] g_b[c]), upper triangle.
+              for (unsigned int a = 0; a < n_local; ++a)
                 {
-                  const Tensor<1, dim> g =
-                    transpose(Jinv) * ev.parametric_gradients[q][l];
-                  for (unsigned int c = 0; c < dim; ++c)
-                    eps[dim * l + c] = basis_strain<dim>(g, c);
-                }
-              for (unsigned int i = 0; i < n_dofs; ++i)
-                {
-                  const SymmetricTensor<2, dim> Ceps = C * eps[i];
-                  for (unsigned int j = i; j < n_dofs; ++j)
-                    copy.matrix(i, j) += (Ceps * eps[j]) * JxW;
+                  const Tensor<1, dim> la = (lambda * JxW) * grads[a];
+                  const Tensor<1, dim> ma = (mu * JxW) * grads[a];
+                  for (unsigned int b = a; b < n_local; ++b)
+                    {
+                      const Tensor<1, dim> &gb  = grads[b];
+                      const double          dot = ma * gb;
+                      for (unsigned int c = 0; c < dim; ++c)
+                        for (unsigned int d = 0; d < dim; ++d)
+                          copy.matrix(dim * a + c, dim * b + d) +=
+                            la[c] * gb[d] + ma[d] * gb[c] +
+                            (c == d ? dot : 0.);
+                    }
                 }
               if (has_body_force)
                 for (unsigned int l = 0; l < n_local; ++l)
@@ -511,9 +534,13 @@ namespace igabde
                     copy.rhs[dim * l + c] +=
                       ev.values[q][l] * body_force[c] * JxW;
             }
-          for (unsigned int i = 0; i < n_dofs; ++i)
-            for (unsigned int j = 0; j < i; ++j)
-              copy.matrix(i, j) = copy.matrix(j, i);
+          // Blocks below the diagonal from their transposes above it.
+          for (unsigned int a = 0; a < n_local; ++a)
+            for (unsigned int b = 0; b < a; ++b)
+              for (unsigned int c = 0; c < dim; ++c)
+                for (unsigned int d = 0; d < dim; ++d)
+                  copy.matrix(dim * a + c, dim * b + d) =
+                    copy.matrix(dim * b + d, dim * a + c);
 
           // Tractions on the patch faces this span touches.
           for (const unsigned int f : cell->face_indices())
@@ -549,14 +576,9 @@ namespace igabde
         };
 
       auto copier = [&](const Copy &copy) {
+        this->system_matrix.add(copy.dofs, copy.matrix);
         for (unsigned int i = 0; i < copy.dofs.size(); ++i)
-          {
-            for (unsigned int j = 0; j < copy.dofs.size(); ++j)
-              this->system_matrix.add(copy.dofs[i],
-                                      copy.dofs[j],
-                                      copy.matrix(i, j));
-            this->load_rhs[copy.dofs[i]] += copy.rhs[i];
-          }
+          this->load_rhs[copy.dofs[i]] += copy.rhs[i];
       };
 
       WorkStream::run(parametric_mesh.begin_active(),

@@ -29,6 +29,13 @@ namespace igabde
                           "Print the timing table on screen. Scene tests "
                           "switch it off; timing.txt and summary.json always "
                           "have it.");
+        prm.declare_entry("Progress",
+                          "true",
+                          Patterns::Bool(),
+                          "Print a progress line with the elapsed seconds for "
+                          "every phase that can take long (assembly, "
+                          "factorisation, condensation, contact iterations); "
+                          "the command-line flag --quiet sets it to false.");
       }
       prm.leave_subsection();
     }
@@ -43,6 +50,7 @@ namespace igabde
         directory    = prm.get("Directory");
         write_vtu    = prm.get_bool("Write vtu");
         print_timing = prm.get_bool("Print timing");
+        progress     = prm.get_bool("Progress");
       }
       prm.leave_subsection();
     }
@@ -271,6 +279,15 @@ namespace igabde
                           "condensed: flexibility matrix and dense BDE "
                           "system; full: uncondensed sparse system; auto: "
                           "condensed for few pairs.");
+        prm.declare_entry("Condensation",
+                          "schur",
+                          Patterns::Selection("schur|columns"),
+                          "How the flexibility F^L is formed. schur: from the "
+                          "Schur complement of each body's stiffness onto "
+                          "its contact-face unknowns, returned by the same "
+                          "sparse factorisation (Linear solver = direct); "
+                          "columns: one solve per pair direction (any linear "
+                          "solver).");
         prm.declare_entry("Slave face",
                           "2",
                           Patterns::Integer(0, 5),
@@ -326,6 +343,7 @@ namespace igabde
         friction_coefficient = prm.get_double("Friction coefficient");
         algorithm            = prm.get("Algorithm");
         path                 = prm.get("Path");
+        condensation         = prm.get("Condensation");
         slave_face           = prm.get_integer("Slave face");
         master_face          = prm.get_integer("Master face");
         pair_placement       = prm.get("Pair placement");
@@ -467,9 +485,12 @@ namespace igabde
                           "knot span / cell).");
         prm.declare_entry("Linear solver",
                           "direct",
-                          Patterns::Selection("direct|cg-amg"),
-                          "direct: sparse LU (UMFPACK), one factorisation "
-                          "per body serving all right-hand sides. cg-amg: "
+                          Patterns::Selection("direct|umfpack|cg-amg"),
+                          "direct: sparse LDL^T Cholesky (MUMPS), one "
+                          "factorisation per body serving all right-hand "
+                          "sides and, with contact, the Schur complement on "
+                          "the contact face. umfpack: sparse LU (UMFPACK), "
+                          "one solve per right-hand side. cg-amg: "
                           "conjugate gradients with Trilinos ML algebraic "
                           "multigrid, for large models.");
         prm.declare_entry("Linear tolerance",

@@ -228,7 +228,7 @@ namespace igabde
     void
     Simulator<dim>::setup_bodies()
     {
-      TimerOutput::Scope t(timer, "setup");
+      TimerOutput::Scope t(timer, "assembly");
       // Exact solution first: 'exact' tractions use it.
       {
         elasticity::IsotropicMaterial<dim> material;
@@ -269,7 +269,13 @@ namespace igabde
       unsigned int            n_elements = 0;
       for (auto &body : bodies)
         {
-          body->setup();
+          Timer clock;
+          body->setup_system();
+          if (parameters.output.progress)
+            log << "  [progress] " << body->description().name
+                << ": space and assembly, " << body->n_dofs()
+                << " unknowns, " << std::setprecision(3) << clock.wall_time()
+                << " s" << std::setprecision(6) << std::endl;
           n_dofs += body->n_dofs();
           n_elements += body->n_elements();
           log << "  " << body->description().name << ": " << body->n_elements()
@@ -305,6 +311,42 @@ namespace igabde
                          " is not held against " +
                          body->free_rigid_mode_names()[0] +
                          " and the scene has no contact; add Supports."));
+    }
+
+
+
+    template <int dim>
+    void
+    Simulator<dim>::factorize_bodies(
+      const contact::ContactStage<dim> *stage)
+    {
+      TimerOutput::Scope t(timer, "factorization");
+      const bool schur = (stage != nullptr &&
+                          parameters.contact.condensation == "schur" &&
+                          parameters.discretization.linear_solver == "direct");
+      for (unsigned int b = 0; b < bodies.size(); ++b)
+        {
+          Timer clock;
+          bodies[b]->factorize(
+            schur ? stage->contact_operators(b) :
+                    std::vector<discretization::PointOperator<dim>>());
+          if (parameters.output.progress)
+            {
+              log << "  [progress] " << bodies[b]->description().name
+                  << ": factorisation";
+              if (bodies[b]->factor_entries() > 0.)
+                log << " (" << std::setprecision(3)
+                    << bodies[b]->factor_entries() << " factor entries"
+                    << (bodies[b]->has_schur_complement() ?
+                          ", Schur complement on " +
+                            std::to_string(bodies[b]->n_interface_dofs()) +
+                            " face unknowns" :
+                          std::string())
+                    << ")";
+              log << ", " << std::setprecision(3) << clock.wall_time() << " s"
+                  << std::setprecision(6) << std::endl;
+            }
+        }
     }
 
 
@@ -350,14 +392,25 @@ namespace igabde
           cs.hertz_line_load       = parameters.checks.hertz_line_load;
           cs.hertz_radius          = parameters.body1.radius;
           cs.scene_file            = scene_file;
+          cs.progress              = parameters.output.progress;
           contact_stage =
             std::make_unique<contact::ContactStage<dim>>(cs, bodies, log);
-          contact_stage->setup(timer);
+          contact_stage->build_pairs(timer);
+          factorize_bodies(contact_stage.get());
+          {
+            Timer clock;
+            contact_stage->condense(timer);
+            if (parameters.output.progress)
+              log << "  [progress] condensation, " << std::setprecision(3)
+                  << clock.wall_time() << " s" << std::setprecision(6)
+                  << std::endl;
+          }
           contact_stage->add_summary(summary);
           summary["effects"]["load_steps"] = steps.size();
         }
       else
         {
+          factorize_bodies(nullptr);
           base::Json effects;
           effects["contact"]    = false;
           effects["friction"]   = false;

@@ -1,7 +1,8 @@
 // The condensed flexibility F^L of a two-body problem where both bodies are
 // fixed against rigid motion is symmetric and positive definite (Maxwell-
 // Betti reciprocity and positive strain energy), for both discretisations
-// and with and without friction.
+// and with and without friction; the Schur-complement condensation equals
+// the per-column solves.
 
 #include <igabde/nurbs/geometry_builders.h>
 
@@ -42,47 +43,97 @@ namespace
 
 
 
+namespace
+{
+  /// The condensed flexibility W of the two blocks, formed with the given
+  /// linear solver and, with @p schur, from the Schur complement on the
+  /// contact face; also returns the asymmetry before symmetrisation.
+  std::pair<Eigen::MatrixXd, double>
+  condensed_flexibility(const std::string &type,
+                        const double       mu,
+                        const std::string &linear_solver,
+                        const bool         schur)
+  {
+    discretization::DiscretizationSettings settings;
+    settings.type          = type;
+    settings.degree        = 2;
+    settings.linear_solver = linear_solver;
+    std::vector<std::unique_ptr<discretization::Body<2>>> bodies;
+    bodies.push_back(
+      discretization::create_body<2>(block("upper", 0., 1.), settings));
+    bodies.push_back(
+      discretization::create_body<2>(block("lower", -1., 0.), settings));
+    for (auto &body : bodies)
+      {
+        body->setup_system();
+        EXPECT_TRUE(body->free_rigid_modes().empty());
+      }
+
+    contact::ContactSettings<2> cs;
+    cs.friction_coefficient = mu;
+    cs.slave_face           = 2;
+    cs.master_face          = 3;
+    cs.progress             = false;
+    std::ostringstream log;
+    TimerOutput timer(log, TimerOutput::never, TimerOutput::wall_times);
+    contact::ContactStage<2> stage(cs, bodies, log);
+    stage.build_pairs(timer);
+    for (unsigned int b = 0; b < bodies.size(); ++b)
+      {
+        bodies[b]->factorize(
+          schur ? stage.contact_operators(b) :
+                  std::vector<discretization::PointOperator<2>>());
+        EXPECT_EQ(bodies[b]->has_schur_complement(), schur);
+      }
+    stage.condense(timer);
+    return {stage.condensed_problem().W, stage.flexibility_asymmetry()};
+  }
+} // namespace
+
+
+
 TEST(ContactFlexibility, SymmetricPositiveDefiniteForFixedBodies)
 {
   for (const std::string type : {"nurbs", "lagrange"})
     for (const double mu : {0., 0.3})
       {
         SCOPED_TRACE(type + " mu=" + std::to_string(mu));
-        discretization::DiscretizationSettings settings;
-        settings.type   = type;
-        settings.degree = 2;
-        std::vector<std::unique_ptr<discretization::Body<2>>> bodies;
-        bodies.push_back(
-          discretization::create_body<2>(block("upper", 0., 1.), settings));
-        bodies.push_back(
-          discretization::create_body<2>(block("lower", -1., 0.), settings));
-        for (auto &body : bodies)
-          {
-            body->setup();
-            ASSERT_TRUE(body->free_rigid_modes().empty());
-          }
-
-        contact::ContactSettings<2> cs;
-        cs.friction_coefficient = mu;
-        cs.slave_face           = 2;
-        cs.master_face          = 3;
-        std::ostringstream log;
-        TimerOutput timer(log, TimerOutput::never, TimerOutput::wall_times);
-        contact::ContactStage<2> stage(cs, bodies, log);
-        stage.setup(timer);
-
-        const Eigen::MatrixXd &W = stage.condensed_problem().W;
+        // Per-column solves on UMFPACK's LU: the columns come from
+        // independent solves, so only round-off can make W asymmetric.
+        const auto [W, asymmetry] =
+          condensed_flexibility(type, mu, "umfpack", false);
         ASSERT_GT(W.rows(), 0);
-        EXPECT_EQ(W.rows(),
-                  (mu > 0 ? 2 : 1) * stage.condensed_problem().n_contacts);
-        // Symmetric before symmetrisation, to round-off (the columns come
-        // from independent solves, so only round-off can differ).
-        EXPECT_LT(stage.flexibility_asymmetry(), 1e-10);
+        EXPECT_LT(asymmetry, 1e-10);
         // Positive definite: the smallest eigenvalue is positive relative
         // to the largest (well above round-off for these coarse meshes).
         const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(W);
         EXPECT_GT(eig.eigenvalues().minCoeff(),
                   1e-8 * eig.eigenvalues().maxCoeff());
         EXPECT_EQ(Eigen::LLT<Eigen::MatrixXd>(W).info(), Eigen::Success);
+      }
+}
+
+
+
+TEST(ContactFlexibility, SchurComplementEqualsColumnSolves)
+{
+  // F^L = C^T S^{-1} C from MUMPS' Schur complement on the face unknowns
+  // against one UMFPACK LU solve per column: two independent factorisations
+  // of the same K, so they agree to round-off times the condition number
+  // of these small blocks (about 1e4): 1e-10 relative is a safe bound.
+  for (const std::string type : {"nurbs", "lagrange"})
+    for (const double mu : {0., 0.3})
+      {
+        SCOPED_TRACE(type + " mu=" + std::to_string(mu));
+        const auto [W_columns, a1] =
+          condensed_flexibility(type, mu, "umfpack", false);
+        const auto [W_schur, a2] =
+          condensed_flexibility(type, mu, "direct", true);
+        const auto [W_block, a3] =
+          condensed_flexibility(type, mu, "direct", false);
+        ASSERT_EQ(W_columns.rows(), W_schur.rows());
+        EXPECT_LT((W_schur - W_columns).norm(), 1e-10 * W_columns.norm());
+        EXPECT_LT((W_block - W_columns).norm(), 1e-10 * W_columns.norm());
+        EXPECT_EQ(a2, 0.); // C^T S^-1 C is symmetric by construction
       }
 }

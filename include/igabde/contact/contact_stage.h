@@ -61,6 +61,8 @@ namespace igabde
       double hertz_radius = 0.;
       /// Scene file, for messages.
       std::string scene_file;
+      /// Print progress lines for the phases that can take long.
+      bool progress = true;
     };
 
     /**
@@ -105,10 +107,25 @@ namespace igabde
         std::ostream                                                  &log);
 
       /**
-       * @brief Builds the pairs, condenses, and reports what was formed.
+       * @brief Builds the pairs and frames (the bodies need not be
+       * factorised yet).
        */
       void
-      setup(TimerOutput &timer);
+      build_pairs(TimerOutput &timer);
+
+      /**
+       * @brief The point operators of the pairs on body @p b: the unknowns
+       * on which a Schur complement serves the condensation.
+       */
+      std::vector<discretization::PointOperator<dim>>
+      contact_operators(const unsigned int b) const;
+
+      /**
+       * @brief Condenses onto the pairs (the bodies must be factorised) and
+       * reports what was formed.
+       */
+      void
+      condense(TimerOutput &timer);
 
       /**
        * @brief Solves the load step @p step at load factor @p load_factor
@@ -187,10 +204,10 @@ namespace igabde
 
     private:
       void
-      build_pairs();
+      form_pairs();
 
       void
-      condense();
+      form_flexibility();
 
       Eigen::VectorXd
       relative_displacement(const std::vector<Vector<double>> &u) const;

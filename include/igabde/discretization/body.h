@@ -3,6 +3,8 @@
 
 #include <igabde/discretization/body_description.h>
 
+#include <igabde/elasticity/sparse_cholesky.h>
+
 #include <deal.II/base/point.h>
 #include <deal.II/base/symmetric_tensor.h>
 #include <deal.II/base/tensor.h>
@@ -117,10 +119,55 @@ namespace igabde
 
       /**
        * @brief Builds the space, assembles K and the load vector, applies
-       * supports, detects free rigid modes and factorises.
+       * supports, detects free rigid modes and factorises: setup_system()
+       * followed by factorize() without interface.
        */
       void
       setup();
+
+      /**
+       * @brief Builds the space, assembles K and the load vector, applies
+       * supports and detects free rigid modes; no factorisation yet.
+       */
+      void
+      setup_system();
+
+      /**
+       * @brief Factorises K and solves the two load cases (loads and
+       * prescribed displacements at factor 1).
+       *
+       * With the direct solver and a non-empty @p interface (the operators
+       * of the contact points on this body), the factorisation also forms
+       * the Schur complement of K onto the unknowns those operators touch,
+       * so that flexibility() costs a dense solve on the contact face
+       * instead of one sparse solve per column.
+       */
+      void
+      factorize(const std::vector<PointOperator<dim>> &interface = {});
+
+      /**
+       * @brief The flexibility of point-force patterns:
+       * F(i, j) = d_i . u_j(x_i), where u_j solves K u_j = f_j for the unit
+       * force @p directions[j] at the point of @p operators[j] (with the
+       * pins of free rigid modes: K^+). Symmetric. From the Schur
+       * complement when factorize() formed one on the unknowns the
+       * operators touch, else one solve per column.
+       */
+      FullMatrix<double>
+      flexibility(const std::vector<PointOperator<dim>> &operators,
+                  const std::vector<Tensor<1, dim>>     &directions) const;
+
+      /// Whether flexibility() uses a Schur complement.
+      bool
+      has_schur_complement() const;
+
+      /// Unknowns in the Schur complement (0 without).
+      unsigned int
+      n_interface_dofs() const;
+
+      /// Entries of the sparse factor (direct solver; 0 otherwise).
+      double
+      factor_entries() const;
 
       /// "nurbs" or "lagrange".
       virtual std::string
@@ -265,11 +312,15 @@ namespace igabde
       find_free_rigid_modes();
 
       void
-      factorize();
+      factorize_matrix(
+        const std::vector<types::global_dof_index> &interface_dofs);
 
       SparseMatrix<double>      constrained_matrix;
       AffineConstraints<double> solve_constraints;
-      /// Direct path (Linear solver = direct).
+      /// Direct path (Linear solver = direct): MUMPS LDL^T, with the Schur
+      /// complement onto the contact face when asked.
+      std::unique_ptr<elasticity::SparseCholesky> cholesky;
+      /// LU path (Linear solver = umfpack).
       SparseDirectUMFPACK direct_solver;
       /// Iterative path (Linear solver = cg-amg): the constrained matrix as
       /// a Trilinos matrix and its ML algebraic multigrid preconditioner.

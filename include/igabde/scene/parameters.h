@@ -26,6 +26,9 @@ namespace igabde
       /// Print the timing table on screen (off in tests: it is not
       /// reproducible); summary.json and timing.txt always get it.
       bool print_timing = true;
+      /// Print progress lines (phase, elapsed seconds) for phases that can
+      /// take long; --quiet turns them off.
+      bool progress = true;
 
       /// Declares the "Output" subsection.
       static void
@@ -128,6 +131,9 @@ namespace igabde
       std::string algorithm = "bde";
       /// "condensed", "full" or "auto".
       std::string path = "auto";
+      /// "schur" (Schur complement on the contact face) or "columns" (one
+      /// solve per pair direction).
+      std::string condensation = "schur";
       /// Patch face of Body 1 that may touch.
       unsigned int slave_face = 2;
       /// Patch face of Body 2 that may touch.

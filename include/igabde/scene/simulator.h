@@ -74,6 +74,11 @@ namespace igabde
       void
       setup_bodies();
 
+      /// Factorises every body; with @p stage and the Schur condensation,
+      /// onto the unknowns of its contact points.
+      void
+      factorize_bodies(const contact::ContactStage<dim> *stage);
+
       void
       solve_load_steps();
 

@@ -1,0 +1,99 @@
+#ifndef igabde_elasticity_sparse_cholesky_h
+#define igabde_elasticity_sparse_cholesky_h
+
+#include <deal.II/base/types.h>
+
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/sparse_matrix.h>
+#include <deal.II/lac/vector.h>
+
+#include <memory>
+#include <vector>
+
+namespace igabde
+{
+  namespace elasticity
+  {
+    using namespace dealii;
+
+    /**
+     * @brief Sparse LDL^T factorisation of a symmetric positive definite
+     * stiffness (MUMPS, sequential) that can return the Schur complement
+     * onto a set of interface unknowns in the same factorisation.
+     *
+     * The matrix is the free block of K: the unknowns marked as eliminated
+     * (supports, pins) are left out and read as zero in every solution.
+     * With interface unknowns I, the interior E is factorised and
+     * S = K_II - K_IE K_EE^{-1} K_EI comes out of the factorisation as a
+     * dense matrix (BLAS-3 in MUMPS' last front); S is then factorised by
+     * dense Cholesky. Then, for load patterns C that act on I only,
+     * C^T K^{-1} C = C_I^T S^{-1} C_I without one solve per column, and a
+     * full solve is a reduction onto I, a dense solve with S and an
+     * expansion (MUMPS' ICNTL(26)).
+     */
+    class SparseCholesky
+    {
+    public:
+      SparseCholesky();
+      ~SparseCholesky();
+
+      SparseCholesky(const SparseCholesky &) = delete;
+      SparseCholesky &
+      operator=(const SparseCholesky &) = delete;
+
+      /**
+       * @brief Factorises the free block of @p matrix.
+       * @param matrix symmetric positive definite on the free unknowns
+       * (only its lower triangle is read).
+       * @param eliminated true for the unknowns that are held at zero.
+       * @param interface unknowns onto which the Schur complement is formed
+       * (free, distinct); empty: a plain factorisation.
+       */
+      void
+      initialize(const SparseMatrix<double>                 &matrix,
+                 const std::vector<bool>                    &eliminated,
+                 const std::vector<types::global_dof_index> &interface);
+
+      /// Number of interface unknowns (size of the Schur complement).
+      unsigned int
+      n_interface() const;
+
+      /// The interface unknowns, in the order of the Schur complement.
+      const std::vector<types::global_dof_index> &
+      interface_dofs() const;
+
+      /// The Schur complement onto the interface (dense, symmetric).
+      const FullMatrix<double> &
+      schur_complement() const;
+
+      /**
+       * @brief C^T S^{-1} C for the columns @p c given on the interface
+       * unknowns (rows in the order of interface_dofs()): the flexibility
+       * of the load patterns C, equal to C^T K^{-1} C.
+       */
+      FullMatrix<double>
+      interface_flexibility(const FullMatrix<double> &c) const;
+
+      /**
+       * @brief Solves K u = f for every vector (in place), all at once;
+       * eliminated unknowns are zero on return.
+       */
+      void
+      solve(std::vector<Vector<double>> &rhs_and_solutions) const;
+
+      /// Entries of the sparse factor (MUMPS' estimate after factorisation).
+      double
+      factor_entries() const;
+
+      /// Floating-point operations of the factorisation (MUMPS' count).
+      double
+      factor_flops() const;
+
+    private:
+      struct Data;
+      std::unique_ptr<Data> data;
+    };
+  } // namespace elasticity
+} // namespace igabde
+
+#endif

@@ -1,0 +1,128 @@
+// SparseCholesky (MUMPS LDL^T with the Schur complement) against dense
+// linear algebra on a small SPD matrix: a 1D Laplacian chain with a
+// coupling to its second neighbour, some unknowns eliminated.
+
+#include <igabde/elasticity/sparse_cholesky.h>
+
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/sparsity_pattern.h>
+
+#include <Eigen/Dense>
+#include <gtest/gtest.h>
+
+namespace
+{
+  using namespace dealii;
+
+  constexpr unsigned int n = 40;
+
+  struct Chain
+  {
+    SparsityPattern      sparsity;
+    SparseMatrix<double> matrix;
+    Eigen::MatrixXd      dense;
+
+    Chain()
+      : dense(Eigen::MatrixXd::Zero(n, n))
+    {
+      DynamicSparsityPattern dsp(n, n);
+      for (unsigned int i = 0; i < n; ++i)
+        for (unsigned int j = (i >= 2 ? i - 2 : 0); j < std::min(n, i + 3);
+             ++j)
+          dsp.add(i, j);
+      sparsity.copy_from(dsp);
+      matrix.reinit(sparsity);
+      for (unsigned int i = 0; i < n; ++i)
+        for (unsigned int j = (i >= 2 ? i - 2 : 0); j < std::min(n, i + 3);
+             ++j)
+          {
+            const double v =
+              (i == j ? 6. + 0.1 * i : (std::abs(int(i) - int(j)) == 1 ? -2. : -0.5));
+            matrix.set(i, j, v);
+            dense(i, j) = v;
+          }
+    }
+  };
+} // namespace
+
+
+
+TEST(SparseCholesky, SchurComplementAndSolveMatchDenseAlgebra)
+{
+  const Chain       chain;
+  std::vector<bool> eliminated(n, false);
+  eliminated[0] = eliminated[17] = eliminated[n - 1] = true;
+  std::vector<unsigned int> free;
+  for (unsigned int i = 0; i < n; ++i)
+    if (!eliminated[i])
+      free.push_back(i);
+  const std::vector<types::global_dof_index> interface = {30, 3, 31, 12, 38};
+
+  igabde::elasticity::SparseCholesky cholesky;
+  cholesky.initialize(chain.matrix, eliminated, interface);
+  ASSERT_EQ(cholesky.n_interface(), interface.size());
+
+  // Dense reference on the free block: S = (K_ff^{-1})_II^{-1}.
+  Eigen::MatrixXd Kf(free.size(), free.size());
+  for (unsigned int a = 0; a < free.size(); ++a)
+    for (unsigned int b = 0; b < free.size(); ++b)
+      Kf(a, b) = chain.dense(free[a], free[b]);
+  const Eigen::MatrixXd Kf_inv = Kf.inverse();
+  auto position = [&](const unsigned int i) {
+    return std::find(free.begin(), free.end(), i) - free.begin();
+  };
+  Eigen::MatrixXd inv_II(interface.size(), interface.size());
+  for (unsigned int a = 0; a < interface.size(); ++a)
+    for (unsigned int b = 0; b < interface.size(); ++b)
+      inv_II(a, b) = Kf_inv(position(interface[a]), position(interface[b]));
+  const Eigen::MatrixXd S = inv_II.inverse();
+  for (unsigned int a = 0; a < interface.size(); ++a)
+    for (unsigned int b = 0; b < interface.size(); ++b)
+      EXPECT_NEAR(cholesky.schur_complement()(a, b), S(a, b), 1e-12 * S.norm());
+
+  // C^T S^{-1} C for two columns.
+  FullMatrix<double> C(interface.size(), 2);
+  Eigen::MatrixXd    Ce(interface.size(), 2);
+  for (unsigned int a = 0; a < interface.size(); ++a)
+    {
+      C(a, 0) = Ce(a, 0) = 1. + a;
+      C(a, 1) = Ce(a, 1) = (a % 2 ? -1. : 0.5);
+    }
+  const FullMatrix<double> F        = cholesky.interface_flexibility(C);
+  const Eigen::MatrixXd    F_dense  = Ce.transpose() * inv_II * Ce;
+  for (unsigned int i = 0; i < 2; ++i)
+    for (unsigned int j = 0; j < 2; ++j)
+      EXPECT_NEAR(F(i, j), F_dense(i, j), 1e-12 * F_dense.norm());
+
+  // Full solves (reduction, dense Schur solve, expansion) for two
+  // right-hand sides; eliminated entries are zero.
+  std::vector<Vector<double>> rhs(2, Vector<double>(n));
+  for (unsigned int i = 0; i < n; ++i)
+    {
+      rhs[0][i] = std::sin(0.3 * i);
+      rhs[1][i] = (i == 30 ? 1. : 0.);
+    }
+  const std::vector<Vector<double>> original = rhs;
+  cholesky.solve(rhs);
+  for (unsigned int k = 0; k < 2; ++k)
+    {
+      Eigen::VectorXd f(free.size());
+      for (unsigned int a = 0; a < free.size(); ++a)
+        f(a) = original[k][free[a]];
+      const Eigen::VectorXd u = Kf_inv * f;
+      for (unsigned int a = 0; a < free.size(); ++a)
+        EXPECT_NEAR(rhs[k][free[a]], u(a), 1e-12 * u.norm());
+      EXPECT_EQ(rhs[k][0], 0.);
+      EXPECT_EQ(rhs[k][17], 0.);
+      EXPECT_EQ(rhs[k][n - 1], 0.);
+    }
+
+  // Without interface: a plain factorisation gives the same solves.
+  igabde::elasticity::SparseCholesky plain;
+  plain.initialize(chain.matrix, eliminated, {});
+  std::vector<Vector<double>> rhs2 = original;
+  plain.solve(rhs2);
+  for (unsigned int k = 0; k < 2; ++k)
+    for (unsigned int i = 0; i < n; ++i)
+      EXPECT_NEAR(rhs2[k][i], rhs[k][i], 1e-12);
+}
