@@ -34,15 +34,16 @@ namespace
   void
   print_usage(std::ostream &out)
   {
-    out << "Usage: igabde SCENE.prm [--quiet] "
-           "[--set \"Section/Name=value\"]...\n"
-           "       igabde --print-parameters [prm|json]\n"
-           "       igabde --help\n\n"
-           "Runs the scene SCENE.prm and writes summary.json, tables, the "
-           "log and\nVTU/PVD fields into its output folder (Output/Directory, "
-           "default\noutput/<scene name>/). --set overrides any parameter "
-           "(repeatable).\n--quiet leaves out the progress lines (Output/Progress = "
-           "false).\nScenes live in prm/; doc/ explains every study.\n";
+    out
+      << "Usage: igabde SCENE.prm [--quiet] "
+         "[--set \"Section/Name=value\"]...\n"
+         "       igabde --print-parameters [prm|json]\n"
+         "       igabde --help\n\n"
+         "Runs the scene SCENE.prm and writes summary.json, tables, the "
+         "log and\nVTU/PVD fields into its output folder (Output/Directory, "
+         "default\noutput/<scene name>/). --set overrides any parameter "
+         "(repeatable).\n--quiet leaves out the progress lines (Output/Progress = "
+         "false).\nScenes live in prm/; doc/ explains every study.\n";
   }
 } // namespace
 

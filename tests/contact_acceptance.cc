@@ -3,11 +3,11 @@
 // contact issue and whether the run met it, with the measured figure
 // rounded so that the comparison is stable.
 
-#include <deal.II/base/mpi.h>
-
 #include "tests.h"
 
 #include <igabde/scene/simulator.h>
+
+#include <deal.II/base/mpi.h>
 
 #include <cmath>
 #include <iomanip>

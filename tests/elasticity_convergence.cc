@@ -2,11 +2,11 @@
 // V2 (Lame cylinder): observed L2 and energy rates over the last levels,
 // NURBS p = 2, 3 and FE_Q(2), and the NURBS-vs-FE_Q(2) error at equal DOFs.
 
-#include <deal.II/base/mpi.h>
-
 #include "tests.h"
 
 #include <igabde/scene/simulator.h>
+
+#include <deal.II/base/mpi.h>
 
 #include <cmath>
 #include <iomanip>

@@ -4,10 +4,10 @@
 // the same knot-span mesh) and the 20-node serendipity count of ANSYS SOLID95
 // (vertices plus edges of that mesh). Per beam and for the two beams.
 
-#include <deal.II/base/mpi.h>
-
 #include <igabde/nurbs/geometry_builders.h>
 #include <igabde/nurbs/parametric_mesh.h>
+
+#include <deal.II/base/mpi.h>
 
 #include <deal.II/grid/tria.h>
 

@@ -6,9 +6,9 @@
 // Usage: convergence_study SCENE.prm TYPE DEGREE FIRST LAST
 //   e.g. convergence_study prm/v1-plate-with-hole.prm nurbs 2 1 5
 
-#include <deal.II/base/mpi.h>
-
 #include <igabde/scene/simulator.h>
+
+#include <deal.II/base/mpi.h>
 
 #include <cmath>
 #include <cstdlib>
@@ -71,8 +71,7 @@ main(int argc, char **argv)
       std::cout << " | " << std::setprecision(3)
                 << summary.at("timing").at("assembly").number() +
                      summary.at("timing").at("factorization").number()
-                << " | "
-                << summary.at("timing").at("total").number() << " |\n";
+                << " | " << summary.at("timing").at("total").number() << " |\n";
       previous_l2     = l2;
       previous_energy = energy;
     }

@@ -231,7 +231,7 @@ namespace igabde
                      std::abs(number_value) < 1e15)
               out << static_cast<long long>(number_value);
             else
-              out << std::setprecision(16) << number_value;
+              out << std::setprecision(17) << number_value; // round-trips
             break;
           case Kind::string:
             out << escape(string_value);

@@ -250,8 +250,7 @@ namespace igabde
                 ops.push_back(b == 0 ? pair_list[j].op1 : pair_list[j].op2);
                 directions.push_back(pair_list[j].frame[s]);
               }
-          const FullMatrix<double> Fb =
-            bodies[b]->flexibility(ops, directions);
+          const FullMatrix<double> Fb = bodies[b]->flexibility(ops, directions);
           for (unsigned int i = 0; i < m * nc; ++i)
             for (unsigned int j = 0; j < m * nc; ++j)
               FL(i, j) += Fb(i, j);

@@ -135,7 +135,7 @@ namespace igabde
           // Columns of point forces on the interface unknowns: F = C^T S^-1 C
           // (the readout of a point displacement is the transpose of the
           // point-force distribution).
-          const auto &dofs = cholesky->interface_dofs();
+          const auto      &dofs = cholesky->interface_dofs();
           std::vector<int> position(n_unknowns, -1);
           for (unsigned int a = 0; a < dofs.size(); ++a)
             position[dofs[a]] = a;

@@ -1,3 +1,5 @@
+#include <igabde/base/utilities.h>
+
 #include <igabde/nurbs/geometry_builders.h>
 #include <igabde/nurbs/parametric_mesh.h>
 
@@ -68,6 +70,22 @@ namespace igabde
       AssertThrow(settings.degree >= 1,
                   ExcMessage("Body '" + description.name +
                              "': the NURBS degree must be at least 1."));
+      // An exact geometry cannot be lowered (a circle needs rational
+      // degree 2): running at the geometry's degree while reporting the
+      // requested one would be a silent wrong answer.
+      for (unsigned int d = 0; d < dim; ++d)
+        AssertThrow(
+          geometry.degree(d) <= settings.degree,
+          base::ExcInput(
+            "Discretization/Degree = " + std::to_string(settings.degree) +
+            " is below the degree " + std::to_string(geometry.degree(d)) +
+            " of " + description.name +
+            "'s exact geometry in parametric "
+            "direction " +
+            std::to_string(d) +
+            "; use Degree >= " + std::to_string(geometry.degree(d)) +
+            " with NURBS, or Discretization/Type = lagrange for an "
+            "FE_Q approximation of this geometry."));
       nurbs::elevate_to_degree(geometry, settings.degree);
       for (unsigned int r = 0; r < settings.refinements; ++r)
         geometry.refine_uniformly(1);
@@ -460,10 +478,9 @@ namespace igabde
         for (unsigned int j = 0; j < dim; ++j)
           for (unsigned int k = 0; k < dim; ++k)
             for (unsigned int l = 0; l < dim; ++l)
-              Assert(std::abs(C[i][j][k][l] -
-                              (lambda * (i == j) * (k == l) +
-                               mu * ((i == k) * (j == l) +
-                                     (i == l) * (j == k)))) <=
+              Assert(std::abs(C[i][j][k][l] - (lambda * (i == j) * (k == l) +
+                                               mu * ((i == k) * (j == l) +
+                                                     (i == l) * (j == k)))) <=
                        1e-12 * (std::abs(lambda) + mu),
                      ExcMessage("The IGA assembly assumes an isotropic C."));
       struct Copy
@@ -524,8 +541,7 @@ namespace igabde
                       for (unsigned int c = 0; c < dim; ++c)
                         for (unsigned int d = 0; d < dim; ++d)
                           copy.matrix(dim * a + c, dim * b + d) +=
-                            la[c] * gb[d] + ma[d] * gb[c] +
-                            (c == d ? dot : 0.);
+                            la[c] * gb[d] + ma[d] * gb[c] + (c == d ? dot : 0.);
                     }
                 }
               if (has_body_force)

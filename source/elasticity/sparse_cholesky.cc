@@ -4,11 +4,11 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/Dense>
-#include <dmumps_c.h>
-#include <mpi.h>
 
 #include <algorithm>
 #include <cmath>
+#include <dmumps_c.h>
+#include <mpi.h>
 #include <string>
 
 namespace igabde
@@ -40,7 +40,7 @@ namespace igabde
       std::vector<MUMPS_INT> rows, cols;
       std::vector<double>    values;
 
-      FullMatrix<double>         schur;
+      FullMatrix<double>          schur;
       Eigen::LLT<Eigen::MatrixXd> schur_cholesky;
       /// Every free unknown is an interface unknown: S is the free block and
       /// MUMPS is not used.
@@ -54,8 +54,8 @@ namespace igabde
         AssertThrow(id.infog[0] >= 0,
                     ExcMessage("MUMPS (job " + std::to_string(job) +
                                ") failed with INFOG(1) = " +
-                               std::to_string(id.infog[0]) + ", INFOG(2) = " +
-                               std::to_string(id.infog[1]) +
+                               std::to_string(id.infog[0]) +
+                               ", INFOG(2) = " + std::to_string(id.infog[1]) +
                                (id.infog[0] == -10 ?
                                   ": the stiffness is singular (a body is "
                                   "not held against a rigid motion)" :
@@ -148,10 +148,11 @@ namespace igabde
           AssertThrow(initialized,
                       ExcMessage("SparseCholesky needs MPI to be initialised "
                                  "(MUMPS runs on MPI_COMM_SELF)."));
-          d.id              = DMUMPS_STRUC_C{};
-          d.id.par          = 1;
-          d.id.sym          = 1; // symmetric positive definite: LDL^T
-          d.id.comm_fortran = static_cast<MUMPS_INT>(MPI_Comm_c2f(MPI_COMM_SELF));
+          d.id     = DMUMPS_STRUC_C{};
+          d.id.par = 1;
+          d.id.sym = 1; // symmetric positive definite: LDL^T
+          d.id.comm_fortran =
+            static_cast<MUMPS_INT>(MPI_Comm_c2f(MPI_COMM_SELF));
           d.call(-1);
           d.mumps_alive = true;
           // Silent; automatic ordering.
@@ -194,14 +195,14 @@ namespace igabde
               break;
             }
           AssertThrow(d.id.infog[0] >= 0,
-                      ExcMessage("MUMPS factorisation failed with INFOG(1) = " +
-                                 std::to_string(d.id.infog[0]) +
-                                 ", INFOG(2) = " +
-                                 std::to_string(d.id.infog[1]) +
-                                 (d.id.infog[0] == -10 ?
-                                    ": the stiffness is singular (a body is "
-                                    "not held against a rigid motion)" :
-                                    "")));
+                      ExcMessage(
+                        "MUMPS factorisation failed with INFOG(1) = " +
+                        std::to_string(d.id.infog[0]) +
+                        ", INFOG(2) = " + std::to_string(d.id.infog[1]) +
+                        (d.id.infog[0] == -10 ?
+                           ": the stiffness is singular (a body is "
+                           "not held against a rigid motion)" :
+                           "")));
           d.id.listvar_schur = nullptr;
           d.id.schur         = nullptr;
 
@@ -332,7 +333,7 @@ namespace igabde
           d.id.icntl[icntl(26)] = 1;
           d.call(3);
           Eigen::Map<Eigen::MatrixXd> y(reduced.data(), n_s, nrhs);
-          y = d.schur_cholesky.solve(Eigen::MatrixXd(y));
+          y                     = d.schur_cholesky.solve(Eigen::MatrixXd(y));
           d.id.icntl[icntl(26)] = 2;
           d.call(3);
           d.id.icntl[icntl(26)] = 0;

@@ -14,6 +14,8 @@
 #include <fstream>
 #include <functional>
 #include <iomanip>
+#include <iostream>
+#include <map>
 #include <sstream>
 
 namespace igabde
@@ -273,9 +275,9 @@ namespace igabde
           body->setup_system();
           if (parameters.output.progress)
             log << "  [progress] " << body->description().name
-                << ": space and assembly, " << body->n_dofs()
-                << " unknowns, " << std::setprecision(3) << clock.wall_time()
-                << " s" << std::setprecision(6) << std::endl;
+                << ": space and assembly, " << body->n_dofs() << " unknowns, "
+                << std::setprecision(3) << clock.wall_time() << " s"
+                << std::setprecision(6) << std::endl;
           n_dofs += body->n_dofs();
           n_elements += body->n_elements();
           log << "  " << body->description().name << ": " << body->n_elements()
@@ -317,13 +319,12 @@ namespace igabde
 
     template <int dim>
     void
-    Simulator<dim>::factorize_bodies(
-      const contact::ContactStage<dim> *stage)
+    Simulator<dim>::factorize_bodies(const contact::ContactStage<dim> *stage)
     {
       TimerOutput::Scope t(timer, "factorization");
-      const bool schur = (stage != nullptr &&
-                          parameters.contact.condensation == "schur" &&
-                          parameters.discretization.linear_solver == "direct");
+      const bool         schur =
+        (stage != nullptr && parameters.contact.condensation == "schur" &&
+         parameters.discretization.linear_solver == "direct");
       for (unsigned int b = 0; b < bodies.size(); ++b)
         {
           Timer clock;
@@ -533,6 +534,22 @@ namespace igabde
                 summary["load_steps"] = step_records;
                 throw;
               }
+          // Overflow or underflow (a load factor of 1e308, E = 1e-308)
+          // gives inf/NaN without any solver noticing: never report it.
+          for (unsigned int b = 0; b < bodies.size(); ++b)
+            AssertThrow(std::all_of(u[b].begin(),
+                                    u[b].end(),
+                                    [](const double v) {
+                                      return std::isfinite(v);
+                                    }),
+                        ExcMessage(
+                          "load step " + std::to_string(s + 1) +
+                          ": the "
+                          "displacement of " +
+                          bodies[b]->description().name +
+                          " is not finite (overflow: check the load and "
+                          "displacement factors, the loads and Young's "
+                          "modulus of the scene)."));
           previous_load         = load_factor;
           previous_displacement = displacement_factor;
           step_records.push_back(record);
@@ -588,6 +605,12 @@ namespace igabde
               << ", relative energy error " << norms.energy_relative
               << std::defaultfloat << std::setprecision(6) << std::endl;
         }
+      if (exact)
+        AssertThrow(std::isfinite(checks.at("l2_error").number()) &&
+                      std::isfinite(checks.at("energy_error").number()),
+                    ExcMessage("the error norms are not finite (overflow in "
+                               "the exact solution or the field: check the "
+                               "loads and Young's modulus of the scene)."));
       if (contact_stage)
         contact_stage->add_checks(checks);
       summary["checks"] = checks;
@@ -612,8 +635,15 @@ namespace igabde
               << d << std::setprecision(6) << std::endl;
 
           // Stress recovered at the probe: upper triangle, row by row.
-          const SymmetricTensor<2, dim> sigma      = bodies[0]->stress(u[0], x);
-          base::Json                    components = base::Json::array();
+          const SymmetricTensor<2, dim> sigma = bodies[0]->stress(u[0], x);
+          for (unsigned int i = 0; i < dim; ++i)
+            for (unsigned int j = 0; j < dim; ++j)
+              AssertThrow(std::isfinite(sigma[i][j]),
+                          ExcMessage("probe " + name +
+                                     ": the stress is not finite (overflow: "
+                                     "check the loads and Young's modulus "
+                                     "of the scene)."));
+          base::Json components = base::Json::array();
           for (unsigned int i = 0; i < dim; ++i)
             for (unsigned int j = i; j < dim; ++j)
               components.push_back(sigma[i][j]);
@@ -705,7 +735,7 @@ namespace igabde
             << "+" << std::string(40, '-') << "+" << std::string(11, '-') << "+"
             << std::string(13, '-') << "+\n";
       std::ofstream(output_directory + "/timing.txt") << table.str();
-      if (parameters.output.print_timing)
+      if (parameters.output.print_timing && status != "running")
         log << table.str() << std::flush;
     }
 
@@ -720,6 +750,11 @@ namespace igabde
           << parameters.discretization.degree << ", "
           << parameters.discretization.refinements << " refinements)"
           << std::endl;
+      // Mark the folder: until this run ends, summary.json says 'running'
+      // (and steps.csv, timing.txt start empty), so that the results of an
+      // earlier run in the same folder are never taken for this one's, even
+      // if this run is killed.
+      write_summary("running", "");
       setup_bodies();
       solve_load_steps();
       write_summary("ok", "");
@@ -859,6 +894,77 @@ namespace igabde
 
 
 
+    namespace
+    {
+      /**
+       * Reads a .prm scene and the files it includes the way deal.II's
+       * ParameterHandler will (include paths as written, relative to the
+       * working directory) and refuses what it would crash on or silently
+       * ignore: a file that includes itself (directly or through others),
+       * an include of a folder or of a missing file. Warns, with both
+       * lines, when one file sets the same parameter twice.
+       */
+      void
+      check_prm_file(const std::string        &file,
+                     std::vector<std::string> &include_stack)
+      {
+        for (const auto &open : include_stack)
+          AssertThrow(!std::filesystem::exists(open) ||
+                        !std::filesystem::equivalent(open, file),
+                      base::ExcInput(include_stack.back() + ": 'include " +
+                                     file +
+                                     "' includes a file that is already "
+                                     "being read (an include cycle); remove "
+                                     "the include."));
+        AssertThrow(!std::filesystem::is_directory(file),
+                    base::ExcInput(
+                      (include_stack.empty() ? std::string("") :
+                                               include_stack.back() + ": ") +
+                      "'" + file +
+                      "' is a folder, not a parameter file; give the path "
+                      "of a .prm file."));
+        std::ifstream in(file);
+        AssertThrow(in,
+                    base::ExcInput(
+                      (include_stack.empty() ? std::string("") :
+                                               include_stack.back() + ": ") +
+                      "cannot read '" + file + "'; check the path."));
+        include_stack.push_back(file);
+        std::vector<std::string>            sections;
+        std::map<std::string, unsigned int> first_set;
+        std::string                         line;
+        unsigned int                        n = 0;
+        while (std::getline(in, line))
+          {
+            ++n;
+            line = base::trim(line.substr(0, line.find('#')));
+            if (line.rfind("include", 0) == 0 &&
+                (line.size() == 7 || std::isspace(line[7])))
+              check_prm_file(base::trim(line.substr(7)), include_stack);
+            else if (line.rfind("subsection", 0) == 0)
+              sections.push_back(base::trim(line.substr(10)));
+            else if (line == "end" && !sections.empty())
+              sections.pop_back();
+            else if (line.rfind("set ", 0) == 0)
+              {
+                std::string key;
+                for (const auto &sec : sections)
+                  key += sec + "/";
+                key += base::trim(line.substr(4, line.find('=') - 4));
+                const auto [it, inserted] = first_set.emplace(key, n);
+                if (!inserted)
+                  std::cerr << "igabde: warning: " << file << ":" << n << ": '"
+                            << key << "' is set again (first at line "
+                            << it->second << "); the value of line " << n
+                            << " counts." << std::endl;
+              }
+          }
+        include_stack.pop_back();
+      }
+    } // namespace
+
+
+
     AllParameters
     parse_scene(
       ParameterHandler                                       &prm,
@@ -873,7 +979,32 @@ namespace igabde
                       base::ExcInput(scene_file +
                                      ": no such scene file; give the path "
                                      "of a .prm file (see prm/)."));
-          prm.parse_input(scene_file);
+          const std::string extension =
+            std::filesystem::path(scene_file).extension();
+          if (extension != ".xml" && extension != ".json")
+            {
+              std::vector<std::string> include_stack;
+              check_prm_file(scene_file, include_stack);
+            }
+          try
+            {
+              prm.parse_input(scene_file);
+            }
+          catch (const ExceptionBase &)
+            {
+              throw;
+            }
+          catch (const std::exception &e)
+            {
+              // Boost's XML/JSON readers throw their own exceptions.
+              AssertThrow(false,
+                          base::ExcInput(
+                            scene_file + ": not a readable " +
+                            extension.substr(1) + " parameter file (" +
+                            e.what() +
+                            "); write it as 'igabde --print-parameters " +
+                            extension.substr(1) + "' does."));
+            }
           for (const auto &[path, value] : overrides)
             set_override(prm, path, value);
           parameters.parse_parameters(prm, scene_file);

@@ -75,14 +75,14 @@ namespace
     cs.master_face          = 3;
     cs.progress             = false;
     std::ostringstream log;
-    TimerOutput timer(log, TimerOutput::never, TimerOutput::wall_times);
+    TimerOutput        timer(log, TimerOutput::never, TimerOutput::wall_times);
     contact::ContactStage<2> stage(cs, bodies, log);
     stage.build_pairs(timer);
     for (unsigned int b = 0; b < bodies.size(); ++b)
       {
-        bodies[b]->factorize(
-          schur ? stage.contact_operators(b) :
-                  std::vector<discretization::PointOperator<2>>());
+        bodies[b]->factorize(schur ?
+                               stage.contact_operators(b) :
+                               std::vector<discretization::PointOperator<2>>());
         EXPECT_EQ(bodies[b]->has_schur_complement(), schur);
       }
     stage.condense(timer);

@@ -27,17 +27,16 @@ namespace
     {
       DynamicSparsityPattern dsp(n, n);
       for (unsigned int i = 0; i < n; ++i)
-        for (unsigned int j = (i >= 2 ? i - 2 : 0); j < std::min(n, i + 3);
-             ++j)
+        for (unsigned int j = (i >= 2 ? i - 2 : 0); j < std::min(n, i + 3); ++j)
           dsp.add(i, j);
       sparsity.copy_from(dsp);
       matrix.reinit(sparsity);
       for (unsigned int i = 0; i < n; ++i)
-        for (unsigned int j = (i >= 2 ? i - 2 : 0); j < std::min(n, i + 3);
-             ++j)
+        for (unsigned int j = (i >= 2 ? i - 2 : 0); j < std::min(n, i + 3); ++j)
           {
             const double v =
-              (i == j ? 6. + 0.1 * i : (std::abs(int(i) - int(j)) == 1 ? -2. : -0.5));
+              (i == j ? 6. + 0.1 * i :
+                        (std::abs(int(i) - int(j)) == 1 ? -2. : -0.5));
             matrix.set(i, j, v);
             dense(i, j) = v;
           }
@@ -67,8 +66,8 @@ TEST(SparseCholesky, SchurComplementAndSolveMatchDenseAlgebra)
   for (unsigned int a = 0; a < free.size(); ++a)
     for (unsigned int b = 0; b < free.size(); ++b)
       Kf(a, b) = chain.dense(free[a], free[b]);
-  const Eigen::MatrixXd Kf_inv = Kf.inverse();
-  auto position = [&](const unsigned int i) {
+  const Eigen::MatrixXd Kf_inv   = Kf.inverse();
+  auto                  position = [&](const unsigned int i) {
     return std::find(free.begin(), free.end(), i) - free.begin();
   };
   Eigen::MatrixXd inv_II(interface.size(), interface.size());
@@ -88,8 +87,8 @@ TEST(SparseCholesky, SchurComplementAndSolveMatchDenseAlgebra)
       C(a, 0) = Ce(a, 0) = 1. + a;
       C(a, 1) = Ce(a, 1) = (a % 2 ? -1. : 0.5);
     }
-  const FullMatrix<double> F        = cholesky.interface_flexibility(C);
-  const Eigen::MatrixXd    F_dense  = Ce.transpose() * inv_II * Ce;
+  const FullMatrix<double> F       = cholesky.interface_flexibility(C);
+  const Eigen::MatrixXd    F_dense = Ce.transpose() * inv_II * Ce;
   for (unsigned int i = 0; i < 2; ++i)
     for (unsigned int j = 0; j < 2; ++j)
       EXPECT_NEAR(F(i, j), F_dense(i, j), 1e-12 * F_dense.norm());

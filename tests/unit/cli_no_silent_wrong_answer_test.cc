@@ -1,0 +1,189 @@
+// Runs that must not end with "status": "ok" (or leave an old "ok" behind)
+// while their answer is wrong or missing, and malformed scene files that
+// must give one clear line instead of a crash. Each case failed before the
+// fix it guards.
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+namespace
+{
+  struct RunResult
+  {
+    int         status = -1;
+    std::string output;
+  };
+
+  /// Runs a shell command in @p folder; stdout and stderr together.
+  RunResult
+  run_in(const std::string &folder, const std::string &command)
+  {
+    std::filesystem::create_directories(folder);
+    const std::string full =
+      "cd '" + folder + "' && { " + command + " ; } 2>&1";
+    RunResult              result;
+    FILE                  *pipe = popen(full.c_str(), "r");
+    std::array<char, 4096> buffer;
+    while (fgets(buffer.data(), buffer.size(), pipe) != nullptr)
+      result.output += buffer.data();
+    result.status = WEXITSTATUS(pclose(pipe));
+    return result;
+  }
+
+  RunResult
+  run_igabde(const std::string &arguments, const std::string &folder)
+  {
+    return run_in(folder, std::string(IGABDE_EXECUTABLE) + " " + arguments);
+  }
+
+  /// A scratch folder removed when the test ends.
+  struct Scratch
+  {
+    std::string path;
+    explicit Scratch(const std::string &name)
+      : path((std::filesystem::temp_directory_path() /
+              ("igabde-wrong-" + name + "-" + std::to_string(getpid())))
+               .string())
+    {
+      std::filesystem::remove_all(path);
+      std::filesystem::create_directories(path);
+    }
+    ~Scratch()
+    {
+      std::filesystem::remove_all(path);
+    }
+  };
+
+  std::string
+  read_file(const std::string &path)
+  {
+    std::ifstream in(path);
+    return std::string((std::istreambuf_iterator<char>(in)),
+                       std::istreambuf_iterator<char>());
+  }
+
+  std::string
+  scene(const std::string &name)
+  {
+    return "'" + std::string(IGABDE_SOURCE_DIR) + "/prm/" + name + "'";
+  }
+
+  bool
+  contains(const std::string &text, const std::string &what)
+  {
+    return text.find(what) != std::string::npos;
+  }
+} // namespace
+
+
+
+TEST(NoSilentWrongAnswer, DegreeBelowTheExactGeometryIsRefused)
+{
+  // The Hertz disc is rational quadratic: a NURBS degree 1 cannot hold it.
+  const Scratch s("degree");
+  const auto    r =
+    run_igabde(scene("v5-hertz-2d.prm") + " --set 'Discretization/Degree=1'"
+                                          " --set 'Output/Directory=out'",
+               s.path);
+  EXPECT_NE(r.status, 0);
+  EXPECT_TRUE(contains(r.output, "below the degree 2")) << r.output;
+  EXPECT_FALSE(contains(read_file(s.path + "/out/summary.json"), "\"ok\""));
+}
+
+
+
+TEST(NoSilentWrongAnswer, KilledRunLeavesNoOldOkSummary)
+{
+  // A finished run, then a second run into the same folder killed while it
+  // works: summary.json must not keep saying "ok".
+  const Scratch s("stale");
+  const auto    first =
+    run_igabde(scene("v2-lame-cylinder.prm") + " --set 'Output/Directory=out'",
+               s.path);
+  ASSERT_EQ(first.status, 0) << first.output;
+  ASSERT_TRUE(contains(read_file(s.path + "/out/summary.json"), "\"ok\""));
+  const std::string command =
+    std::string(IGABDE_EXECUTABLE) + " " + scene("b2-curved-beams.prm") +
+    " --quiet --set 'Body 1/Subdivisions=8,16,8'"
+    " --set 'Body 2/Subdivisions=8,16,8' --set 'Output/Directory=out'"
+    " > /dev/null & pid=$!; for i in $(seq 200); do"
+    " grep -q running out/summary.json 2>/dev/null && break; sleep 0.05;"
+    " done; kill -9 $pid; wait $pid; true";
+  run_in(s.path, command);
+  const std::string summary = read_file(s.path + "/out/summary.json");
+  EXPECT_TRUE(contains(summary, "\"status\": \"running\"")) << summary;
+  EXPECT_FALSE(contains(summary, "\"status\": \"ok\"")) << summary;
+}
+
+
+
+TEST(NoSilentWrongAnswer, NonFiniteResultsAreAFailure)
+{
+  // A load factor of 1e308 overflows the error norms of V2 (they were
+  // reported as null next to "status": "ok").
+  const Scratch s("finite");
+  const auto    r = run_igabde(scene("v2-lame-cylinder.prm") +
+                              " --set 'Load path/Load factors=1e308'"
+                                 " --set 'Output/Directory=out'",
+                            s.path);
+  EXPECT_NE(r.status, 0) << r.output;
+  EXPECT_TRUE(contains(r.output, "not finite")) << r.output;
+  const std::string summary = read_file(s.path + "/out/summary.json");
+  EXPECT_TRUE(contains(summary, "\"status\": \"failed\"")) << summary;
+
+  // A modulus below the smallest normal double is refused when read.
+  const auto tiny = run_igabde(scene("v2-lame-cylinder.prm") +
+                                 " --set \"Body 1/Young's modulus=2.2e-308\""
+                                 " --set 'Output/Directory=tiny'",
+                               s.path);
+  EXPECT_EQ(tiny.status, 2) << tiny.output;
+  EXPECT_TRUE(contains(tiny.output, "Young's modulus")) << tiny.output;
+}
+
+
+
+TEST(NoSilentWrongAnswer, MalformedSceneFilesAreOneLineErrors)
+{
+  const Scratch s("malformed");
+  std::ofstream(s.path + "/self.prm")
+    << "set Dimension = 2\ninclude self.prm\n";
+  std::ofstream(s.path + "/folder.prm") << "include " << s.path << "\n";
+  std::ofstream(s.path + "/truncated.xml") << "<?xml version=\"1.0\"?>\n<Par";
+  std::ofstream(s.path + "/truncated.json") << "{ \"Dimension\": ";
+  const std::array<std::pair<const char *, const char *>, 4> cases = {
+    {{"self.prm", "include cycle"},
+     {"folder.prm", "is a folder"},
+     {"truncated.xml", "not a readable xml parameter file"},
+     {"truncated.json", "JSON file is not valid"}}};
+  for (const auto &[file, message] : cases)
+    {
+      const auto r = run_igabde(file, s.path);
+      EXPECT_EQ(r.status, 2) << file << "\n" << r.output;
+      EXPECT_TRUE(contains(r.output, message)) << file << "\n" << r.output;
+      // One line, no backtrace.
+      EXPECT_FALSE(contains(r.output, "Stacktrace")) << r.output;
+    }
+}
+
+
+
+TEST(NoSilentWrongAnswer, ParameterSetTwiceInOneFileWarnsWithBothLines)
+{
+  const Scratch s("twice");
+  std::ofstream(s.path + "/twice.prm")
+    << "set Dimension = 2\nsubsection Body 1\n  set Supports = 0: x; 2: y\n"
+       "  set Tractions = 3: pressure 1\nend\nsubsection Output\n"
+       "  set Write vtu = false\nend\nsubsection Body 1\n"
+       "  set Tractions = 3: pressure 2\nend\n";
+  const auto r = run_igabde("twice.prm", s.path);
+  EXPECT_EQ(r.status, 0) << r.output;
+  EXPECT_TRUE(contains(r.output,
+                       "twice.prm:10: 'Body 1/Tractions' is set "
+                       "again (first at line 4)"))
+    << r.output;
+}
