@@ -70,12 +70,13 @@ namespace igabde
         Hdf5File &
         operator=(const Hdf5File &) = delete;
 
-        // True if every component of the absolute path exists.
+        // True if every component of the path exists (names are relative to
+        // the file's root group, with or without a leading '/').
         bool
         exists(const std::string &path) const
         {
           std::string partial;
-          std::size_t start = 1;
+          std::size_t start = (!path.empty() && path[0] == '/' ? 1 : 0);
           while (start <= path.size())
             {
               std::size_t end = path.find('/', start);
@@ -662,10 +663,11 @@ namespace igabde
     {
       FclibSolution sol;
       Hdf5File      f(filename);
-      if (f.exists("/solution/r") && f.exists("/solution/u"))
+      // The reference solution: datasets r and u of the group 'solution'.
+      if (f.exists("solution/r") && f.exists("solution/u"))
         {
-          sol.r         = f.read_eigen_vector("/solution/r");
-          sol.u         = f.read_eigen_vector("/solution/u");
+          sol.r         = f.read_eigen_vector("solution/r");
+          sol.u         = f.read_eigen_vector("solution/u");
           sol.available = true;
         }
       return sol;

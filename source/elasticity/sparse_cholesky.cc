@@ -46,11 +46,10 @@ namespace igabde
       /// MUMPS is not used.
       bool dense_only = false;
 
+      /// Throws with MUMPS' error codes when the last call failed.
       void
-      call(const int job)
+      check(const int job) const
       {
-        id.job = job;
-        dmumps_c(&id);
         AssertThrow(id.infog[0] >= 0,
                     ExcMessage("MUMPS (job " + std::to_string(job) +
                                ") failed with INFOG(1) = " +
@@ -60,6 +59,14 @@ namespace igabde
                                   ": the stiffness is singular (a body is "
                                   "not held against a rigid motion)" :
                                   "")));
+      }
+
+      void
+      call(const int job)
+      {
+        id.job = job;
+        dmumps_c(&id);
+        check(job);
       }
 
       void
@@ -194,15 +201,7 @@ namespace igabde
                 }
               break;
             }
-          AssertThrow(d.id.infog[0] >= 0,
-                      ExcMessage(
-                        "MUMPS factorisation failed with INFOG(1) = " +
-                        std::to_string(d.id.infog[0]) +
-                        ", INFOG(2) = " + std::to_string(d.id.infog[1]) +
-                        (d.id.infog[0] == -10 ?
-                           ": the stiffness is singular (a body is "
-                           "not held against a rigid motion)" :
-                           "")));
+          d.check(4);
           d.id.listvar_schur = nullptr;
           d.id.schur         = nullptr;
 

@@ -981,6 +981,8 @@ namespace igabde
                                      "of a .prm file (see prm/)."));
           const std::string extension =
             std::filesystem::path(scene_file).extension();
+          const std::string format =
+            (extension.empty() ? "parameter" : extension.substr(1));
           if (extension != ".xml" && extension != ".json")
             {
               std::vector<std::string> include_stack;
@@ -999,11 +1001,10 @@ namespace igabde
               // Boost's XML/JSON readers throw their own exceptions.
               AssertThrow(false,
                           base::ExcInput(
-                            scene_file + ": not a readable " +
-                            extension.substr(1) + " parameter file (" +
-                            e.what() +
+                            scene_file + ": not a readable " + format +
+                            " parameter file (" + e.what() +
                             "); write it as 'igabde --print-parameters " +
-                            extension.substr(1) + "' does."));
+                            format + "' does."));
             }
           for (const auto &[path, value] : overrides)
             set_override(prm, path, value);

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include "cli_helpers.h"
 #include <array>
 #include <cstdio>
 #include <filesystem>
@@ -13,33 +14,9 @@
 
 namespace
 {
-  struct RunResult
-  {
-    int         status = -1;
-    std::string output;
-  };
-
-  /// Runs a shell command in @p folder; stdout and stderr together.
-  RunResult
-  run_in(const std::string &folder, const std::string &command)
-  {
-    std::filesystem::create_directories(folder);
-    const std::string full =
-      "cd '" + folder + "' && { " + command + " ; } 2>&1";
-    RunResult              result;
-    FILE                  *pipe = popen(full.c_str(), "r");
-    std::array<char, 4096> buffer;
-    while (fgets(buffer.data(), buffer.size(), pipe) != nullptr)
-      result.output += buffer.data();
-    result.status = WEXITSTATUS(pclose(pipe));
-    return result;
-  }
-
-  RunResult
-  run_igabde(const std::string &arguments, const std::string &folder)
-  {
-    return run_in(folder, std::string(IGABDE_EXECUTABLE) + " " + arguments);
-  }
+  using cli::read_file;
+  using cli::run_igabde;
+  using cli::run_in;
 
   /// A scratch folder removed when the test ends.
   struct Scratch
@@ -58,14 +35,6 @@ namespace
       std::filesystem::remove_all(path);
     }
   };
-
-  std::string
-  read_file(const std::string &path)
-  {
-    std::ifstream in(path);
-    return std::string((std::istreambuf_iterator<char>(in)),
-                       std::istreambuf_iterator<char>());
-  }
 
   std::string
   scene(const std::string &name)

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include "cli_helpers.h"
 #include <array>
 #include <cstdio>
 #include <filesystem>
@@ -11,29 +12,8 @@
 
 namespace
 {
-  struct RunResult
-  {
-    int         status = -1;
-    std::string output;
-  };
-
-  /// Runs igabde with @p arguments in a scratch folder, stdout+stderr.
-  RunResult
-  run_igabde(const std::string &arguments, const std::string &folder)
-  {
-    std::filesystem::create_directories(folder);
-    const std::string command = "cd '" + folder + "' && " +
-                                std::string(IGABDE_EXECUTABLE) + " " +
-                                arguments + " 2>&1";
-    RunResult              result;
-    FILE                  *pipe = popen(command.c_str(), "r");
-    std::array<char, 4096> buffer;
-    while (fgets(buffer.data(), buffer.size(), pipe) != nullptr)
-      result.output += buffer.data();
-    const int status = pclose(pipe);
-    result.status    = WEXITSTATUS(status);
-    return result;
-  }
+  using cli::read_file;
+  using cli::run_igabde;
 
   std::string
   scratch(const std::string &name)
@@ -49,13 +29,6 @@ namespace
     std::ofstream(path) << text;
   }
 
-  std::string
-  read_file(const std::string &path)
-  {
-    std::ifstream in(path);
-    return std::string((std::istreambuf_iterator<char>(in)),
-                       std::istreambuf_iterator<char>());
-  }
 } // namespace
 
 

@@ -81,7 +81,7 @@ namespace igabde
      */
     struct FclibSolution
     {
-      /** @brief True if /solution/r and /solution/u were found. */
+      /** @brief True if the group 'solution' holds datasets r and u. */
       bool available = false;
       /** @brief Reaction (contact force) r. */
       Eigen::VectorXd r;
@@ -90,7 +90,8 @@ namespace igabde
     };
 
     /**
-     * @brief Read /solution/{r,u} from an FCLIB HDF5 file, if present.
+     * @brief Reads the reference solution (datasets r and u of the group
+     * 'solution') from an FCLIB HDF5 file, if present.
      */
     FclibSolution
     read_fclib_solution(const std::string &filename);

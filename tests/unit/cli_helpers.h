@@ -1,0 +1,55 @@
+// Running the igabde executable from the command-line tests.
+#ifndef igabde_tests_unit_cli_helpers_h
+#define igabde_tests_unit_cli_helpers_h
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace cli
+{
+  /// Exit status and the merged stdout+stderr of a command.
+  struct RunResult
+  {
+    int         status = -1;
+    std::string output;
+  };
+
+  /// Runs the shell command @p command inside @p folder (created if
+  /// needed); the command is grouped, so '&' and ';' in it stay there.
+  inline RunResult
+  run_in(const std::string &folder, const std::string &command)
+  {
+    std::filesystem::create_directories(folder);
+    const std::string full =
+      "cd '" + folder + "' && { " + command + " ; } 2>&1";
+    RunResult              result;
+    FILE                  *pipe = popen(full.c_str(), "r");
+    std::array<char, 4096> buffer;
+    while (fgets(buffer.data(), buffer.size(), pipe) != nullptr)
+      result.output += buffer.data();
+    result.status = WEXITSTATUS(pclose(pipe));
+    return result;
+  }
+
+  /// Runs igabde with @p arguments in @p folder.
+  inline RunResult
+  run_igabde(const std::string &arguments, const std::string &folder)
+  {
+    return run_in(folder, std::string(IGABDE_EXECUTABLE) + " " + arguments);
+  }
+
+  inline std::string
+  read_file(const std::string &path)
+  {
+    std::ifstream in(path);
+    return std::string((std::istreambuf_iterator<char>(in)),
+                       std::istreambuf_iterator<char>());
+  }
+} // namespace cli
+
+#endif
