@@ -150,11 +150,13 @@ namespace igabde
                     if (position[i] >= 0)
                       C(position[i], j) += op.weights[k] * directions[j][c];
                     else
-                      Assert(op.weights[k] == 0. ||
-                               solve_constraints.is_constrained(i),
-                             ExcMessage("A point operator touches an "
-                                        "unknown outside the Schur "
-                                        "interface."));
+                      // Dropping it would give a wrong F silently.
+                      AssertThrow(op.weights[k] == 0. ||
+                                    solve_constraints.is_constrained(i),
+                                  ExcMessage("A point operator touches an "
+                                             "unknown outside the Schur "
+                                             "interface; factorize() must "
+                                             "be given these operators."));
                   }
             }
           return cholesky->interface_flexibility(C);
