@@ -1,5 +1,7 @@
 #include <igabde/base/utilities.h>
 
+#include <igabde/discretization/body_description.h>
+
 #include <igabde/contact/condition_check.h>
 #include <igabde/contact/contact_stage.h>
 
@@ -132,8 +134,7 @@ namespace igabde
     ContactStage<dim>::form_pairs()
     {
       const auto &body1 = *bodies[0];
-      const auto  slave =
-        body1.surface_points(settings.slave_face, settings.placement);
+      const auto  slave = body1.surface_points(settings.slave_face);
       AssertThrow(!slave.empty(),
                   base::ExcInput(settings.scene_file + ": Contact/Slave face " +
                                  std::to_string(settings.slave_face) +
@@ -146,8 +147,7 @@ namespace igabde
 
       std::vector<discretization::SurfacePoint<dim>> master;
       if (!settings.rigid_plane)
-        master =
-          bodies[1]->surface_points(settings.master_face, settings.placement);
+        master = bodies[1]->surface_points(settings.master_face);
 
       pair_list.clear();
       for (const auto &s : slave)

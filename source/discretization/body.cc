@@ -1,6 +1,9 @@
 #include <igabde/discretization/body.h>
+#include <igabde/discretization/body_description.h>
 #include <igabde/discretization/iga_body.h>
 #include <igabde/discretization/lagrange_body.h>
+
+#include <igabde/elasticity/sparse_cholesky.h>
 
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/multithread_info.h>
@@ -8,6 +11,9 @@
 
 #include <deal.II/lac/solver_cg.h>
 #include <deal.II/lac/solver_control.h>
+#include <deal.II/lac/sparse_direct.h>
+#include <deal.II/lac/trilinos_precondition.h>
+#include <deal.II/lac/trilinos_sparse_matrix.h>
 
 #include <Eigen/Dense>
 
@@ -43,14 +49,43 @@ namespace igabde
 
 
 
+    /**
+     * The factorisation of the constrained stiffness, one of three paths
+     * chosen by DiscretizationSettings::linear_solver.
+     */
+    template <int dim>
+    struct Body<dim>::LinearSolver
+    {
+      /// Direct path (Linear solver = direct): MUMPS LDL^T, with the Schur
+      /// complement onto the contact face when asked.
+      std::unique_ptr<elasticity::SparseCholesky> cholesky;
+      /// K with the constrained rows and columns replaced by a scaled
+      /// identity (umfpack and cg-amg).
+      SparseMatrix<double> constrained_matrix;
+      /// LU path (Linear solver = umfpack).
+      SparseDirectUMFPACK direct_solver;
+      /// Iterative path (Linear solver = cg-amg): the constrained matrix as
+      /// a Trilinos matrix and its ML algebraic multigrid preconditioner.
+      std::unique_ptr<TrilinosWrappers::SparseMatrix>    amg_matrix;
+      std::unique_ptr<TrilinosWrappers::PreconditionAMG> amg;
+    };
+
+
+
     template <int dim>
     Body<dim>::Body(const BodyDescription<dim>   &description,
                     const DiscretizationSettings &settings)
-      : body_description(description)
-      , settings(settings)
+      : settings(settings)
+      , body_description(std::make_unique<BodyDescription<dim>>(description))
+      , linear_solver(std::make_unique<LinearSolver>())
     {
       description.material.validate("Body '" + description.name + "'");
     }
+
+
+
+    template <int dim>
+    Body<dim>::~Body() = default;
 
 
 
@@ -135,7 +170,7 @@ namespace igabde
           // Columns of point forces on the interface unknowns: F = C^T S^-1 C
           // (the readout of a point displacement is the transpose of the
           // point-force distribution).
-          const auto      &dofs = cholesky->interface_dofs();
+          const auto      &dofs = linear_solver->cholesky->interface_dofs();
           std::vector<int> position(n_unknowns, -1);
           for (unsigned int a = 0; a < dofs.size(); ++a)
             position[dofs[a]] = a;
@@ -159,7 +194,7 @@ namespace igabde
                                              "be given these operators."));
                   }
             }
-          return cholesky->interface_flexibility(C);
+          return linear_solver->cholesky->interface_flexibility(C);
         }
 
       // One solve per column on the shared factorisation.
@@ -179,7 +214,8 @@ namespace igabde
     bool
     Body<dim>::has_schur_complement() const
     {
-      return cholesky && cholesky->n_interface() > 0;
+      return linear_solver->cholesky &&
+             linear_solver->cholesky->n_interface() > 0;
     }
 
 
@@ -188,7 +224,8 @@ namespace igabde
     unsigned int
     Body<dim>::n_interface_dofs() const
     {
-      return (cholesky ? cholesky->n_interface() : 0);
+      return (linear_solver->cholesky ? linear_solver->cholesky->n_interface() :
+                                        0);
     }
 
 
@@ -197,7 +234,9 @@ namespace igabde
     double
     Body<dim>::factor_entries() const
     {
-      return (cholesky ? cholesky->factor_entries() : 0.);
+      return (linear_solver->cholesky ?
+                linear_solver->cholesky->factor_entries() :
+                0.);
     }
 
 
@@ -215,7 +254,25 @@ namespace igabde
     const BodyDescription<dim> &
     Body<dim>::description() const
     {
-      return body_description;
+      return *body_description;
+    }
+
+
+
+    template <int dim>
+    const std::string &
+    Body<dim>::name() const
+    {
+      return body_description->name;
+    }
+
+
+
+    template <int dim>
+    const elasticity::IsotropicMaterial<dim> &
+    Body<dim>::material() const
+    {
+      return body_description->material;
     }
 
 
@@ -398,15 +455,18 @@ namespace igabde
           std::vector<bool> eliminated(n_unknowns);
           for (types::global_dof_index i = 0; i < n_unknowns; ++i)
             eliminated[i] = solve_constraints.is_constrained(i);
-          cholesky = std::make_unique<elasticity::SparseCholesky>();
-          cholesky->initialize(system_matrix, eliminated, interface_dofs);
+          linear_solver->cholesky =
+            std::make_unique<elasticity::SparseCholesky>();
+          linear_solver->cholesky->initialize(system_matrix,
+                                              eliminated,
+                                              interface_dofs);
           return;
         }
 
       // Zero the constrained rows and columns and keep a positive diagonal:
       // the solution is then zero there and the rest is the reduced system.
-      constrained_matrix.reinit(sparsity);
-      constrained_matrix.copy_from(system_matrix);
+      linear_solver->constrained_matrix.reinit(sparsity);
+      linear_solver->constrained_matrix.copy_from(system_matrix);
       double diagonal_scale = 0.;
       for (types::global_dof_index i = 0; i < n_unknowns; ++i)
         diagonal_scale += std::abs(system_matrix.diag_element(i));
@@ -415,8 +475,8 @@ namespace igabde
       for (types::global_dof_index row = 0; row < n_unknowns; ++row)
         {
           const bool row_constrained = solve_constraints.is_constrained(row);
-          for (auto entry = constrained_matrix.begin(row);
-               entry != constrained_matrix.end(row);
+          for (auto entry = linear_solver->constrained_matrix.begin(row);
+               entry != linear_solver->constrained_matrix.end(row);
                ++entry)
             if (row_constrained ||
                 solve_constraints.is_constrained(entry->column()))
@@ -427,8 +487,9 @@ namespace igabde
           // ML with the displacement components as near-null space (one
           // constant mode per component) and the higher-order smoother
           // setting for p > 1.
-          amg_matrix = std::make_unique<TrilinosWrappers::SparseMatrix>();
-          amg_matrix->reinit(constrained_matrix);
+          linear_solver->amg_matrix =
+            std::make_unique<TrilinosWrappers::SparseMatrix>();
+          linear_solver->amg_matrix->reinit(linear_solver->constrained_matrix);
           TrilinosWrappers::PreconditionAMG::AdditionalData data;
           data.elliptic              = true;
           data.higher_order_elements = (settings.degree > 1);
@@ -437,11 +498,13 @@ namespace igabde
           data.constant_modes.assign(dim, std::vector<bool>(n_unknowns));
           for (types::global_dof_index i = 0; i < n_unknowns; ++i)
             data.constant_modes[dof_components[i]][i] = true;
-          amg = std::make_unique<TrilinosWrappers::PreconditionAMG>();
-          amg->initialize(*amg_matrix, data);
+          linear_solver->amg =
+            std::make_unique<TrilinosWrappers::PreconditionAMG>();
+          linear_solver->amg->initialize(*linear_solver->amg_matrix, data);
         }
       else
-        direct_solver.initialize(constrained_matrix);
+        linear_solver->direct_solver.initialize(
+          linear_solver->constrained_matrix);
     }
 
 
@@ -458,22 +521,22 @@ namespace igabde
             Vector<double> &v = rhs_and_solutions[k];
             AssertDimension(v.size(), n_unknowns);
             solve_constraints.set_zero(v);
-            direct_solver.solve(v);
+            linear_solver->direct_solver.solve(v);
             solve_constraints.set_zero(v);
           }
       };
       const std::size_t n = rhs_and_solutions.size();
-      if (cholesky)
+      if (linear_solver->cholesky)
         {
           // All columns in one multi-right-hand-side solve (BLAS-3).
           for (auto &v : rhs_and_solutions)
             solve_constraints.set_zero(v);
-          cholesky->solve(rhs_and_solutions);
+          linear_solver->cholesky->solve(rhs_and_solutions);
           for (auto &v : rhs_and_solutions)
             solve_constraints.set_zero(v);
           return;
         }
-      if (amg)
+      if (linear_solver->amg)
         {
           // CG to a relative residual of Linear tolerance; one column after
           // the other (the ML preconditioner is not shared across threads).
@@ -489,7 +552,7 @@ namespace igabde
                 std::max<types::global_dof_index>(1000, n_unknowns),
                 settings.linear_tolerance * rhs.l2_norm());
               SolverCG<Vector<double>> cg(control);
-              cg.solve(*amg_matrix, v, rhs, *amg);
+              cg.solve(*linear_solver->amg_matrix, v, rhs, *linear_solver->amg);
               solve_constraints.set_zero(v);
             }
           return;

@@ -2,8 +2,11 @@
 
 #include <igabde/discretization/lagrange_body.h>
 
+#include <igabde/elasticity/assembly.h>
+#include <igabde/elasticity/fe_values_evaluator.h>
+#include <igabde/elasticity/stress_measures.h>
+
 #include <deal.II/base/quadrature_lib.h>
-#include <deal.II/base/work_stream.h>
 
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 #include <deal.II/lac/full_matrix.h>
@@ -33,8 +36,9 @@ namespace igabde
       class StressPostprocessor : public DataPostprocessor<dim>
       {
       public:
-        explicit StressPostprocessor(const SymmetricTensor<4, dim> &C)
-          : C(C)
+        explicit StressPostprocessor(
+          const elasticity::IsotropicMaterial<dim> &material)
+          : material(material)
         {}
 
         void
@@ -47,17 +51,18 @@ namespace igabde
               Tensor<2, dim> grad;
               for (unsigned int c = 0; c < dim; ++c)
                 grad[c] = inputs.solution_gradients[q][c];
-              const SymmetricTensor<2, dim> eps   = symmetrize(grad);
-              const SymmetricTensor<2, dim> sigma = C * eps;
-              unsigned int                  k     = 0;
+              const SymmetricTensor<2, dim> eps = symmetrize(grad);
+              const SymmetricTensor<2, dim> sigma =
+                elasticity::stress(eps, material);
+              unsigned int k = 0;
               for (unsigned int i = 0; i < dim; ++i)
                 for (unsigned int j = i; j < dim; ++j)
                   computed_quantities[q][k++] = eps[i][j];
               for (unsigned int i = 0; i < dim; ++i)
                 for (unsigned int j = i; j < dim; ++j)
                   computed_quantities[q][k++] = sigma[i][j];
-              const SymmetricTensor<2, dim> s = deviator(sigma);
-              computed_quantities[q][k]       = std::sqrt(1.5 * (s * s));
+              computed_quantities[q][k] =
+                elasticity::von_mises(sigma, material);
             }
         }
 
@@ -81,7 +86,7 @@ namespace igabde
         }
 
       private:
-        const SymmetricTensor<4, dim> C;
+        const elasticity::IsotropicMaterial<dim> material;
       };
     } // namespace
 
@@ -179,7 +184,7 @@ namespace igabde
       // Supports on patch faces, exact for constant values.
       this->constraints.clear();
       this->prescribed_constraints.clear();
-      for (const auto &bc : this->body_description.dirichlet)
+      for (const auto &bc : this->description().dirichlet)
         {
           std::vector<bool> mask(bc.components.begin(), bc.components.end());
           const IndexSet    dofs =
@@ -206,126 +211,34 @@ namespace igabde
 
 
 
-    namespace
-    {
-      template <int dim>
-      struct ScratchData
-      {
-        ScratchData(const Mapping<dim>       &mapping,
-                    const FiniteElement<dim> &fe,
-                    const unsigned int        degree)
-          : fe_values(mapping,
-                      fe,
-                      QGauss<dim>(degree + 1),
-                      update_values | update_gradients |
-                        update_quadrature_points | update_JxW_values)
-          , fe_face_values(mapping,
-                           fe,
-                           QGauss<dim - 1>(degree + 1),
-                           update_values | update_quadrature_points |
-                             update_normal_vectors | update_JxW_values)
-        {}
-
-        ScratchData(const ScratchData &other)
-          : fe_values(other.fe_values.get_mapping(),
-                      other.fe_values.get_fe(),
-                      other.fe_values.get_quadrature(),
-                      other.fe_values.get_update_flags())
-          , fe_face_values(other.fe_face_values.get_mapping(),
-                           other.fe_face_values.get_fe(),
-                           other.fe_face_values.get_quadrature(),
-                           other.fe_face_values.get_update_flags())
-        {}
-
-        FEValues<dim>     fe_values;
-        FEFaceValues<dim> fe_face_values;
-      };
-
-      struct CopyData
-      {
-        FullMatrix<double>                   cell_matrix;
-        Vector<double>                       cell_rhs;
-        std::vector<types::global_dof_index> dof_indices;
-      };
-    } // namespace
-
-
-
     template <int dim>
     void
     LagrangeBody<dim>::assemble()
     {
       this->system_matrix.reinit(this->sparsity);
       this->load_rhs.reinit(this->n_unknowns);
-      const SymmetricTensor<4, dim> C =
-        this->body_description.material.stiffness();
-      const FEValuesExtractors::Vector displacement(0);
-      const auto                      &description = this->body_description;
+      const auto &description = this->description();
 
-      auto worker =
-        [&](const typename DoFHandler<dim>::active_cell_iterator &cell,
-            ScratchData<dim>                                     &scratch,
-            CopyData                                             &copy) {
-          const unsigned int n = fe.n_dofs_per_cell();
-          copy.cell_matrix.reinit(n, n);
-          copy.cell_rhs.reinit(n);
-          copy.dof_indices.resize(n);
-          cell->get_dof_indices(copy.dof_indices);
-
-          scratch.fe_values.reinit(cell);
-          const auto                          &fv = scratch.fe_values;
-          std::vector<SymmetricTensor<2, dim>> eps(n);
-          for (const unsigned int q : fv.quadrature_point_indices())
-            {
-              for (unsigned int i = 0; i < n; ++i)
-                eps[i] = fv[displacement].symmetric_gradient(i, q);
-              for (unsigned int i = 0; i < n; ++i)
-                {
-                  const SymmetricTensor<2, dim> Ceps = C * eps[i];
-                  for (unsigned int j = 0; j < n; ++j)
-                    copy.cell_matrix(i, j) += (Ceps * eps[j]) * fv.JxW(q);
-                  copy.cell_rhs(i) +=
-                    (fv[displacement].value(i, q) * description.body_force) *
-                    fv.JxW(q);
-                }
-            }
-
-          for (const auto f : cell->face_indices())
-            if (cell->face(f)->at_boundary())
-              for (const auto &neumann : description.tractions)
-                if (cell->face(f)->boundary_id() == neumann.boundary_id)
-                  {
-                    scratch.fe_face_values.reinit(cell, f);
-                    const auto &ffv = scratch.fe_face_values;
-                    for (const unsigned int q : ffv.quadrature_point_indices())
-                      {
-                        const Tensor<1, dim> t =
-                          neumann.traction(ffv.quadrature_point(q),
-                                           ffv.normal_vector(q));
-                        for (unsigned int i = 0; i < n; ++i)
-                          copy.cell_rhs(i) +=
-                            (ffv[displacement].value(i, q) * t) * ffv.JxW(q);
-                      }
-                  }
-        };
-
-      auto copier = [&](const CopyData &copy) {
-        for (unsigned int i = 0; i < copy.dof_indices.size(); ++i)
-          {
-            for (unsigned int j = 0; j < copy.dof_indices.size(); ++j)
-              this->system_matrix.add(copy.dof_indices[i],
-                                      copy.dof_indices[j],
-                                      copy.cell_matrix(i, j));
-            this->load_rhs(copy.dof_indices[i]) += copy.cell_rhs(i);
-          }
-      };
-
-      WorkStream::run(dof_handler.begin_active(),
-                      dof_handler.end(),
-                      worker,
-                      copier,
-                      ScratchData<dim>(*mapping, fe, fe.degree),
-                      CopyData());
+      const elasticity::FEValuesEvaluator<dim> cell_values(
+        *mapping,
+        fe,
+        QGauss<dim>(fe.degree + 1),
+        update_values | update_gradients | update_JxW_values);
+      const elasticity::FEValuesEvaluator<dim, FEFaceValues<dim>> face_values(
+        *mapping,
+        fe,
+        QGauss<dim - 1>(fe.degree + 1),
+        update_values | update_quadrature_points | update_normal_vectors |
+          update_JxW_values);
+      elasticity::assemble_system<dim>(dof_handler.begin_active(),
+                                       dof_handler.end(),
+                                       cell_values,
+                                       face_values,
+                                       description.material,
+                                       description.body_force,
+                                       description.tractions,
+                                       this->system_matrix,
+                                       this->load_rhs);
 
       for (const auto &load : description.point_loads)
         point_operator(load.location).distribute(load.force, this->load_rhs);
@@ -367,8 +280,7 @@ namespace igabde
 
     template <int dim>
     std::vector<SurfacePoint<dim>>
-    LagrangeBody<dim>::surface_points(const types::boundary_id face,
-                                      const PairPlacement) const
+    LagrangeBody<dim>::surface_points(const types::boundary_id face) const
     {
       // Pairs sit at the nodes of the face. The normal is the mesh normal,
       // averaged over the faces sharing a node; the tributary area is the
@@ -439,44 +351,19 @@ namespace igabde
     LagrangeBody<dim>::compute_errors(const Vector<double>     &u,
                                       const ExactSolution<dim> &exact) const
     {
-      const SymmetricTensor<4, dim> S =
-        this->body_description.material.compliance();
-      const SymmetricTensor<4, dim> C =
-        this->body_description.material.stiffness();
-      FEValues<dim>                        fe_values(*mapping,
-                              fe,
-                              QGauss<dim>(fe.degree + 3),
-                              update_values | update_gradients |
-                                update_quadrature_points | update_JxW_values);
-      const FEValuesExtractors::Vector     displacement(0);
-      std::vector<Tensor<1, dim>>          u_h(fe_values.n_quadrature_points);
-      std::vector<SymmetricTensor<2, dim>> eps_h(fe_values.n_quadrature_points);
-
-      double e_l2 = 0, u_l2 = 0, e_en = 0, u_en = 0, measure = 0;
-      for (const auto &cell : dof_handler.active_cell_iterators())
-        {
-          fe_values.reinit(cell);
-          fe_values[displacement].get_function_values(u, u_h);
-          fe_values[displacement].get_function_symmetric_gradients(u, eps_h);
-          for (const unsigned int q : fe_values.quadrature_point_indices())
-            {
-              const Point<dim> &x  = fe_values.quadrature_point(q);
-              const double      dx = fe_values.JxW(q);
-              const auto        ue = exact.displacement(x);
-              const auto        se = exact.stress(x);
-              const auto        de = se - C * eps_h[q];
-              e_l2 += (ue - u_h[q]).norm_square() * dx;
-              u_l2 += ue.norm_square() * dx;
-              e_en += (de * (S * de)) * dx;
-              u_en += (se * (S * se)) * dx;
-              measure += dx;
-            }
-        }
-      ErrorNorms norms;
-      norms.l2_relative     = std::sqrt(e_l2 / u_l2);
-      norms.energy_relative = std::sqrt(e_en / u_en);
-      norms.measure         = measure;
-      return norms;
+      elasticity::FEValuesEvaluator<dim> values(*mapping,
+                                                fe,
+                                                QGauss<dim>(fe.degree + 3),
+                                                update_values |
+                                                  update_gradients |
+                                                  update_quadrature_points |
+                                                  update_JxW_values);
+      return elasticity::compute_error_norms<dim>(dof_handler.begin_active(),
+                                                  dof_handler.end(),
+                                                  values,
+                                                  u,
+                                                  this->material(),
+                                                  exact);
     }
 
 
@@ -492,12 +379,15 @@ namespace igabde
                                                  location);
       const Quadrature<dim> quadrature(
         std::vector<Point<dim>>(1, cell_and_point.second));
-      FEValues<dim> fe_values(*mapping, fe, quadrature, update_gradients);
-      fe_values.reinit(cell_and_point.first);
-      std::vector<SymmetricTensor<2, dim>> eps(1);
-      fe_values[FEValuesExtractors::Vector(0)]
-        .get_function_symmetric_gradients(u, eps);
-      return this->body_description.material.stiffness() * eps[0];
+      elasticity::FEValuesEvaluator<dim> values(*mapping,
+                                                fe,
+                                                quadrature,
+                                                update_gradients);
+      values.reinit(cell_and_point.first);
+      std::vector<double> local_u;
+      elasticity::get_local_values(values, u, local_u);
+      return elasticity::stress(elasticity::strain<dim>(values, local_u, 0),
+                                this->material());
     }
 
 
@@ -507,9 +397,8 @@ namespace igabde
     LagrangeBody<dim>::write_vtu(const Vector<double> &u,
                                  const std::string    &filename) const
     {
-      StressPostprocessor<dim> postprocessor(
-        this->body_description.material.stiffness());
-      DataOut<dim> data_out;
+      StressPostprocessor<dim> postprocessor(this->material());
+      DataOut<dim>             data_out;
       data_out.attach_dof_handler(dof_handler);
       std::vector<DataComponentInterpretation::DataComponentInterpretation>
         interpretation(
@@ -535,18 +424,13 @@ namespace igabde
     double
     LagrangeBody<dim>::measure() const
     {
-      FEValues<dim> fe_values(*mapping,
-                              fe,
-                              QGauss<dim>(fe.degree + 1),
-                              update_JxW_values);
-      double        result = 0.;
-      for (const auto &cell : dof_handler.active_cell_iterators())
-        {
-          fe_values.reinit(cell);
-          for (const unsigned int q : fe_values.quadrature_point_indices())
-            result += fe_values.JxW(q);
-        }
-      return result;
+      elasticity::FEValuesEvaluator<dim> values(*mapping,
+                                                fe,
+                                                QGauss<dim>(fe.degree + 1),
+                                                update_JxW_values);
+      return elasticity::integrate_measure(dof_handler.begin_active(),
+                                           dof_handler.end(),
+                                           values);
     }
 
 

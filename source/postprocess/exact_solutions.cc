@@ -6,7 +6,7 @@ namespace igabde
 {
   namespace postprocess
   {
-    discretization::ExactSolution<2>
+    elasticity::ExactSolution<2>
     kirsch_solution(const double                            T,
                     const double                            a,
                     const elasticity::IsotropicMaterial<2> &material)
@@ -19,7 +19,7 @@ namespace igabde
            3. - 4. * nu :
            (3. - nu) / (1. + nu));
 
-      discretization::ExactSolution<2> exact;
+      elasticity::ExactSolution<2> exact;
       exact.displacement = [=](const Point<2> &x) {
         const double r = x.norm(), theta = std::atan2(x[1], x[0]);
         const double c = T * a / (8. * mu);
@@ -55,7 +55,7 @@ namespace igabde
 
 
     template <int dim>
-    discretization::ExactSolution<dim>
+    elasticity::ExactSolution<dim>
     lame_solution(const double                              a,
                   const double                              b,
                   const double                              p,
@@ -65,7 +65,7 @@ namespace igabde
       const double nu = material.poisson_ratio;
       const double k  = a * a * p / (b * b - a * a);
 
-      discretization::ExactSolution<dim> exact;
+      elasticity::ExactSolution<dim> exact;
       exact.displacement = [=](const Point<dim> &x) {
         const double r   = std::hypot(x[0], x[1]);
         const double u_r = (1. + nu) * k / E * ((1. - 2. * nu) * r + b * b / r);
@@ -92,12 +92,12 @@ namespace igabde
 
 
 
-    template discretization::ExactSolution<2>
+    template elasticity::ExactSolution<2>
     lame_solution<2>(const double,
                      const double,
                      const double,
                      const elasticity::IsotropicMaterial<2> &);
-    template discretization::ExactSolution<3>
+    template elasticity::ExactSolution<3>
     lame_solution<3>(const double,
                      const double,
                      const double,

@@ -575,6 +575,8 @@ namespace igabde
       body2.parse_parameters(prm, "Body 2");
       exact.parse_parameters(prm);
       contact.parse_parameters(prm);
+      // Pair placement is a property of the discretised surface.
+      discretization.pair_placement = contact.pair_placement;
       load_path.parse_parameters(prm);
       checks.parse_parameters(prm);
 

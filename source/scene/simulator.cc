@@ -364,11 +364,6 @@ namespace igabde
           cs.friction_coefficient         = c.friction_coefficient;
           cs.slave_face                   = c.slave_face;
           cs.master_face                  = c.master_face;
-          cs.placement                    = (c.pair_placement == "knots" ?
-                                               discretization::PairPlacement::knots :
-                                             c.pair_placement == "gauss" ?
-                                               discretization::PairPlacement::gauss :
-                                               discretization::PairPlacement::greville);
           cs.rigid_plane = (parameters.body2.type == "rigid plane");
           if (cs.rigid_plane)
             {

@@ -7,6 +7,7 @@
 #include <igabde/nurbs/geometry_builders.h>
 
 #include <igabde/discretization/body.h>
+#include <igabde/discretization/body_description.h>
 
 #include <igabde/contact/contact_stage.h>
 

@@ -5,6 +5,7 @@
 #include <igabde/nurbs/geometry_builders.h>
 
 #include <igabde/discretization/body.h>
+#include <igabde/discretization/body_description.h>
 
 #include <gtest/gtest.h>
 
@@ -45,14 +46,12 @@ TEST(LagrangeBody, CurvedBeamVolumeAndFaces)
   // Face ids keep their patch meaning: face 4 is y = 0, face 5 is y = 1,
   // face 0 is r = 5 with the outward normal pointing to the axis.
   for (const unsigned int face : {4u, 5u})
-    for (const auto &p :
-         body->surface_points(face, discretization::PairPlacement::greville))
+    for (const auto &p : body->surface_points(face))
       {
         EXPECT_NEAR(p.location[1], face == 4 ? 0. : 1., 1e-12);
         EXPECT_NEAR(p.normal[1], face == 4 ? -1. : 1., 1e-8);
       }
-  for (const auto &p :
-       body->surface_points(0, discretization::PairPlacement::greville))
+  for (const auto &p : body->surface_points(0))
     {
       const double r = std::hypot(p.location[0], p.location[2]);
       EXPECT_NEAR(r, 5., 1e-12);

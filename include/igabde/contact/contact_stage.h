@@ -40,9 +40,6 @@ namespace igabde
       double friction_coefficient = 0.;
       /// Patch face of Body 1 (slave) and Body 2 (master) that may touch.
       unsigned int slave_face = 2, master_face = 3;
-      /// Where pairs sit on NURBS surfaces.
-      discretization::PairPlacement placement =
-        discretization::PairPlacement::greville;
       /// Rigid obstacle instead of a deformable Body 2.
       bool rigid_plane = false;
       /// Rigid plane: a point on it and the unit normal towards Body 1.

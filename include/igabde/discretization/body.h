@@ -1,20 +1,20 @@
 #ifndef igabde_discretization_body_h
 #define igabde_discretization_body_h
 
-#include <igabde/discretization/body_description.h>
+#include <igabde/discretization/settings.h>
 
-#include <igabde/elasticity/sparse_cholesky.h>
+#include <igabde/elasticity/error_norms.h>
+#include <igabde/elasticity/material.h>
 
 #include <deal.II/base/point.h>
 #include <deal.II/base/symmetric_tensor.h>
 #include <deal.II/base/tensor.h>
+#include <deal.II/base/types.h>
 
 #include <deal.II/lac/affine_constraints.h>
-#include <deal.II/lac/sparse_direct.h>
+#include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/sparse_matrix.h>
 #include <deal.II/lac/sparsity_pattern.h>
-#include <deal.II/lac/trilinos_precondition.h>
-#include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/vector.h>
 
 #include <array>
@@ -27,6 +27,16 @@ namespace igabde
   namespace discretization
   {
     using namespace dealii;
+
+    template <int dim>
+    struct BodyDescription;
+
+    /// Exact solution of a verification scene (elasticity room).
+    template <int dim>
+    using ExactSolution = elasticity::ExactSolution<dim>;
+
+    /// Relative error norms (elasticity room).
+    using ErrorNorms = elasticity::ErrorNorms;
 
     /**
      * @brief The linear map from a body's unknowns to the displacement at one
@@ -53,16 +63,6 @@ namespace igabde
     };
 
     /**
-     * @brief Where contact pair points sit on a NURBS surface.
-     */
-    enum class PairPlacement
-    {
-      greville,
-      knots,
-      gauss
-    };
-
-    /**
      * @brief A candidate contact point on a body's surface.
      */
     template <int dim>
@@ -79,20 +79,6 @@ namespace igabde
       double tributary_area = 0.;
       /// Displacement / point-force operator.
       PointOperator<dim> op;
-    };
-
-    /**
-     * @brief Error norms against an exact solution, relative to the exact
-     * solution's norms.
-     */
-    struct ErrorNorms
-    {
-      /// ||u - u_h||_L2 / ||u||_L2.
-      double l2_relative = 0.;
-      /// Energy-norm error / energy norm of the exact solution.
-      double energy_relative = 0.;
-      /// Exact measure (area/volume) of the body by the discrete quadrature.
-      double measure = 0.;
     };
 
     /**
@@ -115,7 +101,7 @@ namespace igabde
       Body(const BodyDescription<dim>   &description,
            const DiscretizationSettings &settings);
 
-      virtual ~Body() = default;
+      virtual ~Body();
 
       /**
        * @brief Builds the space, assembles K and the load vector, applies
@@ -181,9 +167,17 @@ namespace igabde
       virtual unsigned int
       n_elements() const = 0;
 
-      /// The body's description.
+      /// The body's description (include body_description.h to use it).
       const BodyDescription<dim> &
       description() const;
+
+      /// The body's name (output files and messages).
+      const std::string &
+      name() const;
+
+      /// The body's material law.
+      const elasticity::IsotropicMaterial<dim> &
+      material() const;
 
       /**
        * @brief Operator for a physical point inside or on the body.
@@ -192,11 +186,12 @@ namespace igabde
       point_operator(const Point<dim> &location) const = 0;
 
       /**
-       * @brief Candidate contact points on the patch face @p face.
+       * @brief Candidate contact points on the patch face @p face, placed as
+       * DiscretizationSettings::pair_placement says (NURBS) or at the face
+       * nodes (Lagrange).
        */
       virtual std::vector<SurfacePoint<dim>>
-      surface_points(const types::boundary_id face,
-                     const PairPlacement      placement) const = 0;
+      surface_points(const types::boundary_id face) const = 0;
 
       /**
        * @brief The point of the patch face @p face closest to @p location,
@@ -284,8 +279,6 @@ namespace igabde
       virtual void
       assemble() = 0;
 
-      /// Scene description.
-      const BodyDescription<dim> body_description;
       /// Discretisation settings.
       const DiscretizationSettings settings;
 
@@ -315,21 +308,18 @@ namespace igabde
       factorize_matrix(
         const std::vector<types::global_dof_index> &interface_dofs);
 
-      SparseMatrix<double>      constrained_matrix;
+      /// Scene description (owned; body.h only forward-declares it).
+      std::unique_ptr<const BodyDescription<dim>> body_description;
+      /// Supports and the pins of free rigid modes: zero in every solve.
       AffineConstraints<double> solve_constraints;
-      /// Direct path (Linear solver = direct): MUMPS LDL^T, with the Schur
-      /// complement onto the contact face when asked.
-      std::unique_ptr<elasticity::SparseCholesky> cholesky;
-      /// LU path (Linear solver = umfpack).
-      SparseDirectUMFPACK direct_solver;
-      /// Iterative path (Linear solver = cg-amg): the constrained matrix as
-      /// a Trilinos matrix and its ML algebraic multigrid preconditioner.
-      std::unique_ptr<TrilinosWrappers::SparseMatrix>    amg_matrix;
-      std::unique_ptr<TrilinosWrappers::PreconditionAMG> amg;
-      Vector<double>                                     u_load;
-      Vector<double>                                     u_prescribed;
-      std::vector<Vector<double>>                        rigid_modes;
-      std::vector<std::string>                           rigid_mode_names;
+      /// The factorisation (MUMPS, UMFPACK or CG with AMG); defined in
+      /// body.cc so that this header stays free of solver libraries.
+      struct LinearSolver;
+      std::unique_ptr<LinearSolver> linear_solver;
+      Vector<double>                u_load;
+      Vector<double>                u_prescribed;
+      std::vector<Vector<double>>   rigid_modes;
+      std::vector<std::string>      rigid_mode_names;
     };
 
     /**

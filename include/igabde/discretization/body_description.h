@@ -3,6 +3,8 @@
 
 #include <igabde/nurbs/nurbs_patch.h>
 
+#include <igabde/discretization/settings.h>
+
 #include <igabde/elasticity/material.h>
 
 #include <deal.II/base/point.h>
@@ -67,18 +69,6 @@ namespace igabde
     };
 
     /**
-     * @brief Exact solution of a verification scene, for error norms.
-     */
-    template <int dim>
-    struct ExactSolution
-    {
-      /// Displacement (m) at a physical point.
-      std::function<Tensor<1, dim>(const Point<dim> &)> displacement;
-      /// Cauchy stress (Pa) at a physical point.
-      std::function<SymmetricTensor<2, dim>(const Point<dim> &)> stress;
-    };
-
-    /**
      * @brief Everything the scene says about one deformable body,
      * independent of how it is discretised.
      */
@@ -99,25 +89,6 @@ namespace igabde
       std::vector<PointLoad<dim>> point_loads;
       /// Body force per unit volume (N/m^3).
       Tensor<1, dim> body_force;
-    };
-
-    /**
-     * @brief How the scene discretises bodies.
-     */
-    struct DiscretizationSettings
-    {
-      /// "nurbs" or "lagrange".
-      std::string type = "nurbs";
-      /// Polynomial degree (NURBS: degree after elevation; Lagrange: FE_Q).
-      unsigned int degree = 2;
-      /// Extra uniform h-refinements of the scene's base mesh.
-      unsigned int refinements = 0;
-      /// Linear solver: "direct" or "cg-amg".
-      std::string linear_solver = "direct";
-      /// Relative tolerance of the iterative solver.
-      double linear_tolerance = 1e-12;
-      /// Subdivisions per cell and direction in the VTU output.
-      unsigned int output_subdivisions = 4;
     };
   } // namespace discretization
 } // namespace igabde

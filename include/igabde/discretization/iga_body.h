@@ -2,10 +2,10 @@
 #define igabde_discretization_iga_body_h
 
 #include <igabde/nurbs/nurbs_patch.h>
+#include <igabde/nurbs/nurbs_values.h>
 
 #include <igabde/discretization/body.h>
-
-#include <deal.II/base/polynomial.h>
+#include <igabde/discretization/body_description.h>
 
 #include <deal.II/lac/full_matrix.h>
 
@@ -20,6 +20,17 @@ namespace igabde
   namespace discretization
   {
     using namespace dealii;
+
+    /**
+     * @brief Where contact pair points sit on a NURBS surface
+     * (DiscretizationSettings::pair_placement).
+     */
+    enum class PairPlacement
+    {
+      greville,
+      knots,
+      gauss
+    };
 
     /**
      * @brief The isogeometric (NURBS) discretisation of a body, hosted in
@@ -89,7 +100,11 @@ namespace igabde
        */
       std::vector<SurfacePoint<dim>>
       surface_points(const types::boundary_id face,
-                     const PairPlacement      placement) const override;
+                     const PairPlacement      placement) const;
+
+      /// @brief surface_points() with the placement of the settings.
+      std::vector<SurfacePoint<dim>>
+      surface_points(const types::boundary_id face) const override;
 
       /**
        * @brief Relative L2 error of the displacement and relative energy
@@ -177,45 +192,6 @@ namespace igabde
       assemble() override;
 
     private:
-      /**
-       * Basis functions and geometry of one knot span at a set of points
-       * given in the cell's reference coordinates [0, 1]^dim.
-       */
-      struct CellEvaluation
-      {
-        /// Global control-point index of each local function
-        /// (lexicographic, direction 0 fastest).
-        std::vector<unsigned int> control_points;
-        /// R[q][l].
-        std::vector<std::vector<double>> values;
-        /// dR/dxi[q][l] (parametric gradient).
-        std::vector<std::vector<Tensor<1, dim>>> parametric_gradients;
-        /// x(xi_q).
-        std::vector<Point<dim>> points;
-        /// dx/dxi at xi_q.
-        std::vector<Tensor<2, dim>> jacobians;
-        /// Parametric coordinates xi_q.
-        std::vector<Point<dim>> parametric_points;
-      };
-
-      /// Evaluates on span @p span at reference points @p reference.
-      void
-      evaluate_cell(const std::array<unsigned int, dim> &span,
-                    const std::vector<Point<dim>>       &reference,
-                    CellEvaluation                      &result) const;
-
-      /// Span lengths of span @p span.
-      Tensor<1, dim>
-      span_lengths(const std::array<unsigned int, dim> &span) const;
-
-      /// Reference points and weights of a Gauss rule on cell face @p face
-      /// (the face coordinate fixed at 0 or 1).
-      void
-      face_rule(const unsigned int       face,
-                const unsigned int       n_points_1d,
-                std::vector<Point<dim>> &points,
-                std::vector<double>     &weights) const;
-
       /// Surface measure factor |cof(J) e_d| and outward unit normal.
       std::pair<double, Tensor<1, dim>>
       face_measure_and_normal(const unsigned int    face,
@@ -225,12 +201,11 @@ namespace igabde
       unsigned int
       max_degree() const;
 
-      nurbs::NurbsPatch<dim>                           geometry;
-      Triangulation<dim>                               parametric_mesh;
-      std::array<std::vector<FullMatrix<double>>, dim> extraction;
-      std::array<std::vector<unsigned int>, dim>       span_knot_index;
-      std::array<std::vector<double>, dim>             breaks;
-      std::array<std::vector<Polynomials::Polynomial<double>>, dim> bernstein;
+      nurbs::NurbsPatch<dim>               geometry;
+      Triangulation<dim>                   parametric_mesh;
+      std::array<std::vector<double>, dim> breaks;
+      /// Pair placement parsed from the settings.
+      PairPlacement default_placement = PairPlacement::greville;
       /// Sign of det(dx/dxi) (+1 right-handed).
       double orientation = 1.;
       /// Size of the body (bounding-box diagonal of the control net).

@@ -1,7 +1,10 @@
 #ifndef igabde_discretization_lagrange_body_h
 #define igabde_discretization_lagrange_body_h
 
+#include <igabde/nurbs/nurbs_patch.h>
+
 #include <igabde/discretization/body.h>
+#include <igabde/discretization/body_description.h>
 
 #include <deal.II/grid/tria.h>
 
@@ -42,8 +45,7 @@ namespace igabde
       point_operator(const Point<dim> &location) const override;
 
       std::vector<SurfacePoint<dim>>
-      surface_points(const types::boundary_id face,
-                     const PairPlacement      placement) const override;
+      surface_points(const types::boundary_id face) const override;
 
       ErrorNorms
       compute_errors(const Vector<double>     &u,

@@ -1,8 +1,7 @@
 #ifndef igabde_postprocess_exact_solutions_h
 #define igabde_postprocess_exact_solutions_h
 
-#include <igabde/discretization/body_description.h>
-
+#include <igabde/elasticity/error_norms.h>
 #include <igabde/elasticity/material.h>
 
 namespace igabde
@@ -16,7 +15,7 @@ namespace igabde
      * @p a centred at the origin under remote tension @p T along x (2D;
      * plane strain or plane stress from @p material).
      */
-    discretization::ExactSolution<2>
+    elasticity::ExactSolution<2>
     kirsch_solution(const double                            T,
                     const double                            a,
                     const elasticity::IsotropicMaterial<2> &material);
@@ -26,7 +25,7 @@ namespace igabde
      * under internal pressure @p p, plane strain (in 3D: w = 0).
      */
     template <int dim>
-    discretization::ExactSolution<dim>
+    elasticity::ExactSolution<dim>
     lame_solution(const double                              a,
                   const double                              b,
                   const double                              p,
