@@ -18,7 +18,7 @@ using namespace igabde;
 
 namespace
 {
-  base::Json
+  nlohmann::json
   run(const std::string                               &scene,
       const std::string                               &tag,
       std::vector<std::pair<std::string, std::string>> overrides)
@@ -59,12 +59,12 @@ main(int argc, char **argv)
                                    {{"Discretization/Type", type},
                                       {"Contact/Friction coefficient", mu}});
           const double u =
-            summary.at("checks").at("pressure_uniformity").number();
+            summary.at("checks").at("pressure_uniformity").get<double>();
           const auto &f =
             summary.at("load_steps").at(0).at("total_contact_force");
-          const double normal = f.at(f.size() - 1).number();
+          const double normal = f.at(f.size() - 1).get<double>();
           deallog << "V3 " << dim << " " << type << " mu=" << mu << ": pairs "
-                  << summary.at("n_contact_pairs").number()
+                  << summary.at("n_contact_pairs").get<double>()
                   << ", pressure uniformity <= 1e-8: " << yes(u <= 1e-8)
                   << ", total normal force " << normal << std::endl;
         }
@@ -81,8 +81,8 @@ main(int argc, char **argv)
             {{"Discretization/Type", type}, {"Body 2/Subdivisions", "3"}});
       const auto &f = summary.at("total_contact_force");
       deallog << "V3 non-matching " << type << ": resultant = load to 1e-10: "
-              << yes(std::abs(f.at(1).number() - 1.) <= 1e-10 &&
-                     std::abs(f.at(0).number()) <= 1e-10)
+              << yes(std::abs(f.at(1).get<double>() - 1.) <= 1e-10 &&
+                     std::abs(f.at(0).get<double>()) <= 1e-10)
               << std::endl;
     }
 
@@ -100,11 +100,11 @@ main(int argc, char **argv)
       for (unsigned int s = 0; s < steps.size(); ++s)
         {
           const auto  &f  = steps.at(s).at("total_contact_force");
-          const double ft = std::abs(f.at(0).number());
-          const double fn = std::abs(f.at(1).number());
+          const double ft = std::abs(f.at(0).get<double>());
+          const double fn = std::abs(f.at(1).get<double>());
           bounded         = bounded && ft <= mu * fn * (1. + 1e-8);
           saw_stick =
-            saw_stick || (s > 0 && steps.at(s).at("n_stick").number() > 0);
+            saw_stick || (s > 0 && steps.at(s).at("n_stick").get<double>() > 0);
           last_ratio = ft / (mu * fn);
         }
       deallog << "V4 " << type << ": " << steps.size()
@@ -127,7 +127,7 @@ main(int argc, char **argv)
     const double mu    = 0.4;
     auto         ratio = [&](const unsigned int s) {
       const auto &f = steps.at(s).at("total_contact_force");
-      return f.at(0).number() / (mu * f.at(1).number());
+      return f.at(0).get<double>() / (mu * f.at(1).get<double>());
     };
     deallog << "V4 reversal: forward slip F_t = -mu F_n: "
             << yes(std::abs(ratio(2) + 1.) <= 1e-8)
@@ -135,7 +135,7 @@ main(int argc, char **argv)
             << yes(std::abs(ratio(4) - 1.) <= 1e-8)
             << ", after halving the pressure F_t = +mu F_n: "
             << yes(std::abs(ratio(5) - 1.) <= 1e-8) << ", final F_n "
-            << steps.at(5).at("total_contact_force").at(1).number()
+            << steps.at(5).at("total_contact_force").at(1).get<double>()
             << std::endl;
   }
 
@@ -146,14 +146,14 @@ main(int argc, char **argv)
       const auto summary =
         run("v5-hertz-2d", "v5-" + type, {{"Discretization/Type", type}});
       const auto  &checks = summary.at("checks");
-      const double a_err  = checks.at("hertz_half_width_error").number();
-      const double l2     = checks.at("pressure_l2_rel_error").number();
+      const double a_err  = checks.at("hertz_half_width_error").get<double>();
+      const double l2     = checks.at("pressure_l2_rel_error").get<double>();
       const double limit  = (type == "nurbs" ? 0.01 : 0.02);
       deallog << "V5 " << type << ": half-width within " << 100 * limit
               << " %: " << yes(a_err <= limit)
               << ", profile L2 error <= 3 %: " << yes(l2 <= 0.03)
               << ", half-width " << std::setprecision(3)
-              << checks.at("hertz_half_width").number() << std::setprecision(6)
-              << std::endl;
+              << checks.at("hertz_half_width").get<double>()
+              << std::setprecision(6) << std::endl;
     }
 }

@@ -37,9 +37,9 @@ namespace
                {"Output/Write vtu", "false"},
                {"Output/Print timing", "false"}},
       log);
-    return {summary.at("n_dofs").number(),
-            summary.at("checks").at("l2_error").number(),
-            summary.at("checks").at("energy_error").number()};
+    return {summary.at("n_dofs").get<double>(),
+            summary.at("checks").at("l2_error").get<double>(),
+            summary.at("checks").at("energy_error").get<double>()};
   }
 } // namespace
 

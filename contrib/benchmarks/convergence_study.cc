@@ -50,12 +50,14 @@ main(int argc, char **argv)
                  {"Output/Write vtu", "false"},
                  {"Output/Print timing", "false"}},
         log);
-      const double l2     = summary.at("checks").at("l2_error").number();
-      const double energy = summary.at("checks").at("energy_error").number();
+      const double l2 = summary.at("checks").at("l2_error").get<double>();
+      const double energy =
+        summary.at("checks").at("energy_error").get<double>();
       std::cout << std::defaultfloat << "| " << r << " | "
-                << static_cast<long long>(summary.at("n_elements").number())
+                << static_cast<long long>(
+                     summary.at("n_elements").get<double>())
                 << " | "
-                << static_cast<long long>(summary.at("n_dofs").number())
+                << static_cast<long long>(summary.at("n_dofs").get<double>())
                 << " | " << std::scientific << std::setprecision(3) << l2
                 << " | " << std::fixed << std::setprecision(2);
       if (r > first)
@@ -69,9 +71,10 @@ main(int argc, char **argv)
       else
         std::cout << "-";
       std::cout << " | " << std::setprecision(3)
-                << summary.at("timing").at("assembly").number() +
-                     summary.at("timing").at("factorization").number()
-                << " | " << summary.at("timing").at("total").number() << " |\n";
+                << summary.at("timing").at("assembly").get<double>() +
+                     summary.at("timing").at("factorization").get<double>()
+                << " | " << summary.at("timing").at("total").get<double>()
+                << " |\n";
       previous_l2     = l2;
       previous_energy = energy;
     }

@@ -20,30 +20,6 @@ namespace igabde
       using Vec = Eigen::VectorXd;
       using Mat = Eigen::MatrixXd;
 
-      // Projection of x = (x_n, x_t) onto the cone |x_t| <= mu x_n.
-      void
-      project_on_cone(double *x, const unsigned int d, const double mu)
-      {
-        double nt = 0.;
-        for (unsigned int k = 1; k < d; ++k)
-          nt += x[k] * x[k];
-        nt = std::sqrt(nt);
-        if (nt <= mu * x[0])
-          return;
-        if (mu * nt <= -x[0])
-          {
-            for (unsigned int k = 0; k < d; ++k)
-              x[k] = 0.;
-            return;
-          }
-        const double xn = (x[0] + mu * nt) / (1. + mu * mu);
-        x[0]            = xn;
-        for (unsigned int k = 1; k < d; ++k)
-          x[k] *= mu * xn / nt;
-      }
-
-
-
       double
       equilibrium_error(const ContactProblem &problem,
                         const Vec            &p,
@@ -62,59 +38,8 @@ namespace igabde
 
 
 
-      // Per-contact weights r_n, r_t.
-      struct Weights
-      {
-        Vec r_n, r_t;
-      };
-
-
-
-      Weights
-      compute_weights(const ContactProblem &problem, const double factor)
-      {
-        const unsigned int nc = problem.n_contacts, d = problem.n_components;
-        Weights            w;
-        w.r_n.resize(nc);
-        w.r_t.resize(nc);
-        double max_diag = 0.;
-        if (problem.n_rows() > 0)
-          max_diag = problem.W.diagonal().maxCoeff();
-        const double fallback = max_diag > 0. ? factor / max_diag : factor;
-        for (unsigned int c = 0; c < nc; ++c)
-          {
-            const unsigned int o   = c * d;
-            const double       wnn = problem.W(o, o);
-            w.r_n[c] =
-              (wnn > 1e-14 * max_diag && wnn > 0.) ? factor / wnn : fallback;
-            double lmax = 0.;
-            if (d == 2)
-              lmax = problem.W(o + 1, o + 1);
-            else if (d == 3)
-              {
-                const double a = problem.W(o + 1, o + 1),
-                             b = problem.W(o + 2, o + 2),
-                             e = 0.5 * (problem.W(o + 1, o + 2) +
-                                        problem.W(o + 2, o + 1));
-                lmax =
-                  0.5 * (a + b) + std::sqrt(0.25 * (a - b) * (a - b) + e * e);
-              }
-            w.r_t[c] =
-              (lmax > 1e-14 * max_diag && lmax > 0.) ? factor / lmax : w.r_n[c];
-          }
-        return w;
-      }
-
-
-
-      // The local B-subdifferential element of one contact.
-      struct Branch
-      {
-        ContactStatus   status = ContactStatus::open;
-        bool            closed = false;
-        Eigen::Matrix3d A      = Eigen::Matrix3d::Zero();
-        Eigen::Matrix3d B      = Eigen::Matrix3d::Zero();
-      };
+      using Weights = PairWeights;
+      using Branch  = PairPiece;
 
 
 
@@ -154,88 +79,16 @@ namespace igabde
             branches->resize(problem.n_contacts);
           for (unsigned int c = 0; c < problem.n_contacts; ++c)
             {
-              const unsigned int o      = c * d;
-              const double       rn     = w.r_n[c];
-              const double       pn     = x[o];
-              const double       run    = rn * u[o];
-              const bool         closed = run < pn;
-              H[o]                      = closed ? run : pn;
-              Branch *br                = branches ? &(*branches)[c] : nullptr;
-              if (br)
-                {
-                  br->A.setZero();
-                  br->B.setZero();
-                  br->closed = closed;
-                  if (closed)
-                    br->A(0, 0) = rn;
-                  else
-                    br->B(0, 0) = 1.;
-                  br->status =
-                    closed ? ContactStatus::slip : ContactStatus::open;
-                }
-              if (d == 1)
-                continue;
-
-              const double mu   = problem.mu[c];
-              const double rt   = w.r_t[c];
-              const double R    = radius == FrictionRadius::christensen_pang ?
-                                    mu * std::max(pn, 0.) :
-                                    mu * std::max(pn - run, 0.);
-              double       z[2] = {0., 0.};
-              double       nz   = 0.;
-              for (unsigned int k = 1; k < d; ++k)
-                {
-                  z[k - 1] = x[o + k] - rt * u[o + k];
-                  nz += z[k - 1] * z[k - 1];
-                }
-              nz = std::sqrt(nz);
-              if (nz <= R)
-                {
-                  // stick, lambda := 1 (includes z = 0, R = 0)
-                  for (unsigned int k = 1; k < d; ++k)
-                    H[o + k] = rt * u[o + k];
-                  if (br)
-                    {
-                      for (unsigned int k = 1; k < d; ++k)
-                        br->A(k, k) = rt;
-                      if (closed)
-                        br->status = ContactStatus::stick;
-                    }
-                }
-              else if (R <= 0.)
-                {
-                  // projection onto {0}: H_t = p_t
-                  for (unsigned int k = 1; k < d; ++k)
-                    H[o + k] = x[o + k];
-                  if (br)
-                    for (unsigned int k = 1; k < d; ++k)
-                      br->B(k, k) = 1.;
-                }
-              else
-                {
-                  const double lambda = R / nz;
-                  for (unsigned int k = 1; k < d; ++k)
-                    H[o + k] = x[o + k] - lambda * z[k - 1];
-                  if (br)
-                    {
-                      // Gamma = lambda (I - zhat zhat^T)
-                      for (unsigned int k = 1; k < d; ++k)
-                        for (unsigned int l = 1; l < d; ++l)
-                          {
-                            const double zz = (z[k - 1] / nz) * (z[l - 1] / nz);
-                            const double gamma =
-                              lambda * ((k == l ? 1. : 0.) - zz);
-                            br->B(k, l) = (k == l ? 1. : 0.) - gamma;
-                            br->A(k, l) = rt * gamma;
-                          }
-                      for (unsigned int k = 1; k < d; ++k)
-                        {
-                          br->B(k, 0) = -mu * z[k - 1] / nz;
-                          if (radius == FrictionRadius::alart_curnier)
-                            br->A(k, 0) = mu * rn * z[k - 1] / nz;
-                        }
-                    }
-                }
+              const unsigned int o = c * d;
+              pair_law(d,
+                       d > 1 ? problem.mu[c] : 0.,
+                       w.r_n[c],
+                       w.r_t[c],
+                       radius,
+                       x.data() + o,
+                       u.data() + o,
+                       H.data() + o,
+                       branches ? &(*branches)[c] : nullptr);
             }
           if (na > 0)
             H.tail(na) = problem.G.transpose() * x.head(m) - problem.b;
@@ -533,7 +386,7 @@ namespace igabde
                      const bool            on_original,
                      const unsigned int    budget)
       {
-        const Weights w = compute_weights(problem, settings.r_factor);
+        const Weights w = pair_weights(problem, settings.r_factor);
         const System  sys(problem, w, radius);
         const double  sigma = settings.armijo_sigma;
         const double  beta  = settings.armijo_beta;
@@ -724,166 +577,6 @@ namespace igabde
 
 
 
-    std::string
-    to_string(const ContactStatus status)
-    {
-      switch (status)
-        {
-          case ContactStatus::open:
-            return "open";
-          case ContactStatus::stick:
-            return "stick";
-          case ContactStatus::slip:
-            return "slip";
-        }
-      return "unknown";
-    }
-
-
-
-    double
-    natural_map_error(const ContactProblem  &problem,
-                      const Eigen::VectorXd &p,
-                      const Eigen::VectorXd &u)
-    {
-      const unsigned int d   = problem.n_components;
-      double             sum = 0.;
-      double             y[3], e;
-      for (unsigned int c = 0; c < problem.n_contacts; ++c)
-        {
-          const unsigned int o = c * d;
-          if (d == 1)
-            {
-              e = p[o] - std::max(0., p[o] - u[o]);
-              sum += e * e;
-              continue;
-            }
-          const double mu = problem.mu[c];
-          double       ut = 0.;
-          for (unsigned int k = 1; k < d; ++k)
-            ut += u[o + k] * u[o + k];
-          ut = std::sqrt(ut);
-          for (unsigned int k = 0; k < d; ++k)
-            y[k] = p[o + k] - u[o + k];
-          y[0] -= mu * ut;
-          project_on_cone(y, d, mu);
-          for (unsigned int k = 0; k < d; ++k)
-            {
-              e = p[o + k] - y[k];
-              sum += e * e;
-            }
-        }
-      return std::sqrt(sum);
-    }
-
-
-
-    double
-    relative_natural_map_error(const ContactProblem  &problem,
-                               const Eigen::VectorXd &p,
-                               const Eigen::VectorXd &u)
-    {
-      const double err    = natural_map_error(problem, p, u);
-      const double norm_q = problem.q.norm();
-      const double norm_r = (u - problem.q).norm();
-      if (norm_q > 0. && norm_q > 1e-12 * norm_r)
-        return err / norm_q;
-      const double norm_p = p.norm();
-      return norm_p > 0. ? err / norm_p : err;
-    }
-
-
-
-    double
-    balanced_natural_map_error(const ContactProblem  &problem,
-                               const Eigen::VectorXd &p,
-                               const Eigen::VectorXd &u)
-    {
-      const unsigned int d       = problem.n_components;
-      const Weights      weights = compute_weights(problem, 1.);
-      double             sum = 0., sum_q = 0., sum_p = 0.;
-      double             y[3], x[3], e;
-      for (unsigned int c = 0; c < problem.n_contacts; ++c)
-        {
-          const unsigned int o   = c * d;
-          const double       rho = weights.r_n[c];
-          const double       mu  = d > 1 ? problem.mu[c] : 0.;
-          double             ut  = 0.;
-          for (unsigned int k = 1; k < d; ++k)
-            ut += u[o + k] * u[o + k];
-          ut = std::sqrt(ut);
-          for (unsigned int k = 0; k < d; ++k)
-            {
-              x[k] = rho * u[o + k];
-              sum_q += rho * rho * problem.q[o + k] * problem.q[o + k];
-              sum_p += p[o + k] * p[o + k];
-            }
-          x[0] += rho * mu * ut;
-          for (unsigned int k = 0; k < d; ++k)
-            y[k] = p[o + k] - x[k];
-          if (d == 1)
-            y[0] = std::max(y[0], 0.);
-          else
-            project_on_cone(y, d, mu);
-          for (unsigned int k = 0; k < d; ++k)
-            {
-              e = p[o + k] - y[k];
-              sum += e * e;
-            }
-        }
-      const double err = std::sqrt(sum);
-      const double nq = std::sqrt(sum_q), np = std::sqrt(sum_p);
-      double       nr = 0.; // |rho (u - q)|, to detect q ~ 0
-      for (unsigned int i = 0; i < problem.n_rows(); ++i)
-        {
-          const double v = weights.r_n[i / d] * (u[i] - problem.q[i]);
-          nr += v * v;
-        }
-      nr = std::sqrt(nr);
-      if (nq > 0. && nq > 1e-12 * nr)
-        return err / nq;
-      return np > 0. ? err / np : err;
-    }
-
-
-
-    void
-    BNewtonSolver::Result::print_history(std::ostream &out) const
-    {
-      std::ios::fmtflags f(out.flags());
-      out << "   it     phase        |H|    residual    balanced        step"
-             "  open stick  slip   red note\n";
-      for (const IterationRecord &rec : history)
-        out << std::setw(5) << rec.iteration << ' ' << std::setw(9) << rec.phase
-            << std::scientific << std::setprecision(4) << std::setw(12)
-            << rec.h_norm << std::setw(12) << rec.residual << std::setw(12)
-            << rec.balanced_residual << std::setw(12) << rec.step
-            << std::setw(6) << rec.n_open << std::setw(6) << rec.n_stick
-            << std::setw(6) << rec.n_slip << std::setw(6) << rec.n_reduced
-            << ' ' << rec.note << '\n';
-      out << summary() << '\n';
-      out.flags(f);
-    }
-
-
-
-    std::string
-    BNewtonSolver::Result::summary() const
-    {
-      std::ostringstream s;
-      s << (converged ? "converged" : "NOT converged") << " after "
-        << iterations << " iterations, relative natural-map residual "
-        << std::scientific << std::setprecision(4) << residual << " (balanced "
-        << balanced_residual << ")";
-      if (alpha.size() > 0)
-        s << ", equilibrium residual " << equilibrium_residual;
-      s << ", open/stick/slip " << n_open << '/' << n_stick << '/' << n_slip
-        << ": " << diagnosis;
-      return s.str();
-    }
-
-
-
     BNewtonSolver::BNewtonSolver(const Settings &settings)
       : settings(settings)
     {
@@ -900,6 +593,14 @@ namespace igabde
                     "BNewtonSolver: min_step must be in (0, 1)"));
       AssertThrow(settings.r_factor > 0.,
                   dealii::ExcMessage("BNewtonSolver: r_factor must be > 0"));
+    }
+
+
+
+    std::string
+    BNewtonSolver::name() const
+    {
+      return "bde";
     }
 
 
@@ -1112,7 +813,7 @@ namespace igabde
 
       // Final per-contact status at (p, u), with the phase-1 radius.
       {
-        const Weights       w = compute_weights(problem, settings.r_factor);
+        const Weights       w = pair_weights(problem, settings.r_factor);
         const System        sys(problem, w, settings.radius);
         std::vector<Branch> branches;
         Vec                 H;

@@ -242,6 +242,52 @@ namespace igabde
 
 
     template <int dim>
+    bool
+    Body<dim>::contains(const Point<dim> &location) const
+    {
+      try
+        {
+          point_operator(location);
+          return true;
+        }
+      catch (const ExceptionBase &)
+        {
+          return false;
+        }
+    }
+
+
+
+    template <int dim>
+    unsigned int
+    Body<dim>::dof_component(const types::global_dof_index i) const
+    {
+      AssertIndexRange(i, dof_components.size());
+      return dof_components[i];
+    }
+
+
+
+    template <int dim>
+    Tensor<1, dim>
+    Body<dim>::support_reaction(const Vector<double> &u,
+                                const Vector<double> &f) const
+    {
+      AssertDimension(u.size(), n_unknowns);
+      AssertDimension(f.size(), n_unknowns);
+      Vector<double> r(n_unknowns);
+      system_matrix.vmult(r, u);
+      r -= f;
+      Tensor<1, dim> reaction;
+      for (types::global_dof_index i = 0; i < n_unknowns; ++i)
+        if (constraints.is_constrained(i))
+          reaction[dof_components[i]] += r[i];
+      return reaction;
+    }
+
+
+
+    template <int dim>
     types::global_dof_index
     Body<dim>::n_dofs() const
     {

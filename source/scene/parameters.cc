@@ -1,7 +1,10 @@
 #include <igabde/base/utilities.h>
 
+#include <igabde/contact/contact_solver.h>
+
 #include <igabde/scene/parameters.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace igabde
@@ -302,6 +305,15 @@ namespace igabde
                           "Where pairs sit on a NURBS surface: images of the "
                           "Greville abscissae, knot-grid points or Gauss "
                           "points. Lagrange surfaces use their nodes.");
+        prm.declare_entry("Pairing",
+                          "node-to-surface",
+                          Patterns::Selection("node-to-surface|node-to-node"),
+                          "How Body 1's contact points are paired with the "
+                          "surface they face. node-to-surface: the coincident "
+                          "point where the meshes match, else the closest "
+                          "point of the master face (exact on NURBS); "
+                          "node-to-node: matching meshes only (an error "
+                          "names the first point without a partner).");
         prm.declare_entry("Tolerance",
                           "1e-10",
                           Patterns::Double(0.),
@@ -347,6 +359,7 @@ namespace igabde
         slave_face           = prm.get_integer("Slave face");
         master_face          = prm.get_integer("Master face");
         pair_placement       = prm.get("Pair placement");
+        pairing              = prm.get("Pairing");
         tolerance            = prm.get_double("Tolerance");
         max_iterations       = prm.get_integer("Max iterations");
         r_scale              = prm.get_double("r scale");
@@ -376,6 +389,17 @@ namespace igabde
                           "Body 1/Radius) on a rigid flat: adds "
                           "checks.hertz_half_width, hertz_peak_pressure and "
                           "pressure_l2_rel_error. 0: no Hertz check.");
+        prm.declare_entry("Hertz axis point",
+                          "0, 0",
+                          Patterns::Anything(),
+                          "A point (m) on the symmetry axis of the Hertz "
+                          "contact: pair pressures are plotted against the "
+                          "distance from this axis.");
+        prm.declare_entry("Hertz axis direction",
+                          "0, 1",
+                          Patterns::Anything(),
+                          "Direction of the symmetry axis of the Hertz "
+                          "contact (the load direction).");
       }
       prm.leave_subsection();
     }
@@ -387,8 +411,10 @@ namespace igabde
     {
       prm.enter_subsection("Checks");
       {
-        uniform_pressure = prm.get_double("Uniform pressure");
-        hertz_line_load  = prm.get_double("Hertz line load");
+        uniform_pressure     = prm.get_double("Uniform pressure");
+        hertz_line_load      = prm.get_double("Hertz line load");
+        hertz_axis_point     = prm.get("Hertz axis point");
+        hertz_axis_direction = prm.get("Hertz axis direction");
       }
       prm.leave_subsection();
     }
@@ -600,10 +626,28 @@ namespace igabde
                                      "semismooth Newton path) is not "
                                      "available yet; use 'condensed' or "
                                      "'auto'."));
-      AssertThrow(contact.algorithm == "bde",
-                  base::ExcInput(f +
-                                 "Contact/Algorithm = " + contact.algorithm +
-                                 " is not available yet; use 'bde'."));
+      {
+        const auto available = contact::available_contact_solvers();
+        AssertThrow(
+          std::find(available.begin(), available.end(), contact.algorithm) !=
+            available.end(),
+          base::ExcInput(f + "Contact/Algorithm = " + contact.algorithm +
+                         " is not available yet; use 'bde'."));
+      }
+      if (checks.hertz_line_load > 0.)
+        {
+          AssertThrow(dimension == 2,
+                      base::ExcInput(f + "Checks/Hertz line load is the 2D "
+                                         "line contact; set it to 0 in 3D."));
+          const auto e = base::parse_doubles(checks.hertz_axis_direction,
+                                             f + "Checks/Hertz axis direction");
+          AssertThrow(e.size() == 2 && std::hypot(e[0], e[1]) > 0.,
+                      base::ExcInput(f + "Checks/Hertz axis direction = '" +
+                                     checks.hertz_axis_direction +
+                                     "' must be a non-zero 2D vector."));
+          base::parse_point<2>(checks.hertz_axis_point,
+                               f + "Checks/Hertz axis point");
+        }
       AssertThrow(load_path.displacement_factors.empty() ||
                     load_path.load_factors.empty() ||
                     load_path.displacement_factors.size() ==

@@ -1,12 +1,20 @@
 #include <igabde/base/utilities.h>
 
+#include <igabde/discretization/body_description.h>
+
+#include <igabde/elasticity/stress_measures.h>
+
 #include <igabde/contact/contact_stage.h>
 
+#include <igabde/postprocess/contact_checks.h>
+#include <igabde/postprocess/contact_output.h>
 #include <igabde/postprocess/exact_solutions.h>
 #include <igabde/scene/geometry.h>
+#include <igabde/scene/load_controller.h>
 #include <igabde/scene/simulator.h>
 
 #include <deal.II/base/data_out_base.h>
+#include <deal.II/base/mpi.h>
 
 #include <algorithm>
 #include <cctype>
@@ -70,9 +78,10 @@ namespace igabde
       : parameters(parameters)
       , scene_file(scene_file)
       , output_directory(output_directory)
-      , log(log)
-      , timer(log, TimerOutput::never, TimerOutput::wall_times)
-      , step_records(base::Json::array())
+      , root(Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+      , pcout(log, root)
+      , timer(timing_table, TimerOutput::never, TimerOutput::wall_times)
+      , step_records(nlohmann::json::array())
     {
       summary["scene"]          = parameters.name;
       summary["status"]         = "running";
@@ -80,6 +89,16 @@ namespace igabde
       summary["discretization"] = parameters.discretization.type;
       summary["degree"]         = parameters.discretization.degree;
       summary["refinements"]    = parameters.discretization.refinements;
+    }
+
+
+
+    template <int dim>
+    std::ostream &
+    Simulator<dim>::contact_log()
+    {
+      static std::ostream discard(nullptr);
+      return root ? pcout.get_stream() : discard;
     }
 
 
@@ -258,13 +277,15 @@ namespace igabde
                                                   material);
       }
 
+      const discretization::DiscretizationSettings &settings =
+        parameters.discretization;
       bodies.push_back(discretization::create_body<dim>(
         make_description(parameters.body1, "Body 1"),
-        parameters.discretization));
+        settings));
       if (parameters.body2.type == "deformable")
         bodies.push_back(discretization::create_body<dim>(
           make_description(parameters.body2, "Body 2"),
-          parameters.discretization));
+          settings));
       pvd_records.resize(bodies.size());
 
       types::global_dof_index n_dofs     = 0;
@@ -274,45 +295,40 @@ namespace igabde
           Timer clock;
           body->setup_system();
           if (parameters.output.progress)
-            log << "  [progress] " << body->description().name
-                << ": space and assembly, " << body->n_dofs() << " unknowns, "
-                << std::setprecision(3) << clock.wall_time() << " s"
-                << std::setprecision(6) << std::endl;
+            pcout << "  [progress] " << body->name() << ": space and assembly, "
+                  << body->n_dofs() << " unknowns, " << std::setprecision(3)
+                  << clock.wall_time() << " s" << std::setprecision(6)
+                  << std::endl;
           n_dofs += body->n_dofs();
           n_elements += body->n_elements();
-          log << "  " << body->description().name << ": " << body->n_elements()
-              << " elements, " << body->n_dofs() << " unknowns ("
-              << body->discretization_name() << ", degree "
-              << parameters.discretization.degree << ")" << std::endl;
+          pcout << "  " << body->name() << ": " << body->n_elements()
+                << " elements, " << body->n_dofs() << " unknowns ("
+                << body->discretization_name() << ", degree "
+                << parameters.discretization.degree << ")" << std::endl;
           for (const auto &name : body->free_rigid_mode_names())
-            log << "    free rigid mode left by the supports: " << name
-                << " (closed by the contact equilibrium)" << std::endl;
+            pcout << "    free rigid mode left by the supports: " << name
+                  << " (closed by the contact equilibrium)" << std::endl;
         }
-      summary["n_dofs"]     = static_cast<unsigned long long>(n_dofs);
-      summary["n_elements"] = n_elements;
-      base::Json per_body   = base::Json::array();
+      summary["n_dofs"]       = static_cast<unsigned long long>(n_dofs);
+      summary["n_elements"]   = n_elements;
+      nlohmann::json per_body = nlohmann::json::array();
       for (const auto &body : bodies)
-        {
-          base::Json b;
-          b["name"]        = body->description().name;
-          b["n_dofs"]      = static_cast<unsigned long long>(body->n_dofs());
-          b["n_elements"]  = body->n_elements();
-          base::Json modes = base::Json::array();
-          for (const auto &name : body->free_rigid_mode_names())
-            modes.push_back(name);
-          b["free_rigid_modes"] = modes;
-          per_body.push_back(b);
-        }
+        per_body.push_back(nlohmann::json{
+          {"name", body->name()},
+          {"n_dofs", static_cast<unsigned long long>(body->n_dofs())},
+          {"n_elements", body->n_elements()},
+          {"free_rigid_modes", body->free_rigid_mode_names()}});
       summary["bodies"] = per_body;
 
       // Every body without supports that fix it must be held by contact.
       for (const auto &body : bodies)
-        AssertThrow(
-          body->free_rigid_modes().empty() || parameters.contact.enabled,
-          base::ExcInput(scene_file + ": " + body->description().name +
-                         " is not held against " +
-                         body->free_rigid_mode_names()[0] +
-                         " and the scene has no contact; add Supports."));
+        AssertThrow(body->free_rigid_modes().empty() ||
+                      parameters.contact.enabled,
+                    base::ExcInput(scene_file + ": " + body->name() +
+                                   " is not held against " +
+                                   body->free_rigid_mode_names()[0] +
+                                   " and the scene has no contact; add "
+                                   "Supports."));
     }
 
 
@@ -333,19 +349,19 @@ namespace igabde
                     std::vector<discretization::PointOperator<dim>>());
           if (parameters.output.progress)
             {
-              log << "  [progress] " << bodies[b]->description().name
-                  << ": factorisation";
+              pcout << "  [progress] " << bodies[b]->name()
+                    << ": factorisation";
               if (bodies[b]->factor_entries() > 0.)
-                log << " (" << std::setprecision(3)
-                    << bodies[b]->factor_entries() << " factor entries"
-                    << (bodies[b]->has_schur_complement() ?
-                          ", Schur complement on " +
-                            std::to_string(bodies[b]->n_interface_dofs()) +
-                            " face unknowns" :
-                          std::string())
-                    << ")";
-              log << ", " << std::setprecision(3) << clock.wall_time() << " s"
-                  << std::setprecision(6) << std::endl;
+                pcout << " (" << std::setprecision(3)
+                      << bodies[b]->factor_entries() << " factor entries"
+                      << (bodies[b]->has_schur_complement() ?
+                            ", Schur complement on " +
+                              std::to_string(bodies[b]->n_interface_dofs()) +
+                              " face unknowns" :
+                            std::string())
+                      << ")";
+              pcout << ", " << std::setprecision(3) << clock.wall_time() << " s"
+                    << std::setprecision(6) << std::endl;
             }
         }
     }
@@ -356,60 +372,79 @@ namespace igabde
     void
     Simulator<dim>::solve_load_steps()
     {
-      const auto steps = parameters.load_path.steps();
+      const auto steps      = parameters.load_path.steps();
+      bool       body_force = false;
+      for (const auto &body : bodies)
+        body_force = body_force || body->description().body_force.norm() > 0.;
+      nlohmann::json effects;
       if (parameters.contact.enabled)
         {
-          contact::ContactSettings<dim> cs;
-          const auto                   &c = parameters.contact;
-          cs.friction_coefficient         = c.friction_coefficient;
-          cs.slave_face                   = c.slave_face;
-          cs.master_face                  = c.master_face;
-          cs.rigid_plane = (parameters.body2.type == "rigid plane");
-          if (cs.rigid_plane)
+          contact::ContactSettings cs;
+          const auto              &c       = parameters.contact;
+          cs.friction_coefficient          = c.friction_coefficient;
+          cs.slave_face                    = c.slave_face;
+          cs.master_face                   = c.master_face;
+          cs.pairing                       = c.pairing;
+          cs.solver.algorithm              = c.algorithm;
+          cs.solver.bnewton.tolerance      = c.tolerance;
+          cs.solver.bnewton.max_iterations = c.max_iterations;
+          cs.solver.bnewton.r_factor       = c.r_scale;
+          cs.solver.bnewton.log            = c.verbose;
+          cs.solver.bnewton.log_stream     = &contact_log();
+          cs.context                       = scene_file;
+          cs.progress                      = parameters.output.progress;
+
+          // The obstacle Body 2 stands for, if it is not deformable.
+          std::unique_ptr<contact::Obstacle<dim>> obstacle;
+          if (parameters.body2.type == "rigid plane")
             {
-              const std::string where = scene_file + ": Body 2/";
-              cs.plane_point =
-                base::parse_point<dim>(parameters.body2.plane_point,
-                                       where + "Plane point");
-              cs.plane_normal =
+              const std::string    where = scene_file + ": Body 2/";
+              const Tensor<1, dim> normal =
                 base::parse_tensor<dim>(parameters.body2.plane_normal,
                                         where + "Plane normal");
-              AssertThrow(cs.plane_normal.norm() > 0.,
+              AssertThrow(normal.norm() > 0.,
                           base::ExcInput(where + "Plane normal must not be "
                                                  "zero."));
-              cs.plane_normal /= cs.plane_normal.norm();
+              obstacle = std::make_unique<contact::RigidPlane<dim>>(
+                base::parse_point<dim>(parameters.body2.plane_point,
+                                       where + "Plane point"),
+                normal);
             }
-          cs.solver.tolerance      = c.tolerance;
-          cs.solver.max_iterations = c.max_iterations;
-          cs.solver.r_factor       = c.r_scale;
-          cs.solver.log            = c.verbose;
-          cs.solver.log_stream     = &log;
-          cs.uniform_pressure      = parameters.checks.uniform_pressure;
-          cs.hertz_line_load       = parameters.checks.hertz_line_load;
-          cs.hertz_radius          = parameters.body1.radius;
-          cs.scene_file            = scene_file;
-          cs.progress              = parameters.output.progress;
           contact_stage =
-            std::make_unique<contact::ContactStage<dim>>(cs, bodies, log);
+            std::make_unique<contact::ContactStage<dim>>(cs,
+                                                         bodies,
+                                                         std::move(obstacle),
+                                                         contact_log());
           contact_stage->build_pairs(timer);
           factorize_bodies(contact_stage.get());
           {
             Timer clock;
             contact_stage->condense(timer);
             if (parameters.output.progress)
-              log << "  [progress] condensation, " << std::setprecision(3)
-                  << clock.wall_time() << " s" << std::setprecision(6)
-                  << std::endl;
+              pcout << "  [progress] condensation, " << std::setprecision(3)
+                    << clock.wall_time() << " s" << std::setprecision(6)
+                    << std::endl;
           }
-          contact_stage->add_summary(summary);
-          summary["effects"]["load_steps"] = steps.size();
+          const contact::ContactSummary s     = contact_stage->summary();
+          effects["contact"]                  = true;
+          effects["friction"]                 = s.friction;
+          effects["tangential_unknowns"]      = s.friction;
+          effects["rigid_obstacle"]           = s.rigid_obstacle;
+          effects["initial_gaps"]             = s.initial_gaps;
+          effects["body_force"]               = body_force;
+          effects["floating_rigid_modes"]     = s.floating_rigid_modes;
+          effects["pairs_left_out_supported"] = s.pairs_left_out;
+          effects["load_steps"]               = steps.size();
+          summary["effects"]                  = effects;
+          summary["n_contact_pairs"]          = s.n_pairs;
+          summary["n_contact_unknowns"]       = s.n_unknowns;
         }
       else
         {
           factorize_bodies(nullptr);
-          base::Json effects;
           effects["contact"]    = false;
           effects["friction"]   = false;
+          effects["body_force"] = body_force;
           effects["load_steps"] = steps.size();
           summary["effects"]    = effects;
         }
@@ -426,109 +461,65 @@ namespace igabde
           }
         return u;
       };
-
-      // The contact solve of the increment from (l0, d0) to (l1, d1); when
-      // it does not converge, the increment is halved (loads interpolated
-      // linearly) and both halves are solved, at most Max step cuts deep.
-      std::function<void(unsigned int,
-                         double,
-                         double,
-                         double,
-                         double,
-                         unsigned int,
-                         std::vector<Vector<double>> &,
-                         base::Json &)>
-        advance = [&](const unsigned int           step,
-                      const double                 l0,
-                      const double                 d0,
-                      const double                 l1,
-                      const double                 d1,
-                      const unsigned int           depth,
-                      std::vector<Vector<double>> &u,
-                      base::Json                  &record) {
-          const auto state = contact_stage->save_state();
-          u                = external(l1, d1);
-          base::Json attempt;
-          try
-            {
-              contact_stage->solve_step(step, l1, u, attempt, timer);
-            }
-          catch (const contact::ExcContactNotConverged &)
-            {
-              if (depth >= parameters.contact.max_step_cuts)
-                {
-                  for (const auto key : {"newton_iterations",
-                                         "residual",
-                                         "n_open",
-                                         "n_stick",
-                                         "n_slip"})
-                    if (attempt.has(key))
-                      record[key] = attempt.at(key);
-                  throw;
-                }
-              contact_stage->restore_state(state);
-              log << "  contact solve did not converge: halving the "
-                     "increment (cut "
-                  << depth + 1 << " of at most "
-                  << parameters.contact.max_step_cuts << ")" << std::endl;
-              const double lm = 0.5 * (l0 + l1), dm = 0.5 * (d0 + d1);
-              advance(step, l0, d0, lm, dm, depth + 1, u, record);
-              advance(step, lm, dm, l1, d1, depth + 1, u, record);
-              return;
-            }
-          // Keep the last solve's figures, the iterations of all of them.
-          const double before = record.has("newton_iterations") ?
-                                  record.at("newton_iterations").number() :
-                                  0.;
-          for (const auto key : {"residual",
-                                 "n_open",
-                                 "n_stick",
-                                 "n_slip",
-                                 "condition_check_max_violation",
-                                 "total_contact_force"})
-            record[key] = attempt.at(key);
-          record["newton_iterations"] =
-            before + attempt.at("newton_iterations").number();
-          record["contact_solves"] = (record.has("contact_solves") ?
-                                        record.at("contact_solves").number() :
-                                        0.) +
-                                     1.;
-        };
+      std::unique_ptr<LoadController<dim>> controller;
+      if (contact_stage)
+        controller = std::make_unique<LoadController<dim>>(
+          *contact_stage,
+          external,
+          parameters.contact.max_step_cuts,
+          pcout.get_stream());
 
       double previous_load = 0., previous_displacement = 0.;
       for (unsigned int s = 0; s < steps.size(); ++s)
         {
           const auto [load_factor, displacement_factor] = steps[s];
-          log << "Load step " << s + 1 << "/" << steps.size()
-              << ": load factor " << load_factor << ", displacement factor "
-              << displacement_factor << std::endl;
+          pcout << "Load step " << s + 1 << "/" << steps.size()
+                << ": load factor " << load_factor << ", displacement factor "
+                << displacement_factor << std::endl;
           std::vector<Vector<double>> u =
             external(load_factor, displacement_factor);
-          base::Json record;
+          nlohmann::json record;
           record["step"]                = s + 1;
           record["load_factor"]         = load_factor;
           record["displacement_factor"] = displacement_factor;
-          if (contact_stage)
-            try
-              {
-                advance(s + 1,
-                        previous_load,
-                        previous_displacement,
-                        load_factor,
-                        displacement_factor,
-                        0,
-                        u,
-                        record);
-              }
-            catch (...)
-              {
-                // Keep the failed step's figures (iterations, residual) in
-                // the summary next to the finished steps.
-                record["status"] = "failed";
-                step_records.push_back(record);
-                summary["load_steps"] = step_records;
-                throw;
-              }
+          if (controller)
+            {
+              const auto  outcome         = controller->advance(s + 1,
+                                                       previous_load,
+                                                       previous_displacement,
+                                                       load_factor,
+                                                       displacement_factor,
+                                                       u,
+                                                       timer);
+              const auto &last            = outcome.last;
+              record["newton_iterations"] = outcome.iterations;
+              record["contact_solves"]    = outcome.contact_solves;
+              record["step_cuts"]         = outcome.cuts;
+              record["residual"]          = last.residual;
+              record["n_open"]            = last.n_open;
+              record["n_stick"]           = last.n_stick;
+              record["n_slip"]            = last.n_slip;
+              if (!outcome.success)
+                {
+                  // Keep the failed step's figures next to the finished
+                  // steps.
+                  record["status"] = "failed";
+                  step_records.push_back(record);
+                  summary["load_steps"] = step_records;
+                  AssertThrow(
+                    false,
+                    ExcMessage(
+                      scene_file + ": load step " + std::to_string(s + 1) +
+                      ": the contact solver did not converge: " +
+                      last.diagnosis +
+                      ". Try more load steps (Load path/Number of steps) or "
+                      "step cuts (Contact/Max step cuts), a larger "
+                      "Contact/Max iterations, or check that the bodies are "
+                      "supported."));
+                }
+              record["condition_check_max_violation"] =
+                last.condition_check_max_violation;
+            }
           // Overflow or underflow (a load factor of 1e308, E = 1e-308)
           // gives inf/NaN without any solver noticing: never report it.
           for (unsigned int b = 0; b < bodies.size(); ++b)
@@ -539,18 +530,17 @@ namespace igabde
                                     }),
                         ExcMessage(
                           "load step " + std::to_string(s + 1) +
-                          ": the "
-                          "displacement of " +
-                          bodies[b]->description().name +
+                          ": the displacement of " + bodies[b]->name() +
                           " is not finite (overflow: check the load and "
                           "displacement factors, the loads and Young's "
                           "modulus of the scene)."));
+          record_forces(u, load_factor, record);
           previous_load         = load_factor;
           previous_displacement = displacement_factor;
           step_records.push_back(record);
           summary["load_steps"] = step_records;
           if (contact_stage)
-            summary["total_contact_force"] = record.at("total_contact_force");
+            summary["total_contact_force"] = record["total_contact_force"];
           output_step(s + 1, u);
           if (s + 1 == steps.size())
             postprocess_final(u);
@@ -561,25 +551,85 @@ namespace igabde
 
     template <int dim>
     void
+    Simulator<dim>::record_forces(const std::vector<Vector<double>> &u,
+                                  const double    load_factor,
+                                  nlohmann::json &record) const
+    {
+      const auto to_json = [](const Tensor<1, dim> &t) {
+        std::vector<double> v(dim);
+        for (unsigned int c = 0; c < dim; ++c)
+          v[c] = t[c];
+        return v;
+      };
+      nlohmann::json per_body = nlohmann::json::array();
+      Tensor<1, dim> on_body1;
+      for (unsigned int b = 0; b < bodies.size(); ++b)
+        {
+          Vector<double> applied = bodies[b]->load_vector();
+          applied *= load_factor;
+          Tensor<1, dim> contact_force;
+          if (contact_stage)
+            {
+              const Vector<double> f = contact_stage->contact_load(b);
+              applied += f;
+              for (unsigned int i = 0; i < f.size(); ++i)
+                contact_force[bodies[b]->dof_component(i)] += f[i];
+            }
+          if (b == 0)
+            on_body1 = contact_force;
+          per_body.push_back(nlohmann::json{
+            {"name", bodies[b]->name()},
+            {"contact_force", to_json(contact_force)},
+            {"support_reaction",
+             to_json(bodies[b]->support_reaction(u[b], applied))}});
+        }
+      if (contact_stage)
+        {
+          record["total_contact_force"] = to_json(on_body1);
+          if (bodies.size() == 1)
+            per_body.push_back(
+              nlohmann::json{{"name", "obstacle"},
+                             {"contact_force", to_json(-on_body1)}});
+        }
+      record["bodies"] = per_body;
+    }
+
+
+
+    template <int dim>
+    void
     Simulator<dim>::output_step(const unsigned int                 step,
                                 const std::vector<Vector<double>> &u)
     {
       TimerOutput::Scope t(timer, "output");
+      if (!root)
+        return;
+      std::ostringstream number;
+      number << std::setw(4) << std::setfill('0') << step;
+      // The pair table every step; fields only with Write vtu.
+      if (contact_stage)
+        {
+          const auto pairs = contact_stage->pair_states();
+          postprocess::write_pair_csv<dim>(pairs,
+                                           output_directory + "/contact-" +
+                                             number.str() + ".csv");
+          if (parameters.output.write_vtu)
+            postprocess::write_pair_vtu<dim>(pairs,
+                                             output_directory + "/contact-" +
+                                               number.str() + ".vtu");
+        }
       if (!parameters.output.write_vtu)
         return;
       for (unsigned int b = 0; b < bodies.size(); ++b)
         {
-          std::ostringstream name;
-          name << "solution-" << bodies[b]->description().name << "-"
-               << std::setw(4) << std::setfill('0') << step << ".vtu";
-          bodies[b]->write_vtu(u[b], output_directory + "/" + name.str());
-          pvd_records[b].emplace_back(double(step), name.str());
+          const std::string name =
+            "solution-" + bodies[b]->name() + "-" + number.str() + ".vtu";
+          bodies[b]->write_vtu(u[b], output_directory + "/" + name);
+          pvd_records[b].emplace_back(double(step), name);
           std::ofstream pvd(output_directory + "/solution-" +
-                            bodies[b]->description().name + ".pvd");
+                            bodies[b]->name() + ".pvd");
           DataOutBase::write_pvd_record(pvd, pvd_records[b]);
         }
-      if (contact_stage)
-        contact_stage->write_step_output(step, output_directory);
     }
 
 
@@ -589,29 +639,85 @@ namespace igabde
     Simulator<dim>::postprocess_final(const std::vector<Vector<double>> &u)
     {
       TimerOutput::Scope t(timer, "postprocess");
-      base::Json         checks = base::Json::object();
+      nlohmann::json     checks   = nlohmann::json::object();
+      nlohmann::json     warnings = nlohmann::json::array();
       if (exact)
         {
-          const auto norms       = bodies[0]->compute_errors(u[0], *exact);
+          const auto norms = bodies[0]->compute_errors(u[0], *exact);
+          AssertThrow(std::isfinite(norms.l2_relative) &&
+                        std::isfinite(norms.energy_relative),
+                      ExcMessage("the error norms are not finite (overflow "
+                                 "in the exact solution or the field: check "
+                                 "the loads and Young's modulus of the "
+                                 "scene)."));
           checks["l2_error"]     = norms.l2_relative;
           checks["energy_error"] = norms.energy_relative;
-          log << "  relative L2 error " << std::setprecision(4)
-              << std::scientific << norms.l2_relative
-              << ", relative energy error " << norms.energy_relative
-              << std::defaultfloat << std::setprecision(6) << std::endl;
+          pcout << "  relative L2 error " << std::setprecision(4)
+                << std::scientific << norms.l2_relative
+                << ", relative energy error " << norms.energy_relative
+                << std::defaultfloat << std::setprecision(6) << std::endl;
         }
-      if (exact)
-        AssertThrow(std::isfinite(checks.at("l2_error").number()) &&
-                      std::isfinite(checks.at("energy_error").number()),
-                    ExcMessage("the error norms are not finite (overflow in "
-                               "the exact solution or the field: check the "
-                               "loads and Young's modulus of the scene)."));
-      if (contact_stage)
-        contact_stage->add_checks(checks);
-      summary["checks"] = checks;
 
-      base::Json points   = base::Json::object();
-      base::Json stresses = base::Json::object();
+      if (contact_stage)
+        {
+          const auto pairs = contact_stage->pair_states();
+          if (parameters.checks.uniform_pressure > 0.)
+            {
+              const double worst = postprocess::pressure_uniformity<dim>(
+                pairs,
+                parameters.checks.uniform_pressure);
+              checks["pressure_uniformity"] = worst;
+              pcout << "  pressure uniformity max |p_i/p - 1| = "
+                    << std::setprecision(3) << std::scientific << worst
+                    << std::defaultfloat << std::setprecision(6) << std::endl;
+            }
+          if (parameters.checks.hertz_line_load > 0.)
+            {
+              if constexpr (dim == 2)
+                {
+                  postprocess::HertzCheck hertz;
+                  hertz.line_load         = parameters.checks.hertz_line_load;
+                  hertz.radius            = parameters.body1.radius;
+                  hertz.effective_modulus = postprocess::effective_modulus<dim>(
+                    bodies[0]->material(),
+                    bodies.size() > 1 ? &bodies[1]->material() : nullptr);
+                  hertz.axis_point =
+                    base::parse_point<dim>(parameters.checks.hertz_axis_point,
+                                           scene_file +
+                                             ": Checks/Hertz axis point");
+                  hertz.axis_direction = base::parse_tensor<dim>(
+                    parameters.checks.hertz_axis_direction,
+                    scene_file + ": Checks/Hertz axis direction");
+                  const auto r                     = hertz.evaluate(pairs);
+                  checks["hertz_half_width"]       = r.half_width;
+                  checks["hertz_half_width_exact"] = r.half_width_exact;
+                  checks["hertz_half_width_error"] =
+                    std::abs(r.half_width / r.half_width_exact - 1.);
+                  checks["hertz_peak_pressure"]       = r.peak_pressure;
+                  checks["hertz_peak_pressure_exact"] = r.peak_pressure_exact;
+                  checks["pressure_l2_rel_error"]     = r.profile_l2_error;
+                  checks["hertz_loaded_pairs"]        = r.n_loaded;
+                  pcout << "  Hertz: half-width " << std::setprecision(5)
+                        << r.half_width << " (Johnson " << r.half_width_exact
+                        << "), peak pressure " << r.peak_pressure
+                        << " (Johnson " << r.peak_pressure_exact
+                        << "), profile L2 error " << std::setprecision(3)
+                        << r.profile_l2_error << std::setprecision(6)
+                        << std::endl;
+                  if (!r.warning.empty())
+                    {
+                      pcout << "  warning: " << r.warning << std::endl;
+                      warnings.push_back(r.warning);
+                    }
+                }
+            }
+        }
+      summary["checks"] = checks;
+      if (!warnings.empty())
+        summary["warnings"] = warnings;
+
+      nlohmann::json points   = nlohmann::json::object();
+      nlohmann::json stresses = nlohmann::json::object();
       for (const std::string &item : base::split(parameters.probes, ';'))
         {
           const auto [name, location] =
@@ -620,17 +726,27 @@ namespace igabde
                               "'name: x, y[, z]'");
           const Point<dim> x =
             base::parse_point<dim>(location, scene_file + ": Probe points");
+          // The first body that holds the point.
+          unsigned int b = bodies.size();
+          for (unsigned int k = 0; k < bodies.size() && b == bodies.size(); ++k)
+            if (bodies[k]->contains(x))
+              b = k;
+          AssertThrow(b < bodies.size(),
+                      base::ExcInput(scene_file + ": Probe points: '" + item +
+                                     "' lies in no body; give a point of "
+                                     "Body 1 or Body 2."));
           const Tensor<1, dim> d =
-            bodies[0]->point_operator(x).displacement(u[0]);
-          base::Json value = base::Json::array();
+            bodies[b]->point_operator(x).displacement(u[b]);
+          std::vector<double> value(dim);
           for (unsigned int c = 0; c < dim; ++c)
-            value.push_back(d[c]);
+            value[c] = d[c];
           points[name] = value;
-          log << "  probe " << name << ": displacement " << std::setprecision(5)
-              << d << std::setprecision(6) << std::endl;
+          pcout << "  probe " << name << ": displacement "
+                << std::setprecision(5) << d << std::setprecision(6)
+                << std::endl;
 
           // Stress recovered at the probe: upper triangle, row by row.
-          const SymmetricTensor<2, dim> sigma = bodies[0]->stress(u[0], x);
+          const SymmetricTensor<2, dim> sigma = bodies[b]->stress(u[b], x);
           for (unsigned int i = 0; i < dim; ++i)
             for (unsigned int j = 0; j < dim; ++j)
               AssertThrow(std::isfinite(sigma[i][j]),
@@ -638,14 +754,67 @@ namespace igabde
                                      ": the stress is not finite (overflow: "
                                      "check the loads and Young's modulus "
                                      "of the scene)."));
-          base::Json components = base::Json::array();
+          std::vector<double> components;
           for (unsigned int i = 0; i < dim; ++i)
             for (unsigned int j = i; j < dim; ++j)
               components.push_back(sigma[i][j]);
-          stresses[name] = components;
+          const auto    &material = bodies[b]->material();
+          nlohmann::json entry    = {
+               {"body", bodies[b]->name()},
+               {"stress", components},
+               {"von_mises", elasticity::von_mises<dim>(sigma, material)}};
+          if (dim == 2)
+            entry["stress_zz"] =
+              elasticity::out_of_plane_stress<dim>(sigma, material);
+          stresses[name] = entry;
         }
       summary["points"]         = points;
       summary["point_stresses"] = stresses;
+    }
+
+
+
+    template <int dim>
+    void
+    Simulator<dim>::write_step_table() const
+    {
+      // steps.csv: one row per load step, full precision, for plots.
+      std::ofstream csv(output_directory + "/steps.csv");
+      csv << "step,load_factor,displacement_factor";
+      if (contact_stage)
+        {
+          csv << ",status,contact_solves,newton_iterations,residual,n_open,"
+                 "n_stick,n_slip";
+          for (const char *c : {"x", "y", "z"})
+            if (c[0] - 'x' < dim)
+              csv << ",force_" << c;
+        }
+      csv << "\n" << std::setprecision(12);
+      for (const auto &r : step_records)
+        {
+          csv << r.at("step").get<double>() << ","
+              << r.at("load_factor").get<double>() << ","
+              << r.at("displacement_factor").get<double>();
+          if (contact_stage)
+            {
+              const auto value = [&](const char *key) {
+                return r.contains(key) && r.at(key).is_number() ?
+                         r.at(key).get<double>() :
+                         0.;
+              };
+              csv << "," << (r.contains("status") ? "failed" : "ok") << ","
+                  << value("contact_solves") << ","
+                  << value("newton_iterations") << "," << value("residual")
+                  << "," << value("n_open") << "," << value("n_stick") << ","
+                  << value("n_slip");
+              for (unsigned int c = 0; c < dim; ++c)
+                csv << ","
+                    << (r.contains("total_contact_force") ?
+                          r.at("total_contact_force").at(c).get<double>() :
+                          0.);
+            }
+          csv << "\n";
+        }
     }
 
 
@@ -658,47 +827,12 @@ namespace igabde
       summary["status"] = status;
       if (!error.empty())
         summary["error"] = error;
+      if (!root)
+        return;
+      write_step_table();
 
-      // steps.csv: one row per load step, full precision, for plots.
-      {
-        std::ofstream csv(output_directory + "/steps.csv");
-        csv << "step,load_factor,displacement_factor";
-        if (contact_stage)
-          {
-            csv << ",status,contact_solves,newton_iterations,residual,n_open,"
-                   "n_stick,n_slip";
-            for (const char *c : {"x", "y", "z"})
-              if (c[0] - 'x' < dim)
-                csv << ",force_" << c;
-          }
-        csv << "\n" << std::setprecision(12);
-        for (unsigned int s = 0; s < step_records.size(); ++s)
-          {
-            const base::Json &r = step_records.at(s);
-            csv << r.at("step").number() << "," << r.at("load_factor").number()
-                << "," << r.at("displacement_factor").number();
-            if (contact_stage)
-              {
-                const auto value = [&](const char *key) {
-                  return r.has(key) ? r.at(key).number() : 0.;
-                };
-                csv << "," << (r.has("status") ? "failed" : "ok") << ","
-                    << value("contact_solves") << ","
-                    << value("newton_iterations") << "," << value("residual")
-                    << "," << value("n_open") << "," << value("n_stick") << ","
-                    << value("n_slip");
-                for (unsigned int c = 0; c < dim; ++c)
-                  csv << ","
-                      << (r.has("total_contact_force") ?
-                            r.at("total_contact_force").at(c).number() :
-                            0.);
-              }
-            csv << "\n";
-          }
-      }
-
-      base::Json timing = base::Json::object();
-      double     total  = 0.;
+      nlohmann::json timing = nlohmann::json::object();
+      double         total  = 0.;
       for (const auto &[phase, seconds] :
            timer.get_summary_data(TimerOutput::total_wall_time))
         {
@@ -707,31 +841,16 @@ namespace igabde
         }
       timing["total"]   = total;
       summary["timing"] = timing;
+      std::ofstream(output_directory + "/summary.json")
+        << summary.dump(2) << "\n";
 
-      std::ofstream out(output_directory + "/summary.json");
-      summary.write(out);
-
-      // The timing table as deal.II's TimerOutput prints it, to a file
-      // always and to the screen unless the scene switches it off.
-      const auto         calls = timer.get_summary_data(TimerOutput::n_calls);
-      std::ostringstream table;
-      table << "+" << std::string(40, '-') << "+" << std::string(11, '-') << "+"
-            << std::string(13, '-') << "+\n"
-            << "| Wall time per phase" << std::string(20, ' ') << "| calls"
-            << std::string(5, ' ') << "| seconds     |\n";
-      for (const auto &[phase, seconds] :
-           timer.get_summary_data(TimerOutput::total_wall_time))
-        table << "| " << std::left << std::setw(39) << phase << "| "
-              << std::right << std::setw(9) << calls.at(phase) << " | "
-              << std::setw(11) << std::setprecision(4) << seconds << " |\n";
-      table << "| " << std::left << std::setw(39) << "total"
-            << "| " << std::right << std::setw(9) << ""
-            << " | " << std::setw(11) << std::setprecision(4) << total << " |\n"
-            << "+" << std::string(40, '-') << "+" << std::string(11, '-') << "+"
-            << std::string(13, '-') << "+\n";
-      std::ofstream(output_directory + "/timing.txt") << table.str();
+      // deal.II's timing table, to a file always and to the screen unless
+      // the scene switches it off.
+      timing_table.str("");
+      timer.print_summary();
+      std::ofstream(output_directory + "/timing.txt") << timing_table.str();
       if (parameters.output.print_timing && status != "running")
-        log << table.str() << std::flush;
+        pcout << timing_table.str() << std::flush;
     }
 
 
@@ -740,11 +859,11 @@ namespace igabde
     void
     Simulator<dim>::run()
     {
-      log << "Scene " << parameters.name << " (" << dim << "D, "
-          << parameters.discretization.type << ", degree "
-          << parameters.discretization.degree << ", "
-          << parameters.discretization.refinements << " refinements)"
-          << std::endl;
+      pcout << "Scene " << parameters.name << " (" << dim << "D, "
+            << parameters.discretization.type << ", degree "
+            << parameters.discretization.degree << ", "
+            << parameters.discretization.refinements << " refinements)"
+            << std::endl;
       // Mark the folder: until this run ends, summary.json says 'running'
       // (and steps.csv, timing.txt start empty), so that the results of an
       // earlier run in the same folder are never taken for this one's, even
@@ -758,7 +877,7 @@ namespace igabde
 
 
     template <int dim>
-    const base::Json &
+    const nlohmann::json &
     Simulator<dim>::get_summary() const
     {
       return summary;
@@ -1022,7 +1141,7 @@ namespace igabde
 
 
 
-    base::Json
+    nlohmann::json
     run_scene_in_process(
       const std::string                                      &scene_file,
       const std::vector<std::pair<std::string, std::string>> &overrides,
@@ -1101,13 +1220,13 @@ namespace igabde
         catch (const ExceptionBase &e)
           {
             const std::string message = base::exception_message(e);
-            log << "igabde: error: " << message << std::endl;
+            log_file << "igabde: error: " << message << std::endl;
             std::cerr << "igabde: error: " << message << std::endl;
             simulator.write_failed_summary(message);
           }
         catch (const std::exception &e)
           {
-            log << "igabde: error: " << e.what() << std::endl;
+            log_file << "igabde: error: " << e.what() << std::endl;
             std::cerr << "igabde: error: " << e.what() << std::endl;
             simulator.write_failed_summary(e.what());
           }

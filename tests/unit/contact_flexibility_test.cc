@@ -70,14 +70,14 @@ namespace
         EXPECT_TRUE(body->free_rigid_modes().empty());
       }
 
-    contact::ContactSettings<2> cs;
+    contact::ContactSettings cs;
     cs.friction_coefficient = mu;
     cs.slave_face           = 2;
     cs.master_face          = 3;
     cs.progress             = false;
     std::ostringstream log;
     TimerOutput        timer(log, TimerOutput::never, TimerOutput::wall_times);
-    contact::ContactStage<2> stage(cs, bodies, log);
+    contact::ContactStage<2> stage(cs, bodies, nullptr, log);
     stage.build_pairs(timer);
     for (unsigned int b = 0; b < bodies.size(); ++b)
       {

@@ -2,6 +2,7 @@
 #define igabde_contact_bnewton_h
 
 #include <igabde/contact/contact_problem.h>
+#include <igabde/contact/contact_solver.h>
 
 #include <Eigen/Dense>
 
@@ -14,125 +15,8 @@ namespace igabde
   namespace contact
   {
     /**
-     * @brief State of one contact pair at the end of a solve (or iteration).
-     *
-     * A closed frictionless pair, and a closed pair with a zero friction
-     * radius, move freely in the tangential directions and are reported as
-     * slip.
-     */
-    enum class ContactStatus
-    {
-      open,
-      stick,
-      slip
-    };
-
-    /** @brief "open", "stick" or "slip". */
-    std::string
-    to_string(const ContactStatus status);
-
-    /**
-     * @brief Radius of the friction disc in the B-differentiable equations.
-     *
-     * Both give the same solution set; Newton behaves differently
-     * (research/contact-solvers.md §4, §5.3).
-     */
-    enum class FrictionRadius
-    {
-      /** R = mu max(p_n, 0): method.md's H (Christensen-Pang, Siconos JM). */
-      christensen_pang,
-      /** R = mu max(p_n - r_n u_n, 0): Alart-Curnier (Siconos NSN_AC). */
-      alart_curnier
-    };
-
-    /**
-     * @brief Absolute natural-map (De Saxce/FCLIB) error
-     * |p - P_K(p - u_hat)| with u_hat = u + mu |u_t| e_n per contact and K
-     * the Coulomb cone {|p_t| <= mu p_n}; for frictionless problems
-     * |p - max(0, p - u)|. This is Siconos' fc3d_compute_error before its
-     * division.
-     */
-    double
-    natural_map_error(const ContactProblem  &problem,
-                      const Eigen::VectorXd &p,
-                      const Eigen::VectorXd &u);
-
-    /**
-     * @brief natural_map_error() divided by |q|, as in the FCLIB paper.
-     *
-     * When |q| is about zero (|q| <= 1e-12 |u - q|, or |q| = 0) the
-     * division is by the force scale |p| instead (1 if p = 0 too).
-     */
-    double
-    relative_natural_map_error(const ContactProblem  &problem,
-                               const Eigen::VectorXd &p,
-                               const Eigen::VectorXd &u);
-
-    /**
-     * @brief Scale-invariant ("balanced") natural-map error:
-     * |p - P_K(p - rho_c u_hat)| / |rho q| with rho_c = 1/W_nn of each
-     * contact (a stiffness), so that forces are compared with forces. It
-     * vanishes exactly where natural_map_error() does, and is unchanged when
-     * forces and displacements are rescaled independently (the FCLIB error
-     * is not: with W, q scaled by 1e6 it weights force errors by 1e-6).
-     * Falls back to division by |p| when |q| is about zero.
-     */
-    double
-    balanced_natural_map_error(const ContactProblem  &problem,
-                               const Eigen::VectorXd &p,
-                               const Eigen::VectorXd &u);
-
-    /** @brief Parameters of BNewtonSolver. */
-    struct BNewtonSettings
-    {
-      /** @brief Tolerance on the relative natural-map error. */
-      double tolerance = 1e-10;
-
-      /** @brief Iteration budget over all phases. */
-      unsigned int max_iterations = 100;
-
-      /** @brief Armijo sufficient-decrease constant sigma. */
-      double armijo_sigma = 1e-4;
-
-      /** @brief Backtracking factor beta. */
-      double armijo_beta = 0.5;
-
-      /** @brief Smallest step tried in the line search. */
-      double min_step = 1e-10;
-
-      /** @brief Factor c multiplying the per-contact r (see class doc). */
-      double r_factor = 1.;
-
-      /** @brief Non-monotone (GLL) memory M; 1 = monotone Armijo. */
-      unsigned int nonmonotone_memory = 5;
-
-      /** @brief Iterations without 0.1 % progress that count as stall. */
-      unsigned int stall_iterations = 20;
-
-      /** @brief Radius of the first phase. */
-      FrictionRadius radius = FrictionRadius::christensen_pang;
-
-      /** @brief Retry with the other radius after a failed phase. */
-      bool switch_radius = true;
-
-      /** @brief Proximal-point phase after failed Newton phases. */
-      bool proximal = true;
-
-      /** @brief Wall-time limit in seconds (0: none). */
-      double max_wall_seconds = 0.;
-
-      /** @brief Print the iterations while solving. */
-      bool log = false;
-
-      /** @brief Stream for the log (nullptr: std::cout). */
-      std::ostream *log_stream = nullptr;
-    };
-
-
-
-    /**
      * @brief Damped B-Newton solver (Pang 1990) for the B-differentiable
-     * equations of method.md §3, with robustness guards.
+     * equations of the seed (contact_law.h), with robustness guards.
      *
      * <h3>Equations</h3>
      * Per contact, with r_n, r_t > 0 and u = W p + q + G alpha:
@@ -209,71 +93,17 @@ namespace igabde
      * stall, line-search failure, non-finite values, time limit. The
      * returned p, u are the best iterate seen, never a diverged one.
      */
-    class BNewtonSolver
+    class BNewtonSolver : public ContactSolver
     {
     public:
       /** @brief Solver parameters (see BNewtonSettings). */
       using Settings = BNewtonSettings;
 
       /** @brief One line of the iteration history. */
-      struct IterationRecord
-      {
-        /** @brief Global iteration counter (1-based). */
-        unsigned int iteration = 0;
-        /** @brief Phase: "newton-cp", "newton-ac", "prox-cp", "prox-ac". */
-        std::string phase;
-        /** @brief |H| at the start of the iteration (force units). */
-        double h_norm = 0.;
-        /** @brief Relative natural-map error of the problem solved. */
-        double residual = 0.;
-        /** @brief Balanced natural-map error of the problem solved. */
-        double balanced_residual = 0.;
-        /** @brief Accepted step length (0 if none). */
-        double step = 0.;
-        /** @brief Contact counts at the start of the iteration. */
-        unsigned int n_open = 0, n_stick = 0, n_slip = 0;
-        /** @brief Size of the reduced linear system. */
-        unsigned int n_reduced = 0;
-        /** @brief Remarks: "lm", "gradient", "best-trial", ... */
-        std::string note;
-      };
+      using IterationRecord = ContactIterationRecord;
 
       /** @brief Outcome of a solve. */
-      struct Result
-      {
-        /** @brief Contact forces (best iterate), n_rows(). */
-        Eigen::VectorXd p;
-        /** @brief Relative displacements W p + q + G alpha. */
-        Eigen::VectorXd u;
-        /** @brief Floating-body amplitudes (empty without G). */
-        Eigen::VectorXd alpha;
-        /** @brief Newton iterations done (all phases). */
-        unsigned int iterations = 0;
-        /** @brief Final relative natural-map error (FCLIB, /|q|). */
-        double residual = 0.;
-        /** @brief Final balanced_natural_map_error(). */
-        double balanced_residual = 0.;
-        /** @brief Final relative equilibrium error |G^T p - b| (0 w/o G). */
-        double equilibrium_residual = 0.;
-        /** @brief True if the stopping test was met. */
-        bool converged = false;
-        /** @brief "converged (...)" or why not. */
-        std::string diagnosis;
-        /** @brief Per-contact status at p, u. */
-        std::vector<ContactStatus> status;
-        /** @brief Status counts. */
-        unsigned int n_open = 0, n_stick = 0, n_slip = 0;
-        /** @brief Per-iteration history. */
-        std::vector<IterationRecord> history;
-
-        /** @brief Print the history table with 5 significant digits. */
-        void
-        print_history(std::ostream &out) const;
-
-        /** @brief One-line summary: converged, iterations, residual. */
-        std::string
-        summary() const;
-      };
+      using Result = ContactSolverResult;
 
       /** @brief Construct with @p settings. */
       explicit BNewtonSolver(const Settings &settings = Settings());
@@ -300,7 +130,11 @@ namespace igabde
       Result
       solve(const ContactProblem  &problem,
             const Eigen::VectorXd &p0,
-            const Eigen::VectorXd &alpha0 = {}) const;
+            const Eigen::VectorXd &alpha0 = {}) const override;
+
+      /** @brief "bde". */
+      std::string
+      name() const override;
 
     private:
       Settings settings;

@@ -1,19 +1,20 @@
 #ifndef igabde_contact_contact_stage_h
 #define igabde_contact_contact_stage_h
 
-#include <igabde/base/json.h>
-
 #include <igabde/discretization/body.h>
 
-#include <igabde/contact/bnewton.h>
+#include <igabde/contact/condensation.h>
+#include <igabde/contact/contact_law.h>
 #include <igabde/contact/contact_problem.h>
+#include <igabde/contact/contact_solver.h>
+#include <igabde/contact/obstacle.h>
+#include <igabde/contact/pairing.h>
 
 #include <deal.II/base/timer.h>
 
 #include <Eigen/Dense>
 
 #include <memory>
-#include <optional>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -25,82 +26,110 @@ namespace igabde
     using namespace dealii;
 
     /**
-     * @brief The contact solver did not converge in a load step (the
-     * simulator may cut the increment and retry).
-     */
-    DeclException1(ExcContactNotConverged, std::string, << arg1);
-
-    /**
      * @brief What the contact layer needs from the scene.
      */
-    template <int dim>
     struct ContactSettings
     {
       /// Coulomb friction coefficient; 0 forms no tangential unknowns.
       double friction_coefficient = 0.;
-      /// Patch face of Body 1 (slave) and Body 2 (master) that may touch.
+      /// Patch faces of Body 1 (slave) and Body 2 (master).
       unsigned int slave_face = 2, master_face = 3;
-      /// Rigid obstacle instead of a deformable Body 2.
-      bool rigid_plane = false;
-      /// Rigid plane: a point on it and the unit normal towards Body 1.
-      Point<dim> plane_point;
-      /// Rigid plane: normal towards Body 1.
-      Tensor<1, dim> plane_normal;
-      /// B-Newton settings (tolerance, iteration limit, r scale, logging).
-      BNewtonSolver::Settings solver;
-      /// Tolerance of the post-solve condition check (scaled violations).
+      /// Pairing strategy (create_pairing_strategy()).
+      std::string pairing = "node-to-surface";
+      /// Solver (create_contact_solver()).
+      ContactSolverSettings solver;
+      /// Tolerance of the post-solve condition check.
       double check_tolerance = 1e-6;
-      /// Expected uniform pressure (V3 check), 0: none.
-      double uniform_pressure = 0.;
-      /// Hertz line load (V5 check), 0: none.
-      double hertz_line_load = 0.;
-      /// Hertz cylinder radius (m).
-      double hertz_radius = 0.;
-      /// Scene file, for messages.
-      std::string scene_file;
-      /// Print progress lines for the phases that can take long.
+      /// Prefix of input errors (the scene file).
+      std::string context;
+      /// Progress lines for phases that may take long.
       bool progress = true;
     };
 
     /**
-     * @brief One node-to-node contact pair: a point on Body 1 and the point
-     * of Body 2 (or of the rigid plane) that faces it.
+     * @brief What one contact solve of a load step gave: a plain record for
+     * the step table and summary.json.
      */
     template <int dim>
-    struct PointPair
+    struct StepResult
     {
-      /// Point on Body 1 (m).
-      Point<dim> x1;
-      /// Facing point on Body 2 or the plane (m).
-      Point<dim> x2;
-      /// Rows: n (outward normal of Body 2, towards Body 1), a[, b].
-      Tensor<2, dim> frame;
-      /// Initial normal gap (m), >= 0 when open.
-      double gap = 0.;
-      /// Tributary area of the pair on Body 1 (m^2, m in 2D).
-      double area = 0.;
-      /// Displacement operators on Body 1 and Body 2 (empty: rigid).
-      discretization::PointOperator<dim> op1, op2;
+      bool         converged = false;
+      std::string  diagnosis;
+      unsigned int iterations = 0;
+      double       residual   = 0.;
+      unsigned int n_open = 0, n_stick = 0, n_slip = 0;
+      /// Post-solve condition check (only when converged).
+      bool        conditions_passed = false;
+      std::string first_violation;
+      double      condition_check_max_violation = 0.;
+      /// Resultant of the contact forces on Body 1 (Body 2 or the obstacle
+      /// carries the opposite).
+      Tensor<1, dim> contact_force;
     };
 
     /**
-     * @brief The contact layer between two bodies (or a body and a rigid
-     * plane): pairs and frames, condensation into the flexibility F^L with
-     * the rigid modes of floating bodies, one BDE solve per load step, the
-     * post-solve condition check, and contact forces back to the fields.
-     * It sees the bodies only through discretization::Body.
+     * @brief The state of one pair after a solve, for output and checks.
+     */
+    template <int dim>
+    struct PairState
+    {
+      /// Body 1's point.
+      Point<dim> location;
+      /// Tributary area (share of a uniform pressure).
+      double area = 0.;
+      /// Local force components (normal first; tangents when frictional).
+      std::vector<double> force_local;
+      /// Local relative displacement: normal gap, then the tangential
+      /// slip increments of the step.
+      std::vector<double> displacement_local;
+      /// The force on Body 1 and the slip, in global coordinates.
+      Tensor<1, dim> force;
+      Tensor<1, dim> slip;
+      ContactStatus  status = ContactStatus::open;
+
+      /// Normal force per tributary area.
+      double
+      pressure() const
+      {
+        return force_local[0] / area;
+      }
+    };
+
+    /**
+     * @brief Which contact effects the scene has, and sizes.
+     */
+    struct ContactSummary
+    {
+      unsigned int n_pairs              = 0;
+      unsigned int n_unknowns           = 0;
+      bool         friction             = false;
+      bool         rigid_obstacle       = false;
+      bool         initial_gaps         = false;
+      unsigned int floating_rigid_modes = 0;
+      unsigned int pairs_left_out       = 0;
+    };
+
+    /**
+     * @brief The step driver of the condensed contact path between Body 1
+     * and the surface it faces (a face of Body 2, or an obstacle): pairs by
+     * a PairingStrategy, condensation (condense()), one solve by a
+     * ContactSolver per load step, the post-solve condition check, and the
+     * contact forces back to the fields. It sees the bodies only through
+     * discretization::Body, writes no file and knows no scene check: the
+     * postprocessors read pair_states().
      */
     template <int dim>
     class ContactStage
     {
     public:
       /**
-       * @brief Keeps references; @p bodies holds Body 1 and, unless the
-       * obstacle is rigid, Body 2.
+       * @brief Keeps references; @p bodies holds Body 1 and, unless
+       * @p obstacle is given, Body 2.
        */
       ContactStage(
-        const ContactSettings<dim>                                    &settings,
+        const ContactSettings                                         &settings,
         const std::vector<std::unique_ptr<discretization::Body<dim>>> &bodies,
+        std::unique_ptr<Obstacle<dim>>                                 obstacle,
         std::ostream                                                  &log);
 
       /**
@@ -127,17 +156,15 @@ namespace igabde
       /**
        * @brief Solves the load step @p step at load factor @p load_factor
        * (which scales the loads that the equilibrium of floating bodies
-       * balances): on entry @p u holds each body's
-       * displacement under the external loads of this step, on exit the
-       * total displacement with the contact forces. Throws, with a
-       * diagnosis, when the solver does not converge or the solution
-       * violates a contact condition.
+       * balances): on entry @p u holds each body's displacement under the
+       * external loads of this step, on exit, when the solve converged and
+       * passed the condition check, the total displacement with the
+       * contact forces. The stage's state moves on only then.
        */
-      void
+      StepResult<dim>
       solve_step(const unsigned int           step,
                  const double                 load_factor,
                  std::vector<Vector<double>> &u,
-                 base::Json                  &record,
                  TimerOutput                 &timer);
 
       /**
@@ -146,89 +173,69 @@ namespace igabde
        */
       struct State
       {
-        /// Contact forces, local frames.
-        Eigen::VectorXd p;
-        /// Rigid-mode amplitudes.
-        Eigen::VectorXd alpha;
-        /// Relative displacements.
-        Eigen::VectorXd u_rel;
-        /// Relative displacement of the external loads (friction history).
-        Eigen::VectorXd previous_external;
-        /// Pair status.
+        Eigen::VectorXd            p;
+        Eigen::VectorXd            alpha;
+        Eigen::VectorXd            u_rel;
+        Eigen::VectorXd            previous_external;
         std::vector<ContactStatus> status;
-        /// Whether a step has been solved.
-        bool has_previous = false;
+        bool                       has_previous = false;
       };
 
-      /// The state after the last solved step.
       State
       save_state() const;
 
-      /// Returns to a saved state (after a failed attempt).
       void
       restore_state(const State &state);
 
-      /// Writes contact-NNNN.csv and contact-NNNN.vtu for the last step.
-      void
-      write_step_output(const unsigned int step,
-                        const std::string &directory) const;
+      /// The pairs after the last solve (empty before the first).
+      std::vector<PairState<dim>>
+      pair_states() const;
 
-      /// Adds effects, n_contact_pairs, n_contact_unknowns.
-      void
-      add_summary(base::Json &summary) const;
+      ContactSummary
+      summary() const;
 
-      /// Adds the named accuracy checks of the final step.
-      void
-      add_checks(base::Json &checks) const;
+      /// The contact forces of the last solve on body @p b as a load vector
+      /// of its unknowns.
+      Vector<double>
+      contact_load(const unsigned int b) const;
 
-      /// Pairs in use.
-      const std::vector<PointPair<dim>> &
+      const std::vector<ContactPair<dim>> &
       pairs() const;
 
-      /// The condensed problem of the last step (W = F^L, q, mu, G, b).
       const ContactProblem &
       condensed_problem() const;
 
-      /// Relative asymmetry |F - F^T| / |F| of the flexibility before it
-      /// was symmetrised (round-off for a correct condensation).
       double
       flexibility_asymmetry() const;
 
-      /// Contact forces of the last step, local frames (n_components per
-      /// pair).
       const Eigen::VectorXd &
       forces() const;
 
+      /// Local components per pair: 1 frictionless, dim with friction.
+      unsigned int
+      n_components() const;
+
     private:
-      void
-      form_pairs();
-
-      void
-      form_flexibility();
-
       Eigen::VectorXd
       relative_displacement(const std::vector<Vector<double>> &u) const;
 
-      /// Start of the first load step's B-Newton iteration (p, alpha).
       std::pair<Eigen::VectorXd, Eigen::VectorXd>
       initial_guess() const;
 
       Tensor<1, dim>
       global_force(const unsigned int i, const Eigen::VectorXd &p) const;
 
-      const ContactSettings<dim>                                     settings;
+      const ContactSettings                                          settings;
       const std::vector<std::unique_ptr<discretization::Body<dim>>> &bodies;
-      std::ostream                                                  &log;
+      const std::unique_ptr<Obstacle<dim>>                           obstacle;
+      std::unique_ptr<ContactSurface<dim>>        master_face;
+      const std::unique_ptr<PairingStrategy<dim>> pairing;
+      const std::unique_ptr<ContactSolver>        solver;
+      std::ostream                               &log;
 
-      unsigned int                n_components = 1;
-      std::vector<PointPair<dim>> pair_list;
-      unsigned int                n_dropped = 0;
-      double                      asymmetry = 0.;
-      ContactProblem              problem;
-      /// Which body and mode each alpha belongs to.
-      std::vector<std::pair<unsigned int, unsigned int>> alpha_modes;
-      /// Rigid-mode loads R^T f_ext at load factor 1, per alpha.
-      Eigen::VectorXd rigid_mode_loads;
+      unsigned int                  m = 1;
+      std::vector<ContactPair<dim>> pair_list;
+      CondensedContact<dim>         condensed;
 
       Eigen::VectorXd            p, u_rel, alpha, previous_external;
       std::vector<ContactStatus> status;

@@ -186,6 +186,28 @@ namespace igabde
       point_operator(const Point<dim> &location) const = 0;
 
       /**
+       * @brief Whether @p location lies in the body (to round-off of its
+       * size): point_operator() succeeds there.
+       */
+      virtual bool
+      contains(const Point<dim> &location) const;
+
+      /// Displacement component of unknown @p i.
+      unsigned int
+      dof_component(const types::global_dof_index i) const;
+
+      /**
+       * @brief Resultant of the support reactions: the sum over the
+       * supported unknowns of (K u - f)_i per component, for the
+       * displacement @p u under the applied loads @p f (external loads at
+       * their factor plus contact forces). With the supports in
+       * equilibrium with f it is minus the resultant of f; the sum is
+       * computed from K u, independently of it.
+       */
+      Tensor<1, dim>
+      support_reaction(const Vector<double> &u, const Vector<double> &f) const;
+
+      /**
        * @brief Candidate contact points on the patch face @p face, placed as
        * DiscretizationSettings::pair_placement says (NURBS) or at the face
        * nodes (Lagrange).

@@ -1,7 +1,7 @@
 #ifndef igabde_scene_parameters_h
 #define igabde_scene_parameters_h
 
-#include <igabde/discretization/body_description.h>
+#include <igabde/discretization/settings.h>
 
 #include <deal.II/base/parameter_handler.h>
 
@@ -140,6 +140,8 @@ namespace igabde
       unsigned int master_face = 3;
       /// Where pairs sit on a NURBS surface: greville, knots or gauss.
       std::string pair_placement = "greville";
+      /// Pairing strategy: "node-to-surface" or "node-to-node".
+      std::string pairing = "node-to-surface";
       /// Natural-map residual tolerance relative to ||q||.
       double tolerance = 1e-10;
       /// B-Newton iteration limit per load step.
@@ -169,6 +171,9 @@ namespace igabde
       /// Hertz line load P (N/m) on the cylinder of Body 1/Radius against a
       /// rigid flat; 0: no Hertz check (V5).
       double hertz_line_load = 0.;
+      /// A point on the Hertz symmetry axis, and its direction.
+      std::string hertz_axis_point     = "0, 0";
+      std::string hertz_axis_direction = "0, 1";
 
       /// Declares the "Checks" subsection.
       static void

@@ -1,17 +1,18 @@
 #ifndef igabde_scene_simulator_h
 #define igabde_scene_simulator_h
 
-#include <igabde/base/json.h>
-
 #include <igabde/discretization/body.h>
 
 #include <igabde/scene/parameters.h>
 
+#include <deal.II/base/conditional_ostream.h>
 #include <deal.II/base/timer.h>
 
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <ostream>
+#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -56,7 +57,7 @@ namespace igabde
       run();
 
       /// The summary as written to summary.json.
-      const base::Json &
+      const nlohmann::json &
       get_summary() const;
 
       /**
@@ -92,19 +93,38 @@ namespace igabde
       void
       write_summary(const std::string &status, const std::string &error);
 
+      void
+      write_step_table() const;
+
+      /// The stream the contact layer logs to (a discarding one off rank 0).
+      std::ostream &
+      contact_log();
+
+      /// Contact resultants and support reactions of the finished step.
+      void
+      record_forces(const std::vector<Vector<double>> &u,
+                    const double                       load_factor,
+                    nlohmann::json                    &record) const;
+
       const AllParameters parameters;
       const std::string   scene_file;
       const std::string   output_directory;
-      std::ostream       &log;
+      /// Whether this process writes files and the log (MPI rank 0).
+      const bool root;
+      /// The log, printed on rank 0 only.
+      ConditionalOStream pcout;
 
-      TimerOutput timer;
-      base::Json  summary;
+      /// The timer's table, written to timing.txt and, unless switched off,
+      /// to the log.
+      std::ostringstream timing_table;
+      TimerOutput        timer;
+      nlohmann::json     summary;
 
       std::optional<discretization::ExactSolution<dim>>        exact;
       std::vector<std::unique_ptr<discretization::Body<dim>>>  bodies;
       std::unique_ptr<contact::ContactStage<dim>>              contact_stage;
       std::vector<std::vector<std::pair<double, std::string>>> pvd_records;
-      base::Json                                               step_records;
+      nlohmann::json                                           step_records;
     };
 
     /**
@@ -122,7 +142,7 @@ namespace igabde
      * @brief Runs a scene in this process (tests, studies) and returns its
      * summary; the log goes to @p log. Throws on bad input or failure.
      */
-    base::Json
+    nlohmann::json
     run_scene_in_process(
       const std::string                                      &scene_file,
       const std::vector<std::pair<std::string, std::string>> &overrides,

@@ -1,0 +1,65 @@
+#ifndef igabde_contact_condensation_h
+#define igabde_contact_condensation_h
+
+#include <igabde/discretization/body.h>
+
+#include <igabde/contact/contact_problem.h>
+#include <igabde/contact/pairing.h>
+
+#include <Eigen/Dense>
+
+#include <ostream>
+#include <utility>
+#include <vector>
+
+namespace igabde
+{
+  namespace contact
+  {
+    /**
+     * @brief The contact problem condensed onto the pairs: the flexibility
+     * F^L in the pairs' local frames, the rigid-mode columns G of floating
+     * bodies and what is needed to set q and b per load step.
+     */
+    template <int dim>
+    struct CondensedContact
+    {
+      /// W = F^L, G, mu; q and b are set per load step.
+      ContactProblem problem;
+      /// The pairs kept (those held by supports on both sides are left
+      /// out).
+      std::vector<ContactPair<dim>> pairs;
+      /// (body, mode) of every column of G.
+      std::vector<std::pair<unsigned int, unsigned int>> alpha_modes;
+      /// r_k . f_ext of every column at load factor 1.
+      Eigen::VectorXd rigid_mode_loads;
+      /// Pairs left out (both points held by supports).
+      unsigned int n_dropped = 0;
+      /// |W - W^T| / |W| before symmetrisation.
+      double asymmetry = 0.;
+    };
+
+    /**
+     * @brief Condenses the bodies onto @p pairs: unit force pairs along the
+     * @p n_components local directions that carry unknowns (+T_j[s] on Body
+     * 1 at x1_j, -T_j[s] on Body 2 at x2_j) give F^L = T^T F^G T directly;
+     * each body gives its share through Body::flexibility() (its Schur
+     * complement on the contact face, or one solve per column). Free rigid
+     * modes become the columns of G with the contact equilibrium
+     * G^T p = b. @p bodies holds Body 1 and, when the pairs face a
+     * deformable body, Body 2. @p log gets one line per condensed body
+     * when @p progress is set, and the rigid-mode and pair counts.
+     */
+    template <int dim>
+    CondensedContact<dim>
+    condense(const std::vector<ContactPair<dim>>                  &pairs,
+             const std::vector<const discretization::Body<dim> *> &bodies,
+             const unsigned int                                    n_components,
+             const double                                          friction,
+             const std::string                                    &context,
+             std::ostream                                         &log,
+             const bool                                            progress);
+  } // namespace contact
+} // namespace igabde
+
+#endif

@@ -1,0 +1,156 @@
+#ifndef igabde_contact_contact_law_h
+#define igabde_contact_contact_law_h
+
+#include <igabde/contact/contact_problem.h>
+
+#include <Eigen/Dense>
+
+#include <string>
+
+namespace igabde
+{
+  namespace contact
+  {
+    /**
+     * @brief State of one contact pair at the end of a solve (or iteration).
+     *
+     * A closed frictionless pair, and a closed pair with a zero friction
+     * radius, move freely in the tangential directions and are reported as
+     * slip.
+     */
+    enum class ContactStatus
+    {
+      open,
+      stick,
+      slip
+    };
+
+    /** @brief "open", "stick" or "slip". */
+    std::string
+    to_string(const ContactStatus status);
+
+    /**
+     * @brief Radius of the friction disc in the B-differentiable equations.
+     *
+     * Both give the same solution set; Newton behaves differently.
+     */
+    enum class FrictionRadius
+    {
+      /** R = mu max(p_n, 0): the seed's H (Christensen-Pang, Siconos JM). */
+      christensen_pang,
+      /** R = mu max(p_n - r_n u_n, 0): Alart-Curnier (Siconos NSN_AC). */
+      alart_curnier
+    };
+
+    /**
+     * @brief The per-pair weights r_n, r_t of the B-differentiable
+     * equations: r_n = c / W_nn and r_t = c / lambda_max(W_tt) per contact
+     * (W_tt the tangential diagonal block), c = @p factor. A non-positive
+     * diagonal entry falls back to c / max_i W_ii (and to c if W = 0).
+     */
+    struct PairWeights
+    {
+      Eigen::VectorXd r_n, r_t;
+    };
+
+    PairWeights
+    pair_weights(const ContactProblem &problem, const double factor);
+
+    /**
+     * @brief The piece of the contact law one pair is on, and the element of
+     * the B-subdifferential of its residual there: dH = A du + B dp (d x d
+     * blocks in the pair's local frame, normal first).
+     */
+    struct PairPiece
+    {
+      ContactStatus status = ContactStatus::open;
+      /// Whether the normal equation is on its closed branch.
+      bool            closed = false;
+      Eigen::Matrix3d A      = Eigen::Matrix3d::Zero();
+      Eigen::Matrix3d B      = Eigen::Matrix3d::Zero();
+    };
+
+    /**
+     * @brief The contact law of one pair: the B-differentiable residual H
+     * of the seed (method.md's H_n, H_t) and, if @p piece is not null, its
+     * piece and B-derivative. This is the one place where the open, stick
+     * and slip pieces and their tie rules are decided; every solver uses
+     * it.
+     *
+     * With @p d components, forces @p p and relative displacements @p u of
+     * the pair (local frame, gap included in u_n):
+     * @code
+     *   H_n = min(r_n u_n, p_n)
+     *   H_t = p_t - Proj_{D(R)}(z),  z = p_t - r_t u_t,
+     *   R   = mu max(p_n, 0)            (FrictionRadius::christensen_pang)
+     *     or mu max(p_n - r_n u_n, 0)   (FrictionRadius::alart_curnier)
+     * @endcode
+     * Tie rules (the B-derivative element chosen on a kink):
+     *  - min, r_n u_n < p_n: closed, A_nn = r_n;
+     *  - min, r_n u_n >= p_n (the tie included): open, B_nn = 1;
+     *  - |z| <= R, including z = 0 with R = 0: stick, A_tt = r_t I (so the
+     *    slip tie |z| = R > 0 is stick);
+     *  - |z| > R = 0: H_t = p_t, B_tt = I (the kink of R at p_n = 0 is
+     *    dropped);
+     *  - |z| > R > 0: slip, zhat = z/|z|, Gamma = (R/|z|)(I - zhat zhat^T):
+     *    B_tt = I - Gamma, A_tt = r_t Gamma, B_tn = -mu zhat, and for
+     *    Alart-Curnier also A_tn = mu r_n zhat.
+     */
+    void
+    pair_law(const unsigned int   d,
+             const double         mu,
+             const double         r_n,
+             const double         r_t,
+             const FrictionRadius radius,
+             const double        *p,
+             const double        *u,
+             double              *H,
+             PairPiece           *piece);
+
+    /**
+     * @brief Projection of x = (x_n, x_t) (@p d components) onto the
+     * Coulomb cone |x_t| <= mu x_n, in place.
+     */
+    void
+    project_on_cone(double *x, const unsigned int d, const double mu);
+
+    /**
+     * @brief Absolute natural-map (De Saxce/FCLIB) error
+     * |p - P_K(p - u_hat)| with u_hat = u + mu |u_t| e_n per contact and K
+     * the Coulomb cone {|p_t| <= mu p_n}; for frictionless problems
+     * |p - max(0, p - u)|. This is Siconos' fc3d_compute_error before its
+     * division.
+     */
+    double
+    natural_map_error(const ContactProblem  &problem,
+                      const Eigen::VectorXd &p,
+                      const Eigen::VectorXd &u);
+
+    /**
+     * @brief natural_map_error() divided by |q|, as in the FCLIB paper.
+     *
+     * When |q| is about zero (|q| <= 1e-12 |u - q|, or |q| = 0) the
+     * division is by the force scale |p| instead (1 if p = 0 too).
+     */
+    double
+    relative_natural_map_error(const ContactProblem  &problem,
+                               const Eigen::VectorXd &p,
+                               const Eigen::VectorXd &u);
+
+    /**
+     * @brief Scale-invariant ("balanced") natural-map error:
+     * |p - P_K(p - rho_c u_hat)| / |rho q| with rho_c = 1/W_nn of each
+     * contact (a stiffness), so that forces are compared with forces. It
+     * vanishes exactly where natural_map_error() does, and is unchanged when
+     * forces and displacements are rescaled independently (the FCLIB error
+     * is not: with W, q scaled by 1e6 it weights force errors by 1e-6).
+     * Falls back to division by |p| when |q| is about zero.
+     */
+    double
+    balanced_natural_map_error(const ContactProblem  &problem,
+                               const Eigen::VectorXd &p,
+                               const Eigen::VectorXd &u);
+  } // namespace contact
+} // namespace igabde
+
+#endif

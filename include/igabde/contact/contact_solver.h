@@ -1,0 +1,179 @@
+#ifndef igabde_contact_contact_solver_h
+#define igabde_contact_contact_solver_h
+
+#include <igabde/contact/contact_law.h>
+#include <igabde/contact/contact_problem.h>
+
+#include <Eigen/Dense>
+
+#include <iosfwd>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace igabde
+{
+  namespace contact
+  {
+    /** @brief One line of a contact solver's iteration history. */
+    struct ContactIterationRecord
+    {
+      /** @brief Global iteration counter (1-based). */
+      unsigned int iteration = 0;
+      /** @brief Phase, e.g. "newton-cp", "newton-ac", "prox-cp". */
+      std::string phase;
+      /** @brief |H| at the start of the iteration (force units). */
+      double h_norm = 0.;
+      /** @brief Relative natural-map error of the problem solved. */
+      double residual = 0.;
+      /** @brief Balanced natural-map error of the problem solved. */
+      double balanced_residual = 0.;
+      /** @brief Accepted step length (0 if none). */
+      double step = 0.;
+      /** @brief Contact counts at the start of the iteration. */
+      unsigned int n_open = 0, n_stick = 0, n_slip = 0;
+      /** @brief Size of the reduced linear system. */
+      unsigned int n_reduced = 0;
+      /** @brief Remarks: "lm", "gradient", "best-trial", ... */
+      std::string note;
+    };
+
+    /** @brief Outcome of a contact solve, whatever the algorithm. */
+    struct ContactSolverResult
+    {
+      /** @brief Contact forces (best iterate), n_rows(). */
+      Eigen::VectorXd p;
+      /** @brief Relative displacements W p + q + G alpha. */
+      Eigen::VectorXd u;
+      /** @brief Floating-body amplitudes (empty without G). */
+      Eigen::VectorXd alpha;
+      /** @brief Iterations done (all phases). */
+      unsigned int iterations = 0;
+      /** @brief Final relative natural-map error (FCLIB, /|q|). */
+      double residual = 0.;
+      /** @brief Final balanced_natural_map_error(). */
+      double balanced_residual = 0.;
+      /** @brief Final relative equilibrium error |G^T p - b| (0 w/o G). */
+      double equilibrium_residual = 0.;
+      /** @brief True if the stopping test was met. */
+      bool converged = false;
+      /** @brief "converged (...)" or why not. */
+      std::string diagnosis;
+      /** @brief Per-contact status at p, u. */
+      std::vector<ContactStatus> status;
+      /** @brief Status counts. */
+      unsigned int n_open = 0, n_stick = 0, n_slip = 0;
+      /** @brief Per-iteration history. */
+      std::vector<ContactIterationRecord> history;
+
+      /** @brief Print the history table with 5 significant digits. */
+      void
+      print_history(std::ostream &out) const;
+
+      /** @brief One-line summary: converged, iterations, residual. */
+      std::string
+      summary() const;
+    };
+
+    /**
+     * @brief A contact solver: the contact problem of one load step and a
+     * warm start in, the contact forces and the contact state out.
+     *
+     * The problem is the condensed one (ContactProblem: the flexibility W
+     * in the pairs' local frames, q, the rigid-mode columns G and their
+     * loads b, mu per pair). Every implementation decides the pieces of the
+     * contact law with pair_law() and reports its iterations, residual
+     * history and status in ContactSolverResult; the post-solve condition
+     * check (check_contact_conditions()) judges any of them the same way.
+     *
+     * Implementations: BNewtonSolver ("bde"). A new algorithm is one class
+     * deriving from this one plus one line in create_contact_solver().
+     */
+    class ContactSolver
+    {
+    public:
+      virtual ~ContactSolver() = default;
+
+      /** @brief The name the factory knows the solver by. */
+      virtual std::string
+      name() const = 0;
+
+      /**
+       * @brief Solves @p problem from the forces @p p0 (empty: zero) and
+       * floating-body amplitudes @p alpha0 (empty: the solver's choice).
+       */
+      virtual ContactSolverResult
+      solve(const ContactProblem  &problem,
+            const Eigen::VectorXd &p0,
+            const Eigen::VectorXd &alpha0) const = 0;
+    };
+
+    /** @brief Settings of the BDE (damped B-Newton) solver. */
+    struct BNewtonSettings
+    {
+      /** @brief Tolerance on the relative natural-map error. */
+      double tolerance = 1e-10;
+
+      /** @brief Iteration budget over all phases. */
+      unsigned int max_iterations = 100;
+
+      /** @brief Armijo sufficient-decrease constant sigma. */
+      double armijo_sigma = 1e-4;
+
+      /** @brief Backtracking factor beta. */
+      double armijo_beta = 0.5;
+
+      /** @brief Smallest step tried in the line search. */
+      double min_step = 1e-10;
+
+      /** @brief Factor c multiplying the per-contact r (pair_weights()). */
+      double r_factor = 1.;
+
+      /** @brief Non-monotone (GLL) memory M; 1 = monotone Armijo. */
+      unsigned int nonmonotone_memory = 5;
+
+      /** @brief Iterations without 0.1 % progress that count as stall. */
+      unsigned int stall_iterations = 20;
+
+      /** @brief Radius of the first phase. */
+      FrictionRadius radius = FrictionRadius::christensen_pang;
+
+      /** @brief Retry with the other radius after a failed phase. */
+      bool switch_radius = true;
+
+      /** @brief Proximal-point phase after failed Newton phases. */
+      bool proximal = true;
+
+      /** @brief Wall-time limit in seconds (0: none). */
+      double max_wall_seconds = 0.;
+
+      /** @brief Print the iterations while solving. */
+      bool log = false;
+
+      /** @brief Stream for the log (nullptr: std::cout). */
+      std::ostream *log_stream = nullptr;
+    };
+
+    /** @brief What create_contact_solver() needs. */
+    struct ContactSolverSettings
+    {
+      /// Contact/Algorithm: "bde" (more to come: see ContactSolver).
+      std::string algorithm = "bde";
+      /// Settings of the BDE solver.
+      BNewtonSettings bnewton;
+    };
+
+    /**
+     * @brief The solver @p settings.algorithm names; throws a one-line input
+     * error naming the algorithms available otherwise.
+     */
+    std::unique_ptr<ContactSolver>
+    create_contact_solver(const ContactSolverSettings &settings);
+
+    /** @brief The algorithms create_contact_solver() can make. */
+    std::vector<std::string>
+    available_contact_solvers();
+  } // namespace contact
+} // namespace igabde
+
+#endif

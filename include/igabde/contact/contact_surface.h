@@ -1,0 +1,92 @@
+#ifndef igabde_contact_contact_surface_h
+#define igabde_contact_contact_surface_h
+
+#include <igabde/discretization/body.h>
+
+#include <deal.II/base/point.h>
+#include <deal.II/base/tensor.h>
+
+#include <string>
+#include <vector>
+
+namespace igabde
+{
+  namespace contact
+  {
+    using namespace dealii;
+
+    /**
+     * @brief What the contact points of Body 1 face: a face of a deformable
+     * body (BodyFace) or an obstacle (Obstacle, e.g. RigidPlane).
+     *
+     * A pairing strategy asks it for points that may coincide with Body 1's
+     * points and for the closest point to a location; the condensation
+     * asks whether it moves (deformable()).
+     */
+    template <int dim>
+    class ContactSurface
+    {
+    public:
+      virtual ~ContactSurface() = default;
+
+      /// Whether the surface belongs to a deformable body (its points carry
+      /// operators into that body's unknowns).
+      virtual bool
+      deformable() const = 0;
+
+      /// For messages: "Body 2's face 3", "the rigid plane".
+      virtual std::string
+      description() const = 0;
+
+      /// Points of the surface where Body 1's points may coincide with it
+      /// (matching meshes); empty for an obstacle.
+      virtual const std::vector<discretization::SurfacePoint<dim>> &
+      sample_points() const = 0;
+
+      /**
+       * @brief The point of the surface closest to @p location, with the
+       * surface's outward unit normal there and (deformable surfaces) its
+       * operator. @p nearest is the sample point nearest to @p location, or
+       * nullptr when there are no samples.
+       */
+      virtual discretization::SurfacePoint<dim>
+      closest_point(const Point<dim>                        &location,
+                    const discretization::SurfacePoint<dim> *nearest) const = 0;
+    };
+
+
+
+    /**
+     * @brief A patch face of a deformable body as a contact surface.
+     */
+    template <int dim>
+    class BodyFace : public ContactSurface<dim>
+    {
+    public:
+      /// Samples the face's candidate points (Body::surface_points()).
+      BodyFace(const discretization::Body<dim> &body,
+               const types::boundary_id         face);
+
+      bool
+      deformable() const override;
+
+      std::string
+      description() const override;
+
+      const std::vector<discretization::SurfacePoint<dim>> &
+      sample_points() const override;
+
+      discretization::SurfacePoint<dim>
+      closest_point(
+        const Point<dim>                        &location,
+        const discretization::SurfacePoint<dim> *nearest) const override;
+
+    private:
+      const discretization::Body<dim>               &body;
+      const types::boundary_id                       face;
+      std::vector<discretization::SurfacePoint<dim>> samples;
+    };
+  } // namespace contact
+} // namespace igabde
+
+#endif

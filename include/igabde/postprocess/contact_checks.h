@@ -1,0 +1,80 @@
+#ifndef igabde_postprocess_contact_checks_h
+#define igabde_postprocess_contact_checks_h
+
+#include <igabde/elasticity/material.h>
+
+#include <igabde/contact/contact_stage.h>
+
+#include <deal.II/base/point.h>
+#include <deal.II/base/tensor.h>
+
+#include <string>
+#include <vector>
+
+namespace igabde
+{
+  namespace postprocess
+  {
+    using namespace dealii;
+
+    /**
+     * @brief The contact patch test (V3): every pair should carry the
+     * applied pressure. Returns max_i |p_i / p - 1| over the pairs.
+     */
+    template <int dim>
+    double
+    pressure_uniformity(const std::vector<contact::PairState<dim>> &pairs,
+                        const double expected_pressure);
+
+    /**
+     * @brief Hertz's effective modulus of two bodies in contact:
+     * 1/E* = (1 - nu_1^2)/E_1 + (1 - nu_2^2)/E_2 in plane strain and 3D,
+     * 1/E* = 1/E_1 + 1/E_2 in plane stress; @p body2 nullptr is a rigid
+     * obstacle (its term vanishes).
+     */
+    template <int dim>
+    double
+    effective_modulus(const elasticity::IsotropicMaterial<dim> &body1,
+                      const elasticity::IsotropicMaterial<dim> *body2);
+
+    /**
+     * @brief The 2D Hertz line contact of a cylinder of radius R pressed by
+     * the line load P (Johnson, Contact Mechanics §4.2):
+     * a = sqrt(4 P R / (pi E*)), p(x) = p0 sqrt(1 - x^2/a^2),
+     * p0 = 2 P / (pi a); x is the distance from the symmetry axis (the line
+     * through axis_point along axis_direction).
+     */
+    struct HertzCheck
+    {
+      double       line_load         = 0.;
+      double       radius            = 0.;
+      double       effective_modulus = 0.;
+      Point<2>     axis_point;
+      Tensor<1, 2> axis_direction;
+
+      struct Result
+      {
+        /// Half-width from the pairs: the last loaded pair, refined by the
+        /// ellipse through the last two loaded pairs.
+        double half_width          = 0.;
+        double half_width_exact    = 0.;
+        double peak_pressure       = 0.;
+        double peak_pressure_exact = 0.;
+        /// L2 distance of the piecewise linear pair profile to Johnson's
+        /// over |x| <= 1.2 a, relative.
+        double profile_l2_error = 0.;
+        /// Pairs carrying load, and the pair spacing next to the axis.
+        unsigned int n_loaded     = 0;
+        double       pair_spacing = 0.;
+        /// Empty, or why the figures above do not measure the method (the
+        /// contact zone is not resolved by the pairs).
+        std::string warning;
+      };
+
+      Result
+      evaluate(const std::vector<contact::PairState<2>> &pairs) const;
+    };
+  } // namespace postprocess
+} // namespace igabde
+
+#endif

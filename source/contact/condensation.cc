@@ -1,0 +1,148 @@
+#include <igabde/base/utilities.h>
+
+#include <igabde/contact/condensation.h>
+
+#include <algorithm>
+
+namespace igabde
+{
+  namespace contact
+  {
+    template <int dim>
+    CondensedContact<dim>
+    condense(const std::vector<ContactPair<dim>>                  &pair_list,
+             const std::vector<const discretization::Body<dim> *> &bodies,
+             const unsigned int                                    m,
+             const double                                          friction,
+             const std::string                                    &context,
+             std::ostream                                         &log,
+             const bool                                            progress)
+    {
+      CondensedContact<dim> result;
+      const unsigned int    nc = pair_list.size();
+      Eigen::MatrixXd       FL(m * nc, m * nc);
+      FL.setZero();
+      for (unsigned int b = 0; b < bodies.size(); ++b)
+        {
+          std::vector<discretization::PointOperator<dim>> ops;
+          std::vector<Tensor<1, dim>>                     directions;
+          ops.reserve(m * nc);
+          directions.reserve(m * nc);
+          for (unsigned int j = 0; j < nc; ++j)
+            for (unsigned int s = 0; s < m; ++s)
+              {
+                ops.push_back(b == 0 ? pair_list[j].op1 : pair_list[j].op2);
+                directions.push_back(pair_list[j].frame[s]);
+              }
+          const FullMatrix<double> Fb = bodies[b]->flexibility(ops, directions);
+          for (unsigned int i = 0; i < m * nc; ++i)
+            for (unsigned int j = 0; j < m * nc; ++j)
+              FL(i, j) += Fb(i, j);
+          if (progress)
+            log << "  contact: " << bodies[b]->name() << " condensed onto "
+                << m * nc << " pair directions"
+                << (bodies[b]->has_schur_complement() ?
+                      " (Schur complement on " +
+                        std::to_string(bodies[b]->n_interface_dofs()) +
+                        " face unknowns)" :
+                      " (one solve per column)")
+                << std::endl;
+        }
+
+      // Rigid modes left free by the supports: u = K^+ f + R alpha, with the
+      // equilibrium R^T (f_ext + f_contact) = 0 joining the BDE system.
+      auto &alpha_modes = result.alpha_modes;
+      for (unsigned int b = 0; b < bodies.size(); ++b)
+        for (unsigned int k = 0; k < bodies[b]->free_rigid_modes().size(); ++k)
+          alpha_modes.emplace_back(b, k);
+      Eigen::MatrixXd GL(m * nc, alpha_modes.size());
+      result.rigid_mode_loads.resize(alpha_modes.size());
+      for (unsigned int a = 0; a < alpha_modes.size(); ++a)
+        {
+          const auto [b, k]          = alpha_modes[a];
+          const auto  &mode          = bodies[b]->free_rigid_modes()[k];
+          const double sign          = (b == 0 ? 1. : -1.);
+          result.rigid_mode_loads(a) = mode * bodies[b]->load_vector();
+          for (unsigned int i = 0; i < nc; ++i)
+            {
+              const Tensor<1, dim> r =
+                (b == 0 ? pair_list[i].op1 : pair_list[i].op2)
+                  .displacement(mode);
+              for (unsigned int s = 0; s < m; ++s)
+                GL(m * i + s, a) = sign * (pair_list[i].frame[s] * r);
+            }
+          log << "  " << bodies[b]->name() << ": free rigid mode '"
+              << bodies[b]->free_rigid_mode_names()[k]
+              << "' closed by the contact equilibrium (exact, no springs)"
+              << std::endl;
+        }
+
+      // Pairs whose two points are both held by supports carry no
+      // information: their flexibility rows and rigid-mode rows vanish
+      // (to round-off: 1e-12 of the largest entry). Leave them out (a pinned
+      // point of a floating body keeps its rigid motion, so it stays).
+      double max_diag = 0., max_g = 0.;
+      for (unsigned int i = 0; i < m * nc; ++i)
+        max_diag = std::max(max_diag, FL(i, i));
+      if (GL.size() > 0)
+        max_g = GL.cwiseAbs().maxCoeff();
+      std::vector<unsigned int> keep;
+      for (unsigned int i = 0; i < nc; ++i)
+        {
+          const double g_row =
+            (GL.cols() > 0 ? GL.row(m * i).cwiseAbs().maxCoeff() : 0.);
+          if (FL(m * i, m * i) > 1e-12 * max_diag || g_row > 1e-12 * max_g)
+            keep.push_back(i);
+        }
+      result.n_dropped = nc - keep.size();
+      AssertThrow(!keep.empty(),
+                  base::ExcInput(context +
+                                 ": every contact pair is held by supports on "
+                                 "both sides; nothing can touch."));
+      ContactProblem &problem = result.problem;
+      Eigen::MatrixXd W(m * keep.size(), m * keep.size());
+      problem.G.resize(m * keep.size(), alpha_modes.size());
+      for (unsigned int i = 0; i < keep.size(); ++i)
+        {
+          result.pairs.push_back(pair_list[keep[i]]);
+          for (unsigned int j = 0; j < keep.size(); ++j)
+            W.block(m * i, m * j, m, m) =
+              FL.block(m * keep[i], m * keep[j], m, m);
+          problem.G.middleRows(m * i, m) = GL.middleRows(m * keep[i], m);
+        }
+      result.asymmetry =
+        (W - W.transpose()).norm() / std::max(W.norm(), 1e-300);
+      W = 0.5 * (W + W.transpose());
+
+      problem.n_contacts   = result.pairs.size();
+      problem.n_components = m;
+      problem.W            = W;
+      problem.q            = Eigen::VectorXd::Zero(m * result.pairs.size());
+      problem.mu.assign(result.pairs.size(), friction);
+      problem.name = context;
+      problem.b.resize(alpha_modes.size());
+      problem.b.setZero();
+      problem.check_consistency();
+      return result;
+    }
+
+
+
+    template CondensedContact<2>
+    condense(const std::vector<ContactPair<2>> &,
+             const std::vector<const discretization::Body<2> *> &,
+             const unsigned int,
+             const double,
+             const std::string &,
+             std::ostream &,
+             const bool);
+    template CondensedContact<3>
+    condense(const std::vector<ContactPair<3>> &,
+             const std::vector<const discretization::Body<3> *> &,
+             const unsigned int,
+             const double,
+             const std::string &,
+             std::ostream &,
+             const bool);
+  } // namespace contact
+} // namespace igabde

@@ -1,0 +1,76 @@
+#include <igabde/base/utilities.h>
+
+#include <igabde/contact/bnewton.h>
+#include <igabde/contact/contact_solver.h>
+
+#include <iomanip>
+#include <ostream>
+#include <sstream>
+
+namespace igabde
+{
+  namespace contact
+  {
+    void
+    ContactSolverResult::print_history(std::ostream &out) const
+    {
+      std::ios::fmtflags f(out.flags());
+      out << "   it     phase        |H|    residual    balanced        step"
+             "  open stick  slip   red note\n";
+      for (const ContactIterationRecord &rec : history)
+        out << std::setw(5) << rec.iteration << ' ' << std::setw(9) << rec.phase
+            << std::scientific << std::setprecision(4) << std::setw(12)
+            << rec.h_norm << std::setw(12) << rec.residual << std::setw(12)
+            << rec.balanced_residual << std::setw(12) << rec.step
+            << std::setw(6) << rec.n_open << std::setw(6) << rec.n_stick
+            << std::setw(6) << rec.n_slip << std::setw(6) << rec.n_reduced
+            << ' ' << rec.note << '\n';
+      out << summary() << '\n';
+      out.flags(f);
+    }
+
+
+
+    std::string
+    ContactSolverResult::summary() const
+    {
+      std::ostringstream s;
+      s << (converged ? "converged" : "NOT converged") << " after "
+        << iterations << " iterations, relative natural-map residual "
+        << std::scientific << std::setprecision(4) << residual << " (balanced "
+        << balanced_residual << ")";
+      if (alpha.size() > 0)
+        s << ", equilibrium residual " << equilibrium_residual;
+      s << ", open/stick/slip " << n_open << '/' << n_stick << '/' << n_slip
+        << ": " << diagnosis;
+      return s.str();
+    }
+
+
+
+    std::vector<std::string>
+    available_contact_solvers()
+    {
+      return {"bde"};
+    }
+
+
+
+    std::unique_ptr<ContactSolver>
+    create_contact_solver(const ContactSolverSettings &settings)
+    {
+      // One line per algorithm.
+      if (settings.algorithm == "bde")
+        return std::make_unique<BNewtonSolver>(settings.bnewton);
+
+      std::string names;
+      for (const auto &name : available_contact_solvers())
+        names += (names.empty() ? "" : ", ") + name;
+      AssertThrow(false,
+                  base::ExcInput("Contact/Algorithm = " + settings.algorithm +
+                                 " is not available; use one of: " + names +
+                                 "."));
+      return nullptr;
+    }
+  } // namespace contact
+} // namespace igabde

@@ -1,0 +1,142 @@
+#include <igabde/base/utilities.h>
+
+#include <igabde/postprocess/contact_output.h>
+
+#include <deal.II/base/data_out_base.h>
+
+#include <deal.II/numerics/data_component_interpretation.h>
+
+#include <fstream>
+#include <iomanip>
+
+namespace igabde
+{
+  namespace postprocess
+  {
+    using namespace dealii;
+
+    namespace
+    {
+      std::ofstream
+      open_for_writing(const std::string &filename)
+      {
+        std::ofstream out(filename);
+        AssertThrow(out,
+                    base::ExcInput("cannot open '" + filename +
+                                   "' for writing; check Output/Directory."));
+        return out;
+      }
+    } // namespace
+
+
+
+    template <int dim>
+    void
+    write_pair_csv(const std::vector<contact::PairState<dim>> &pairs,
+                   const std::string                          &filename)
+    {
+      std::ofstream      csv = open_for_writing(filename);
+      const unsigned int m =
+        pairs.empty() ? 1 : pairs.front().force_local.size();
+      csv << "pair";
+      const char *xyz = "xyz";
+      for (unsigned int d = 0; d < dim; ++d)
+        csv << "," << xyz[d];
+      csv << ",area,gap,p_n";
+      for (unsigned int s = 1; s < m; ++s)
+        csv << ",p_t" << s;
+      csv << ",pressure";
+      for (unsigned int s = 1; s < m; ++s)
+        csv << ",slip_t" << s;
+      csv << ",status\n" << std::setprecision(12);
+      for (unsigned int i = 0; i < pairs.size(); ++i)
+        {
+          const auto &pair = pairs[i];
+          csv << i;
+          for (unsigned int d = 0; d < dim; ++d)
+            csv << "," << pair.location[d];
+          csv << "," << pair.area << "," << pair.displacement_local[0];
+          for (unsigned int s = 0; s < m; ++s)
+            csv << "," << pair.force_local[s];
+          csv << "," << pair.pressure();
+          for (unsigned int s = 1; s < m; ++s)
+            csv << "," << pair.displacement_local[s];
+          csv << "," << contact::to_string(pair.status) << "\n";
+        }
+    }
+
+
+
+    template <int dim>
+    void
+    write_pair_vtu(const std::vector<contact::PairState<dim>> &pairs,
+                   const std::string                          &filename)
+    {
+      const bool friction =
+        !pairs.empty() && pairs.front().force_local.size() > 1;
+      std::vector<std::string> names = {"pressure", "gap", "status"};
+      for (unsigned int d = 0; d < dim; ++d)
+        names.emplace_back("contact_force");
+      if (friction)
+        for (unsigned int d = 0; d < dim; ++d)
+          names.emplace_back("slip");
+      std::vector<
+        std::tuple<unsigned int,
+                   unsigned int,
+                   std::string,
+                   DataComponentInterpretation::DataComponentInterpretation>>
+        vectors;
+      vectors.emplace_back(
+        3,
+        3 + dim - 1,
+        "contact_force",
+        DataComponentInterpretation::component_is_part_of_vector);
+      if (friction)
+        vectors.emplace_back(
+          3 + dim,
+          3 + 2 * dim - 1,
+          "slip",
+          DataComponentInterpretation::component_is_part_of_vector);
+
+      std::vector<DataOutBase::Patch<0, dim>> patches(pairs.size());
+      for (unsigned int i = 0; i < pairs.size(); ++i)
+        {
+          const auto &pair  = pairs[i];
+          auto       &patch = patches[i];
+          patch.vertices[0] = pair.location;
+          patch.patch_index = i;
+          patch.data.reinit(names.size(), 1);
+          unsigned int row     = 0;
+          patch.data(row++, 0) = pair.pressure();
+          patch.data(row++, 0) = pair.displacement_local[0];
+          patch.data(row++, 0) = static_cast<int>(pair.status);
+          for (unsigned int d = 0; d < dim; ++d)
+            patch.data(row++, 0) = pair.force[d];
+          if (friction)
+            for (unsigned int d = 0; d < dim; ++d)
+              patch.data(row++, 0) = pair.slip[d];
+        }
+      std::ofstream out = open_for_writing(filename);
+      DataOutBase::write_vtu(patches,
+                             names,
+                             vectors,
+                             DataOutBase::VtkFlags(),
+                             out);
+    }
+
+
+
+    template void
+    write_pair_csv<2>(const std::vector<contact::PairState<2>> &,
+                      const std::string &);
+    template void
+    write_pair_csv<3>(const std::vector<contact::PairState<3>> &,
+                      const std::string &);
+    template void
+    write_pair_vtu<2>(const std::vector<contact::PairState<2>> &,
+                      const std::string &);
+    template void
+    write_pair_vtu<3>(const std::vector<contact::PairState<3>> &,
+                      const std::string &);
+  } // namespace postprocess
+} // namespace igabde
