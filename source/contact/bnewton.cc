@@ -351,16 +351,7 @@ namespace igabde
         {
           if (!settings.log)
             return;
-          std::ostream      &o = *out;
-          std::ios::fmtflags f(o.flags());
-          o << std::setw(5) << rec.iteration << ' ' << std::setw(9) << rec.phase
-            << std::scientific << std::setprecision(4) << std::setw(12)
-            << rec.h_norm << std::setw(12) << rec.residual << std::setw(12)
-            << rec.balanced_residual << std::setw(12) << rec.step
-            << std::setw(6) << rec.n_open << std::setw(6) << rec.n_stick
-            << std::setw(6) << rec.n_slip << std::setw(6) << rec.n_reduced
-            << ' ' << rec.note << '\n';
-          o.flags(f);
+          rec.print(*out);
         }
 
         const ContactProblem                 &original;

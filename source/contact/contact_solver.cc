@@ -12,19 +12,28 @@ namespace igabde
   namespace contact
   {
     void
+    ContactIterationRecord::print(std::ostream &out) const
+    {
+      std::ios::fmtflags f(out.flags());
+      out << std::setw(5) << iteration << ' ' << std::setw(9) << phase
+          << std::scientific << std::setprecision(4) << std::setw(12) << h_norm
+          << std::setw(12) << residual << std::setw(12) << balanced_residual
+          << std::setw(12) << step << std::setw(6) << n_open << std::setw(6)
+          << n_stick << std::setw(6) << n_slip << std::setw(6) << n_reduced
+          << ' ' << note << '\n';
+      out.flags(f);
+    }
+
+
+
+    void
     ContactSolverResult::print_history(std::ostream &out) const
     {
       std::ios::fmtflags f(out.flags());
       out << "   it     phase        |H|    residual    balanced        step"
              "  open stick  slip   red note\n";
       for (const ContactIterationRecord &rec : history)
-        out << std::setw(5) << rec.iteration << ' ' << std::setw(9) << rec.phase
-            << std::scientific << std::setprecision(4) << std::setw(12)
-            << rec.h_norm << std::setw(12) << rec.residual << std::setw(12)
-            << rec.balanced_residual << std::setw(12) << rec.step
-            << std::setw(6) << rec.n_open << std::setw(6) << rec.n_stick
-            << std::setw(6) << rec.n_slip << std::setw(6) << rec.n_reduced
-            << ' ' << rec.note << '\n';
+        rec.print(out);
       out << summary() << '\n';
       out.flags(f);
     }

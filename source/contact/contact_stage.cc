@@ -303,8 +303,7 @@ namespace igabde
 
     template <int dim>
     StepResult<dim>
-    ContactStage<dim>::solve_step(const unsigned int           step,
-                                  const double                 load_factor,
+    ContactStage<dim>::solve_step(const double                 load_factor,
                                   std::vector<Vector<double>> &u,
                                   TimerOutput                 &timer)
     {
@@ -357,7 +356,6 @@ namespace igabde
           result.first_violation = report.first_violation();
           return result;
         }
-      (void)step;
 
       p                 = solution.p;
       alpha             = solution.alpha;

@@ -129,6 +129,37 @@ namespace igabde
 
 
     template <int dim>
+    std::vector<ContactPair<dim>>
+    PairingStrategy<dim>::make_pairs(
+      const std::vector<discretization::SurfacePoint<dim>> &slave,
+      const ContactSurface<dim>                            &master,
+      const std::string                                    &context) const
+    {
+      const double size    = cloud_size(slave);
+      const auto  &samples = master.sample_points();
+      AssertThrow(!master.deformable() || !samples.empty(),
+                  base::ExcInput(context + ": " + master.description() +
+                                 " has no contact points."));
+      std::vector<ContactPair<dim>> pairs;
+      for (const auto &s : slave)
+        pairs.push_back(
+          make_pair(s,
+                    master.deformable() ?
+                      facing_point(s,
+                                   samples[nearest_sample(samples, s.location)],
+                                   master,
+                                   size,
+                                   context) :
+                      master.closest_point(s.location, nullptr),
+                    master,
+                    size,
+                    context));
+      return pairs;
+    }
+
+
+
+    template <int dim>
     std::string
     NodeToNodePairing<dim>::name() const
     {
@@ -138,49 +169,30 @@ namespace igabde
 
 
     template <int dim>
-    std::vector<ContactPair<dim>>
-    NodeToNodePairing<dim>::make_pairs(
-      const std::vector<discretization::SurfacePoint<dim>> &slave,
-      const ContactSurface<dim>                            &master,
-      const std::string                                    &context) const
+    discretization::SurfacePoint<dim>
+    NodeToNodePairing<dim>::facing_point(
+      const discretization::SurfacePoint<dim> &s,
+      const discretization::SurfacePoint<dim> &nearest,
+      const ContactSurface<dim>               &master,
+      const double                             size,
+      const std::string                       &context) const
     {
-      const double                  size    = cloud_size(slave);
-      const auto                   &samples = master.sample_points();
-      std::vector<ContactPair<dim>> pairs;
-      for (const auto &s : slave)
-        {
-          if (!master.deformable())
-            {
-              pairs.push_back(
-                make_pair(s,
-                          master.closest_point(s.location, nullptr),
-                          master,
-                          size,
-                          context));
-              continue;
-            }
-          AssertThrow(!samples.empty(),
-                      base::ExcInput(context + ": " + master.description() +
-                                     " has no contact points."));
-          const auto  &m        = samples[nearest_sample(samples, s.location)];
-          const double distance = (m.location - s.location).norm();
-          AssertThrow(
-            distance <= 1e-8 * size,
-            base::ExcInput(
-              context +
-              ": Contact/Pairing = node-to-node needs matching surfaces, but "
-              "the point (" +
-              [&] {
-                std::ostringstream o;
-                o << s.location;
-                return o.str();
-              }() +
-              ") of Body 1 has no coincident point on " + master.description() +
-              " (nearest at distance " + std::to_string(distance) +
-              "); use Contact/Pairing = node-to-surface."));
-          pairs.push_back(make_pair(s, m, master, size, context));
-        }
-      return pairs;
+      const double distance = (nearest.location - s.location).norm();
+      AssertThrow(
+        distance <= 1e-8 * size,
+        base::ExcInput(
+          context +
+          ": Contact/Pairing = node-to-node needs matching surfaces, but "
+          "the point (" +
+          [&] {
+            std::ostringstream o;
+            o << s.location;
+            return o.str();
+          }() +
+          ") of Body 1 has no coincident point on " + master.description() +
+          " (nearest at distance " + std::to_string(distance) +
+          "); use Contact/Pairing = node-to-surface."));
+      return nearest;
     }
 
 
@@ -195,43 +207,19 @@ namespace igabde
 
 
     template <int dim>
-    std::vector<ContactPair<dim>>
-    NodeToSurfacePairing<dim>::make_pairs(
-      const std::vector<discretization::SurfacePoint<dim>> &slave,
-      const ContactSurface<dim>                            &master,
-      const std::string                                    &context) const
+    discretization::SurfacePoint<dim>
+    NodeToSurfacePairing<dim>::facing_point(
+      const discretization::SurfacePoint<dim> &s,
+      const discretization::SurfacePoint<dim> &nearest,
+      const ContactSurface<dim>               &master,
+      const double                             size,
+      const std::string &) const
     {
-      const double size    = cloud_size(slave);
-      const auto  &samples = master.sample_points();
-      AssertThrow(!master.deformable() || !samples.empty(),
-                  base::ExcInput(context + ": " + master.description() +
-                                 " has no contact points."));
-      std::vector<ContactPair<dim>> pairs;
-      for (const auto &s : slave)
-        {
-          if (samples.empty())
-            {
-              pairs.push_back(
-                make_pair(s,
-                          master.closest_point(s.location, nullptr),
-                          master,
-                          size,
-                          context));
-              continue;
-            }
-          // The coincident master point where the surfaces match (within
-          // round-off of the face's size), else the closest point.
-          const auto &m = samples[nearest_sample(samples, s.location)];
-          if ((m.location - s.location).norm() <= 1e-8 * size)
-            pairs.push_back(make_pair(s, m, master, size, context));
-          else
-            pairs.push_back(make_pair(s,
-                                      master.closest_point(s.location, &m),
-                                      master,
-                                      size,
-                                      context));
-        }
-      return pairs;
+      // The coincident master point where the surfaces match (within
+      // round-off of the face's size), else the closest point.
+      if ((nearest.location - s.location).norm() <= 1e-8 * size)
+        return nearest;
+      return master.closest_point(s.location, &nearest);
     }
 
 
@@ -270,6 +258,8 @@ namespace igabde
     local_frame<2>(const Tensor<1, 2> &);
     template Tensor<2, 3>
     local_frame<3>(const Tensor<1, 3> &);
+    template class PairingStrategy<2>;
+    template class PairingStrategy<3>;
     template class NodeToNodePairing<2>;
     template class NodeToNodePairing<3>;
     template class NodeToSurfacePairing<2>;

@@ -12,10 +12,12 @@ namespace igabde
     LoadController<dim>::LoadController(contact::ContactStage<dim> &stage,
                                         const ExternalSolution     &external,
                                         const unsigned int          max_cuts,
+                                        const std::string          &context,
                                         std::ostream               &log)
       : stage(stage)
       , external(external)
       , max_cuts(max_cuts)
+      , context(context)
       , log(log)
     {}
 
@@ -43,14 +45,14 @@ namespace igabde
           const auto [lt, dt, depth] = targets.back();
           const auto state           = stage.save_state();
           u                          = external(lt, dt);
-          outcome.last               = stage.solve_step(step, lt, u, timer);
+          outcome.last               = stage.solve_step(lt, u, timer);
           outcome.iterations += outcome.last.iterations;
           ++outcome.contact_solves;
           if (outcome.last.converged)
             {
               AssertThrow(outcome.last.conditions_passed,
                           base::ExcInput(
-                            "load step " + std::to_string(step) +
+                            context + ": load step " + std::to_string(step) +
                             ": the contact solution violates a contact "
                             "condition: " +
                             outcome.last.first_violation));

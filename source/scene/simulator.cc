@@ -467,6 +467,7 @@ namespace igabde
           *contact_stage,
           external,
           parameters.contact.max_step_cuts,
+          scene_file,
           pcout.get_stream());
 
       double previous_load = 0., previous_displacement = 0.;

@@ -36,6 +36,10 @@ namespace igabde
       unsigned int n_reduced = 0;
       /** @brief Remarks: "lm", "gradient", "best-trial", ... */
       std::string note;
+
+      /** @brief One line of the history table (5 significant digits). */
+      void
+      print(std::ostream &out) const;
     };
 
     /** @brief Outcome of a contact solve, whatever the algorithm. */

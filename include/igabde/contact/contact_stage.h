@@ -154,7 +154,7 @@ namespace igabde
       condense(TimerOutput &timer);
 
       /**
-       * @brief Solves the load step @p step at load factor @p load_factor
+       * @brief Solves a load step at load factor @p load_factor
        * (which scales the loads that the equilibrium of floating bodies
        * balances): on entry @p u holds each body's displacement under the
        * external loads of this step, on exit, when the solve converged and
@@ -162,8 +162,7 @@ namespace igabde
        * contact forces. The stage's state moves on only then.
        */
       StepResult<dim>
-      solve_step(const unsigned int           step,
-                 const double                 load_factor,
+      solve_step(const double                 load_factor,
                  std::vector<Vector<double>> &u,
                  TimerOutput                 &timer);
 

@@ -39,8 +39,9 @@ namespace igabde
      * @brief How Body 1's contact points are paired with the surface they
      * face. Implementations: NodeToNodePairing ("node-to-node", matching
      * surfaces), NodeToSurfacePairing ("node-to-surface", closest point).
-     * A new strategy is one class deriving from this one plus one line in
-     * create_pairing_strategy().
+     * A new strategy is one class deriving from this one (it chooses the
+     * facing point of a slave point on a deformable surface) plus one line
+     * in create_pairing_strategy().
      */
     template <int dim>
     class PairingStrategy
@@ -54,19 +55,33 @@ namespace igabde
 
       /**
        * @brief The pairs of the points @p slave (Body 1's contact face)
-       * against @p master. Throws an input error, naming @p context, when
-       * the surfaces do not face each other or Body 1 initially penetrates.
+       * against @p master: on an obstacle the projection, on a deformable
+       * surface the point facing_point() chooses; frames from the master
+       * normal. Throws an input error, naming @p context, when the surfaces
+       * do not face each other or Body 1 initially penetrates.
        */
-      virtual std::vector<ContactPair<dim>>
+      std::vector<ContactPair<dim>>
       make_pairs(const std::vector<discretization::SurfacePoint<dim>> &slave,
                  const ContactSurface<dim>                            &master,
-                 const std::string &context) const = 0;
+                 const std::string &context) const;
+
+    protected:
+      /**
+       * @brief The point of the deformable surface @p master facing the
+       * slave point @p s; @p nearest is the master sample nearest to it and
+       * @p size the size of the slave face (the scale of tolerances).
+       */
+      virtual discretization::SurfacePoint<dim>
+      facing_point(const discretization::SurfacePoint<dim> &s,
+                   const discretization::SurfacePoint<dim> &nearest,
+                   const ContactSurface<dim>               &master,
+                   const double                             size,
+                   const std::string                       &context) const = 0;
     };
 
     /**
      * @brief Node-to-node: every point of Body 1 has a coincident point on
-     * a deformable master face (matching meshes; an error otherwise), or
-     * its projection on an obstacle.
+     * a deformable master face (matching meshes; an error otherwise).
      */
     template <int dim>
     class NodeToNodePairing : public PairingStrategy<dim>
@@ -75,10 +90,13 @@ namespace igabde
       std::string
       name() const override;
 
-      std::vector<ContactPair<dim>>
-      make_pairs(const std::vector<discretization::SurfacePoint<dim>> &slave,
-                 const ContactSurface<dim>                            &master,
-                 const std::string &context) const override;
+    protected:
+      discretization::SurfacePoint<dim>
+      facing_point(const discretization::SurfacePoint<dim> &s,
+                   const discretization::SurfacePoint<dim> &nearest,
+                   const ContactSurface<dim>               &master,
+                   const double                             size,
+                   const std::string &context) const override;
     };
 
     /**
@@ -93,10 +111,13 @@ namespace igabde
       std::string
       name() const override;
 
-      std::vector<ContactPair<dim>>
-      make_pairs(const std::vector<discretization::SurfacePoint<dim>> &slave,
-                 const ContactSurface<dim>                            &master,
-                 const std::string &context) const override;
+    protected:
+      discretization::SurfacePoint<dim>
+      facing_point(const discretization::SurfacePoint<dim> &s,
+                   const discretization::SurfacePoint<dim> &nearest,
+                   const ContactSurface<dim>               &master,
+                   const double                             size,
+                   const std::string &context) const override;
     };
 
     /**

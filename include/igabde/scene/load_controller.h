@@ -9,6 +9,7 @@
 
 #include <functional>
 #include <ostream>
+#include <string>
 #include <vector>
 
 namespace igabde
@@ -49,9 +50,11 @@ namespace igabde
         unsigned int cuts = 0;
       };
 
+      /// @p context prefixes error messages (the scene file).
       LoadController(contact::ContactStage<dim> &stage,
                      const ExternalSolution     &external,
                      const unsigned int          max_cuts,
+                     const std::string          &context,
                      std::ostream               &log);
 
       /**
@@ -72,6 +75,7 @@ namespace igabde
       contact::ContactStage<dim> &stage;
       const ExternalSolution      external;
       const unsigned int          max_cuts;
+      const std::string           context;
       std::ostream               &log;
     };
   } // namespace scene
