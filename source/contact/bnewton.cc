@@ -25,15 +25,7 @@ namespace igabde
                         const Vec            &p,
                         double               &absolute)
       {
-        absolute = 0.;
-        if (problem.n_alpha() == 0)
-          return 0.;
-        absolute          = (problem.G.transpose() * p - problem.b).norm();
-        const double den1 = problem.b.norm();
-        const double den2 =
-          (problem.G.cwiseAbs().transpose() * p.cwiseAbs()).norm();
-        const double den = std::max(den1, den2);
-        return den > 0. ? absolute / den : absolute;
+        return relative_equilibrium_error(problem, p, absolute);
       }
 
 

@@ -9,6 +9,46 @@ namespace igabde
   namespace contact
   {
     template <int dim>
+    RigidModeColumns
+    rigid_mode_columns(
+      const std::vector<ContactPair<dim>>                  &pair_list,
+      const std::vector<const discretization::Body<dim> *> &bodies,
+      const unsigned int                                    m,
+      std::ostream                                         &log)
+    {
+      RigidModeColumns   result;
+      const unsigned int nc          = pair_list.size();
+      auto              &alpha_modes = result.alpha_modes;
+      for (unsigned int b = 0; b < bodies.size(); ++b)
+        for (unsigned int k = 0; k < bodies[b]->free_rigid_modes().size(); ++k)
+          alpha_modes.emplace_back(b, k);
+      result.G.resize(m * nc, alpha_modes.size());
+      result.loads.resize(alpha_modes.size());
+      for (unsigned int a = 0; a < alpha_modes.size(); ++a)
+        {
+          const auto [b, k] = alpha_modes[a];
+          const auto  &mode = bodies[b]->free_rigid_modes()[k];
+          const double sign = (b == 0 ? 1. : -1.);
+          result.loads(a)   = mode * bodies[b]->load_vector();
+          for (unsigned int i = 0; i < nc; ++i)
+            {
+              const Tensor<1, dim> r =
+                (b == 0 ? pair_list[i].op1 : pair_list[i].op2)
+                  .displacement(mode);
+              for (unsigned int s = 0; s < m; ++s)
+                result.G(m * i + s, a) = sign * (pair_list[i].frame[s] * r);
+            }
+          log << "  " << bodies[b]->name() << ": free rigid mode '"
+              << bodies[b]->free_rigid_mode_names()[k]
+              << "' closed by the contact equilibrium (exact, no springs)"
+              << std::endl;
+        }
+      return result;
+    }
+
+
+
+    template <int dim>
     CondensedContact<dim>
     condense(const std::vector<ContactPair<dim>>                  &pair_list,
              const std::vector<const discretization::Body<dim> *> &bodies,
@@ -51,31 +91,11 @@ namespace igabde
 
       // Rigid modes left free by the supports: u = K^+ f + R alpha, with the
       // equilibrium R^T (f_ext + f_contact) = 0 joining the BDE system.
-      auto &alpha_modes = result.alpha_modes;
-      for (unsigned int b = 0; b < bodies.size(); ++b)
-        for (unsigned int k = 0; k < bodies[b]->free_rigid_modes().size(); ++k)
-          alpha_modes.emplace_back(b, k);
-      Eigen::MatrixXd GL(m * nc, alpha_modes.size());
-      result.rigid_mode_loads.resize(alpha_modes.size());
-      for (unsigned int a = 0; a < alpha_modes.size(); ++a)
-        {
-          const auto [b, k]          = alpha_modes[a];
-          const auto  &mode          = bodies[b]->free_rigid_modes()[k];
-          const double sign          = (b == 0 ? 1. : -1.);
-          result.rigid_mode_loads(a) = mode * bodies[b]->load_vector();
-          for (unsigned int i = 0; i < nc; ++i)
-            {
-              const Tensor<1, dim> r =
-                (b == 0 ? pair_list[i].op1 : pair_list[i].op2)
-                  .displacement(mode);
-              for (unsigned int s = 0; s < m; ++s)
-                GL(m * i + s, a) = sign * (pair_list[i].frame[s] * r);
-            }
-          log << "  " << bodies[b]->name() << ": free rigid mode '"
-              << bodies[b]->free_rigid_mode_names()[k]
-              << "' closed by the contact equilibrium (exact, no springs)"
-              << std::endl;
-        }
+      RigidModeColumns modes =
+        rigid_mode_columns<dim>(pair_list, bodies, m, log);
+      result.alpha_modes        = modes.alpha_modes;
+      result.rigid_mode_loads   = modes.loads;
+      const Eigen::MatrixXd &GL = modes.G;
 
       // Pairs whose two points are both held by supports carry no
       // information: their flexibility rows and rigid-mode rows vanish
@@ -101,7 +121,7 @@ namespace igabde
                                  "both sides; nothing can touch."));
       ContactProblem &problem = result.problem;
       Eigen::MatrixXd W(m * keep.size(), m * keep.size());
-      problem.G.resize(m * keep.size(), alpha_modes.size());
+      problem.G.resize(m * keep.size(), result.alpha_modes.size());
       for (unsigned int i = 0; i < keep.size(); ++i)
         {
           result.pairs.push_back(pair_list[keep[i]]);
@@ -120,7 +140,7 @@ namespace igabde
       problem.q            = Eigen::VectorXd::Zero(m * result.pairs.size());
       problem.mu.assign(result.pairs.size(), friction);
       problem.name = context;
-      problem.b.resize(alpha_modes.size());
+      problem.b.resize(result.alpha_modes.size());
       problem.b.setZero();
       problem.check_consistency();
       return result;
@@ -128,6 +148,16 @@ namespace igabde
 
 
 
+    template RigidModeColumns
+    rigid_mode_columns(const std::vector<ContactPair<2>> &,
+                       const std::vector<const discretization::Body<2> *> &,
+                       const unsigned int,
+                       std::ostream &);
+    template RigidModeColumns
+    rigid_mode_columns(const std::vector<ContactPair<3>> &,
+                       const std::vector<const discretization::Body<3> *> &,
+                       const unsigned int,
+                       std::ostream &);
     template CondensedContact<2>
     condense(const std::vector<ContactPair<2>> &,
              const std::vector<const discretization::Body<2> *> &,

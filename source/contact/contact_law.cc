@@ -54,6 +54,14 @@ namespace igabde
       PairWeights        w;
       w.r_n.resize(nc);
       w.r_t.resize(nc);
+      if (problem.W.size() == 0 && problem.coupled)
+        {
+          // Full path: no W; the stiffness of the underlying elements is
+          // the scale (any r > 0 gives the same solution set).
+          w.r_n = factor * problem.coupled->pair_stiffness();
+          w.r_t = w.r_n;
+          return w;
+        }
       double max_diag = 0.;
       if (problem.n_rows() > 0)
         max_diag = problem.W.diagonal().maxCoeff();
@@ -80,6 +88,68 @@ namespace igabde
             (lmax > 1e-14 * max_diag && lmax > 0.) ? factor / lmax : w.r_n[c];
         }
       return w;
+    }
+
+
+
+    PairPiece
+    penalty_law(const unsigned int d,
+                const double       mu,
+                const double       k_n,
+                const double       k_t,
+                const double      *lambda,
+                const double      *u,
+                double            *p)
+    {
+      PairPiece piece;
+      piece.B.setIdentity();
+      for (unsigned int k = 0; k < d; ++k)
+        p[k] = 0.;
+      const double pn = lambda[0] - k_n * u[0];
+      if (!(pn >= 0.))
+        {
+          piece.status = ContactStatus::open;
+          return piece;
+        }
+      piece.closed  = true;
+      p[0]          = pn;
+      piece.A(0, 0) = k_n;
+      if (d == 1)
+        {
+          // Frictionless: free tangential motion is reported as slip.
+          piece.status = ContactStatus::slip;
+          return piece;
+        }
+      double trial[3] = {0., 0., 0.}, norm = 0.;
+      for (unsigned int k = 1; k < d; ++k)
+        {
+          trial[k] = lambda[k] - k_t * u[k];
+          norm += trial[k] * trial[k];
+        }
+      norm           = std::sqrt(norm);
+      const double R = mu * pn;
+      if (norm <= R)
+        {
+          piece.status = ContactStatus::stick;
+          for (unsigned int k = 1; k < d; ++k)
+            {
+              p[k]          = trial[k];
+              piece.A(k, k) = k_t;
+            }
+          return piece;
+        }
+      piece.status       = ContactStatus::slip;
+      const double ratio = R / norm;
+      for (unsigned int k = 1; k < d; ++k)
+        {
+          const double tk = trial[k] / norm;
+          p[k]            = R * tk;
+          piece.A(k, 0)   = mu * k_n * tk;
+          for (unsigned int l = 1; l < d; ++l)
+            piece.A(k, l) =
+              k_t * ratio * ((k == l ? 1. : 0.) - tk * trial[l] / norm);
+        }
+      return piece;
     }
 
 
@@ -223,6 +293,24 @@ namespace igabde
         return err / norm_q;
       const double norm_p = p.norm();
       return norm_p > 0. ? err / norm_p : err;
+    }
+
+
+
+    double
+    relative_equilibrium_error(const ContactProblem  &problem,
+                               const Eigen::VectorXd &p,
+                               double                &absolute)
+    {
+      absolute = 0.;
+      if (problem.n_alpha() == 0)
+        return 0.;
+      absolute          = (problem.G.transpose() * p - problem.b).norm();
+      const double den1 = problem.b.norm();
+      const double den2 =
+        (problem.G.cwiseAbs().transpose() * p.cwiseAbs()).norm();
+      const double den = std::max(den1, den2);
+      return den > 0. ? absolute / den : absolute;
     }
 
 

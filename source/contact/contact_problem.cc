@@ -45,7 +45,8 @@ namespace igabde
                                      "3, not " +
                                      std::to_string(n_components)));
       const Eigen::Index m = n_rows();
-      AssertThrow(W.rows() == m && W.cols() == m,
+      AssertThrow((W.rows() == m && W.cols() == m) ||
+                    (coupled && W.size() == 0),
                   dealii::ExcMessage(
                     where + ": W must be " + std::to_string(m) + " x " +
                     std::to_string(m) + ", is " + std::to_string(W.rows()) +

@@ -2,6 +2,7 @@
 
 #include <igabde/contact/bnewton.h>
 #include <igabde/contact/contact_solver.h>
+#include <igabde/contact/full_system_solvers.h>
 
 #include <iomanip>
 #include <ostream>
@@ -60,7 +61,7 @@ namespace igabde
     std::vector<std::string>
     available_contact_solvers()
     {
-      return {"bde"};
+      return {"bde", "penalty", "augmented-lagrange"};
     }
 
 
@@ -69,8 +70,14 @@ namespace igabde
     create_contact_solver(const ContactSolverSettings &settings)
     {
       // One line per algorithm.
+      if (settings.algorithm == "bde" && settings.path == "full")
+        return std::make_unique<FullBNewtonSolver>(settings.bnewton);
       if (settings.algorithm == "bde")
         return std::make_unique<BNewtonSolver>(settings.bnewton);
+      if (settings.algorithm == "penalty")
+        return std::make_unique<PenaltySolver>(settings);
+      if (settings.algorithm == "augmented-lagrange")
+        return std::make_unique<AugmentedLagrangeSolver>(settings);
 
       std::string names;
       for (const auto &name : available_contact_solvers())

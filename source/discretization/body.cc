@@ -288,6 +288,24 @@ namespace igabde
 
 
     template <int dim>
+    const SparseMatrix<double> &
+    Body<dim>::stiffness_matrix() const
+    {
+      return system_matrix;
+    }
+
+
+
+    template <int dim>
+    bool
+    Body<dim>::is_held(const types::global_dof_index i) const
+    {
+      return solve_constraints.is_constrained(i);
+    }
+
+
+
+    template <int dim>
     types::global_dof_index
     Body<dim>::n_dofs() const
     {

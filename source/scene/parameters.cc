@@ -275,13 +275,44 @@ namespace igabde
                           "bde",
                           Patterns::Selection("bde|penalty|augmented-lagrange"),
                           "Contact algorithm: bde (B-differentiable "
-                          "equations with damped B-Newton).");
+                          "equations with damped B-Newton); penalty "
+                          "(node-to-node penalty with Coulomb return "
+                          "mapping, Newton on the full system, as ANSYS); "
+                          "augmented-lagrange (multiplier updates around "
+                          "the penalty solve until the BDE tolerance).");
+        prm.declare_entry("Penalty factor",
+                          "1",
+                          Patterns::Double(0.),
+                          "FKN > 0: normal penalty stiffness per pair "
+                          "k_n = FKN E A / h (E of the two bodies in "
+                          "series, A the pair's tributary area, h the mean "
+                          "element size) for penalty and "
+                          "augmented-lagrange.");
+        prm.declare_entry("Tangential penalty factor",
+                          "1",
+                          Patterns::Double(0.),
+                          "FKT > 0: stick stiffness k_t = FKT k_n.");
+        prm.declare_entry("Penalty line search",
+                          "true",
+                          Patterns::Bool(),
+                          "Armijo line search on the Newton steps of the "
+                          "penalty methods; false takes full steps, as "
+                          "ANSYS does by default (a stiff penalty may then "
+                          "chatter between pair states).");
+        prm.declare_entry("Full system solver",
+                          "mumps",
+                          Patterns::Selection("mumps|klu"),
+                          "Sparse direct solver (Trilinos Amesos) of the "
+                          "coupled Newton matrix on the full path.");
         prm.declare_entry("Path",
                           "auto",
                           Patterns::Selection("condensed|full|auto"),
                           "condensed: flexibility matrix and dense BDE "
-                          "system; full: uncondensed sparse system; auto: "
-                          "condensed for few pairs.");
+                          "system; full: uncondensed sparse system "
+                          "(displacements and pair forces together); auto: "
+                          "condensed up to 3000 contact unknowns, full "
+                          "beyond (penalty and augmented-lagrange always "
+                          "solve the full system).");
         prm.declare_entry("Condensation",
                           "schur",
                           Patterns::Selection("schur|columns"),
@@ -351,20 +382,24 @@ namespace igabde
     {
       prm.enter_subsection("Contact");
       {
-        enabled              = prm.get_bool("Enabled");
-        friction_coefficient = prm.get_double("Friction coefficient");
-        algorithm            = prm.get("Algorithm");
-        path                 = prm.get("Path");
-        condensation         = prm.get("Condensation");
-        slave_face           = prm.get_integer("Slave face");
-        master_face          = prm.get_integer("Master face");
-        pair_placement       = prm.get("Pair placement");
-        pairing              = prm.get("Pairing");
-        tolerance            = prm.get_double("Tolerance");
-        max_iterations       = prm.get_integer("Max iterations");
-        r_scale              = prm.get_double("r scale");
-        verbose              = prm.get_bool("Verbose");
-        max_step_cuts        = prm.get_integer("Max step cuts");
+        enabled                   = prm.get_bool("Enabled");
+        friction_coefficient      = prm.get_double("Friction coefficient");
+        algorithm                 = prm.get("Algorithm");
+        penalty_factor            = prm.get_double("Penalty factor");
+        tangential_penalty_factor = prm.get_double("Tangential penalty factor");
+        full_system_solver        = prm.get("Full system solver");
+        penalty_line_search       = prm.get_bool("Penalty line search");
+        path                      = prm.get("Path");
+        condensation              = prm.get("Condensation");
+        slave_face                = prm.get_integer("Slave face");
+        master_face               = prm.get_integer("Master face");
+        pair_placement            = prm.get("Pair placement");
+        pairing                   = prm.get("Pairing");
+        tolerance                 = prm.get_double("Tolerance");
+        max_iterations            = prm.get_integer("Max iterations");
+        r_scale                   = prm.get_double("r scale");
+        verbose                   = prm.get_bool("Verbose");
+        max_step_cuts             = prm.get_integer("Max step cuts");
       }
       prm.leave_subsection();
     }
@@ -621,18 +656,25 @@ namespace igabde
                   base::ExcInput(f + "Contact/Enabled is true but Body 2/Type "
                                      "is 'none'; set Body 2/Type to "
                                      "'deformable' or 'rigid plane'."));
-      AssertThrow(contact.path != "full",
-                  base::ExcInput(f + "Contact/Path = full (the uncondensed "
-                                     "semismooth Newton path) is not "
-                                     "available yet; use 'condensed' or "
-                                     "'auto'."));
+      AssertThrow(contact.algorithm == "bde" || contact.path != "condensed",
+                  base::ExcInput(f +
+                                 "Contact/Algorithm = " + contact.algorithm +
+                                 " solves the full system; set Contact/Path "
+                                 "to 'full' or 'auto' (or use Algorithm = "
+                                 "bde for the condensed path)."));
+      AssertThrow(contact.penalty_factor > 0. &&
+                    contact.tangential_penalty_factor > 0.,
+                  base::ExcInput(f + "Contact/Penalty factor and Contact/"
+                                     "Tangential penalty factor must be "
+                                     "positive (FKN = 0.01 to 10 is the "
+                                     "usual range)."));
       {
         const auto available = contact::available_contact_solvers();
-        AssertThrow(
-          std::find(available.begin(), available.end(), contact.algorithm) !=
-            available.end(),
-          base::ExcInput(f + "Contact/Algorithm = " + contact.algorithm +
-                         " is not available yet; use 'bde'."));
+        AssertThrow(std::find(available.begin(),
+                              available.end(),
+                              contact.algorithm) != available.end(),
+                    base::ExcInput(f + "Contact/Algorithm = " +
+                                   contact.algorithm + " is not available."));
       }
       if (checks.hertz_line_load > 0.)
         {

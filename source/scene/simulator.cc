@@ -6,6 +6,7 @@
 
 #include <igabde/contact/contact_stage.h>
 
+#include <igabde/coupled/coupled_system.h>
 #include <igabde/postprocess/contact_checks.h>
 #include <igabde/postprocess/contact_output.h>
 #include <igabde/postprocess/exact_solutions.h>
@@ -380,19 +381,23 @@ namespace igabde
       if (parameters.contact.enabled)
         {
           contact::ContactSettings cs;
-          const auto              &c       = parameters.contact;
-          cs.friction_coefficient          = c.friction_coefficient;
-          cs.slave_face                    = c.slave_face;
-          cs.master_face                   = c.master_face;
-          cs.pairing                       = c.pairing;
-          cs.solver.algorithm              = c.algorithm;
-          cs.solver.bnewton.tolerance      = c.tolerance;
-          cs.solver.bnewton.max_iterations = c.max_iterations;
-          cs.solver.bnewton.r_factor       = c.r_scale;
-          cs.solver.bnewton.log            = c.verbose;
-          cs.solver.bnewton.log_stream     = &contact_log();
-          cs.context                       = scene_file;
-          cs.progress                      = parameters.output.progress;
+          const auto              &c          = parameters.contact;
+          cs.friction_coefficient             = c.friction_coefficient;
+          cs.slave_face                       = c.slave_face;
+          cs.master_face                      = c.master_face;
+          cs.pairing                          = c.pairing;
+          cs.solver.algorithm                 = c.algorithm;
+          cs.solver.path                      = c.path;
+          cs.solver.penalty.normal_factor     = c.penalty_factor;
+          cs.solver.penalty.tangential_factor = c.tangential_penalty_factor;
+          cs.solver.penalty.line_search       = c.penalty_line_search;
+          cs.solver.bnewton.tolerance         = c.tolerance;
+          cs.solver.bnewton.max_iterations    = c.max_iterations;
+          cs.solver.bnewton.r_factor          = c.r_scale;
+          cs.solver.bnewton.log               = c.verbose;
+          cs.solver.bnewton.log_stream        = &contact_log();
+          cs.context                          = scene_file;
+          cs.progress                         = parameters.output.progress;
 
           // The obstacle Body 2 stands for, if it is not deformable.
           std::unique_ptr<contact::Obstacle<dim>> obstacle;
@@ -416,14 +421,34 @@ namespace igabde
                                                          std::move(obstacle),
                                                          contact_log());
           contact_stage->build_pairs(timer);
-          factorize_bodies(contact_stage.get());
+          const bool full = contact_stage->path() == "full";
+          factorize_bodies(full ? nullptr : contact_stage.get());
           {
+            std::vector<const discretization::Body<dim> *> deformable;
+            for (const auto &body : bodies)
+              deformable.push_back(body.get());
+            const std::string solver = c.full_system_solver;
+            contact_stage->set_coupled_factory(
+              [deformable,
+               solver](const std::vector<contact::ContactPair<dim>> &pairs,
+                       const unsigned int     n_components,
+                       const Eigen::MatrixXd &G,
+                       const bool             obstacle) {
+                return std::make_shared<coupled::CoupledSystem<dim>>(
+                  deformable,
+                  pairs,
+                  n_components,
+                  G,
+                  obstacle,
+                  solver);
+              });
             Timer clock;
-            contact_stage->condense(timer);
+            contact_stage->prepare(timer);
             if (parameters.output.progress)
-              pcout << "  [progress] condensation, " << std::setprecision(3)
-                    << clock.wall_time() << " s" << std::setprecision(6)
-                    << std::endl;
+              pcout << "  [progress] "
+                    << (full ? "coupled system" : "condensation") << ", "
+                    << std::setprecision(3) << clock.wall_time() << " s"
+                    << std::setprecision(6) << std::endl;
           }
           const contact::ContactSummary s     = contact_stage->summary();
           effects["contact"]                  = true;
@@ -438,6 +463,17 @@ namespace igabde
           summary["effects"]                  = effects;
           summary["n_contact_pairs"]          = s.n_pairs;
           summary["n_contact_unknowns"]       = s.n_unknowns;
+          summary["contact_algorithm"]        = s.algorithm;
+          summary["contact_path"]             = s.path;
+          summary["contact_path_reason"]      = s.path_reason;
+          if (s.path == "full")
+            summary["coupled_matrix_nonzeros"] = s.coupled_nonzeros;
+          if (s.algorithm != "bde")
+            {
+              summary["penalty_factor_fkn"] = c.penalty_factor;
+              summary["tangential_penalty_factor_fkt"] =
+                c.tangential_penalty_factor;
+            }
         }
       else
         {
@@ -500,8 +536,14 @@ namespace igabde
               record["n_open"]            = last.n_open;
               record["n_stick"]           = last.n_stick;
               record["n_slip"]            = last.n_slip;
+              if (parameters.contact.algorithm != "bde")
+                record["max_penetration"] = last.max_penetration;
+              if (parameters.contact.algorithm == "augmented-lagrange")
+                record["multiplier_updates"] = last.updates;
+              record["residual_history"] = last.residual_history;
               if (!outcome.success)
                 {
+                  record["diagnosis"] = last.diagnosis;
                   // Keep the failed step's figures next to the finished
                   // steps.
                   record["status"] = "failed";

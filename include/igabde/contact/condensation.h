@@ -50,6 +50,30 @@ namespace igabde
      * deformable body, Body 2. @p log gets one line per condensed body
      * when @p progress is set, and the rigid-mode and pair counts.
      */
+    /**
+     * @brief The rigid modes the supports leave free, as columns of the
+     * contact problem: G(m i + s, a) = +-frame_s . r_a(x_i) (Body 1 +,
+     * Body 2 -), with the mode loads r_a . f_ext at factor 1. Both the
+     * condensed and the full path close floating bodies with them.
+     */
+    struct RigidModeColumns
+    {
+      /// n_components * n_pairs x n_alpha.
+      Eigen::MatrixXd G;
+      /// (body, mode) of every column.
+      std::vector<std::pair<unsigned int, unsigned int>> alpha_modes;
+      /// r_k . f_ext of every column at load factor 1.
+      Eigen::VectorXd loads;
+    };
+
+    template <int dim>
+    RigidModeColumns
+    rigid_mode_columns(
+      const std::vector<ContactPair<dim>>                  &pairs,
+      const std::vector<const discretization::Body<dim> *> &bodies,
+      const unsigned int                                    n_components,
+      std::ostream                                         &log);
+
     template <int dim>
     CondensedContact<dim>
     condense(const std::vector<ContactPair<dim>>                  &pairs,

@@ -47,6 +47,8 @@ namespace igabde
      * equations: r_n = c / W_nn and r_t = c / lambda_max(W_tt) per contact
      * (W_tt the tangential diagonal block), c = @p factor. A non-positive
      * diagonal entry falls back to c / max_i W_ii (and to c if W = 0).
+     * On the full path (no W, a CoupledOperator) r_n = r_t = c k_i with
+     * k_i the operator's pair stiffness.
      */
     struct PairWeights
     {
@@ -108,6 +110,47 @@ namespace igabde
              PairPiece           *piece);
 
     /**
+     * @brief The penalty contact law of one pair (node-to-node penalty as
+     * ANSYS applies it, and the inner law of the augmented Lagrangian):
+     * the forces @p p as a function of the relative displacement @p u
+     * (total normal gap u_n, tangential increments u_t of the step), with
+     * the base forces @p lambda (normal multiplier, 0 for pure penalty;
+     * tangential force at the start of the step, or the tangential
+     * multiplier):
+     * @code
+     *   p_n  = max(0, lambda_n - k_n u_n)
+     *   p_t* = lambda_t - k_t u_t                     (elastic trial)
+     *   p_t  = p_t*                  if |p_t*| <= mu p_n   (stick)
+     *        = mu p_n p_t* / |p_t*|  otherwise             (slip)
+     * @endcode
+     * (the Coulomb return mapping). The returned piece holds the
+     * linearisation of H = p - P(u) = 0 in the PairPiece convention
+     * dH = A du + B dp: B = I and A = -dP/du, the consistent tangent:
+     * open A = 0; stick A_nn = k_n, A_tt = k_t I; slip A_nn = k_n,
+     * A_tn = mu k_n t, A_tt = k_t (mu p_n / |p_t*|) (I - t t^T) with
+     * t = p_t* / |p_t*|. An open pair (lambda_n - k_n u_n < 0) carries
+     * no force in any direction; the tie (= 0) is closed with zero force,
+     * so that pairs touching at the start enter the first Newton matrix
+     * (otherwise the rigid-mode columns of a floating body vanish).
+     *
+     * @param d Components (1 frictionless, 2 or 3).
+     * @param mu Friction coefficient (ignored if d = 1).
+     * @param k_n Normal penalty stiffness (force per length), > 0.
+     * @param k_t Tangential (stick) penalty stiffness, > 0 if d > 1.
+     * @param lambda Base forces, d entries.
+     * @param u Relative displacement, d entries.
+     * @param p On return the forces, d entries.
+     */
+    PairPiece
+    penalty_law(const unsigned int d,
+                const double       mu,
+                const double       k_n,
+                const double       k_t,
+                const double      *lambda,
+                const double      *u,
+                double            *p);
+
+    /**
      * @brief Projection of x = (x_n, x_t) (@p d components) onto the
      * Coulomb cone |x_t| <= mu x_n, in place.
      */
@@ -136,6 +179,16 @@ namespace igabde
     relative_natural_map_error(const ContactProblem  &problem,
                                const Eigen::VectorXd &p,
                                const Eigen::VectorXd &u);
+
+    /**
+     * @brief Equilibrium error of the floating bodies |G^T p - b| (stored in
+     * @p absolute), divided by the larger of |b| and ||G|^T |p||; 0 without
+     * floating bodies.
+     */
+    double
+    relative_equilibrium_error(const ContactProblem  &problem,
+                               const Eigen::VectorXd &p,
+                               double                &absolute);
 
     /**
      * @brief Scale-invariant ("balanced") natural-map error:

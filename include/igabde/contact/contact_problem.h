@@ -1,8 +1,11 @@
 #ifndef igabde_contact_contact_problem_h
 #define igabde_contact_contact_problem_h
 
+#include <igabde/contact/coupled_operator.h>
+
 #include <Eigen/Dense>
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -57,6 +60,25 @@ namespace igabde
 
       /** @brief Right-hand side of the equilibrium rows G^T p = b. */
       Eigen::VectorXd b;
+
+      /**
+       * @brief The uncondensed system (full path), or null. With it W may
+       * be empty (0 x 0): the full-system solvers never form W, and u is
+       * C w + G alpha + q with w the coupled displacement unknowns.
+       */
+      std::shared_ptr<CoupledOperator> coupled;
+
+      /**
+       * @brief Warm start of the coupled displacement unknowns w (full
+       * path; size coupled->n_dofs(), or empty for zero).
+       */
+      Eigen::VectorXd w0;
+
+      /**
+       * @brief Pair forces at the end of the previous load step (the base
+       * of the incremental friction of the penalty methods; empty for 0).
+       */
+      Eigen::VectorXd p_previous;
 
       /** @brief Optional name (e.g. the file it was read from), for logs. */
       std::string name;

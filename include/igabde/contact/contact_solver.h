@@ -69,6 +69,12 @@ namespace igabde
       unsigned int n_open = 0, n_stick = 0, n_slip = 0;
       /** @brief Per-iteration history. */
       std::vector<ContactIterationRecord> history;
+      /** @brief Coupled displacement unknowns w (full path; else empty). */
+      Eigen::VectorXd w;
+      /** @brief Largest penetration max(0, -u_n) over the pairs (length). */
+      double max_penetration = 0.;
+      /** @brief Multiplier updates (augmented Lagrangian; else 0). */
+      unsigned int updates = 0;
 
       /** @brief Print the history table with 5 significant digits. */
       void
@@ -159,12 +165,36 @@ namespace igabde
     };
 
     /** @brief What create_contact_solver() needs. */
+    /**
+     * @brief Settings of the penalty and augmented-Lagrange solvers.
+     */
+    struct PenaltySettings
+    {
+      /// Normal stiffness factor FKN: k_n = FKN k_i per pair.
+      double normal_factor = 1.;
+      /// Tangential (stick) stiffness factor FKT: k_t = FKT k_n.
+      double tangential_factor = 1.;
+      /// Newton iteration limit of one penalty solve.
+      unsigned int max_iterations = 50;
+      /// Multiplier-update limit of the augmented Lagrangian.
+      unsigned int max_updates = 200;
+      /// Armijo line search on the penalty Newton steps (false: full
+      /// steps, as ANSYS takes them by default).
+      bool line_search = true;
+    };
+
     struct ContactSolverSettings
     {
-      /// Contact/Algorithm: "bde" (more to come: see ContactSolver).
+      /// Contact/Algorithm: "bde", "penalty" or "augmented-lagrange".
       std::string algorithm = "bde";
-      /// Settings of the BDE solver.
+      /// Contact/Path of the BDE: "condensed" or "full" (penalty and
+      /// augmented Lagrange always solve the full system).
+      std::string path = "condensed";
+      /// Settings of the BDE solver (tolerance and iteration limits are
+      /// shared by all algorithms).
       BNewtonSettings bnewton;
+      /// Settings of the penalty methods.
+      PenaltySettings penalty;
     };
 
     /**

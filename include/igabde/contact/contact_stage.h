@@ -14,9 +14,11 @@
 
 #include <Eigen/Dense>
 
+#include <functional>
 #include <memory>
 #include <ostream>
 #include <string>
+#include <tuple>
 #include <vector>
 
 namespace igabde
@@ -65,6 +67,14 @@ namespace igabde
       /// Resultant of the contact forces on Body 1 (Body 2 or the obstacle
       /// carries the opposite).
       Tensor<1, dim> contact_force;
+      /// Largest penetration max(0, -u_n) (the penalty methods' answer
+      /// carries one; length).
+      double max_penetration = 0.;
+      /// Multiplier updates of the augmented Lagrangian.
+      unsigned int updates = 0;
+      /// Residual of every iteration of the last solve (the solver's
+      /// measure: relative natural map, or the penalty residual).
+      std::vector<double> residual_history;
     };
 
     /**
@@ -107,6 +117,12 @@ namespace igabde
       bool         initial_gaps         = false;
       unsigned int floating_rigid_modes = 0;
       unsigned int pairs_left_out       = 0;
+      /// Contact/Algorithm.
+      std::string algorithm;
+      /// "condensed" or "full", and why (Contact/Path = auto decides).
+      std::string path, path_reason;
+      /// Nonzeros of the coupled Newton matrix (full path).
+      double coupled_nonzeros = 0.;
     };
 
     /**
@@ -150,8 +166,42 @@ namespace igabde
        * @brief Condenses onto the pairs (the bodies must be factorised) and
        * reports what was formed.
        */
+      /**
+       * @brief Prepares the contact solve on the path build_pairs() chose:
+       * condense() or couple().
+       */
+      void
+      prepare(TimerOutput &timer);
+
       void
       condense(TimerOutput &timer);
+
+      /**
+       * @brief The full path: leaves out the pairs held on both sides,
+       * closes floating bodies with rigid-mode columns and builds the
+       * coupled system through the factory set by set_coupled_factory().
+       */
+      void
+      couple(TimerOutput &timer);
+
+      /**
+       * @brief Builds the coupled system of the full path from the pairs,
+       * the components per pair, the rigid-mode columns G and whether Body
+       * 1 faces an obstacle. The concrete system lives outside the contact
+       * layer (coupled/), so the simulator provides it.
+       */
+      using CoupledFactory = std::function<
+        std::shared_ptr<CoupledOperator>(const std::vector<ContactPair<dim>> &,
+                                         const unsigned int,
+                                         const Eigen::MatrixXd &,
+                                         const bool)>;
+
+      void
+      set_coupled_factory(const CoupledFactory &factory);
+
+      /// "condensed" or "full" (decided by build_pairs()).
+      const std::string &
+      path() const;
 
       /**
        * @brief Solves a load step at load factor @p load_factor
@@ -176,6 +226,7 @@ namespace igabde
         Eigen::VectorXd            alpha;
         Eigen::VectorXd            u_rel;
         Eigen::VectorXd            previous_external;
+        Eigen::VectorXd            w;
         std::vector<ContactStatus> status;
         bool                       has_previous = false;
       };
@@ -221,6 +272,16 @@ namespace igabde
       std::pair<Eigen::VectorXd, Eigen::VectorXd>
       initial_guess() const;
 
+      /// Full path: the warm start, or the bilateral start through the
+      /// coupled system (p, alpha, w), whichever has the smaller residual.
+      std::tuple<Eigen::VectorXd, Eigen::VectorXd, Eigen::VectorXd>
+      initial_guess_full() const;
+
+      /// Pairs expected closed: touching at the start, later those closed
+      /// at the end of the previous step.
+      std::vector<bool>
+      expected_closed() const;
+
       Tensor<1, dim>
       global_force(const unsigned int i, const Eigen::VectorXd &p) const;
 
@@ -229,14 +290,20 @@ namespace igabde
       const std::unique_ptr<Obstacle<dim>>                           obstacle;
       std::unique_ptr<ContactSurface<dim>>        master_face;
       const std::unique_ptr<PairingStrategy<dim>> pairing;
-      const std::unique_ptr<ContactSolver>        solver;
+      std::unique_ptr<ContactSolver>              solver;
       std::ostream                               &log;
 
       unsigned int                  m = 1;
       std::vector<ContactPair<dim>> pair_list;
       CondensedContact<dim>         condensed;
+      /// The path taken, and why.
+      std::string resolved_path = "condensed", path_why;
+      /// Full path: the coupled system and its factory.
+      CoupledFactory                   coupled_factory;
+      std::shared_ptr<CoupledOperator> coupled;
 
-      Eigen::VectorXd            p, u_rel, alpha, previous_external;
+      /// w: the contact part of the displacement on the full path.
+      Eigen::VectorXd            p, u_rel, alpha, previous_external, w;
       std::vector<ContactStatus> status;
       bool                       has_previous = false;
     };

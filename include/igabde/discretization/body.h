@@ -143,6 +143,21 @@ namespace igabde
       flexibility(const std::vector<PointOperator<dim>> &operators,
                   const std::vector<Tensor<1, dim>>     &directions) const;
 
+      /**
+       * @brief The assembled stiffness K, before supports are applied (the
+       * full-system contact path assembles it into the coupled matrix).
+       */
+      const SparseMatrix<double> &
+      stiffness_matrix() const;
+
+      /**
+       * @brief Whether unknown @p i is held at zero in every solve of the
+       * contact correction: a support, or a pin that removes a free rigid
+       * mode (its rigid motion then enters through the mode amplitudes).
+       */
+      bool
+      is_held(const types::global_dof_index i) const;
+
       /// Whether flexibility() uses a Schur complement.
       bool
       has_schur_complement() const;

@@ -131,6 +131,14 @@ namespace igabde
       std::string algorithm = "bde";
       /// "condensed", "full" or "auto".
       std::string path = "auto";
+      /// FKN: normal penalty stiffness factor (penalty methods).
+      double penalty_factor = 1.;
+      /// FKT: stick stiffness factor, k_t = FKT k_n.
+      double tangential_penalty_factor = 1.;
+      /// Line search on the penalty Newton steps.
+      bool penalty_line_search = true;
+      /// Sparse direct solver of the full path: "mumps" or "klu".
+      std::string full_system_solver = "mumps";
       /// "schur" (Schur complement on the contact face) or "columns" (one
       /// solve per pair direction).
       std::string condensation = "schur";

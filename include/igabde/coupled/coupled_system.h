@@ -1,0 +1,134 @@
+#ifndef igabde_coupled_coupled_system_h
+#define igabde_coupled_coupled_system_h
+
+#include <igabde/discretization/body.h>
+
+#include <igabde/contact/coupled_operator.h>
+#include <igabde/contact/pairing.h>
+
+#include <deal.II/base/index_set.h>
+
+#include <deal.II/lac/trilinos_solver.h>
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+
+#include <Eigen/Dense>
+
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace igabde
+{
+  namespace coupled
+  {
+    using namespace dealii;
+
+    /**
+     * @brief The uncondensed contact system of one or two bodies (the
+     * CoupledOperator of the full-system contact path): both bodies'
+     * stiffness, the pair operator C from each pair's PointOperators and
+     * local frame, and the rigid-mode columns G, in one Trilinos sparse
+     * matrix factorised by a sparse direct solver through Amesos (MUMPS by
+     * default, KLU on request). The matrix is built on index sets, as the
+     * distributed version will need; today it lives on one process.
+     *
+     * Unknown order: Body 1's unknowns, Body 2's, then the pair forces
+     * (pair by pair, normal first) and the rigid-mode amplitudes. Held
+     * unknowns (supports and the pins of free rigid modes) keep an identity
+     * row and no coupling.
+     */
+    template <int dim>
+    class CoupledSystem : public contact::CoupledOperator
+    {
+    public:
+      /**
+       * @param bodies The deformable bodies (Body 1 first), set up.
+       * @param pairs The contact pairs (op2 unused on an obstacle).
+       * @param n_components Components per pair (1 frictionless, else dim).
+       * @param G The rigid-mode columns of the contact problem.
+       * @param obstacle Whether Body 1 faces a rigid obstacle.
+       * @param solver "mumps" or "klu".
+       */
+      CoupledSystem(
+        const std::vector<const discretization::Body<dim> *> &bodies,
+        const std::vector<contact::ContactPair<dim>>         &pairs,
+        const unsigned int                                    n_components,
+        const Eigen::MatrixXd                                &G,
+        const bool                                            obstacle,
+        const std::string                                    &solver);
+
+      unsigned int
+      n_dofs() const override;
+
+      unsigned int
+      n_rows() const override;
+
+      Eigen::VectorXd
+      apply_C(const Eigen::VectorXd &w) const override;
+
+      Eigen::VectorXd
+      equilibrium_residual(const Eigen::VectorXd &w,
+                           const Eigen::VectorXd &p) const override;
+
+      double
+      equilibrium_scale(const Eigen::VectorXd &w,
+                        const Eigen::VectorXd &p) const override;
+
+      void
+      factorize(const std::vector<Eigen::Matrix3d> &A,
+                const std::vector<Eigen::Matrix3d> &B) override;
+
+      bool
+      solve(const Eigen::VectorXd &r_w,
+            const Eigen::VectorXd &r_p,
+            const Eigen::VectorXd &r_alpha,
+            Eigen::VectorXd       &dw,
+            Eigen::VectorXd       &dp,
+            Eigen::VectorXd       &dalpha,
+            std::string           &why) const override;
+
+      const Eigen::VectorXd &
+      pair_stiffness() const override;
+
+      double
+      n_nonzeros() const override;
+
+      /** @brief First unknown of body @p b in w. */
+      unsigned int
+      offset(const unsigned int b) const;
+
+    private:
+      /// The bodies (not owned).
+      std::vector<const discretization::Body<dim> *> bodies;
+      /// Components per pair, pairs, rigid modes.
+      const unsigned int d;
+      unsigned int       n_pairs = 0, n_alpha = 0;
+      /// Unknowns of the bodies, and of the whole system.
+      unsigned int n_u = 0, n_total = 0;
+      /// First unknown of each body.
+      std::vector<unsigned int> offsets;
+      /// Whether each displacement unknown is held at zero.
+      std::vector<bool> held;
+      /// Rows of C: (unknown, coefficient) lists, held unknowns left out.
+      std::vector<std::vector<std::pair<unsigned int, double>>> C_rows;
+      /// The rigid-mode columns.
+      Eigen::MatrixXd G;
+      /// Column scale of the force unknowns (mean stiffness diagonal).
+      double scale = 1.;
+      /// Pair stiffness from the underlying elements.
+      Eigen::VectorXd stiffness;
+      /// Amesos solver name.
+      std::string solver_type;
+      /// The Newton matrix and its factorisation.
+      IndexSet                                        all;
+      TrilinosWrappers::SparseMatrix                  matrix;
+      mutable SolverControl                           control;
+      std::unique_ptr<TrilinosWrappers::SolverDirect> direct;
+      /// Why the last factorisation failed (empty if it did not).
+      std::string factorization_error;
+    };
+  } // namespace coupled
+} // namespace igabde
+
+#endif

@@ -1,0 +1,414 @@
+#include <igabde/base/utilities.h>
+
+#include <igabde/coupled/coupled_system.h>
+
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/trilinos_vector.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace igabde
+{
+  namespace coupled
+  {
+    template <int dim>
+    CoupledSystem<dim>::CoupledSystem(
+      const std::vector<const discretization::Body<dim> *> &bodies,
+      const std::vector<contact::ContactPair<dim>>         &pairs,
+      const unsigned int                                    n_components,
+      const Eigen::MatrixXd                                &G,
+      const bool                                            obstacle,
+      const std::string                                    &solver)
+      : bodies(bodies)
+      , d(n_components)
+      , n_pairs(pairs.size())
+      , n_alpha(G.cols())
+      , G(G)
+      , solver_type(solver == "klu" ? "Amesos_Klu" : "Amesos_Mumps")
+    {
+      AssertThrow(solver == "mumps" || solver == "klu",
+                  base::ExcInput("Contact/Full system solver = " + solver +
+                                 " is not known; use mumps or klu."));
+      for (const auto *body : bodies)
+        {
+          offsets.push_back(n_u);
+          n_u += body->n_dofs();
+        }
+      n_total = n_u + d * n_pairs + n_alpha;
+      held.assign(n_u, false);
+      for (unsigned int b = 0; b < bodies.size(); ++b)
+        for (types::global_dof_index i = 0; i < bodies[b]->n_dofs(); ++i)
+          held[offsets[b] + i] = bodies[b]->is_held(i);
+      AssertDimension(G.rows(), d * n_pairs);
+
+      // C: per pair row, the unknowns of the two points in the local frame
+      // (Body 2 with the opposite sign).
+      C_rows.resize(d * n_pairs);
+      for (unsigned int i = 0; i < n_pairs; ++i)
+        for (unsigned int side = 0; side < (obstacle ? 1u : 2u); ++side)
+          {
+            const auto  &op   = (side == 0 ? pairs[i].op1 : pairs[i].op2);
+            const double sign = (side == 0 ? 1. : -1.);
+            for (unsigned int k = 0; k < op.weights.size(); ++k)
+              for (unsigned int c = 0; c < dim; ++c)
+                {
+                  const unsigned int g = offsets[side] + op.dofs[k][c];
+                  if (held[g])
+                    continue;
+                  for (unsigned int s = 0; s < d; ++s)
+                    {
+                      const double v =
+                        sign * op.weights[k] * pairs[i].frame[s][c];
+                      if (v != 0.)
+                        C_rows[d * i + s].emplace_back(g, v);
+                    }
+                }
+          }
+
+      // Pair stiffness E A / h from the underlying elements.
+      double h = 0., inverse_modulus = 0.;
+      for (const auto *body : bodies)
+        {
+          h =
+            std::max(h,
+                     std::pow(body->measure() / body->n_elements(), 1. / dim));
+          inverse_modulus += 1. / body->material().youngs_modulus;
+        }
+      double mean_area = 0.;
+      for (const auto &pair : pairs)
+        mean_area += pair.area / std::max<double>(n_pairs, 1);
+      stiffness.resize(n_pairs);
+      for (unsigned int i = 0; i < n_pairs; ++i)
+        {
+          const double area = pairs[i].area > 0. ? pairs[i].area :
+                              mean_area > 0.     ? mean_area :
+                                                   std::pow(h, dim - 1);
+          stiffness[i]      = area / (inverse_modulus * h);
+        }
+
+      // Sparsity of the Newton matrix.
+      DynamicSparsityPattern dsp(n_total, n_total);
+      for (unsigned int b = 0; b < bodies.size(); ++b)
+        {
+          const SparseMatrix<double> &K = bodies[b]->stiffness_matrix();
+          for (types::global_dof_index i = 0; i < K.m(); ++i)
+            {
+              const unsigned int gi = offsets[b] + i;
+              if (held[gi])
+                {
+                  dsp.add(gi, gi);
+                  continue;
+                }
+              for (auto e = K.begin(i); e != K.end(i); ++e)
+                if (!held[offsets[b] + e->column()])
+                  dsp.add(gi, offsets[b] + e->column());
+            }
+        }
+      for (unsigned int i = 0; i < n_pairs; ++i)
+        for (unsigned int s = 0; s < d; ++s)
+          {
+            const unsigned int r = n_u + d * i + s;
+            for (unsigned int t = 0; t < d; ++t)
+              {
+                dsp.add(r, n_u + d * i + t);
+                for (const auto &[g, v] : C_rows[d * i + t])
+                  {
+                    dsp.add(r, g);
+                    dsp.add(g, r);
+                  }
+              }
+            for (unsigned int a = 0; a < n_alpha; ++a)
+              {
+                dsp.add(r, n_u + d * n_pairs + a);
+                dsp.add(n_u + d * n_pairs + a, r);
+              }
+          }
+      for (unsigned int a = 0; a < n_alpha; ++a)
+        dsp.add(n_u + d * n_pairs + a, n_u + d * n_pairs + a);
+      // Column scale of the force unknowns: p = scale p~ with scale the
+      // mean stiffness diagonal, so that every block of the Newton matrix
+      // has entries of one magnitude (K ~ scale, C^T scale ~ scale); the
+      // held rows get the same diagonal.
+      double       sum = 0.;
+      unsigned int n   = 0;
+      for (unsigned int b = 0; b < bodies.size(); ++b)
+        for (types::global_dof_index i = 0; i < bodies[b]->n_dofs(); ++i)
+          if (!held[offsets[b] + i])
+            {
+              sum += std::abs(bodies[b]->stiffness_matrix().diag_element(i));
+              ++n;
+            }
+      scale = (n > 0 && sum > 0.) ? sum / n : 1.;
+
+      all = complete_index_set(n_total);
+      matrix.reinit(all, all, dsp, MPI_COMM_SELF);
+    }
+
+
+
+    template <int dim>
+    unsigned int
+    CoupledSystem<dim>::n_dofs() const
+    {
+      return n_u;
+    }
+
+
+
+    template <int dim>
+    unsigned int
+    CoupledSystem<dim>::n_rows() const
+    {
+      return d * n_pairs;
+    }
+
+
+
+    template <int dim>
+    unsigned int
+    CoupledSystem<dim>::offset(const unsigned int b) const
+    {
+      return offsets[b];
+    }
+
+
+
+    template <int dim>
+    const Eigen::VectorXd &
+    CoupledSystem<dim>::pair_stiffness() const
+    {
+      return stiffness;
+    }
+
+
+
+    template <int dim>
+    double
+    CoupledSystem<dim>::n_nonzeros() const
+    {
+      return matrix.n_nonzero_elements();
+    }
+
+
+
+    template <int dim>
+    Eigen::VectorXd
+    CoupledSystem<dim>::apply_C(const Eigen::VectorXd &w) const
+    {
+      AssertDimension(w.size(), n_u);
+      Eigen::VectorXd u(d * n_pairs);
+      for (unsigned int r = 0; r < d * n_pairs; ++r)
+        {
+          double sum = 0.;
+          for (const auto &[g, v] : C_rows[r])
+            sum += v * w[g];
+          u[r] = sum;
+        }
+      return u;
+    }
+
+
+
+    template <int dim>
+    Eigen::VectorXd
+    CoupledSystem<dim>::equilibrium_residual(const Eigen::VectorXd &w,
+                                             const Eigen::VectorXd &p) const
+    {
+      AssertDimension(w.size(), n_u);
+      AssertDimension(p.size(), d * n_pairs);
+      Eigen::VectorXd r(n_u);
+      for (unsigned int b = 0; b < bodies.size(); ++b)
+        {
+          const SparseMatrix<double> &K = bodies[b]->stiffness_matrix();
+          Vector<double>              wb(K.m()), rb(K.m());
+          for (unsigned int i = 0; i < K.m(); ++i)
+            wb[i] = held[offsets[b] + i] ? 0. : w[offsets[b] + i];
+          K.vmult(rb, wb);
+          for (unsigned int i = 0; i < K.m(); ++i)
+            r[offsets[b] + i] = rb[i];
+        }
+      for (unsigned int row = 0; row < d * n_pairs; ++row)
+        for (const auto &[g, v] : C_rows[row])
+          r[g] -= v * p[row];
+      for (unsigned int g = 0; g < n_u; ++g)
+        if (held[g])
+          r[g] = w[g];
+      return r;
+    }
+
+
+
+    template <int dim>
+    double
+    CoupledSystem<dim>::equilibrium_scale(const Eigen::VectorXd &w,
+                                          const Eigen::VectorXd &p) const
+    {
+      Eigen::VectorXd r = Eigen::VectorXd::Zero(n_u);
+      for (unsigned int b = 0; b < bodies.size(); ++b)
+        {
+          const SparseMatrix<double> &K = bodies[b]->stiffness_matrix();
+          for (types::global_dof_index i = 0; i < K.m(); ++i)
+            {
+              const unsigned int gi = offsets[b] + i;
+              if (held[gi])
+                {
+                  r[gi] = std::abs(w[gi]);
+                  continue;
+                }
+              for (auto e = K.begin(i); e != K.end(i); ++e)
+                if (!held[offsets[b] + e->column()])
+                  r[gi] += std::abs(e->value() * w[offsets[b] + e->column()]);
+            }
+        }
+      for (unsigned int row = 0; row < d * n_pairs; ++row)
+        for (const auto &[g, v] : C_rows[row])
+          r[g] += std::abs(v * p[row]);
+      return r.norm();
+    }
+
+
+
+    template <int dim>
+    void
+    CoupledSystem<dim>::factorize(const std::vector<Eigen::Matrix3d> &A,
+                                  const std::vector<Eigen::Matrix3d> &B)
+    {
+      AssertDimension(A.size(), n_pairs);
+      AssertDimension(B.size(), n_pairs);
+      matrix = 0.;
+      std::vector<types::global_dof_index> columns;
+      std::vector<double>                  values;
+      for (unsigned int b = 0; b < bodies.size(); ++b)
+        {
+          const SparseMatrix<double> &K = bodies[b]->stiffness_matrix();
+          for (types::global_dof_index i = 0; i < K.m(); ++i)
+            {
+              const types::global_dof_index gi = offsets[b] + i;
+              if (held[gi])
+                {
+                  matrix.add(gi, gi, scale);
+                  continue;
+                }
+              columns.clear();
+              values.clear();
+              for (auto e = K.begin(i); e != K.end(i); ++e)
+                if (!held[offsets[b] + e->column()])
+                  {
+                    columns.push_back(offsets[b] + e->column());
+                    values.push_back(e->value());
+                  }
+              matrix.add(gi, columns, values);
+            }
+        }
+      const unsigned int alpha0 = n_u + d * n_pairs;
+      for (unsigned int i = 0; i < n_pairs; ++i)
+        for (unsigned int s = 0; s < d; ++s)
+          {
+            const unsigned int row = d * i + s, r = n_u + row;
+            for (const auto &[g, v] : C_rows[row])
+              matrix.add(g, r, -v * scale);
+            for (unsigned int t = 0; t < d; ++t)
+              {
+                if (B[i](s, t) != 0.)
+                  matrix.add(r, n_u + d * i + t, B[i](s, t) * scale);
+                if (A[i](s, t) != 0.)
+                  for (const auto &[g, v] : C_rows[d * i + t])
+                    matrix.add(r, g, A[i](s, t) * v);
+              }
+            for (unsigned int a = 0; a < n_alpha; ++a)
+              {
+                double ag = 0.;
+                for (unsigned int t = 0; t < d; ++t)
+                  ag += A[i](s, t) * G(d * i + t, a);
+                if (ag != 0.)
+                  matrix.add(r, alpha0 + a, ag);
+                if (G(row, a) != 0.)
+                  matrix.add(alpha0 + a, r, G(row, a) * scale);
+              }
+          }
+      matrix.compress(VectorOperation::add);
+      direct = std::make_unique<TrilinosWrappers::SolverDirect>(
+        control,
+        TrilinosWrappers::SolverDirect::AdditionalData(false, solver_type));
+      factorization_error.clear();
+      try
+        {
+          direct->initialize(matrix);
+        }
+      catch (const std::exception &)
+        {
+          // A singular Newton matrix (e.g. a floating body whose pairs are
+          // all open): solve() reports it, the contact solver says why.
+          factorization_error = "singular";
+        }
+    }
+
+
+
+    template <int dim>
+    bool
+    CoupledSystem<dim>::solve(const Eigen::VectorXd &r_w,
+                              const Eigen::VectorXd &r_p,
+                              const Eigen::VectorXd &r_alpha,
+                              Eigen::VectorXd       &dw,
+                              Eigen::VectorXd       &dp,
+                              Eigen::VectorXd       &dalpha,
+                              std::string           &why) const
+    {
+      Assert(direct, ExcMessage("factorize() first"));
+      if (!factorization_error.empty())
+        {
+          why = "the Newton matrix of the coupled system is singular (" +
+                solver_type +
+                " failed to factorise it; a floating body "
+                "whose pairs are all open is held by nothing)";
+          return false;
+        }
+      TrilinosWrappers::MPI::Vector rhs(all, MPI_COMM_SELF),
+        x(all, MPI_COMM_SELF);
+      for (unsigned int i = 0; i < n_u; ++i)
+        rhs[i] = held[i] ? scale * r_w[i] : r_w[i];
+      for (unsigned int i = 0; i < d * n_pairs; ++i)
+        rhs[n_u + i] = r_p[i];
+      for (unsigned int a = 0; a < n_alpha; ++a)
+        rhs[n_u + d * n_pairs + a] = r_alpha[a];
+      rhs.compress(VectorOperation::insert);
+      try
+        {
+          // One step of iterative refinement against the assembled matrix
+          // (Amesos does not refine; near the solution the Newton
+          // direction must be accurate to the rounding of the residual).
+          direct->solve(x, rhs);
+          TrilinosWrappers::MPI::Vector residual(all, MPI_COMM_SELF),
+            correction(all, MPI_COMM_SELF);
+          matrix.vmult(residual, x);
+          residual.sadd(-1., rhs);
+          direct->solve(correction, residual);
+          x += correction;
+        }
+      catch (const std::exception &e)
+        {
+          why = std::string("the sparse direct solver failed on the Newton "
+                            "matrix: ") +
+                e.what();
+          return false;
+        }
+      dw.resize(n_u);
+      dp.resize(d * n_pairs);
+      dalpha.resize(n_alpha);
+      for (unsigned int i = 0; i < n_u; ++i)
+        dw[i] = x[i];
+      for (unsigned int i = 0; i < d * n_pairs; ++i)
+        dp[i] = scale * x[n_u + i];
+      for (unsigned int a = 0; a < n_alpha; ++a)
+        dalpha[a] = x[n_u + d * n_pairs + a];
+      return true;
+    }
+
+
+
+    template class CoupledSystem<2>;
+    template class CoupledSystem<3>;
+  } // namespace coupled
+} // namespace igabde
