@@ -328,8 +328,9 @@ namespace igabde
         const auto [p0, alpha0] = initial_guess();
         solution                = solver->solve(problem, p0, alpha0);
       }
-      log << "  " << (solver->name() == "bde" ? "B-Newton" : solver->name())
-          << ": " << solution.summary() << std::endl;
+      if (settings.log_solves)
+        log << "  " << (solver->name() == "bde" ? "B-Newton" : solver->name())
+            << ": " << solution.summary() << std::endl;
 
       StepResult<dim> result;
       result.converged  = solution.converged;

@@ -41,6 +41,15 @@ namespace igabde
                           "every phase that can take long (assembly, "
                           "factorisation, condensation, contact iterations); "
                           "the command-line flag --quiet sets it to false.");
+        prm.declare_entry("Solver details",
+                          "true",
+                          Patterns::Bool(),
+                          "Print the contact solver's line for every solve "
+                          "(iterations, residuals, open/stick/slip counts) "
+                          "and the notices of halved load increments. Scene "
+                          "tests switch it off, so that their reference "
+                          "output holds physical figures only; summary.json "
+                          "always has these figures.");
       }
       prm.leave_subsection();
     }
@@ -52,10 +61,11 @@ namespace igabde
     {
       prm.enter_subsection("Output");
       {
-        directory    = prm.get("Directory");
-        write_vtu    = prm.get_bool("Write vtu");
-        print_timing = prm.get_bool("Print timing");
-        progress     = prm.get_bool("Progress");
+        directory      = prm.get("Directory");
+        write_vtu      = prm.get_bool("Write vtu");
+        print_timing   = prm.get_bool("Print timing");
+        progress       = prm.get_bool("Progress");
+        solver_details = prm.get_bool("Solver details");
       }
       prm.leave_subsection();
     }

@@ -338,6 +338,7 @@ namespace igabde
           cs.solver.bnewton.log_stream     = &contact_log();
           cs.context                       = scene_file;
           cs.progress                      = parameters.output.progress;
+          cs.log_solves                    = parameters.output.solver_details;
 
           // The obstacle Body 2 stands for, if it is not deformable.
           std::unique_ptr<contact::Obstacle<dim>> obstacle;
@@ -407,13 +408,14 @@ namespace igabde
         return u;
       };
       std::unique_ptr<LoadController<dim>> controller;
+      static std::ostream                  discard(nullptr);
       if (contact_stage)
         controller = std::make_unique<LoadController<dim>>(
           *contact_stage,
           external,
           parameters.contact.max_step_cuts,
           scene_file,
-          pcout.get_stream());
+          parameters.output.solver_details ? pcout.get_stream() : discard);
 
       double previous_load = 0., previous_displacement = 0.;
       for (unsigned int s = 0; s < steps.size(); ++s)

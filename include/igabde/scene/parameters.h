@@ -30,6 +30,10 @@ namespace igabde
       /// Print progress lines (phase, elapsed seconds) for phases that can
       /// take long; --quiet turns them off.
       bool progress = true;
+      /// Print the contact solver's line per solve (iterations, residuals,
+      /// contact counts) and step-cut notices (off in scene tests: they are
+      /// not physical results); summary.json always has them.
+      bool solver_details = true;
 
       /// Declares the "Output" subsection.
       static void
