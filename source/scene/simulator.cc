@@ -645,6 +645,7 @@ namespace igabde
                   checks["hertz_peak_pressure_exact"] = r.peak_pressure_exact;
                   checks["pressure_l2_rel_error"]     = r.profile_l2_error;
                   checks["hertz_loaded_pairs"]        = r.n_loaded;
+                  checks["hertz_edge_pair_spacing"]   = r.edge_pair_spacing;
                   pcout << "  Hertz: half-width " << std::setprecision(5)
                         << r.half_width << " (Johnson " << r.half_width_exact
                         << "), peak pressure " << r.peak_pressure
