@@ -9,6 +9,7 @@
 
 #include <deal.II/base/mpi.h>
 
+#include <algorithm>
 #include <cmath>
 #include <iomanip>
 #include <sstream>
@@ -49,7 +50,11 @@ main(int argc, char **argv)
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   initlog();
 
-  // V3: every pair's pressure equals the applied pressure to 1e-8.
+  // V3: every pair's pressure equals the applied pressure to 1e-8, and no
+  // tangential force is transmitted (the exact state is uniaxial stress).
+  // The total normal force is not a check: the upper block is held only by
+  // the contact, whose equilibrium equation G^T p = b makes it equal the
+  // load by construction.
   for (const std::string dim : {"2d", "3d"})
     for (const std::string type : {"nurbs", "lagrange"})
       for (const std::string mu : {"0", "0.3"})
@@ -62,27 +67,31 @@ main(int argc, char **argv)
             summary.at("checks").at("pressure_uniformity").get<double>();
           const auto &f =
             summary.at("load_steps").at(0).at("total_contact_force");
-          const double normal = f.at(f.size() - 1).get<double>();
+          double tangential = 0.;
+          for (unsigned int d = 0; d + 1 < f.size(); ++d)
+            tangential = std::max(tangential, std::abs(f.at(d).get<double>()));
           deallog << "V3 " << dim << " " << type << " mu=" << mu << ": pairs "
                   << summary.at("n_contact_pairs").get<double>()
                   << ", pressure uniformity <= 1e-8: " << yes(u <= 1e-8)
-                  << ", total normal force " << normal << std::endl;
+                  << ", tangential resultant <= 1e-8: "
+                  << yes(tangential <= 1e-8) << std::endl;
         }
 
   // V3 on non-matching surfaces (the lower block split 3 x 3): the pairs
-  // use the closest point of the master face; equilibrium is exact, the
-  // pressure is not uniform (node-to-surface pairs do not pass the patch
-  // test), so only the resultant is checked.
+  // use the closest point of the master face; the pressure is not uniform
+  // (node-to-surface pairs do not pass the patch test) and the resultant
+  // equals the load by construction (the upper block floats), so what is
+  // checked is that the solve converges and its answer passes the
+  // post-solve contact-condition check (status ok).
   for (const std::string type : {"nurbs", "lagrange"})
     {
       const auto summary =
         run("v3-contact-patch-2d",
             "v3-nonmatching-" + type,
             {{"Discretization/Type", type}, {"Body 2/Subdivisions", "3"}});
-      const auto &f = summary.at("total_contact_force");
-      deallog << "V3 non-matching " << type << ": resultant = load to 1e-10: "
-              << yes(std::abs(f.at(1).get<double>() - 1.) <= 1e-10 &&
-                     std::abs(f.at(0).get<double>()) <= 1e-10)
+      deallog << "V3 non-matching " << type
+              << ": solved, contact conditions hold: "
+              << yes(summary.at("status").get<std::string>() == "ok")
               << std::endl;
     }
 
@@ -134,26 +143,33 @@ main(int argc, char **argv)
             << ", backward slip F_t = +mu F_n: "
             << yes(std::abs(ratio(4) - 1.) <= 1e-8)
             << ", after halving the pressure F_t = +mu F_n: "
-            << yes(std::abs(ratio(5) - 1.) <= 1e-8) << ", final F_n "
-            << steps.at(5).at("total_contact_force").at(1).get<double>()
-            << std::endl;
+            << yes(std::abs(ratio(5) - 1.) <= 1e-8) << std::endl;
   }
 
-  // V5 Hertz: half-width within 1 % (NURBS) / 2 % (FE_Q(2)) of 1.4915,
-  // profile L2 error <= 3 % (NURBS) / within 2 % ... of Johnson's.
+  // V5 Hertz. Half-width: the edge of the contact zone lies between the
+  // last loaded and the first open pair, and the estimate is kept in that
+  // interval, so a pair-resolved a is known to one pair spacing h there
+  // (checks.hertz_edge_pair_spacing), not to a fixed percentage. The
+  // reference is Johnson's half-space a = 1.4915; the finite half-disc's
+  // converged a is 1.498 (scenes.md V5), so the tolerance is h plus that
+  // modelling offset. Profile: L2 error <= 3 % of Johnson's (the finite
+  // disc's floor is 1.0 %, scenes.md).
   for (const std::string type : {"nurbs", "lagrange"})
     {
       const auto summary =
         run("v5-hertz-2d", "v5-" + type, {{"Discretization/Type", type}});
-      const auto  &checks = summary.at("checks");
-      const double a_err  = checks.at("hertz_half_width_error").get<double>();
-      const double l2     = checks.at("pressure_l2_rel_error").get<double>();
-      const double limit  = (type == "nurbs" ? 0.01 : 0.02);
-      deallog << "V5 " << type << ": half-width within " << 100 * limit
-              << " %: " << yes(a_err <= limit)
+      const auto  &checks  = summary.at("checks");
+      const double a_h     = checks.at("hertz_half_width").get<double>();
+      const double a_exact = checks.at("hertz_half_width_exact").get<double>();
+      const double h       = checks.at("hertz_edge_pair_spacing").get<double>();
+      const double l2      = checks.at("pressure_l2_rel_error").get<double>();
+      const double tolerance = h + std::abs(1.498 - a_exact);
+      deallog << "V5 " << type
+              << ": half-width within one edge pair spacing (+ the finite "
+                 "disc's offset) of Johnson's: "
+              << yes(h > 0. && std::abs(a_h - a_exact) <= tolerance)
               << ", profile L2 error <= 3 %: " << yes(l2 <= 0.03)
-              << ", half-width " << std::setprecision(3)
-              << checks.at("hertz_half_width").get<double>()
+              << ", half-width " << std::setprecision(3) << a_h
               << std::setprecision(6) << std::endl;
     }
 }

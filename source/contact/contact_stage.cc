@@ -571,10 +571,11 @@ namespace igabde
             solution                = solver->solve(problem, p0, alpha0);
           }
       }
-      log << "  " << (solver->name() == "bde" ? "B-Newton" : solver->name())
-          << (full ? " (full system)" : "") << ": " << solution.summary()
-          << std::endl;
-      if (full && solver->name() != "bde")
+      if (settings.log_solves)
+        log << "  " << (solver->name() == "bde" ? "B-Newton" : solver->name())
+            << (full ? " (full system)" : "") << ": " << solution.summary()
+            << std::endl;
+      if (full && solver->name() == "penalty")
         log << "  maximum penetration " << std::setprecision(6)
             << solution.max_penetration << std::endl;
 

@@ -15,9 +15,9 @@ namespace igabde
                              ": Young's modulus must be positive, got " +
                              std::to_string(youngs_modulus) +
                              "; set it to a value > 0."));
-      AssertThrow(poisson_ratio >= 0. && poisson_ratio < 0.5,
+      AssertThrow(poisson_ratio > -1. && poisson_ratio < 0.5,
                   ExcMessage(where +
-                             ": Poisson's ratio must lie in [0, 0.5), got " +
+                             ": Poisson's ratio must lie in (-1, 0.5), got " +
                              std::to_string(poisson_ratio) +
                              "; nearly incompressible materials need "
                              "nu < 0.5 (e.g. 0.49)."));

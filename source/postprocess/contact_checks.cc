@@ -91,6 +91,12 @@ namespace igabde
             }
         }
       result.half_width = a_h;
+      if (last >= 0 && last + 1 < int(profile.size()))
+        result.edge_pair_spacing =
+          profile[last + 1].first - profile[last].first;
+      else if (last >= 1)
+        result.edge_pair_spacing =
+          profile[last].first - profile[last - 1].first;
 
       // L2 distance of the piecewise linear pair profile to Johnson's over
       // |x| <= 1.2 a.

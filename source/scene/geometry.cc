@@ -119,6 +119,53 @@ namespace igabde
 
 
 
+    std::vector<std::string>
+    patch_faces(const std::string &geometry, const unsigned int dimension)
+    {
+      // As the builders in nurbs/geometry_builders.h number them: face f at
+      // the low (f even) or high (f odd) end of parametric direction f/2.
+      if (geometry == "box")
+        {
+          std::vector<std::string> faces = {"x = lower",
+                                            "x = upper",
+                                            "y = lower",
+                                            "y = upper"};
+          if (dimension == 3)
+            faces.insert(faces.end(), {"z = lower", "z = upper"});
+          return faces;
+        }
+      if (geometry == "quarter annulus" || geometry == "thick cylinder")
+        {
+          std::vector<std::string> faces = {"inner arc r = r0",
+                                            "outer arc r = r1",
+                                            "theta = 0 (y = 0)",
+                                            "theta = 90 deg (x = 0)"};
+          if (dimension == 3)
+            faces.insert(faces.end(), {"z = 0", "z = width"});
+          return faces;
+        }
+      if (geometry == "plate with hole" && dimension == 2)
+        return {"the hole",
+                "the outer edges x = L, y = L",
+                "symmetry edge y = 0",
+                "symmetry edge x = 0"};
+      if (geometry == "hertz quarter disc" && dimension == 2)
+        return {"symmetry segment x = 0",
+                "upper arc",
+                "lower arc (contact)",
+                "cut y = R"};
+      if (geometry == "curved beam" && dimension == 3)
+        return {"inner face r = r0",
+                "outer face r = r1",
+                "theta = 0 (z = 0)",
+                "theta = 90 deg (x = 0)",
+                "y = 0",
+                "y = width"};
+      return {};
+    }
+
+
+
     template nurbs::NurbsPatch<2>
     make_geometry<2>(const BodyParameters &, const std::string &, unsigned int);
     template nurbs::NurbsPatch<3>

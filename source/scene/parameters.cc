@@ -2,10 +2,12 @@
 
 #include <igabde/contact/contact_solver.h>
 
+#include <igabde/scene/geometry.h>
 #include <igabde/scene/parameters.h>
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 namespace igabde
 {
@@ -39,6 +41,15 @@ namespace igabde
                           "every phase that can take long (assembly, "
                           "factorisation, condensation, contact iterations); "
                           "the command-line flag --quiet sets it to false.");
+        prm.declare_entry("Solver details",
+                          "true",
+                          Patterns::Bool(),
+                          "Print the contact solver's line for every solve "
+                          "(iterations, residuals, open/stick/slip counts) "
+                          "and the notices of halved load increments. Scene "
+                          "tests switch it off, so that their reference "
+                          "output holds physical figures only; summary.json "
+                          "always has these figures.");
       }
       prm.leave_subsection();
     }
@@ -50,10 +61,11 @@ namespace igabde
     {
       prm.enter_subsection("Output");
       {
-        directory    = prm.get("Directory");
-        write_vtu    = prm.get_bool("Write vtu");
-        print_timing = prm.get_bool("Print timing");
-        progress     = prm.get_bool("Progress");
+        directory      = prm.get("Directory");
+        write_vtu      = prm.get_bool("Write vtu");
+        print_timing   = prm.get_bool("Print timing");
+        progress       = prm.get_bool("Progress");
+        solver_details = prm.get_bool("Solver details");
       }
       prm.leave_subsection();
     }
@@ -126,12 +138,14 @@ namespace igabde
                           "before Discretization/Refinements.");
         prm.declare_entry("Young's modulus",
                           "1000",
-                          Patterns::Double(),
-                          "Young's modulus E (Pa), > 0.");
+                          Patterns::Double(0.),
+                          "Young's modulus E (Pa), E > 0.");
         prm.declare_entry("Poisson's ratio",
                           "0.3",
-                          Patterns::Double(),
-                          "Poisson's ratio nu, 0 <= nu < 0.5.");
+                          Patterns::Double(-1., 0.5),
+                          "Poisson's ratio nu, -1 < nu < 0.5 (the bounds "
+                          "themselves are refused: no stiffness exists "
+                          "there).");
         prm.declare_entry(
           "Supports",
           "",
@@ -140,7 +154,8 @@ namespace igabde
           "where a component is x, y or z, optionally with a value "
           "(x=0.05) scaled by the step's displacement factor; e.g. "
           "'0: x; 2: y'. Faces: 0/1 low/high end of parametric direction "
-          "0, 2/3 of direction 1, 4/5 of direction 2.");
+          "0, 2/3 of direction 1, 4/5 of direction 2; a face the Geometry "
+          "does not have is refused when the scene is read.");
         prm.declare_entry(
           "Tractions",
           "",
@@ -172,32 +187,245 @@ namespace igabde
 
 
 
+    namespace
+    {
+      /// A number as a user wrote it (six significant digits).
+      std::string
+      number(const double x)
+      {
+        std::ostringstream out;
+        out << x;
+        return out.str();
+      }
+
+
+
+      /// Face ids and what they are, for messages: "0 (x = lower), ...".
+      std::string
+      face_list(const std::vector<std::string> &faces)
+      {
+        std::string list;
+        for (unsigned int f = 0; f < faces.size(); ++f)
+          list +=
+            (f > 0 ? ", " : "") + std::to_string(f) + " (" + faces[f] + ")";
+        return list;
+      }
+
+
+
+      /**
+       * Reads the face key of @p item; refuses a face that @p geometry does
+       * not have, naming the faces it has.
+       */
+      unsigned int
+      read_face(const std::string              &key,
+                const std::vector<std::string> &faces,
+                const std::string              &geometry,
+                const std::string              &where,
+                const std::string              &item)
+      {
+        const std::vector<double> face = base::parse_doubles(key, where);
+        AssertThrow(face.size() == 1 && face[0] >= 0 &&
+                      face[0] < faces.size() && face[0] == std::floor(face[0]),
+                    base::ExcInput(where + ": face in '" + item +
+                                   "' must be a patch face 0.." +
+                                   std::to_string(faces.size() - 1) +
+                                   " of the " + geometry + ": " +
+                                   face_list(faces) + "."));
+        return static_cast<unsigned int>(face[0]);
+      }
+
+
+
+      /**
+       * Reads a vector of @p dimension components; extra trailing zero
+       * components (a 3D default read in 2D) are dropped.
+       */
+      std::vector<double>
+      read_vector(const std::string &text,
+                  const unsigned int dimension,
+                  const std::string &where)
+      {
+        std::vector<double> v  = base::parse_doubles(text, where);
+        bool                ok = (v.size() >= dimension);
+        for (unsigned int i = dimension; ok && i < v.size(); ++i)
+          ok = (v[i] == 0.);
+        AssertThrow(ok,
+                    base::ExcInput(where + ": '" + text + "' must have " +
+                                   std::to_string(dimension) +
+                                   " comma-separated components in this " +
+                                   std::to_string(dimension) + "D scene."));
+        v.resize(dimension);
+        return v;
+      }
+
+
+
+      std::string
+      component_names(const unsigned int dimension)
+      {
+        return dimension == 2 ? "x, y" : "x, y, z";
+      }
+    } // namespace
+
+
+
     void
     BodyParameters::parse_parameters(ParameterHandler  &prm,
-                                     const std::string &name)
+                                     const std::string &name,
+                                     const unsigned int dimension,
+                                     const std::string &context)
     {
+      std::string supports_text, tractions_text, point_loads_text,
+        body_force_text;
       prm.enter_subsection(name);
       {
-        type           = prm.get("Type");
-        geometry       = prm.get("Geometry");
-        lower_corner   = prm.get("Lower corner");
-        upper_corner   = prm.get("Upper corner");
-        inner_radius   = prm.get_double("Inner radius");
-        outer_radius   = prm.get_double("Outer radius");
-        radius         = prm.get_double("Radius");
-        width          = prm.get_double("Width");
-        plate_size     = prm.get_double("Plate size");
-        subdivisions   = prm.get("Subdivisions");
-        youngs_modulus = prm.get_double("Young's modulus");
-        poisson_ratio  = prm.get_double("Poisson's ratio");
-        supports       = prm.get("Supports");
-        tractions      = prm.get("Tractions");
-        point_loads    = prm.get("Point loads");
-        body_force     = prm.get("Body force");
-        plane_point    = prm.get("Plane point");
-        plane_normal   = prm.get("Plane normal");
+        type             = prm.get("Type");
+        geometry         = prm.get("Geometry");
+        lower_corner     = prm.get("Lower corner");
+        upper_corner     = prm.get("Upper corner");
+        inner_radius     = prm.get_double("Inner radius");
+        outer_radius     = prm.get_double("Outer radius");
+        radius           = prm.get_double("Radius");
+        width            = prm.get_double("Width");
+        plate_size       = prm.get_double("Plate size");
+        subdivisions     = prm.get("Subdivisions");
+        youngs_modulus   = prm.get_double("Young's modulus");
+        poisson_ratio    = prm.get_double("Poisson's ratio");
+        supports_text    = prm.get("Supports");
+        tractions_text   = prm.get("Tractions");
+        point_loads_text = prm.get("Point loads");
+        body_force_text  = prm.get("Body force");
+        plane_point      = prm.get("Plane point");
+        plane_normal     = prm.get("Plane normal");
       }
       prm.leave_subsection();
+
+      supports.clear();
+      tractions.clear();
+      point_loads.clear();
+      body_force.assign(dimension, 0.);
+      if (type != "deformable")
+        return;
+
+      // What no material and no body can have, refused before any set-up.
+      const std::string where = context + name + "/";
+      AssertThrow(youngs_modulus > 0.,
+                  base::ExcInput(where +
+                                 "Young's modulus = " + number(youngs_modulus) +
+                                 " must be > 0 (Pa); set the material's "
+                                 "stiffness, e.g. 1000."));
+      AssertThrow(poisson_ratio > -1. && poisson_ratio < 0.5,
+                  base::ExcInput(where +
+                                 "Poisson's ratio = " + number(poisson_ratio) +
+                                 " must lie in -1 < nu < 0.5; nearly "
+                                 "incompressible materials need nu < 0.5 "
+                                 "(e.g. 0.49)."));
+
+      const std::vector<std::string> faces = patch_faces(geometry, dimension);
+      AssertThrow(!faces.empty(),
+                  base::ExcInput(where + "Geometry = " + geometry +
+                                 " does not exist in " +
+                                 std::to_string(dimension) +
+                                 "D; choose another geometry or Dimension."));
+
+      // Supports: "face: x y=0.1; face: z".
+      for (const std::string &item : base::split(supports_text, ';'))
+        {
+          const auto [key, value] =
+            base::split_entry(item,
+                              where + "Supports",
+                              "'face: components', e.g. '0: x y'");
+          SupportParameters support;
+          support.face =
+            read_face(key, faces, geometry, where + "Supports", item);
+          std::string rest = value;
+          for (char &c : rest)
+            if (c == ',')
+              c = ' ';
+          std::istringstream in(rest);
+          std::string        token;
+          bool               any = false;
+          while (in >> token)
+            {
+              const auto        eq   = token.find('=');
+              const std::string comp = token.substr(0, eq);
+              const int         c    = (comp == "x" ? 0 :
+                                        comp == "y" ? 1 :
+                                        comp == "z" ? 2 :
+                                                      -1);
+              AssertThrow(c >= 0 && c < static_cast<int>(dimension),
+                          base::ExcInput(where + "Supports: '" + token +
+                                         "' in '" + item +
+                                         "' is not a component; use " +
+                                         component_names(dimension) +
+                                         ", optionally with =value."));
+              support.components[c] = true;
+              if (eq != std::string::npos)
+                {
+                  const auto v = base::parse_doubles(token.substr(eq + 1),
+                                                     where + "Supports");
+                  AssertThrow(v.size() == 1,
+                              base::ExcInput(where + "Supports: '" + token +
+                                             "' needs one value."));
+                  support.values[c] = v[0];
+                }
+              any = true;
+            }
+          AssertThrow(any,
+                      base::ExcInput(where + "Supports: '" + item +
+                                     "' names no component."));
+          supports.push_back(support);
+        }
+
+      // Tractions: "face: pressure p", "face: vector tx, ty", "face: exact".
+      for (const std::string &item : base::split(tractions_text, ';'))
+        {
+          const auto [key, rest] = base::split_entry(
+            item,
+            where + "Tractions",
+            "'face: pressure p', 'face: vector tx, ty' or 'face: exact'");
+          TractionParameters traction;
+          traction.face =
+            read_face(key, faces, geometry, where + "Tractions", item);
+          if (rest.rfind("pressure", 0) == 0)
+            {
+              traction.kind = TractionParameters::Kind::pressure;
+              traction.values =
+                base::parse_doubles(rest.substr(8), where + "Tractions");
+              AssertThrow(traction.values.size() == 1,
+                          base::ExcInput(where + "Tractions: '" + item +
+                                         "' needs one pressure value."));
+            }
+          else if (rest.rfind("vector", 0) == 0)
+            {
+              traction.kind = TractionParameters::Kind::vector;
+              traction.values =
+                read_vector(rest.substr(6), dimension, where + "Tractions");
+            }
+          else if (rest == "exact")
+            traction.kind = TractionParameters::Kind::exact;
+          else
+            AssertThrow(false,
+                        base::ExcInput(where + "Tractions: '" + rest +
+                                       "' is not 'pressure p', 'vector tx, "
+                                       "ty[, tz]' or 'exact'."));
+          tractions.push_back(traction);
+        }
+
+      // Point loads: "x, y[, z] : fx, fy[, fz]".
+      for (const std::string &item : base::split(point_loads_text, ';'))
+        {
+          const auto [location, force] =
+            base::split_entry(item,
+                              where + "Point loads",
+                              "'x, y[, z] : fx, fy[, fz]'");
+          point_loads.push_back(
+            {read_vector(location, dimension, where + "Point loads"),
+             read_vector(force, dimension, where + "Point loads")});
+        }
+      body_force =
+        read_vector(body_force_text, dimension, where + "Body force");
     }
 
 
@@ -632,8 +860,9 @@ namespace igabde
       probes      = prm.get("Probe points");
       output.parse_parameters(prm);
       parse_discretization_parameters(prm, discretization);
-      body1.parse_parameters(prm, "Body 1");
-      body2.parse_parameters(prm, "Body 2");
+      const std::string f = scene_file + ": ";
+      body1.parse_parameters(prm, "Body 1", dimension, f);
+      body2.parse_parameters(prm, "Body 2", dimension, f);
       exact.parse_parameters(prm);
       contact.parse_parameters(prm);
       // Pair placement is a property of the discretised surface.
@@ -643,14 +872,13 @@ namespace igabde
 
       // Checks that need more than a pattern; each names the parameter and
       // the fix.
-      const std::string f = scene_file + ": ";
       AssertThrow(body1.type == "deformable",
                   base::ExcInput(f + "Body 1/Type must be 'deformable'; only "
                                      "Body 2 may be a rigid plane."));
       AssertThrow(contact.friction_coefficient >= 0.,
                   base::ExcInput(
                     f + "Contact/Friction coefficient = " +
-                    std::to_string(contact.friction_coefficient) +
+                    number(contact.friction_coefficient) +
                     " is negative; use mu >= 0 (0 for frictionless)."));
       AssertThrow(!contact.enabled || body2.type != "none",
                   base::ExcInput(f + "Contact/Enabled is true but Body 2/Type "
@@ -676,6 +904,34 @@ namespace igabde
                     base::ExcInput(f + "Contact/Algorithm = " +
                                    contact.algorithm + " is not available."));
       }
+      for (const auto *body : {&body1, &body2})
+        for (const auto &traction : body->tractions)
+          AssertThrow(traction.kind != TractionParameters::Kind::exact ||
+                        exact.type != "none",
+                      base::ExcInput(f +
+                                     (body == &body1 ? "Body 1" : "Body 2") +
+                                     "/Tractions: 'exact' needs Exact "
+                                     "solution/Type other than none."));
+      if (contact.enabled)
+        {
+          // The contact faces must exist on the bodies that carry them.
+          const auto check_face = [&](const BodyParameters &body,
+                                      const std::string    &body_name,
+                                      const std::string    &parameter,
+                                      const unsigned int    face) {
+            const auto faces = patch_faces(body.geometry, dimension);
+            AssertThrow(face < faces.size(),
+                        base::ExcInput(f + "Contact/" + parameter + " = " +
+                                       std::to_string(face) +
+                                       " is not a patch face of " + body_name +
+                                       " (" + body.geometry + " in " +
+                                       std::to_string(dimension) +
+                                       "D: " + face_list(faces) + ")."));
+          };
+          check_face(body1, "Body 1", "Slave face", contact.slave_face);
+          if (body2.type == "deformable")
+            check_face(body2, "Body 2", "Master face", contact.master_face);
+        }
       if (checks.hertz_line_load > 0.)
         {
           AssertThrow(dimension == 2,

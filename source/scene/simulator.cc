@@ -61,12 +61,6 @@ namespace igabde
       private:
         std::streambuf *a, *b;
       };
-
-      std::string
-      component_names(const unsigned int dim)
-      {
-        return dim == 2 ? "x, y" : "x, y, z";
-      }
     } // namespace
 
 
@@ -127,120 +121,71 @@ namespace igabde
       d.geometry =
         make_geometry<dim>(body, where, parameters.discretization.degree);
 
-      // Supports: "face: x y=0.1; face: z".
-      for (const std::string &item : base::split(body.supports, ';'))
+      // The body grammar was read and checked with the parameters
+      // (BodyParameters::parse_parameters); here it only becomes
+      // dim-dimensional.
+      const auto tensor = [](const std::vector<double> &v) {
+        Tensor<1, dim> t;
+        for (unsigned int i = 0; i < dim; ++i)
+          t[i] = v[i];
+        return t;
+      };
+      for (const SupportParameters &support : body.supports)
         {
-          const auto [key, value] =
-            base::split_entry(item,
-                              where + "Supports",
-                              "'face: components', e.g. '0: x y'");
           discretization::DirichletCondition<dim> bc;
-          bc.boundary_id = static_cast<types::boundary_id>(
-            base::parse_face(key, 2 * dim, where + "Supports", item));
-          std::string rest = value;
-          for (char &c : rest)
-            if (c == ',')
-              c = ' ';
-          std::istringstream in(rest);
-          std::string        token;
-          bool               any = false;
-          while (in >> token)
+          bc.boundary_id = static_cast<types::boundary_id>(support.face);
+          for (unsigned int c = 0; c < dim; ++c)
             {
-              const auto        eq   = token.find('=');
-              const std::string comp = token.substr(0, eq);
-              const int         c    = (comp == "x" ? 0 :
-                                        comp == "y" ? 1 :
-                                        comp == "z" ? 2 :
-                                                      -1);
-              AssertThrow(c >= 0 && c < dim,
-                          base::ExcInput(where + "Supports: '" + token +
-                                         "' in '" + item +
-                                         "' is not a component; use " +
-                                         component_names(dim) +
-                                         ", optionally with =value."));
-              bc.components[c] = true;
-              if (eq != std::string::npos)
-                {
-                  const auto v = base::parse_doubles(token.substr(eq + 1),
-                                                     where + "Supports");
-                  AssertThrow(v.size() == 1,
-                              base::ExcInput(where + "Supports: '" + token +
-                                             "' needs one value."));
-                  bc.value[c] = v[0];
-                }
-              any = true;
+              bc.components[c] = support.components[c];
+              bc.value[c]      = support.values[c];
             }
-          AssertThrow(any,
-                      base::ExcInput(where + "Supports: '" + item +
-                                     "' names no component."));
           d.dirichlet.push_back(bc);
         }
-
-      // Tractions.
-      for (const std::string &item : base::split(body.tractions, ';'))
+      for (const TractionParameters &traction : body.tractions)
         {
-          const auto [key, rest] = base::split_entry(
-            item,
-            where + "Tractions",
-            "'face: pressure p', 'face: vector tx, ty' or 'face: exact'");
           discretization::NeumannCondition<dim> bc;
-          bc.boundary_id = static_cast<types::boundary_id>(
-            base::parse_face(key, 2 * dim, where + "Tractions", item));
-          if (rest.rfind("pressure", 0) == 0)
+          bc.boundary_id = static_cast<types::boundary_id>(traction.face);
+          switch (traction.kind)
             {
-              const auto v =
-                base::parse_doubles(rest.substr(8), where + "Tractions");
-              AssertThrow(v.size() == 1,
-                          base::ExcInput(where + "Tractions: '" + item +
-                                         "' needs one pressure value."));
-              const double p = v[0];
-              bc.traction = [p](const Point<dim> &, const Tensor<1, dim> &n) {
-                return -p * n;
-              };
+              case TractionParameters::Kind::pressure:
+                {
+                  const double p = traction.values[0];
+                  bc.traction    = [p](const Point<dim> &,
+                                    const Tensor<1, dim> &n) {
+                    return -p * n;
+                  };
+                  break;
+                }
+              case TractionParameters::Kind::vector:
+                {
+                  const Tensor<1, dim> t = tensor(traction.values);
+                  bc.traction            = [t](const Point<dim> &,
+                                    const Tensor<1, dim> &) {
+                    return t;
+                  };
+                  break;
+                }
+              case TractionParameters::Kind::exact:
+                {
+                  Assert(exact.has_value(), ExcInternalError());
+                  const auto stress = exact->stress;
+                  bc.traction       = [stress](const Point<dim>     &x,
+                                         const Tensor<1, dim> &n) {
+                    return stress(x) * n;
+                  };
+                  break;
+                }
             }
-          else if (rest.rfind("vector", 0) == 0)
-            {
-              const Tensor<1, dim> t =
-                base::parse_tensor<dim>(rest.substr(6), where + "Tractions");
-              bc.traction = [t](const Point<dim> &, const Tensor<1, dim> &) {
-                return t;
-              };
-            }
-          else if (rest == "exact")
-            {
-              AssertThrow(exact.has_value(),
-                          base::ExcInput(where + "Tractions: 'exact' needs "
-                                                 "Exact solution/Type other "
-                                                 "than none."));
-              const auto stress = exact->stress;
-              bc.traction       = [stress](const Point<dim>     &x,
-                                     const Tensor<1, dim> &n) {
-                return stress(x) * n;
-              };
-            }
-          else
-            AssertThrow(false,
-                        base::ExcInput(where + "Tractions: '" + rest +
-                                       "' is not 'pressure p', 'vector tx, "
-                                       "ty[, tz]' or 'exact'."));
           d.tractions.push_back(bc);
         }
-
-      // Point loads.
-      for (const std::string &item : base::split(body.point_loads, ';'))
+      for (const PointLoadParameters &load : body.point_loads)
         {
-          const auto [location, force] =
-            base::split_entry(item,
-                              where + "Point loads",
-                              "'x, y[, z] : fx, fy[, fz]'");
-          discretization::PointLoad<dim> load;
-          load.location =
-            base::parse_point<dim>(location, where + "Point loads");
-          load.force = base::parse_tensor<dim>(force, where + "Point loads");
-          d.point_loads.push_back(load);
+          discretization::PointLoad<dim> point_load;
+          point_load.location = Point<dim>(tensor(load.location));
+          point_load.force    = tensor(load.force);
+          d.point_loads.push_back(point_load);
         }
-      d.body_force =
-        base::parse_tensor<dim>(body.body_force, where + "Body force");
+      d.body_force = tensor(body.body_force);
       return d;
     }
 
@@ -398,6 +343,7 @@ namespace igabde
           cs.solver.bnewton.log_stream        = &contact_log();
           cs.context                          = scene_file;
           cs.progress                         = parameters.output.progress;
+          cs.log_solves = parameters.output.solver_details;
 
           // The obstacle Body 2 stands for, if it is not deformable.
           std::unique_ptr<contact::Obstacle<dim>> obstacle;
@@ -498,13 +444,14 @@ namespace igabde
         return u;
       };
       std::unique_ptr<LoadController<dim>> controller;
+      static std::ostream                  discard(nullptr);
       if (contact_stage)
         controller = std::make_unique<LoadController<dim>>(
           *contact_stage,
           external,
           parameters.contact.max_step_cuts,
           scene_file,
-          pcout.get_stream());
+          parameters.output.solver_details ? pcout.get_stream() : discard);
 
       double previous_load = 0., previous_displacement = 0.;
       for (unsigned int s = 0; s < steps.size(); ++s)
@@ -740,6 +687,7 @@ namespace igabde
                   checks["hertz_peak_pressure_exact"] = r.peak_pressure_exact;
                   checks["pressure_l2_rel_error"]     = r.profile_l2_error;
                   checks["hertz_loaded_pairs"]        = r.n_loaded;
+                  checks["hertz_edge_pair_spacing"]   = r.edge_pair_spacing;
                   pcout << "  Hertz: half-width " << std::setprecision(5)
                         << r.half_width << " (Johnson " << r.half_width_exact
                         << "), peak pressure " << r.peak_pressure

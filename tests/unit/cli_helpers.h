@@ -12,6 +12,44 @@
 
 namespace cli
 {
+  /**
+   * A scratch folder below the system's temporary folder, named
+   * igabde-<prefix>-<name>-<pid>, emptied on creation and removed with
+   * everything in it when the test ends (also when an assertion fails).
+   */
+  struct ScratchFolder
+  {
+    /// The folder's path.
+    std::string path;
+
+    explicit ScratchFolder(const std::string &name,
+                           const std::string &prefix = "cli")
+      : path(
+          (std::filesystem::temp_directory_path() /
+           ("igabde-" + prefix + "-" + name + "-" + std::to_string(getpid())))
+            .string())
+    {
+      std::filesystem::remove_all(path);
+      std::filesystem::create_directories(path);
+    }
+
+    ScratchFolder(const ScratchFolder &) = delete;
+    ScratchFolder &
+    operator=(const ScratchFolder &) = delete;
+
+    ~ScratchFolder()
+    {
+      std::error_code ec;
+      std::filesystem::remove_all(path, ec);
+    }
+
+    /// The folder, so that a ScratchFolder reads as the path it holds.
+    operator const std::string &() const
+    {
+      return path;
+    }
+  };
+
   /// Exit status and the merged stdout+stderr of a command.
   struct RunResult
   {

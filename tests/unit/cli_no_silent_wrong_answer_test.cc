@@ -19,21 +19,11 @@ namespace
   using cli::run_in;
 
   /// A scratch folder removed when the test ends.
-  struct Scratch
+  struct Scratch : cli::ScratchFolder
   {
-    std::string path;
     explicit Scratch(const std::string &name)
-      : path((std::filesystem::temp_directory_path() /
-              ("igabde-wrong-" + name + "-" + std::to_string(getpid())))
-               .string())
-    {
-      std::filesystem::remove_all(path);
-      std::filesystem::create_directories(path);
-    }
-    ~Scratch()
-    {
-      std::filesystem::remove_all(path);
-    }
+      : cli::ScratchFolder(name, "wrong")
+    {}
   };
 
   std::string

@@ -15,14 +15,6 @@ namespace
   using cli::read_file;
   using cli::run_igabde;
 
-  std::string
-  scratch(const std::string &name)
-  {
-    return (std::filesystem::temp_directory_path() /
-            ("igabde-cli-" + name + "-" + std::to_string(getpid())))
-      .string();
-  }
-
   void
   write_file(const std::string &path, const std::string &text)
   {
@@ -35,11 +27,11 @@ namespace
 
 TEST(Cli, HelpAndParameterListing)
 {
-  const auto help = run_igabde("--help", scratch("help"));
+  const auto help = run_igabde("--help", cli::ScratchFolder("help"));
   EXPECT_EQ(help.status, 0);
   EXPECT_NE(help.output.find("Usage: igabde SCENE.prm"), std::string::npos);
 
-  const auto prm = run_igabde("--print-parameters", scratch("prm"));
+  const auto prm = run_igabde("--print-parameters", cli::ScratchFolder("prm"));
   EXPECT_EQ(prm.status, 0);
   for (const char *name : {"Friction coefficient",
                            "Refinements",
@@ -49,7 +41,8 @@ TEST(Cli, HelpAndParameterListing)
                            "Path"})
     EXPECT_NE(prm.output.find(name), std::string::npos) << name;
 
-  const auto json = run_igabde("--print-parameters json", scratch("json"));
+  const auto json =
+    run_igabde("--print-parameters json", cli::ScratchFolder("json"));
   EXPECT_EQ(json.status, 0);
   EXPECT_NE(json.output.find("\"Discretization\""), std::string::npos);
 }
@@ -58,7 +51,8 @@ TEST(Cli, HelpAndParameterListing)
 
 TEST(Cli, MisspelledParameterIsOneClearError)
 {
-  const std::string folder = scratch("misspelled");
+  const cli::ScratchFolder scratch("misspelled");
+  const std::string       &folder = scratch.path;
   std::filesystem::create_directories(folder);
   write_file(folder + "/bad.prm",
              "set Dimension = 2\nsubsection Body 1\n"
@@ -81,7 +75,8 @@ TEST(Cli, MisspelledParameterIsOneClearError)
 
 TEST(Cli, MalformedValueAndMissingFile)
 {
-  const std::string folder = scratch("malformed");
+  const cli::ScratchFolder scratch("malformed");
+  const std::string       &folder = scratch.path;
   std::filesystem::create_directories(folder);
   write_file(folder + "/bad.prm",
              "subsection Discretization\n  set Degree = two\nend\n");
@@ -112,8 +107,9 @@ TEST(Cli, MalformedValueAndMissingFile)
 
 TEST(Cli, SetOverridesAValue)
 {
-  const std::string folder = scratch("set");
-  const std::string scene =
+  const cli::ScratchFolder scratch("set");
+  const std::string       &folder = scratch.path;
+  const std::string        scene =
     std::string(IGABDE_SOURCE_DIR) + "/prm/v2-lame-cylinder.prm";
   const auto result =
     run_igabde("'" + scene +
@@ -138,8 +134,9 @@ TEST(Cli, LateFailureKeepsFinishedResults)
 {
   // Two B-Newton iterations are too few for the stick phase of V4's second
   // step: the run must fail loudly, keep step 1 and say why in summary.json.
-  const std::string folder = scratch("late");
-  const std::string scene =
+  const cli::ScratchFolder scratch("late");
+  const std::string       &folder = scratch.path;
+  const std::string        scene =
     std::string(IGABDE_SOURCE_DIR) + "/prm/v4-sliding-block.prm";
   const auto result = run_igabde("'" + scene +
                                    "' --set 'Contact/Max iterations=2' "
@@ -164,8 +161,9 @@ TEST(Cli, LateFailureKeepsFinishedResults)
 
 TEST(Cli, SurfacesThatDoNotFaceEachOther)
 {
-  const std::string folder = scratch("facing");
-  const std::string scene =
+  const cli::ScratchFolder scratch("facing");
+  const std::string       &folder = scratch.path;
+  const std::string        scene =
     std::string(IGABDE_SOURCE_DIR) + "/prm/v5-hertz-2d.prm";
   const auto result = run_igabde("'" + scene +
                                    "' --set 'Body 2/Plane normal=0,-1' "
@@ -184,7 +182,8 @@ TEST(Cli, MinimalScenesRunWithDefaults)
 {
   // A unit box with rollers and a pressure, everything else at its default,
   // in 2D and 3D; and a support on a face the patch does not have.
-  const std::string folder = scratch("defaults");
+  const cli::ScratchFolder scratch("defaults");
+  const std::string       &folder = scratch.path;
   std::filesystem::create_directories(folder);
   write_file(folder + "/box2.prm",
              "set Dimension = 2\nsubsection Body 1\n"

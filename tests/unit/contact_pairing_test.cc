@@ -31,9 +31,8 @@ namespace
 
 TEST(ContactPairing, NodeToNodeOnMatchingAndNonMatchingSurfaces)
 {
-  const std::string folder = (std::filesystem::temp_directory_path() /
-                              ("igabde-pairing-" + std::to_string(getpid())))
-                               .string();
+  const cli::ScratchFolder scratch("pairing", "unit");
+  const std::string       &folder = scratch.path;
 
   // Matching meshes: the patch test holds to round-off (V3's criterion).
   const auto matching = run(folder, "--set 'Contact/Pairing=node-to-node'");
@@ -59,6 +58,4 @@ TEST(ContactPairing, NodeToNodeOnMatchingAndNonMatchingSurfaces)
   const auto closest =
     run(folder, non_matching + "--set 'Contact/Pairing=node-to-surface'");
   EXPECT_EQ(closest.status, 0) << closest.output;
-
-  std::filesystem::remove_all(folder);
 }

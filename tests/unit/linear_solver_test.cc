@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include "cli_helpers.h"
 #include <filesystem>
 #include <sstream>
 
@@ -13,16 +14,15 @@ namespace
   nlohmann::json
   run_v2(const std::string &type, const std::string &solver)
   {
-    std::ostringstream log;
-    const std::string  folder = (std::filesystem::temp_directory_path() /
-                                ("igabde-linear-solver-" + type + "-" + solver))
-                                 .string();
+    std::ostringstream       log;
+    const cli::ScratchFolder folder("linear-solver-" + type + "-" + solver,
+                                    "unit");
     return igabde::scene::run_scene_in_process(
       std::string(IGABDE_SOURCE_DIR) + "/prm/v2-lame-cylinder.prm",
       {{"Discretization/Type", type},
        {"Discretization/Refinements", "3"},
        {"Discretization/Linear solver", solver},
-       {"Output/Directory", folder},
+       {"Output/Directory", folder.path},
        {"Output/Write vtu", "false"},
        {"Output/Print timing", "false"}},
       log);

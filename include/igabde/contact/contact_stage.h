@@ -46,6 +46,8 @@ namespace igabde
       std::string context;
       /// Progress lines for phases that may take long.
       bool progress = true;
+      /// Write the solver's one-line summary of every solve to the log.
+      bool log_solves = true;
     };
 
     /**

@@ -29,14 +29,14 @@ namespace igabde
     {
       /// Young's modulus (Pa).
       double youngs_modulus = 1.0;
-      /// Poisson's ratio (-), 0 <= nu < 0.5.
+      /// Poisson's ratio (-), -1 < nu < 0.5.
       double poisson_ratio = 0.3;
       /// Plane strain or plane stress (2D only).
       PlaneModel plane_model = PlaneModel::plane_strain;
 
       /**
        * @brief Throws a user-facing error naming @p where when the constants
-       * are not physical (E <= 0, nu outside [0, 0.5)).
+       * are not physical (E <= 0, nu outside (-1, 0.5)).
        */
       void
       validate(const std::string &where) const;

@@ -66,6 +66,11 @@ namespace igabde
         /// Pairs carrying load, and the pair spacing next to the axis.
         unsigned int n_loaded     = 0;
         double       pair_spacing = 0.;
+        /// Distance between the last loaded and the first open pair (or
+        /// the last two pairs when every pair is loaded): the interval the
+        /// half-width estimate is kept in, hence the resolution of
+        /// half_width.
+        double edge_pair_spacing = 0.;
         /// Empty, or why the figures above do not measure the method (the
         /// contact zone is not resolved by the pairs).
         std::string warning;

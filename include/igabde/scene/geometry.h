@@ -6,6 +6,7 @@
 #include <igabde/scene/parameters.h>
 
 #include <string>
+#include <vector>
 
 namespace igabde
 {
@@ -22,6 +23,15 @@ namespace igabde
     make_geometry(const BodyParameters &body,
                   const std::string    &where,
                   const unsigned int    degree);
+
+    /**
+     * @brief The patch faces of the geometry named @p geometry (a
+     * Body n/Geometry value) in @p dimension dimensions: entry f describes
+     * face f, the boundary id that Supports, Tractions and the contact faces
+     * name. Empty when the geometry does not exist in that dimension.
+     */
+    std::vector<std::string>
+    patch_faces(const std::string &geometry, const unsigned int dimension);
   } // namespace scene
 } // namespace igabde
 

@@ -5,6 +5,7 @@
 
 #include <deal.II/base/parameter_handler.h>
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -29,6 +30,10 @@ namespace igabde
       /// Print progress lines (phase, elapsed seconds) for phases that can
       /// take long; --quiet turns them off.
       bool progress = true;
+      /// Print the contact solver's line per solve (iterations, residuals,
+      /// contact counts) and step-cut notices (off in scene tests: they are
+      /// not physical results); summary.json always has them.
+      bool solver_details = true;
 
       /// Declares the "Output" subsection.
       static void
@@ -36,6 +41,54 @@ namespace igabde
       /// Reads the "Output" subsection.
       void
       parse_parameters(ParameterHandler &prm);
+    };
+
+    /**
+     * @brief One entry of Body n/Supports: components held on a patch face.
+     */
+    struct SupportParameters
+    {
+      /// Patch face (boundary id of the parametric mesh).
+      unsigned int face = 0;
+      /// Held components x, y, z.
+      std::array<bool, 3> components = {{false, false, false}};
+      /// Prescribed displacement (m) of each held component at
+      /// displacement factor 1.
+      std::array<double, 3> values = {{0., 0., 0.}};
+    };
+
+    /**
+     * @brief One entry of Body n/Tractions.
+     */
+    struct TractionParameters
+    {
+      /// What the entry prescribes.
+      enum class Kind
+      {
+        /// t = -p n with the pressure values[0] (Pa).
+        pressure,
+        /// The constant traction values (Pa), one per component.
+        vector,
+        /// sigma_exact n from the Exact solution.
+        exact
+      };
+      /// Patch face (boundary id of the parametric mesh).
+      unsigned int face = 0;
+      /// Pressure, vector or exact.
+      Kind kind = Kind::pressure;
+      /// Pressure (one value) or traction (dimension values), in Pa.
+      std::vector<double> values;
+    };
+
+    /**
+     * @brief One entry of Body n/Point loads.
+     */
+    struct PointLoadParameters
+    {
+      /// Where the force acts (m), dimension values.
+      std::vector<double> location;
+      /// The force (N), dimension values.
+      std::vector<double> force;
     };
 
     /**
@@ -68,14 +121,15 @@ namespace igabde
       double youngs_modulus = 1000.;
       /// Poisson's ratio (-).
       double poisson_ratio = 0.3;
-      /// Supports: "face: x y=0.1; face: z".
-      std::string supports;
-      /// Tractions: "face: pressure p; face: vector tx,ty; face: exact".
-      std::string tractions;
-      /// Point loads: "x,y[,z] : fx,fy[,fz]; ...".
-      std::string point_loads;
-      /// Body force per volume (N/m^3).
-      std::string body_force = "0, 0, 0";
+      /// Supports, read from "face: x y=0.1; face: z".
+      std::vector<SupportParameters> supports;
+      /// Tractions, read from "face: pressure p; face: vector tx, ty;
+      /// face: exact".
+      std::vector<TractionParameters> tractions;
+      /// Point loads, read from "x, y[, z] : fx, fy[, fz]; ...".
+      std::vector<PointLoadParameters> point_loads;
+      /// Body force per volume (N/m^3), dimension values.
+      std::vector<double> body_force;
       /// Rigid plane: a point on it (m).
       std::string plane_point = "0, 0, 0";
       /// Rigid plane: unit normal pointing towards Body 1.
@@ -86,9 +140,18 @@ namespace igabde
       declare_parameters(ParameterHandler  &prm,
                          const std::string &name,
                          const std::string &default_type);
-      /// Reads the subsection @p name.
+      /**
+       * @brief Reads the subsection @p name of a @p dimension-D scene and
+       * refuses, with a one-line input error prefixed by @p context (the
+       * scene file), what no body can have: E <= 0, nu outside (-1, 0.5),
+       * a face the geometry does not have, a malformed support, traction or
+       * point load. The grammar is read only for deformable bodies.
+       */
       void
-      parse_parameters(ParameterHandler &prm, const std::string &name);
+      parse_parameters(ParameterHandler  &prm,
+                       const std::string &name,
+                       const unsigned int dimension,
+                       const std::string &context);
     };
 
     /**

@@ -1,0 +1,129 @@
+// Values no body can have are refused when the scene is read (ctest label
+// bad-input): exit status 2, one line naming the file and the parameter,
+// nothing set up and nothing written. Before the body grammar moved into
+// the parameters, E = 0, nu = 0.5, nu = -1 and a face the geometry does not
+// have were found during set-up (exit status 1, a failed summary.json and
+// the scene banner on screen).
+
+#include <gtest/gtest.h>
+
+#include "cli_helpers.h"
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+namespace
+{
+  /**
+   * Runs the V3 2D scene (a contact scene: both bodies, both contact faces)
+   * with one override and checks the parse-time refusal: status 2, one
+   * line starting "igabde: error: <scene file>: " and naming @p parameter,
+   * no scene banner, no output folder, hence no summary.json and no VTU.
+   */
+  void
+  expect_refused_at_parse_time(const std::string &name,
+                               const std::string &setting,
+                               const std::string &parameter)
+  {
+    SCOPED_TRACE(setting);
+    const cli::ScratchFolder folder("bad-input-" + name);
+    const std::string        scene =
+      std::string(IGABDE_SOURCE_DIR) + "/prm/v3-contact-patch-2d.prm";
+    const auto result = cli::run_igabde("'" + scene + "' --set \"" + setting +
+                                          "\" --set 'Output/Directory=out'",
+                                        folder);
+    EXPECT_EQ(result.status, 2) << result.output;
+    // One line, the error itself.
+    EXPECT_EQ(result.output.find('\n'), result.output.size() - 1)
+      << result.output;
+    EXPECT_EQ(result.output.rfind("igabde: error: " + scene + ": ", 0), 0u)
+      << result.output;
+    EXPECT_NE(result.output.find(parameter), std::string::npos)
+      << result.output;
+    // Nothing was set up: no banner, no output folder.
+    EXPECT_EQ(result.output.find("Scene "), std::string::npos) << result.output;
+    EXPECT_FALSE(std::filesystem::exists(folder.path + "/out/summary.json"));
+    EXPECT_FALSE(
+      std::filesystem::exists(folder.path + "/out/solution-body1-0001.vtu"));
+    EXPECT_FALSE(std::filesystem::exists(folder.path + "/out"));
+  }
+} // namespace
+
+
+
+TEST(CliBadInput, ZeroYoungsModulus)
+{
+  expect_refused_at_parse_time("e0",
+                               "Body 1/Young's modulus=0",
+                               "Body 1/Young's modulus = 0 must be > 0");
+}
+
+
+
+TEST(CliBadInput, PoissonRatioAtOneHalf)
+{
+  expect_refused_at_parse_time("nu05",
+                               "Body 2/Poisson's ratio=0.5",
+                               "Body 2/Poisson's ratio = 0.5 must lie in "
+                               "-1 < nu < 0.5");
+}
+
+
+
+TEST(CliBadInput, PoissonRatioAtMinusOne)
+{
+  expect_refused_at_parse_time("nu-1",
+                               "Body 1/Poisson's ratio=-1",
+                               "Body 1/Poisson's ratio = -1 must lie in "
+                               "-1 < nu < 0.5");
+}
+
+
+
+TEST(CliBadInput, NegativeFrictionCoefficient)
+{
+  expect_refused_at_parse_time("mu",
+                               "Contact/Friction coefficient=-0.1",
+                               "Contact/Friction coefficient");
+}
+
+
+
+TEST(CliBadInput, SupportOnAFaceTheGeometryDoesNotHave)
+{
+  // A 2D box has faces 0..3; face 4 exists only in 3D.
+  expect_refused_at_parse_time("support-face",
+                               "Body 2/Supports=0: x; 4: y",
+                               "Body 2/Supports: face in '4: y' must be a "
+                               "patch face 0..3 of the box");
+}
+
+
+
+TEST(CliBadInput, TractionOnAFaceTheGeometryDoesNotHave)
+{
+  expect_refused_at_parse_time("traction-face",
+                               "Body 1/Tractions=5: pressure 1",
+                               "Body 1/Tractions: face in '5: pressure 1' "
+                               "must be a patch face 0..3");
+}
+
+
+
+TEST(CliBadInput, ContactFaceTheGeometryDoesNotHave)
+{
+  expect_refused_at_parse_time("contact-face",
+                               "Contact/Master face=4",
+                               "Contact/Master face = 4 is not a patch face "
+                               "of Body 2");
+}
+
+
+
+TEST(CliBadInput, SupportComponentOutsideTheDimension)
+{
+  expect_refused_at_parse_time("component",
+                               "Body 1/Supports=0: z",
+                               "Body 1/Supports: 'z' in '0: z' is not a "
+                               "component");
+}

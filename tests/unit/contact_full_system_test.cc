@@ -1,0 +1,182 @@
+// The full-system contact algorithms against the condensed B-Newton, run by
+// the executable on the reference scenes: the uncondensed BDE and the
+// augmented Lagrangian must reach the condensed answer (a second method on
+// the same equations), the penalty answer must approach it as FKN grows.
+
+#include <igabde/base/utilities.h>
+
+#include <gtest/gtest.h>
+
+#include "cli_helpers.h"
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace
+{
+  struct SceneRun
+  {
+    nlohmann::json summary;
+    // Pair states of every step (from contact-NNNN.csv).
+    std::vector<std::vector<std::string>> status;
+  };
+
+  SceneRun
+  run_scene(const std::string &scene,
+            const std::string &settings,
+            const std::string &folder)
+  {
+    const std::string out = folder + "/out";
+    const auto        r =
+      cli::run_igabde(std::string(IGABDE_SOURCE_DIR) + "/prm/" + scene +
+                        ".prm --set " + "'Output/Directory=" + out +
+                        "' --set 'Output/Write vtu=false' " +
+                        "--set Contact/Tolerance=1e-12 " + settings,
+                      folder);
+    EXPECT_EQ(r.status, 0) << scene << " " << settings << "\n" << r.output;
+    SceneRun      run;
+    std::ifstream in(out + "/summary.json");
+    if (!in)
+      return run;
+    run.summary = nlohmann::json::parse(in);
+    for (unsigned int s = 1; s <= run.summary["load_steps"].size(); ++s)
+      {
+        std::ostringstream name;
+        name << out << "/contact-" << std::setw(4) << std::setfill('0') << s
+             << ".csv";
+        std::ifstream            csv(name.str());
+        std::string              line;
+        std::vector<std::string> states;
+        std::getline(csv, line); // header
+        while (std::getline(csv, line))
+          states.push_back(line.substr(line.rfind(',') + 1));
+        run.status.push_back(states);
+      }
+    return run;
+  }
+
+  double
+  norm(const nlohmann::json &v)
+  {
+    double s = 0.;
+    for (const auto &x : v)
+      s += x.get<double>() * x.get<double>();
+    return std::sqrt(s);
+  }
+
+  double
+  difference(const nlohmann::json &a, const nlohmann::json &b)
+  {
+    double s = 0.;
+    for (unsigned int i = 0; i < a.size(); ++i)
+      s += std::pow(a[i].get<double>() - b[i].get<double>(), 2);
+    return std::sqrt(s);
+  }
+
+  // Largest relative difference of the step contact forces and of the probe
+  // displacements (relative to the largest probe displacement).
+  double
+  deviation(const SceneRun &a, const SceneRun &b)
+  {
+    double d = 0.;
+    for (unsigned int s = 0; s < a.summary["load_steps"].size(); ++s)
+      {
+        const auto &fa = a.summary["load_steps"][s]["total_contact_force"];
+        const auto &fb = b.summary["load_steps"][s]["total_contact_force"];
+        d = std::max(d, difference(fa, fb) / std::max(norm(fa), 1e-300));
+      }
+    double scale = 0.;
+    for (const auto &[name, value] : a.summary["points"].items())
+      scale = std::max(scale, norm(value));
+    for (const auto &[name, value] : a.summary["points"].items())
+      d = std::max(d, difference(value, b.summary["points"][name]) / scale);
+    return d;
+  }
+
+  const char *scenes[] = {"v3-contact-patch-2d",
+                          "v3-contact-patch-3d",
+                          "v4-sliding-block",
+                          "v5-hertz-2d",
+                          "b2-curved-beams"};
+} // namespace
+
+
+
+// Both paths solve the same B-differentiable equations to 1e-12: the
+// contact forces must agree to 1e-8 and every pair's state must match.
+TEST(FullSystem, AgreesWithTheCondensedPath)
+{
+  for (const std::string scene : scenes)
+    {
+      cli::ScratchFolder folder(scene, "full");
+      const SceneRun     condensed =
+        run_scene(scene, "--set Contact/Path=condensed", folder.path + "/c");
+      const SceneRun full =
+        run_scene(scene, "--set Contact/Path=full", folder.path + "/f");
+      ASSERT_EQ(full.summary["contact_path"], "full");
+      ASSERT_EQ(condensed.summary["contact_path"], "condensed");
+      ASSERT_EQ(condensed.status.size(), full.status.size()) << scene;
+      EXPECT_LT(deviation(condensed, full), 1e-8) << scene;
+      for (unsigned int s = 0; s < full.status.size(); ++s)
+        EXPECT_EQ(condensed.status[s], full.status[s])
+          << scene << ", step " << s + 1;
+    }
+}
+
+
+
+// The augmented Lagrangian stops on the natural-map test of the BDE: its
+// answer is the BDE answer (1e-6 with the 1e-12 tolerance).
+TEST(FullSystem, AugmentedLagrangeReachesTheBdeAnswer)
+{
+  for (const std::string scene : scenes)
+    {
+      cli::ScratchFolder folder(scene, "al");
+      const SceneRun     bde =
+        run_scene(scene, "--set Contact/Path=condensed", folder.path + "/c");
+      const SceneRun al =
+        run_scene(scene,
+                  "--set Contact/Algorithm=augmented-lagrange",
+                  folder.path + "/a");
+      EXPECT_LT(deviation(bde, al), 1e-6) << scene;
+    }
+}
+
+
+
+// Penalty: the answer penetrates by about p / k_n, so the deviation from
+// the BDE answer and the penetration both fall as FKN grows (B2, where the
+// contact force itself depends on the compliance of the interface; V4,
+// the sliding block).
+TEST(FullSystem, PenaltyApproachesTheBdeAnswerAsFknGrows)
+{
+  for (const std::string scene : {"b2-curved-beams", "v4-sliding-block"})
+    {
+      cli::ScratchFolder folder(scene, "penalty");
+      const SceneRun     bde =
+        run_scene(scene, "--set Contact/Path=condensed", folder.path + "/c");
+      double last_deviation = 1e300, last_penetration = 1e300;
+      for (const std::string fkn : {"0.01", "0.1", "1", "10"})
+        {
+          const SceneRun penalty = run_scene(scene,
+                                             "--set Contact/Algorithm=penalty "
+                                             "--set 'Contact/Penalty factor=" +
+                                               fkn + "'",
+                                             folder.path + "/p" + fkn);
+          const double   dev     = deviation(bde, penalty);
+          const double   pen =
+            penalty.summary["load_steps"].back()["max_penetration"];
+          EXPECT_LT(dev, last_deviation) << scene << ", FKN = " << fkn;
+          EXPECT_GT(pen, 0.) << scene << ", FKN = " << fkn;
+          // Stiffer springs penetrate less (not ten times less: the
+          // forces redistribute as the interface stiffens).
+          EXPECT_LT(pen, last_penetration) << scene << ", FKN = " << fkn;
+          last_deviation   = dev;
+          last_penetration = pen;
+        }
+    }
+}
