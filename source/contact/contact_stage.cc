@@ -151,8 +151,9 @@ namespace igabde
         }
       solver_settings.path = resolved_path;
       solver               = create_contact_solver(solver_settings);
-      log << "  contact: " << solver->name() << " on the " << resolved_path
-          << " path (" << path_why << ")" << std::endl;
+      if (settings.log_solves)
+        log << "  contact: " << solver->name() << " on the " << resolved_path
+            << " path (" << path_why << ")" << std::endl;
     }
 
 
@@ -251,13 +252,18 @@ namespace igabde
       log << "  contact: " << pair_list.size() << " pairs ("
           << (obstacle ? obstacle->kind() : std::string("two bodies")) << ", "
           << m * pair_list.size() << " contact unknowns"
-          << (m == 1 ? ", frictionless: no tangential unknowns" : "")
-          << "), coupled system of " << coupled->n_dofs() << " + "
-          << m * pair_list.size() + problem.n_alpha() << " unknowns"
+          << (m == 1 ? ", frictionless: no tangential unknowns" : "") << ")"
           << std::endl;
+      if (settings.log_solves)
+        log << "  contact: coupled system of " << coupled->n_dofs()
+            << " displacement and " << m * pair_list.size() + problem.n_alpha()
+            << " contact unknowns, " << coupled->n_nonzeros()
+            << " nonzeros in its Newton matrix" << std::endl;
       if (condensed.n_dropped > 0)
         log << "  contact: left out " << condensed.n_dropped
-            << " pairs whose two points are both held by supports" << std::endl;
+            << " pairs whose two points are both held by supports (zero "
+               "flexibility, no information)"
+            << std::endl;
       p                 = Eigen::VectorXd::Zero(problem.n_rows());
       alpha             = Eigen::VectorXd::Zero(problem.n_alpha());
       previous_external = Eigen::VectorXd::Zero(problem.n_rows());
