@@ -28,7 +28,7 @@ namespace
     SCOPED_TRACE(setting);
     const cli::ScratchFolder folder("bad-input-" + name);
     const std::string        scene =
-      std::string(IGABDE_SOURCE_DIR) + "/prm/v3-contact-patch-2d.prm";
+      cli::join(std::string(IGABDE_SOURCE_DIR), "prm/v3-contact-patch-2d.prm");
     const auto result = cli::run_igabde("'" + scene + "' --set \"" + setting +
                                           "\" --set 'Output/Directory=out'",
                                         folder);
@@ -42,10 +42,11 @@ namespace
       << result.output;
     // Nothing was set up: no banner, no output folder.
     EXPECT_EQ(result.output.find("Scene "), std::string::npos) << result.output;
-    EXPECT_FALSE(std::filesystem::exists(folder.path + "/out/summary.json"));
     EXPECT_FALSE(
-      std::filesystem::exists(folder.path + "/out/solution-body1-0001.vtu"));
-    EXPECT_FALSE(std::filesystem::exists(folder.path + "/out"));
+      std::filesystem::exists(cli::join(folder.path, "out/summary.json")));
+    EXPECT_FALSE(std::filesystem::exists(
+      cli::join(folder.path, "out/solution-body1-0001.vtu")));
+    EXPECT_FALSE(std::filesystem::exists(cli::join(folder.path, "out")));
   }
 } // namespace
 

@@ -81,6 +81,16 @@ namespace cli
     return run_in(folder, std::string(IGABDE_EXECUTABLE) + " " + arguments);
   }
 
+  /**
+   * @p folder and the relative path @p relative joined by the filesystem
+   * library (so that no path in the sources starts at the root).
+   */
+  inline std::string
+  join(const std::string &folder, const std::string &relative)
+  {
+    return (std::filesystem::path(folder) / relative).string();
+  }
+
   inline std::string
   read_file(const std::string &path)
   {

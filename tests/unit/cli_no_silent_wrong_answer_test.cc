@@ -29,7 +29,7 @@ namespace
   std::string
   scene(const std::string &name)
   {
-    return "'" + std::string(IGABDE_SOURCE_DIR) + "/prm/" + name + "'";
+    return "'" + cli::join(std::string(IGABDE_SOURCE_DIR), "prm/") + name + "'";
   }
 
   bool
@@ -51,7 +51,8 @@ TEST(NoSilentWrongAnswer, DegreeBelowTheExactGeometryIsRefused)
                s.path);
   EXPECT_NE(r.status, 0);
   EXPECT_TRUE(contains(r.output, "below the degree 2")) << r.output;
-  EXPECT_FALSE(contains(read_file(s.path + "/out/summary.json"), "\"ok\""));
+  EXPECT_FALSE(
+    contains(read_file(cli::join(s.path, "out/summary.json")), "\"ok\""));
 }
 
 
@@ -65,7 +66,8 @@ TEST(NoSilentWrongAnswer, KilledRunLeavesNoOldOkSummary)
     run_igabde(scene("v2-lame-cylinder.prm") + " --set 'Output/Directory=out'",
                s.path);
   ASSERT_EQ(first.status, 0) << first.output;
-  ASSERT_TRUE(contains(read_file(s.path + "/out/summary.json"), "\"ok\""));
+  ASSERT_TRUE(
+    contains(read_file(cli::join(s.path, "out/summary.json")), "\"ok\""));
   const std::string command =
     std::string(IGABDE_EXECUTABLE) + " " + scene("b2-curved-beams.prm") +
     " --quiet --set 'Body 1/Subdivisions=8,16,8'"
@@ -74,7 +76,7 @@ TEST(NoSilentWrongAnswer, KilledRunLeavesNoOldOkSummary)
     " grep -q running out/summary.json 2>/dev/null && break; sleep 0.05;"
     " done; kill -9 $pid; wait $pid; true";
   run_in(s.path, command);
-  const std::string summary = read_file(s.path + "/out/summary.json");
+  const std::string summary = read_file(cli::join(s.path, "out/summary.json"));
   EXPECT_TRUE(contains(summary, "\"status\": \"running\"")) << summary;
   EXPECT_FALSE(contains(summary, "\"status\": \"ok\"")) << summary;
 }
@@ -92,7 +94,7 @@ TEST(NoSilentWrongAnswer, NonFiniteResultsAreAFailure)
                             s.path);
   EXPECT_NE(r.status, 0) << r.output;
   EXPECT_TRUE(contains(r.output, "not finite")) << r.output;
-  const std::string summary = read_file(s.path + "/out/summary.json");
+  const std::string summary = read_file(cli::join(s.path, "out/summary.json"));
   EXPECT_TRUE(contains(summary, "\"status\": \"failed\"")) << summary;
 
   // A modulus below the smallest normal double is refused when read.
@@ -109,11 +111,13 @@ TEST(NoSilentWrongAnswer, NonFiniteResultsAreAFailure)
 TEST(NoSilentWrongAnswer, MalformedSceneFilesAreOneLineErrors)
 {
   const Scratch s("malformed");
-  std::ofstream(s.path + "/self.prm")
+  std::ofstream(cli::join(s.path, "self.prm"))
     << "set Dimension = 2\ninclude self.prm\n";
-  std::ofstream(s.path + "/folder.prm") << "include " << s.path << "\n";
-  std::ofstream(s.path + "/truncated.xml") << "<?xml version=\"1.0\"?>\n<Par";
-  std::ofstream(s.path + "/truncated.json") << "{ \"Dimension\": ";
+  std::ofstream(cli::join(s.path, "folder.prm"))
+    << "include " << s.path << "\n";
+  std::ofstream(cli::join(s.path, "truncated.xml"))
+    << "<?xml version=\"1.0\"?>\n<Par";
+  std::ofstream(cli::join(s.path, "truncated.json")) << "{ \"Dimension\": ";
   const std::array<std::pair<const char *, const char *>, 4> cases = {
     {{"self.prm", "include cycle"},
      {"folder.prm", "is a folder"},
@@ -134,7 +138,7 @@ TEST(NoSilentWrongAnswer, MalformedSceneFilesAreOneLineErrors)
 TEST(NoSilentWrongAnswer, ParameterSetTwiceInOneFileWarnsWithBothLines)
 {
   const Scratch s("twice");
-  std::ofstream(s.path + "/twice.prm")
+  std::ofstream(cli::join(s.path, "twice.prm"))
     << "set Dimension = 2\nsubsection Body 1\n  set Supports = 0: x; 2: y\n"
        "  set Tractions = 3: pressure 1\nend\nsubsection Output\n"
        "  set Write vtu = false\nend\nsubsection Body 1\n"

@@ -54,7 +54,7 @@ TEST(Cli, MisspelledParameterIsOneClearError)
   const cli::ScratchFolder scratch("misspelled");
   const std::string       &folder = scratch.path;
   std::filesystem::create_directories(folder);
-  write_file(folder + "/bad.prm",
+  write_file(cli::join(folder, "bad.prm"),
              "set Dimension = 2\nsubsection Body 1\n"
              "  set Youngs modulus = 1000\nend\n");
   const auto result = run_igabde("bad.prm", folder);
@@ -68,7 +68,8 @@ TEST(Cli, MisspelledParameterIsOneClearError)
     << result.output;
   // One line, no stack trace and no result files presented as a result.
   EXPECT_EQ(result.output.find("Stacktrace"), std::string::npos);
-  EXPECT_FALSE(std::filesystem::exists(folder + "/output/bad/summary.json"));
+  EXPECT_FALSE(
+    std::filesystem::exists(cli::join(folder, "output/bad/summary.json")));
 }
 
 
@@ -78,7 +79,7 @@ TEST(Cli, MalformedValueAndMissingFile)
   const cli::ScratchFolder scratch("malformed");
   const std::string       &folder = scratch.path;
   std::filesystem::create_directories(folder);
-  write_file(folder + "/bad.prm",
+  write_file(cli::join(folder, "bad.prm"),
              "subsection Discretization\n  set Degree = two\nend\n");
   const auto bad = run_igabde("bad.prm", folder);
   EXPECT_NE(bad.status, 0);
@@ -89,13 +90,13 @@ TEST(Cli, MalformedValueAndMissingFile)
   EXPECT_NE(missing.status, 0);
   EXPECT_NE(missing.output.find("nowhere.prm"), std::string::npos);
 
-  write_file(folder + "/nu.prm",
+  write_file(cli::join(folder, "nu.prm"),
              "subsection Body 1\n  set Poisson's ratio = 0.5\nend\n");
   const auto nu = run_igabde("nu.prm", folder);
   EXPECT_NE(nu.status, 0);
   EXPECT_NE(nu.output.find("Poisson"), std::string::npos) << nu.output;
 
-  write_file(folder + "/mu.prm",
+  write_file(cli::join(folder, "mu.prm"),
              "subsection Contact\n  set Friction coefficient = -0.1\nend\n");
   const auto mu = run_igabde("mu.prm", folder);
   EXPECT_NE(mu.status, 0);
@@ -110,14 +111,14 @@ TEST(Cli, SetOverridesAValue)
   const cli::ScratchFolder scratch("set");
   const std::string       &folder = scratch.path;
   const std::string        scene =
-    std::string(IGABDE_SOURCE_DIR) + "/prm/v2-lame-cylinder.prm";
+    cli::join(std::string(IGABDE_SOURCE_DIR), "prm/v2-lame-cylinder.prm");
   const auto result =
     run_igabde("'" + scene +
                  "' --set 'Discretization/Refinements=0' --set "
                  "'Output/Directory=out' --set 'Output/Write vtu=false'",
                folder);
   ASSERT_EQ(result.status, 0) << result.output;
-  const std::string summary = read_file(folder + "/out/summary.json");
+  const std::string summary = read_file(cli::join(folder, "out/summary.json"));
   EXPECT_NE(summary.find("\"refinements\": 0"), std::string::npos) << summary;
   EXPECT_NE(summary.find("\"status\": \"ok\""), std::string::npos) << summary;
 
@@ -137,7 +138,7 @@ TEST(Cli, LateFailureKeepsFinishedResults)
   const cli::ScratchFolder scratch("late");
   const std::string       &folder = scratch.path;
   const std::string        scene =
-    std::string(IGABDE_SOURCE_DIR) + "/prm/v4-sliding-block.prm";
+    cli::join(std::string(IGABDE_SOURCE_DIR), "prm/v4-sliding-block.prm");
   const auto result = run_igabde("'" + scene +
                                    "' --set 'Contact/Max iterations=2' "
                                    "--set 'Contact/Max step cuts=0' "
@@ -146,12 +147,15 @@ TEST(Cli, LateFailureKeepsFinishedResults)
   EXPECT_NE(result.status, 0);
   EXPECT_NE(result.output.find("did not converge"), std::string::npos)
     << result.output;
-  const std::string summary = read_file(folder + "/out/summary.json");
+  const std::string summary = read_file(cli::join(folder, "out/summary.json"));
   EXPECT_NE(summary.find("\"status\": \"failed\""), std::string::npos);
   EXPECT_NE(summary.find("load step 2"), std::string::npos) << summary;
-  EXPECT_TRUE(std::filesystem::exists(folder + "/out/contact-0001.csv"));
-  EXPECT_TRUE(std::filesystem::exists(folder + "/out/solution-body1-0001.vtu"));
-  EXPECT_FALSE(std::filesystem::exists(folder + "/out/contact-0002.csv"));
+  EXPECT_TRUE(
+    std::filesystem::exists(cli::join(folder, "out/contact-0001.csv")));
+  EXPECT_TRUE(
+    std::filesystem::exists(cli::join(folder, "out/solution-body1-0001.vtu")));
+  EXPECT_FALSE(
+    std::filesystem::exists(cli::join(folder, "out/contact-0002.csv")));
   // The failed step is recorded with its iterations and residual.
   EXPECT_NE(summary.find("\"status\": \"failed\"", summary.find("load_steps")),
             std::string::npos);
@@ -164,7 +168,7 @@ TEST(Cli, SurfacesThatDoNotFaceEachOther)
   const cli::ScratchFolder scratch("facing");
   const std::string       &folder = scratch.path;
   const std::string        scene =
-    std::string(IGABDE_SOURCE_DIR) + "/prm/v5-hertz-2d.prm";
+    cli::join(std::string(IGABDE_SOURCE_DIR), "prm/v5-hertz-2d.prm");
   const auto result = run_igabde("'" + scene +
                                    "' --set 'Body 2/Plane normal=0,-1' "
                                    "--set 'Output/Directory=out'",
@@ -185,15 +189,15 @@ TEST(Cli, MinimalScenesRunWithDefaults)
   const cli::ScratchFolder scratch("defaults");
   const std::string       &folder = scratch.path;
   std::filesystem::create_directories(folder);
-  write_file(folder + "/box2.prm",
+  write_file(cli::join(folder, "box2.prm"),
              "set Dimension = 2\nsubsection Body 1\n"
              "  set Supports = 0: x; 2: y\n  set Tractions = 3: pressure 1\n"
              "end\n");
-  write_file(folder + "/box3.prm",
+  write_file(cli::join(folder, "box3.prm"),
              "set Dimension = 3\nsubsection Body 1\n"
              "  set Supports = 0: x; 2: y; 4: z\n"
              "  set Tractions = 5: pressure 1\nend\n");
-  write_file(folder + "/face.prm",
+  write_file(cli::join(folder, "face.prm"),
              "set Dimension = 2\nsubsection Body 1\n"
              "  set Supports = 7: x\nend\n");
   for (const std::string scene : {"box2.prm", "box3.prm"})

@@ -30,16 +30,17 @@ namespace
             const std::string &settings,
             const std::string &folder)
   {
-    const std::string out = folder + "/out";
+    const std::string out = cli::join(folder, "out");
     const auto        r =
-      cli::run_igabde(std::string(IGABDE_SOURCE_DIR) + "/prm/" + scene +
-                        ".prm --set " + "'Output/Directory=" + out +
+      cli::run_igabde(cli::join(std::string(IGABDE_SOURCE_DIR),
+                                "prm/" + scene + ".prm") +
+                        " --set " + "'Output/Directory=" + out +
                         "' --set 'Output/Write vtu=false' " +
                         "--set Contact/Tolerance=1e-12 " + settings,
                       folder);
     EXPECT_EQ(r.status, 0) << scene << " " << settings << "\n" << r.output;
     SceneRun      run;
-    std::ifstream in(out + "/summary.json");
+    std::ifstream in(cli::join(out, "summary.json"));
     if (!in)
       return run;
     run.summary = nlohmann::json::parse(in);
@@ -113,10 +114,12 @@ TEST(FullSystem, AgreesWithTheCondensedPath)
   for (const std::string scene : scenes)
     {
       cli::ScratchFolder folder(scene, "full");
-      const SceneRun     condensed =
-        run_scene(scene, "--set Contact/Path=condensed", folder.path + "/c");
-      const SceneRun full =
-        run_scene(scene, "--set Contact/Path=full", folder.path + "/f");
+      const SceneRun     condensed = run_scene(scene,
+                                           "--set Contact/Path=condensed",
+                                           cli::join(folder.path, "c"));
+      const SceneRun     full      = run_scene(scene,
+                                      "--set Contact/Path=full",
+                                      cli::join(folder.path, "f"));
       ASSERT_EQ(full.summary["contact_path"], "full");
       ASSERT_EQ(condensed.summary["contact_path"], "condensed");
       ASSERT_EQ(condensed.status.size(), full.status.size()) << scene;
@@ -136,12 +139,13 @@ TEST(FullSystem, AugmentedLagrangeReachesTheBdeAnswer)
   for (const std::string scene : scenes)
     {
       cli::ScratchFolder folder(scene, "al");
-      const SceneRun     bde =
-        run_scene(scene, "--set Contact/Path=condensed", folder.path + "/c");
-      const SceneRun al =
+      const SceneRun     bde = run_scene(scene,
+                                     "--set Contact/Path=condensed",
+                                     cli::join(folder.path, "c"));
+      const SceneRun     al =
         run_scene(scene,
                   "--set Contact/Algorithm=augmented-lagrange",
-                  folder.path + "/a");
+                  cli::join(folder.path, "a"));
       EXPECT_LT(deviation(bde, al), 1e-6) << scene;
     }
 }
@@ -157,16 +161,17 @@ TEST(FullSystem, PenaltyApproachesTheBdeAnswerAsFknGrows)
   for (const std::string scene : {"b2-curved-beams", "v4-sliding-block"})
     {
       cli::ScratchFolder folder(scene, "penalty");
-      const SceneRun     bde =
-        run_scene(scene, "--set Contact/Path=condensed", folder.path + "/c");
-      double last_deviation = 1e300, last_penetration = 1e300;
+      const SceneRun     bde            = run_scene(scene,
+                                     "--set Contact/Path=condensed",
+                                     cli::join(folder.path, "c"));
+      double             last_deviation = 1e300, last_penetration = 1e300;
       for (const std::string fkn : {"0.01", "0.1", "1", "10"})
         {
           const SceneRun penalty = run_scene(scene,
                                              "--set Contact/Algorithm=penalty "
                                              "--set 'Contact/Penalty factor=" +
                                                fkn + "'",
-                                             folder.path + "/p" + fkn);
+                                             cli::join(folder.path, "p") + fkn);
           const double   dev     = deviation(bde, penalty);
           const double   pen =
             penalty.summary["load_steps"].back()["max_penetration"];

@@ -13,7 +13,7 @@
 namespace
 {
   const std::string scene =
-    std::string(IGABDE_SOURCE_DIR) + "/prm/v3-contact-patch-2d.prm";
+    cli::join(std::string(IGABDE_SOURCE_DIR), "prm/v3-contact-patch-2d.prm");
 
   cli::RunResult
   run(const std::string &folder, const std::string &sets)
@@ -37,8 +37,8 @@ TEST(ContactPairing, NodeToNodeOnMatchingAndNonMatchingSurfaces)
   // Matching meshes: the patch test holds to round-off (V3's criterion).
   const auto matching = run(folder, "--set 'Contact/Pairing=node-to-node'");
   ASSERT_EQ(matching.status, 0) << matching.output;
-  const auto summary =
-    nlohmann::json::parse(cli::read_file(folder + "/out/summary.json"));
+  const auto summary = nlohmann::json::parse(
+    cli::read_file(cli::join(folder, "out/summary.json")));
   EXPECT_LE(summary.at("checks").at("pressure_uniformity").get<double>(), 1e-8);
 
   // Body 2 with 2 spans per direction under Body 1's 1 (8 against 4 face

@@ -18,7 +18,7 @@ namespace
     const cli::ScratchFolder folder("linear-solver-" + type + "-" + solver,
                                     "unit");
     return igabde::scene::run_scene_in_process(
-      std::string(IGABDE_SOURCE_DIR) + "/prm/v2-lame-cylinder.prm",
+      cli::join(std::string(IGABDE_SOURCE_DIR), "prm/v2-lame-cylinder.prm"),
       {{"Discretization/Type", type},
        {"Discretization/Refinements", "3"},
        {"Discretization/Linear solver", solver},
