@@ -1,8 +1,10 @@
 // Runs igabde's damped B-Newton contact solver on every local/global 2D and
 // 3D FCLIB / Siconos problem found under a folder and prints a table.
 //
-// Usage: fclib_benchmark [folder] [max_iterations] [seconds_per_problem]
-//                        [max_rows]
+// Usage: fclib_benchmark [--only TEXT] [--log] [folder] [max_iterations]
+//                        [seconds_per_problem] [max_rows]
+//   --only TEXT          run only the problems whose file name contains TEXT
+//   --log                print the solver's iterations
 //   folder               default $IGABDE_FCLIB_DIR, else
 //                        ../shared/fclib/data (run from the repository root)
 //   max_iterations       iteration budget per problem (default 300)
@@ -35,11 +37,25 @@ main(int argc, char **argv)
   std::string folder = "../shared/fclib/data";
   if (const char *env = std::getenv("IGABDE_FCLIB_DIR"))
     folder = env;
-  if (argc > 1)
-    folder = argv[1];
-  const unsigned int max_iterations = argc > 2 ? std::atoi(argv[2]) : 300;
-  const double       seconds        = argc > 3 ? std::atof(argv[3]) : 20.;
-  const long         max_rows       = argc > 4 ? std::atol(argv[4]) : 6000;
+  std::string              only;
+  bool                     log = false;
+  std::vector<std::string> args;
+  for (int i = 1; i < argc; ++i)
+    {
+      const std::string a = argv[i];
+      if (a == "--only" && i + 1 < argc)
+        only = argv[++i];
+      else if (a == "--log")
+        log = true;
+      else
+        args.push_back(a);
+    }
+  if (args.size() > 0)
+    folder = args[0];
+  const unsigned int max_iterations =
+    args.size() > 1 ? std::stoi(args[1]) : 300;
+  const double seconds  = args.size() > 2 ? std::stod(args[2]) : 20.;
+  const long   max_rows = args.size() > 3 ? std::stol(args[3]) : 6000;
 
   if (!std::filesystem::is_directory(folder))
     {
@@ -59,6 +75,7 @@ main(int argc, char **argv)
   settings.tolerance        = 1e-8;
   settings.max_iterations   = max_iterations;
   settings.max_wall_seconds = seconds;
+  settings.log              = log;
   const BNewtonSolver solver(settings);
 
   std::cout << "| problem | d | nc | mu | it | rel. natural map | balanced | "
@@ -68,7 +85,9 @@ main(int argc, char **argv)
   std::vector<std::string> skipped;
   for (const auto &path : files)
     {
-      const std::string   name = path.filename().string();
+      const std::string name = path.filename().string();
+      if (!only.empty() && name.find(only) == std::string::npos)
+        continue;
       const FclibFileKind kind = classify_fclib_file(path.string());
       if (kind == FclibFileKind::unknown ||
           kind == FclibFileKind::siconos_global_dat ||

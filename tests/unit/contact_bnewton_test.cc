@@ -460,3 +460,146 @@ TEST(ContactBNewton, BadInputThrows)
   EXPECT_NO_THROW(BNewtonSolver().solve(problem));
   EXPECT_ANY_THROW(BNewtonSolver().solve(problem, Eigen::VectorXd::Zero(2)));
 }
+
+
+
+namespace
+{
+  // A sparse symmetric positive definite flexibility in 3D: pairs on a
+  // chain, each coupled with its two neighbours (block tridiagonal, as
+  // the W of a stack of rigid bodies), plus a dominant diagonal.
+  Eigen::MatrixXd
+  chain_flexibility(const unsigned int nc, const unsigned int seed)
+  {
+    std::mt19937                           gen(seed);
+    std::uniform_real_distribution<double> dist(-1., 1.);
+    const unsigned int                     n = 3 * nc;
+    Eigen::MatrixXd                        A = Eigen::MatrixXd::Zero(n, n);
+    for (unsigned int c = 0; c < nc; ++c)
+      for (unsigned int e = c; e < std::min(nc, c + 2); ++e)
+        for (unsigned int i = 0; i < 3; ++i)
+          for (unsigned int j = 0; j < 3; ++j)
+            A(3 * c + i, 3 * e + j) = dist(gen);
+    return A * A.transpose() / 6. + Eigen::MatrixXd::Identity(n, n);
+  }
+
+
+
+  BNewtonSolver::Settings
+  path_settings(const NewtonLinearAlgebra linear_algebra,
+                const bool                use_symmetry)
+  {
+    BNewtonSolver::Settings settings;
+    settings.linear_algebra = linear_algebra;
+    settings.use_symmetry   = use_symmetry;
+    return settings;
+  }
+} // namespace
+
+
+
+// Every pair sticks at a force p* chosen strictly inside its cone, with
+// q = -W p*: the exact solution is p = p*, u = 0, and the reduced Newton
+// matrix is diag(r) W (the Cholesky path). Each storage and factorisation
+// (dense/sparse, Cholesky/LU) must find p* to the conditioning of W.
+TEST(ContactBNewton, LinearAlgebraPathsFindStickSolution)
+{
+  const unsigned int                     nc = 120;
+  const Eigen::MatrixXd                  W  = chain_flexibility(nc, 7);
+  std::mt19937                           gen(11);
+  std::uniform_real_distribution<double> dist(-1., 1.);
+  Eigen::VectorXd                        p_star(3 * nc);
+  for (unsigned int c = 0; c < nc; ++c)
+    {
+      p_star[3 * c]     = 1. + 0.5 * dist(gen);
+      p_star[3 * c + 1] = 0.1 * p_star[3 * c] * dist(gen);
+      p_star[3 * c + 2] = 0.1 * p_star[3 * c] * dist(gen);
+    }
+  const Eigen::VectorXd q = -W * p_star;
+  const ContactProblem  problem =
+    make_problem(3, W, q, std::vector<double>(nc, 0.5));
+  // 2-norm condition of W, from its eigenvalues.
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(W);
+  const double                                         cond =
+    eig.eigenvalues().maxCoeff() / eig.eigenvalues().minCoeff();
+  for (const auto la :
+       {NewtonLinearAlgebra::dense, NewtonLinearAlgebra::sparse})
+    for (const bool symmetric : {true, false})
+      {
+        SCOPED_TRACE(
+          std::string(la == NewtonLinearAlgebra::dense ? "dense" : "sparse") +
+          (symmetric ? ", Cholesky" : ", LU"));
+        const BNewtonSolver::Result result =
+          BNewtonSolver(path_settings(la, symmetric)).solve(problem);
+        expect_solution_ok(problem, result);
+        EXPECT_EQ(result.n_stick, nc);
+        EXPECT_LE((result.p - p_star).norm(), 1e-12 * cond * p_star.norm());
+      }
+}
+
+
+
+// A problem with open, stick and slip pairs: the four paths solve it and
+// agree with each other (the solution of this strongly monotone problem,
+// W positive definite and mu small, is unique).
+TEST(ContactBNewton, LinearAlgebraPathsAgreeWithFriction)
+{
+  const unsigned int                     nc = 120;
+  const Eigen::MatrixXd                  W  = chain_flexibility(nc, 3);
+  std::mt19937                           gen(5);
+  std::uniform_real_distribution<double> dist(-1., 1.);
+  Eigen::VectorXd                        q(3 * nc);
+  for (unsigned int i = 0; i < 3 * nc; ++i)
+    q[i] = (i % 3 == 0 ? 1. : 0.1) * dist(gen);
+  const ContactProblem problem =
+    make_problem(3, W, q, std::vector<double>(nc, 0.3));
+  const BNewtonSolver::Result reference =
+    BNewtonSolver(path_settings(NewtonLinearAlgebra::dense, false))
+      .solve(problem);
+  expect_solution_ok(problem, reference);
+  EXPECT_GT(reference.n_open, 0u);
+  EXPECT_GT(reference.n_slip, 0u);
+  EXPECT_GT(reference.n_stick, 0u);
+  for (const auto la :
+       {NewtonLinearAlgebra::dense, NewtonLinearAlgebra::sparse})
+    for (const bool symmetric : {true, false})
+      {
+        const BNewtonSolver::Result result =
+          BNewtonSolver(path_settings(la, symmetric)).solve(problem);
+        expect_solution_ok(problem, result);
+        EXPECT_LE((result.p - reference.p).norm(), 1e-8 * reference.p.norm());
+      }
+}
+
+
+
+// A floating body on the sparse path: the equilibrium rows G^T p = b join
+// the sparse LU. Two springs in series hold a body pressed by b, as in
+// FloatingBodyOnSpringsInSeries, but with 300 further open pairs so that
+// the automatic choice takes the sparse path; exact p = b on the closed
+// pair, zero elsewhere.
+TEST(ContactBNewton, SparsePathWithFloatingBody)
+{
+  const unsigned int nc  = 301;
+  Eigen::MatrixXd    W   = Eigen::MatrixXd::Identity(nc, nc);
+  W(0, 0)                = 2.;
+  Eigen::VectorXd q      = Eigen::VectorXd::Constant(nc, 1.);
+  q[0]                   = 0.5;
+  ContactProblem problem = make_problem(1, W, q, {});
+  problem.G              = Eigen::MatrixXd::Zero(nc, 1);
+  problem.G(0, 0)        = -1.;
+  problem.b              = Eigen::VectorXd::Constant(1, -3.);
+  for (const auto la :
+       {NewtonLinearAlgebra::automatic, NewtonLinearAlgebra::dense})
+    {
+      const BNewtonSolver::Result result =
+        BNewtonSolver(path_settings(la, true)).solve(problem);
+      expect_solution_ok(problem, result);
+      ASSERT_EQ(result.alpha.size(), 1);
+      EXPECT_NEAR(result.p[0], 3., 1e-12);
+      EXPECT_NEAR(result.u[0], 0., 1e-12);
+      // u_0 = 2 p_0 + 0.5 - alpha = 0
+      EXPECT_NEAR(result.alpha[0], 6.5, 1e-12);
+      EXPECT_EQ(result.p.tail(nc - 1).norm(), 0.);
+    }
+}

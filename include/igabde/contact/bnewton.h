@@ -53,8 +53,11 @@ namespace igabde
      *    r_n u_n - p_n is then taken in the closed branch (exactly a tie
      *    after touching_alpha()).
      * Rows with A = 0 and B = identity (open normals, free tangents) are
-     * eliminated, d_i = -H_i, so the dense LU is only as large as the
-     * number of remaining rows.
+     * eliminated, d_i = -H_i; only the remaining rows are factorised:
+     * by Cholesky where the pieces make the reduced matrix a positive
+     * scaling of a block of a symmetric W (closed normals, stick), by LU
+     * otherwise, densely (LAPACK) or sparsely (Eigen) when W is sparse
+     * (Settings::linear_algebra, sparse_fill, use_symmetry).
      *
      * <h3>Globalisation</h3>
      *  - Armijo backtracking on theta = |H|^2/2: step t = beta^m, accepted if

@@ -118,6 +118,17 @@ namespace igabde
             const Eigen::VectorXd &alpha0) const = 0;
     };
 
+    /** @brief How the B-Newton matrix is stored and factorised. */
+    enum class NewtonLinearAlgebra
+    {
+      /// Sparse when W's fill is at most BNewtonSettings::sparse_fill.
+      automatic,
+      /// Dense LAPACK factorisations (Cholesky or LU).
+      dense,
+      /// Eigen sparse factorisations (SimplicialLDLT or SparseLU).
+      sparse
+    };
+
     /** @brief Settings of the BDE (damped B-Newton) solver. */
     struct BNewtonSettings
     {
@@ -153,6 +164,24 @@ namespace igabde
 
       /** @brief Proximal-point phase after failed Newton phases. */
       bool proximal = true;
+
+      /** @brief Storage and factorisation of the Newton matrix. */
+      NewtonLinearAlgebra linear_algebra = NewtonLinearAlgebra::automatic;
+
+      /**
+       * @brief With NewtonLinearAlgebra::automatic, W (n_rows() >= 300) is
+       * treated as sparse when its share of non-zero entries is at most
+       * this fraction.
+       */
+      double sparse_fill = 0.1;
+
+      /**
+       * @brief Factorise the reduced Newton matrix by Cholesky (LDL^T) when
+       * the pieces make it a positive scaling of a principal block of a
+       * symmetric W (every remaining row closed-normal or stick, no
+       * floating bodies); LU otherwise.
+       */
+      bool use_symmetry = true;
 
       /** @brief Wall-time limit in seconds (0: none). */
       double max_wall_seconds = 0.;
