@@ -5,6 +5,8 @@
 
 #include "tests.h"
 
+#include <igabde/base/utilities.h>
+
 #include <igabde/scene/simulator.h>
 
 #include <deal.II/base/mpi.h>
@@ -47,6 +49,7 @@ int
 main(int argc, char **argv)
 {
   // MUMPS (the direct solver) runs on MPI_COMM_SELF.
+  igabde::base::prefer_light_mpi_singleton();
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   initlog();
 

@@ -4,6 +4,8 @@
 
 #include "tests.h"
 
+#include <igabde/base/utilities.h>
+
 #include <igabde/scene/simulator.h>
 
 #include <deal.II/base/mpi.h>
@@ -64,6 +66,7 @@ int
 main(int argc, char **argv)
 {
   // MUMPS (the direct solver) runs on MPI_COMM_SELF.
+  igabde::base::prefer_light_mpi_singleton();
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   initlog();
   deallog << std::fixed << std::setprecision(1);

@@ -4,6 +4,8 @@
 // the same knot-span mesh) and the 20-node serendipity count of ANSYS SOLID95
 // (vertices plus edges of that mesh). Per beam and for the two beams.
 
+#include <igabde/base/utilities.h>
+
 #include <igabde/nurbs/geometry_builders.h>
 #include <igabde/nurbs/parametric_mesh.h>
 
@@ -23,6 +25,7 @@ int
 main(int argc, char **argv)
 {
   // MUMPS (the direct solver) runs on MPI_COMM_SELF.
+  igabde::base::prefer_light_mpi_singleton();
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   using namespace dealii;
   using namespace igabde;

@@ -6,6 +6,8 @@
 // Usage: convergence_study SCENE.prm TYPE DEGREE FIRST LAST
 //   e.g. convergence_study prm/v1-plate-with-hole.prm nurbs 2 1 5
 
+#include <igabde/base/utilities.h>
+
 #include <igabde/scene/simulator.h>
 
 #include <deal.II/base/mpi.h>
@@ -20,6 +22,7 @@ int
 main(int argc, char **argv)
 {
   // MUMPS (the direct solver) runs on MPI_COMM_SELF.
+  igabde::base::prefer_light_mpi_singleton();
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   using namespace igabde;
   if (argc != 6)

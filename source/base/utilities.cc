@@ -1,6 +1,7 @@
 #include <igabde/base/utilities.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <sstream>
 
 namespace igabde
@@ -165,5 +166,18 @@ namespace igabde
     parse_point<2>(const std::string &, const std::string &);
     template Point<3>
     parse_point<3>(const std::string &, const std::string &);
+
+
+    void
+    prefer_light_mpi_singleton()
+    {
+      for (const char *launcher_variable :
+           {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_RANK", "PMI_SIZE"})
+        if (std::getenv(launcher_variable) != nullptr)
+          return;
+      const int keep_user_value = 0;
+      setenv("OMPI_MCA_ess_singleton_isolated", "1", keep_user_value);
+      setenv("OMPI_MCA_pml", "ob1", keep_user_value);
+    }
   } // namespace base
 } // namespace igabde

@@ -8,8 +8,11 @@
 #include <algorithm>
 #include <cmath>
 #include <dmumps_c.h>
+#include <metis.h>
 #include <mpi.h>
+#include <numeric>
 #include <string>
+#include <unordered_map>
 
 namespace igabde
 {
@@ -22,6 +25,127 @@ namespace igabde
       icntl(const int i)
       {
         return i - 1;
+      }
+
+
+
+      /**
+       * A fill-reducing pivot order for MUMPS (its PERM_IN, 1-based
+       * positions): METIS nested dissection of the interior unknowns, the
+       * Schur unknowns last, in their given order.
+       *
+       * MUMPS falls back to approximate minimum degree whenever a Schur
+       * complement is requested, whatever ICNTL(7) says; on 3D stiffness
+       * matrices nested dissection needs about half the flops (B2 8x16x8:
+       * 3.2 instead of 6.2 GFlop per body). The graph is first compressed
+       * into supervariables, the unknowns with identical adjacency (the
+       * components of one control point or node), which METIS orders with
+       * their multiplicity as vertex weight: dim^2 fewer edges.
+       *
+       * @p rows, @p cols: the lower triangle of the matrix, 1-based.
+       * Returns an empty vector when METIS fails (MUMPS then orders).
+       */
+      std::vector<MUMPS_INT>
+      nested_dissection_order(const unsigned int            n,
+                              const std::vector<MUMPS_INT> &rows,
+                              const std::vector<MUMPS_INT> &cols,
+                              const std::vector<MUMPS_INT> &schur_list)
+      {
+        std::vector<bool> in_schur(n, false);
+        for (const MUMPS_INT v : schur_list)
+          in_schur[v - 1] = true;
+
+        // Adjacency of the interior unknowns, each list sorted and
+        // holding the unknown itself (so that identical lists mean
+        // indistinguishable unknowns).
+        std::vector<std::vector<unsigned int>> adjacency(n);
+        for (unsigned int v = 0; v < n; ++v)
+          if (!in_schur[v])
+            adjacency[v].push_back(v);
+        for (std::size_t k = 0; k < rows.size(); ++k)
+          {
+            const unsigned int a = rows[k] - 1, b = cols[k] - 1;
+            if (a != b && !in_schur[a] && !in_schur[b])
+              {
+                adjacency[a].push_back(b);
+                adjacency[b].push_back(a);
+              }
+          }
+
+        // Supervariables: interior unknowns with identical lists.
+        std::vector<int>          super(n, -1);
+        std::vector<unsigned int> representative;
+        std::unordered_map<std::size_t, std::vector<unsigned int>> by_hash;
+        for (unsigned int v = 0; v < n; ++v)
+          if (!in_schur[v])
+            {
+              auto &list = adjacency[v];
+              std::sort(list.begin(), list.end());
+              std::size_t hash = list.size();
+              for (const unsigned int w : list)
+                hash = hash * 1000003u ^ w;
+              auto &candidates = by_hash[hash];
+              for (const unsigned int s : candidates)
+                if (adjacency[representative[s]] == list)
+                  {
+                    super[v] = s;
+                    break;
+                  }
+              if (super[v] < 0)
+                {
+                  super[v] = representative.size();
+                  candidates.push_back(representative.size());
+                  representative.push_back(v);
+                }
+            }
+        const unsigned int n_super = representative.size();
+        if (n_super == 0)
+          return {};
+
+        std::vector<idx_t> xadj(n_super + 1, 0), adjncy, weight(n_super, 0);
+        for (unsigned int v = 0; v < n; ++v)
+          if (super[v] >= 0)
+            ++weight[super[v]];
+        std::vector<idx_t> neighbours;
+        for (unsigned int s = 0; s < n_super; ++s)
+          {
+            neighbours.clear();
+            for (const unsigned int w : adjacency[representative[s]])
+              if (super[w] != static_cast<int>(s))
+                neighbours.push_back(super[w]);
+            std::sort(neighbours.begin(), neighbours.end());
+            neighbours.erase(std::unique(neighbours.begin(), neighbours.end()),
+                             neighbours.end());
+            adjncy.insert(adjncy.end(), neighbours.begin(), neighbours.end());
+            xadj[s + 1] = adjncy.size();
+          }
+
+        idx_t              n_vertices = n_super;
+        std::vector<idx_t> perm(n_super), iperm(n_super);
+        idx_t              options[METIS_NOPTIONS];
+        METIS_SetDefaultOptions(options);
+        options[METIS_OPTION_NUMBERING] = 0;
+        if (METIS_NodeND(&n_vertices,
+                         xadj.data(),
+                         adjncy.data(),
+                         weight.data(),
+                         options,
+                         perm.data(),
+                         iperm.data()) != METIS_OK)
+          return {};
+
+        // Supervariables in METIS' order, each as a consecutive run.
+        std::vector<MUMPS_INT> first(n_super + 1, 0);
+        for (unsigned int k = 0; k < n_super; ++k)
+          first[k + 1] = first[k] + weight[perm[k]];
+        std::vector<MUMPS_INT> order(n, 0);
+        for (unsigned int v = 0; v < n; ++v)
+          if (super[v] >= 0)
+            order[v] = ++first[iperm[super[v]]];
+        MUMPS_INT next = n - schur_list.size();
+        for (const MUMPS_INT v : schur_list)
+          order[v - 1] = ++next;
+        return order;
       }
     } // namespace
 
@@ -188,6 +312,18 @@ namespace igabde
           std::vector<double> schur_values(std::size_t(n_s) * n_s, 0.);
           d.id.schur = (n_s > 0 ? schur_values.data() : nullptr);
 
+          // Pivot order: nested dissection, the Schur unknowns last.
+          const std::vector<MUMPS_INT> order =
+            nested_dissection_order(d.free_dofs.size(),
+                                    d.rows,
+                                    d.cols,
+                                    schur_list);
+          if (!order.empty())
+            {
+              d.id.perm_in         = const_cast<MUMPS_INT *>(order.data());
+              d.id.icntl[icntl(7)] = 1;
+            }
+
           // Analysis and factorisation; more workspace if MUMPS asks.
           d.id.job = 4;
           for (unsigned int attempt = 0;; ++attempt)
@@ -204,6 +340,7 @@ namespace igabde
           d.check(4);
           d.id.listvar_schur = nullptr;
           d.id.schur         = nullptr;
+          d.id.perm_in       = nullptr;
 
           // ICNTL(19) = 1 with a symmetric matrix: the lower triangle,
           // stored by rows (row a, column b <= a at a * n_s + b); what the

@@ -2,6 +2,8 @@
 // initialised for the Trilinos-based solvers, with one thread per core for
 // the deal.II task scheduler.
 
+#include <igabde/base/utilities.h>
+
 #include <deal.II/base/mpi.h>
 
 #include <gtest/gtest.h>
@@ -23,6 +25,7 @@ __asan_default_options()
 int
 main(int argc, char **argv)
 {
+  igabde::base::prefer_light_mpi_singleton();
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   ::testing::InitGoogleTest(&argc, argv);
   return RUN_ALL_TESTS();
