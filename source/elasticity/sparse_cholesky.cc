@@ -2,8 +2,7 @@
 
 #include <deal.II/base/exceptions.h>
 
-#include <Eigen/Cholesky>
-#include <Eigen/Dense>
+#include <deal.II/lac/lapack_templates.h>
 
 #include <algorithm>
 #include <cmath>
@@ -164,8 +163,19 @@ namespace igabde
       std::vector<MUMPS_INT> rows, cols;
       std::vector<double>    values;
 
-      FullMatrix<double>          schur;
-      Eigen::LLT<Eigen::MatrixXd> schur_cholesky;
+      FullMatrix<double> schur;
+      /// Cholesky factor L of S = L L^T (LAPACK, column-major, lower).
+      std::vector<double> schur_factor;
+
+      /// Overwrites the n_s x @p m column-major @p b with S^{-1} b.
+      void
+      solve_schur(double *b, const int m) const
+      {
+        const int n_s  = interface.size();
+        int       info = 0;
+        potrs("L", &n_s, &m, schur_factor.data(), &n_s, b, &n_s, &info);
+        AssertThrow(info == 0, ExcMessage("LAPACK potrs failed."));
+      }
       /// Every free unknown is an interface unknown: S is the free block and
       /// MUMPS is not used.
       bool dense_only = false;
@@ -356,12 +366,14 @@ namespace igabde
 
       if (n_s > 0)
         {
-          Eigen::MatrixXd s(n_s, n_s);
-          for (unsigned int a = 0; a < n_s; ++a)
-            for (unsigned int b = 0; b < n_s; ++b)
-              s(a, b) = d.schur(a, b);
-          d.schur_cholesky.compute(s);
-          AssertThrow(d.schur_cholesky.info() == Eigen::Success,
+          const int ld = n_s;
+          d.schur_factor.resize(std::size_t(n_s) * n_s);
+          for (unsigned int b = 0; b < n_s; ++b)
+            for (unsigned int a = 0; a < n_s; ++a)
+              d.schur_factor[std::size_t(b) * n_s + a] = d.schur(a, b);
+          int info = 0;
+          potrf("L", &ld, d.schur_factor.data(), &ld, &info);
+          AssertThrow(info == 0,
                       ExcMessage("The Schur complement on the contact face is "
                                  "not positive definite: a body is not held "
                                  "against a rigid motion."));
@@ -397,22 +409,37 @@ namespace igabde
     FullMatrix<double>
     SparseCholesky::interface_flexibility(const FullMatrix<double> &c) const
     {
-      const unsigned int n_s = n_interface();
-      AssertDimension(c.m(), n_s);
-      Eigen::MatrixXd C(n_s, c.n());
-      for (unsigned int a = 0; a < n_s; ++a)
-        for (unsigned int j = 0; j < c.n(); ++j)
-          C(a, j) = c(a, j);
+      const int n_s = n_interface();
+      const int m   = c.n();
+      AssertDimension(c.m(), static_cast<unsigned int>(n_s));
+      FullMatrix<double> result(m, m);
+      if (m == 0 || n_s == 0)
+        return result;
+      std::vector<double> y(std::size_t(n_s) * m);
+      for (int j = 0; j < m; ++j)
+        for (int a = 0; a < n_s; ++a)
+          y[std::size_t(j) * n_s + a] = c(a, j);
       // C^T S^{-1} C = Y^T Y with Y = L^{-1} C (S = L L^T): one triangular
-      // block solve and one symmetric rank-k product.
-      const Eigen::MatrixXd Y = data->schur_cholesky.matrixL().solve(C);
-      Eigen::MatrixXd       F(c.n(), c.n());
-      F.setZero();
-      F.selfadjointView<Eigen::Lower>().rankUpdate(Y.transpose());
-      FullMatrix<double> result(c.n(), c.n());
-      for (unsigned int i = 0; i < c.n(); ++i)
-        for (unsigned int j = 0; j <= i; ++j)
-          result(i, j) = result(j, i) = F(i, j);
+      // block solve (dtrsm inside dtrtrs) and one symmetric rank-k product,
+      // both multithreaded BLAS-3.
+      int info = 0;
+      trtrs("L",
+            "N",
+            "N",
+            &n_s,
+            &m,
+            data->schur_factor.data(),
+            &n_s,
+            y.data(),
+            &n_s,
+            &info);
+      AssertThrow(info == 0, ExcMessage("LAPACK trtrs failed."));
+      std::vector<double> f(std::size_t(m) * m, 0.);
+      const double        one = 1., zero = 0.;
+      syrk("L", "T", &m, &n_s, &one, y.data(), &n_s, &zero, f.data(), &m);
+      for (int j = 0; j < m; ++j)
+        for (int i = j; i < m; ++i)
+          result(i, j) = result(j, i) = f[std::size_t(j) * m + i];
       return result;
     }
 
@@ -430,16 +457,18 @@ namespace igabde
 
       if (d.dense_only)
         {
-          Eigen::MatrixXd b(n_s, nrhs);
+          std::vector<double> x(std::size_t(n_s) * nrhs);
           for (unsigned int k = 0; k < nrhs; ++k)
             for (unsigned int a = 0; a < n_s; ++a)
-              b(a, k) = rhs_and_solutions[k][d.interface[a]];
-          const Eigen::MatrixXd x = d.schur_cholesky.solve(b);
+              x[std::size_t(k) * n_s + a] =
+                rhs_and_solutions[k][d.interface[a]];
+          d.solve_schur(x.data(), nrhs);
           for (unsigned int k = 0; k < nrhs; ++k)
             {
               rhs_and_solutions[k] = 0.;
               for (unsigned int a = 0; a < n_s; ++a)
-                rhs_and_solutions[k][d.interface[a]] = x(a, k);
+                rhs_and_solutions[k][d.interface[a]] =
+                  x[std::size_t(k) * n_s + a];
             }
           return;
         }
@@ -468,8 +497,7 @@ namespace igabde
           d.id.lredrhs          = n_s;
           d.id.icntl[icntl(26)] = 1;
           d.call(3);
-          Eigen::Map<Eigen::MatrixXd> y(reduced.data(), n_s, nrhs);
-          y                     = d.schur_cholesky.solve(Eigen::MatrixXd(y));
+          d.solve_schur(reduced.data(), nrhs);
           d.id.icntl[icntl(26)] = 2;
           d.call(3);
           d.id.icntl[icntl(26)] = 0;
