@@ -1,0 +1,336 @@
+// The hard cases of the reference scenes (stiff contrasts, nu = 0.49, high
+// friction, loads and the BDE radius scaled by 1e+-6 and 1e+-4, initial
+// gaps, reversal, pairs held on both sides, a load no contact can carry),
+// each run by the executable and judged against an independent reference:
+// the closed form of the contact patch (uniform pressure, no tangential
+// force), Coulomb's bound |F_t| <= mu |F_n|, the exact scaling of linear
+// elasticity with a homogeneous contact law (forces proportional to the
+// load, displacements unchanged when E and the load scale together), and
+// the invariance of the solution under the BDE radius r. A case that has no
+// solution must stop with a diagnosis, exit status non-zero and a failed
+// summary. `ctest -L hard`.
+
+#include <gtest/gtest.h>
+
+#include "cli_helpers.h"
+#include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+namespace
+{
+  using nlohmann::json;
+
+  /// Tolerance on quantities the solver meets to its stopping test (a
+  /// relative natural-map residual of 1e-10, amplified by the conditioning
+  /// of the condensed system, at most 1e2 on these scenes).
+  constexpr double solver_tolerance = 1e-8;
+
+  struct SceneRun
+  {
+    int         status = -1;
+    std::string output;
+    json        summary;
+  };
+
+  /// Runs @p scene (a file of prm/) with the overrides @p sets and returns
+  /// its summary.json.
+  SceneRun
+  run_scene(const std::string &name,
+            const std::string &scene,
+            const std::string &sets)
+  {
+    const cli::ScratchFolder scratch(name, "hard");
+    const std::string        arguments =
+      "'" + cli::join(std::string(IGABDE_SOURCE_DIR), "prm/" + scene) +
+      "' --quiet --set 'Output/Directory=out' --set 'Output/Write vtu=false' "
+      "--set 'Output/Print timing=false' " +
+      sets;
+    const auto result = cli::run_igabde(arguments, scratch.path);
+    SceneRun   run;
+    run.status = result.status;
+    run.output = result.output;
+    std::ifstream in(cli::join(scratch.path, "out/summary.json"));
+    if (in)
+      run.summary = json::parse(in, nullptr, false);
+    return run;
+  }
+
+  std::vector<double>
+  total_force(const json &summary)
+  {
+    return summary.at("total_contact_force").get<std::vector<double>>();
+  }
+
+  /// Converged, the post-solve condition check met at every step.
+  void
+  expect_converged(const SceneRun &run)
+  {
+    ASSERT_EQ(run.status, 0) << run.output;
+    ASSERT_EQ(run.summary.at("status"), "ok") << run.output;
+    for (const auto &step : run.summary.at("load_steps"))
+      EXPECT_LE(step.at("condition_check_max_violation").get<double>(),
+                solver_tolerance)
+        << "step " << step.at("step");
+  }
+
+  /// The contact patch's closed form: pressure 1 at every pair, no
+  /// tangential force.
+  void
+  expect_patch_test(const SceneRun &run)
+  {
+    expect_converged(run);
+    EXPECT_LE(run.summary.at("checks").at("pressure_uniformity").get<double>(),
+              solver_tolerance);
+    const auto f = total_force(run.summary);
+    for (unsigned int c = 0; c + 1 < f.size(); ++c)
+      EXPECT_LE(std::abs(f[c]), solver_tolerance * std::abs(f.back()));
+  }
+
+  /// Coulomb's bound at every step: |F_t| <= mu |F_n| (normal along the
+  /// last coordinate).
+  void
+  expect_within_cone(const SceneRun &run, const double mu)
+  {
+    for (const auto &step : run.summary.at("load_steps"))
+      {
+        const auto f =
+          step.at("total_contact_force").get<std::vector<double>>();
+        double t = 0.;
+        for (unsigned int c = 0; c + 1 < f.size(); ++c)
+          t += f[c] * f[c];
+        EXPECT_LE(std::sqrt(t),
+                  mu * std::abs(f.back()) * (1. + solver_tolerance))
+          << "step " << step.at("step");
+      }
+  }
+
+  /// @p scaled holds @p factor times the forces of @p base, with the same
+  /// open/stick/slip sets in every step.
+  void
+  expect_forces_scale(const SceneRun &base,
+                      const SceneRun &scaled,
+                      const double    factor)
+  {
+    const auto &a = base.summary.at("load_steps");
+    const auto &b = scaled.summary.at("load_steps");
+    ASSERT_EQ(a.size(), b.size());
+    for (unsigned int s = 0; s < a.size(); ++s)
+      {
+        for (const char *set : {"n_open", "n_stick", "n_slip"})
+          EXPECT_EQ(a[s].at(set), b[s].at(set)) << set << ", step " << s + 1;
+        const auto fa =
+          a[s].at("total_contact_force").get<std::vector<double>>();
+        const auto fb =
+          b[s].at("total_contact_force").get<std::vector<double>>();
+        double norm = 0.;
+        for (const double v : fa)
+          norm = std::max(norm, std::abs(v));
+        for (unsigned int c = 0; c < fa.size(); ++c)
+          EXPECT_NEAR(fb[c] / factor, fa[c], solver_tolerance * norm)
+            << "component " << c << ", step " << s + 1;
+      }
+  }
+} // namespace
+
+
+
+TEST(HardCase, ContactPatchWithStiffnessContrast)
+{
+  // E2/E1 = 1e6, frictionless: the patch test's state is uniaxial stress
+  // whatever the moduli, so the pressure stays exactly uniform.
+  expect_patch_test(run_scene("contrast2d",
+                              "v3-contact-patch-2d.prm",
+                              "--set 'Body 2/Young'\"'\"'s modulus=1e9'"));
+  expect_patch_test(run_scene("contrast3d",
+                              "v3-contact-patch-3d.prm",
+                              "--set 'Body 2/Young'\"'\"'s modulus=1e9'"));
+
+  // With friction the two blocks' different lateral (Poisson) expansion is
+  // resisted at the interface: no closed form, so a second method is the
+  // reference, the augmented Lagrangian on the full system.
+  const std::string contrast = "--set 'Body 2/Young'\"'\"'s modulus=1e9' "
+                               "--set 'Contact/Friction coefficient=2' ";
+  const SceneRun    bde =
+    run_scene("contrastbde", "v3-contact-patch-2d.prm", contrast);
+  const SceneRun al =
+    run_scene("contrastal",
+              "v3-contact-patch-2d.prm",
+              contrast + "--set 'Contact/Algorithm=augmented-lagrange'");
+  expect_converged(bde);
+  expect_converged(al);
+  expect_within_cone(bde, 2.);
+  expect_forces_scale(bde, al, 1.);
+}
+
+
+
+TEST(HardCase, ContactPatchNearlyIncompressible)
+{
+  expect_patch_test(run_scene("nu049",
+                              "v3-contact-patch-2d.prm",
+                              "--set 'Body 1/Poisson'\"'\"'s ratio=0.49' "
+                              "--set 'Body 2/Poisson'\"'\"'s ratio=0.49' "
+                              "--set 'Contact/Friction coefficient=0.3'"));
+}
+
+
+
+TEST(HardCase, LoadsScaledBy1e6And1em6ScaleTheForces)
+{
+  // Linear elasticity, zero gaps and a positively homogeneous contact law:
+  // forces are proportional to the load, the contact sets unchanged. V4
+  // (sliding block, a prescribed displacement) scales its displacement
+  // factors with the pressure.
+  const SceneRun base = run_scene("v3base",
+                                  "v3-contact-patch-2d.prm",
+                                  "--set 'Contact/Friction coefficient=0.3'");
+  expect_patch_test(base);
+  for (const double factor : {1e-6, 1e6})
+    {
+      SCOPED_TRACE("factor " + std::to_string(factor));
+      const std::string p = (factor < 1. ? "1e-6" : "1e6");
+      const SceneRun    scaled =
+        run_scene("v3scaled" + p,
+                  "v3-contact-patch-2d.prm",
+                  "--set 'Contact/Friction coefficient=0.3' "
+                  "--set 'Body 1/Tractions=3: pressure " +
+                    p + "' --set 'Checks/Uniform pressure=" + p + "'");
+      expect_patch_test(scaled);
+      expect_forces_scale(base, scaled, factor);
+    }
+
+  const SceneRun hertz = run_scene("v5base", "v5-hertz-2d.prm", "");
+  expect_converged(hertz);
+  for (const std::string p : {"1e-6", "1e6"})
+    {
+      SCOPED_TRACE("Hertz, E and load x " + p);
+      // E and the load scaled together: the same displacements, forces
+      // scaled by the factor.
+      const double   factor = std::stod(p);
+      const SceneRun scaled =
+        run_scene("v5scaled" + p,
+                  "v5-hertz-2d.prm",
+                  "--set 'Body 1/Tractions=3: vector 0, " +
+                    std::to_string(-15. * factor) +
+                    "' --set 'Body 1/Young'\"'\"'s modulus=" +
+                    std::to_string(1000. * factor) +
+                    "' --set 'Checks/Hertz line load=" +
+                    std::to_string(240. * factor) + "'");
+      expect_converged(scaled);
+      expect_forces_scale(hertz, scaled, factor);
+      EXPECT_NEAR(
+        scaled.summary.at("checks").at("hertz_half_width").get<double>(),
+        hertz.summary.at("checks").at("hertz_half_width").get<double>(),
+        solver_tolerance);
+    }
+}
+
+
+
+TEST(HardCase, BdeRadiusScaledBy1e4And1em4GivesTheSameSolution)
+{
+  // r only weights the two sides of each natural-map equation: the
+  // solution of the contact problem does not depend on it.
+  for (const char *scene : {"v3-contact-patch-2d.prm", "v5-hertz-2d.prm"})
+    {
+      const std::string friction =
+        std::string(scene).find("v3") == 0 ?
+          "--set 'Contact/Friction coefficient=0.3' " :
+          "";
+      const SceneRun base = run_scene("rbase", scene, friction);
+      expect_converged(base);
+      for (const char *scale : {"1e-4", "1e4"})
+        {
+          SCOPED_TRACE(std::string(scene) + ", r x " + scale);
+          const SceneRun scaled =
+            run_scene(std::string("r") + scale,
+                      scene,
+                      friction + "--set 'Contact/r scale=" + scale + "'");
+          expect_converged(scaled);
+          expect_forces_scale(base, scaled, 1.);
+        }
+    }
+}
+
+
+
+TEST(HardCase, HighFrictionReversalAndInitialGapRespectCoulomb)
+{
+  {
+    SCOPED_TRACE("V4, mu = 2");
+    const SceneRun run = run_scene("v4mu2",
+                                   "v4-sliding-block.prm",
+                                   "--set 'Contact/Friction coefficient=2'");
+    expect_converged(run);
+    expect_within_cone(run, 2.);
+  }
+  {
+    SCOPED_TRACE("V4, initial gap 1e-3");
+    const SceneRun run = run_scene("v4gap",
+                                   "v4-sliding-block.prm",
+                                   "--set 'Body 2/Plane point=0, -0.001'");
+    expect_converged(run);
+    expect_within_cone(run, 0.4);
+  }
+  {
+    // Top displaced to +0.5 of its final value, back to 0 and to -0.5,
+    // then half the pressure: the friction force follows the slip back.
+    SCOPED_TRACE("V4, reversal and unloading");
+    const SceneRun run =
+      run_scene("v4reversal",
+                "v4-sliding-block.prm",
+                "--set 'Load path/Load factors=1, 1, 1, 1, 1, 0.5' "
+                "--set 'Load path/Displacement factors=0, 0.5, 1, 0, -0.5, "
+                "-0.5'");
+    expect_converged(run);
+    expect_within_cone(run, 0.4);
+    const auto &steps = run.summary.at("load_steps");
+    ASSERT_EQ(steps.size(), 6u);
+    const double forward =
+      steps[2].at("total_contact_force").get<std::vector<double>>()[0];
+    const double back =
+      steps[4].at("total_contact_force").get<std::vector<double>>()[0];
+    EXPECT_LT(forward * back, 0.) << "the friction force did not reverse";
+  }
+}
+
+
+
+TEST(HardCase, PairsHeldOnBothSidesAreLeftOutAndCounted)
+{
+  // B2's clamped theta = 0 edge lies in the contact surface of both beams.
+  for (const std::string mu : {"0", "2"})
+    {
+      SCOPED_TRACE("mu = " + mu);
+      const SceneRun run = run_scene("b2mu" + mu,
+                                     "b2-curved-beams.prm",
+                                     "--set 'Body 1/Subdivisions=2, 2, 2' "
+                                     "--set 'Body 2/Subdivisions=2, 2, 2' "
+                                     "--set 'Contact/Friction coefficient=" +
+                                       mu + "'");
+      expect_converged(run);
+      EXPECT_GT(
+        run.summary.at("effects").at("pairs_left_out_supported").get<int>(),
+        0);
+    }
+}
+
+
+
+TEST(HardCase, LoadNoContactCanCarryStopsWithADiagnosis)
+{
+  // The quarter disc without its symmetry support, frictionless, with a
+  // sideways load: nothing holds it horizontally, no solution exists.
+  const SceneRun run = run_scene("nosolution",
+                                 "v5-hertz-2d.prm",
+                                 "--set 'Body 1/Supports=' "
+                                 "--set 'Body 1/Tractions=3: vector 1, -15'");
+  EXPECT_NE(run.status, 0);
+  EXPECT_EQ(run.summary.at("status"), "failed");
+  EXPECT_NE(run.output.find("did not converge"), std::string::npos)
+    << run.output;
+  EXPECT_NE(run.output.find("supported"), std::string::npos) << run.output;
+}
