@@ -157,7 +157,7 @@ def accuracy_cost(args, runner):
                "FE_Q(1)": "tab:orange", "FE_Q(2)": "tab:red"}
     markers = {"BDE": "o-", "penalty FKN=1": "s--",
                "augmented Lagrange": "^:"}
-    fig, axes = plt.subplots(2, 2, figsize=(11, 9))
+    fig, axes = plt.subplots(2, 2, figsize=(11, 10.5))
     for row_axes, scene in zip(axes, ("V5", "B2")):
         sub = [r for r in rows if r["scene"] == scene and common.ok(r) and
                r["error"] == r["error"] and r["error"] > 0.]
@@ -188,8 +188,10 @@ def accuracy_cost(args, runner):
                           else "B2: probe u_z error")
             ax.set_title(scene)
             ax.grid(True, which="both", alpha=0.3)
-        row_axes[0].legend(fontsize=6, ncol=2)
-    fig.tight_layout()
+    # One legend below the panels, where it hides no point.
+    handles, labels = axes[0][0].get_legend_handles_labels()
+    fig.legend(handles, labels, loc="lower center", ncol=4, fontsize=7)
+    fig.tight_layout(rect=(0, 0.09, 1, 1))
     common.save_figure(fig, args.out, "accuracy-cost")
 
     # Where the time goes on the Pareto front.

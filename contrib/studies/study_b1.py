@@ -91,7 +91,7 @@ def forces(args, runner):
                     r["config"], r["mesh"], g(r.get("n_dofs")),
                     g(r.get("n_contact_pairs")), r["status"],
                     g(r.get("newton_iterations"))] +
-                    [g(r.get("contact_force_" + c), 6) for c in "xyz"] +
+                    [force(r, c) for c in "xyz"] +
                     [pct(r.get("rel_diff_" + c)) for c in "xyz"] +
                     [pct(r.get("rel_diff_norm"), signed=False),
                      g(r.get("total_s"), 3)]))
@@ -121,6 +121,17 @@ def forces(args, runner):
     axes[0][0].legend(fontsize=7)
     fig.tight_layout()
     common.save_figure(fig, args.out, "b1-forces")
+
+
+def force(row, component):
+    """A force component in N for a Markdown cell; rounding noise of a
+    component that vanishes (mu = 0) shows as 0."""
+    f = [row.get("contact_force_" + c, float("nan")) for c in "xyz"]
+    if any(x != x for x in f):
+        return "–"
+    x = row["contact_force_" + component]
+    return "0" if abs(x) < 1e-9 * math.sqrt(sum(y * y for y in f)) \
+        else g(x, 6)
 
 
 def pct(x, signed=True):
