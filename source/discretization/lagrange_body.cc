@@ -88,6 +88,27 @@ namespace igabde
       private:
         const elasticity::IsotropicMaterial<dim> material;
       };
+
+      /**
+       * The cell around @p location and the point's unit coordinates in it.
+       * deal.II returns an invalid iterator for a point outside the mesh;
+       * this throws instead, so that Body::contains() can tell the bodies
+       * apart (a probe on Body 2 is first looked for on Body 1).
+       */
+      template <int dim>
+      std::pair<typename DoFHandler<dim>::active_cell_iterator, Point<dim>>
+      locate(const Mapping<dim>    &mapping,
+             const DoFHandler<dim> &dof_handler,
+             const Point<dim>      &location)
+      {
+        const auto cell_and_point =
+          GridTools::find_active_cell_around_point(mapping,
+                                                   dof_handler,
+                                                   location);
+        AssertThrow(cell_and_point.first.state() == IteratorState::valid,
+                    ExcMessage("The point lies outside the body."));
+        return cell_and_point;
+      }
     } // namespace
 
 
@@ -250,12 +271,9 @@ namespace igabde
     PointOperator<dim>
     LagrangeBody<dim>::point_operator(const Point<dim> &location) const
     {
-      const auto cell_and_point =
-        GridTools::find_active_cell_around_point(*mapping,
-                                                 dof_handler,
-                                                 location);
-      const auto &cell = cell_and_point.first;
-      Point<dim>  unit = cell_and_point.second;
+      const auto  cell_and_point = locate(*mapping, dof_handler, location);
+      const auto &cell           = cell_and_point.first;
+      Point<dim>  unit           = cell_and_point.second;
       for (unsigned int d = 0; d < dim; ++d)
         unit[d] = std::min(1., std::max(0., unit[d]));
 
@@ -373,10 +391,7 @@ namespace igabde
     LagrangeBody<dim>::stress(const Vector<double> &u,
                               const Point<dim>     &location) const
     {
-      const auto cell_and_point =
-        GridTools::find_active_cell_around_point(*mapping,
-                                                 dof_handler,
-                                                 location);
+      const auto cell_and_point = locate(*mapping, dof_handler, location);
       const Quadrature<dim> quadrature(
         std::vector<Point<dim>>(1, cell_and_point.second));
       elasticity::FEValuesEvaluator<dim> values(*mapping,

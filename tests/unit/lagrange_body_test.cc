@@ -1,6 +1,7 @@
 // The Lagrange path on the geometries of the scenes, including the
 // left-handed curved-beam patch (which the FE_Q mesh must use reflected):
-// positive Jacobians, the right volume, faces that keep their patch ids.
+// positive Jacobians, the right volume, faces that keep their patch ids;
+// points outside a body are not in it.
 
 #include <igabde/nurbs/geometry_builders.h>
 
@@ -56,5 +57,30 @@ TEST(LagrangeBody, CurvedBeamVolumeAndFaces)
       const double r = std::hypot(p.location[0], p.location[2]);
       EXPECT_NEAR(r, 5., 1e-12);
       EXPECT_LT(p.normal[0] * p.location[0] + p.normal[2] * p.location[2], 0.);
+    }
+}
+
+
+
+TEST(LagrangeBody, ContainsOnlyItsOwnPoints)
+{
+  // The probes of a two-body scene are looked for body by body: a point of
+  // Body 2 must be "not contained" in Body 1 on both discretisations (the
+  // FE_Q path used to dereference deal.II's invalid "not found" iterator).
+  discretization::BodyDescription<3> d;
+  d.geometry = nurbs::make_box<3>(Point<3>(0., 0., 1.), Point<3>(6., 1., 2.));
+  nurbs::elevate_to_degree(d.geometry, 2);
+  nurbs::subdivide(d.geometry, std::array<unsigned int, 3>{{4, 2, 2}});
+  for (const std::string type : {"lagrange", "nurbs"})
+    {
+      discretization::DiscretizationSettings settings;
+      settings.type   = type;
+      settings.degree = 2;
+      auto body       = discretization::create_body<3>(d, settings);
+      body->setup();
+      EXPECT_TRUE(body->contains(Point<3>(0., 0., 2.))) << type;
+      EXPECT_TRUE(body->contains(Point<3>(3., 0.5, 1.5))) << type;
+      EXPECT_FALSE(body->contains(Point<3>(6., 0., 0.))) << type;
+      EXPECT_FALSE(body->contains(Point<3>(3., 0.5, 0.5))) << type;
     }
 }
