@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <iomanip>
 #include <sstream>
 #include <string>
@@ -30,8 +31,9 @@ namespace
     overrides.emplace_back("Output/Write vtu", "false");
     overrides.emplace_back("Output/Print timing", "false");
     std::ostringstream log;
-    return scene::run_scene_in_process(std::string(SOURCE_DIR) + "/../prm/" +
-                                         scene + ".prm",
+    return scene::run_scene_in_process((std::filesystem::path(SOURCE_DIR) /
+                                        ".." / "prm" / (scene + ".prm"))
+                                         .string(),
                                        overrides,
                                        log);
   }

@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <iomanip>
 #include <sstream>
 
@@ -32,7 +33,8 @@ namespace
   {
     std::ostringstream log;
     const auto         summary = scene::run_scene_in_process(
-      std::string(SOURCE_DIR) + "/../prm/" + scene + ".prm",
+      (std::filesystem::path(SOURCE_DIR) / ".." / "prm" / (scene + ".prm"))
+        .string(),
       {{"Discretization/Type", type},
                {"Discretization/Degree", std::to_string(degree)},
                {"Discretization/Refinements", std::to_string(refinements)},

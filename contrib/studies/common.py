@@ -284,3 +284,26 @@ def pareto_front(points):
             front.append(i)
             best = points[i][1]
     return front
+
+
+def failure_notes(rows):
+    """Markdown list of the runs that did not end ok, with their
+    diagnosis; empty when every run did."""
+    failed = [r for r in rows if r["status"] != "ok"]
+    if not failed:
+        return ""
+    return "\n" + "\n".join("- %s: %s, %s" % (
+        r["label"], r["status"], r["diagnosis"]) for r in failed) + "\n"
+
+
+def phase_bars(ax, rows, phases):
+    """Stacked bars of the seconds per phase, one bar per row; phases
+    that are zero in every row are left out. Returns the bar heights."""
+    bottom = [0.] * len(rows)
+    for p in phases:
+        v = [r.get(phase_key(p), 0.) or 0. for r in rows]
+        if not any(v):
+            continue
+        ax.bar(range(len(rows)), v, bottom=bottom, label=p)
+        bottom = [b + x for b, x in zip(bottom, v)]
+    return bottom

@@ -144,11 +144,7 @@ def accuracy_cost(args, runner):
                     g(r.get("t_assembly_s"), 3),
                     g(r.get("t_factorization_s"), 3),
                     g(r.get("contact_s"), 3), g(r.get("total_s"), 3)]))
-        failed = [r for r in rows if r["status"] != "ok"]
-        if failed:
-            f.write("\n" + "\n".join("- %s: %s, %s" % (
-                r["label"], r["status"], r["diagnosis"]) for r in failed) +
-                "\n")
+        f.write(common.failure_notes(rows))
 
     plt = common.pyplot()
     if plt is None:
@@ -201,13 +197,7 @@ def accuracy_cost(args, runner):
         front = sorted((r for r in rows if r["scene"] == scene and
                         r.get("pareto") == "yes"),
                        key=lambda r: r["total_s"])
-        bottom = [0.] * len(front)
-        for p in shown:
-            v = [r.get(common.phase_key(p), 0.) or 0. for r in front]
-            if not any(v):
-                continue
-            ax.bar(range(len(front)), v, bottom=bottom, label=p)
-            bottom = [b + x for b, x in zip(bottom, v)]
+        common.phase_bars(ax, front, shown)
         ax.set_xticks(range(len(front)))
         ax.set_xticklabels(["%s %s\n%s" % (r["config"], r["mesh"],
                                            g(r["error"], 2))

@@ -95,11 +95,7 @@ def forces(args, runner):
                     [pct(r.get("rel_diff_" + c)) for c in "xyz"] +
                     [pct(r.get("rel_diff_norm"), signed=False),
                      g(r.get("total_s"), 3)]))
-        failed = [r for r in rows if r["status"] != "ok"]
-        if failed:
-            f.write("\n" + "\n".join("- %s: %s, %s" % (
-                r["label"], r["status"], r["diagnosis"]) for r in failed) +
-                "\n")
+        f.write(common.failure_notes(rows))
 
     plt = common.pyplot()
     if plt is None:

@@ -274,13 +274,7 @@ def mesh4(args, runner):
     shown = [p for p in common.PHASES if p not in ("output", "postprocess")]
     for ax, disc in zip(axes, ("nurbs", "lagrange")):
         sub = [r for r in rows if r["discretization"] == disc]
-        bottom = [0.] * len(sub)
-        for p in shown:
-            v = [r.get(common.phase_key(p), 0.) or 0. for r in sub]
-            if not any(v):
-                continue
-            ax.bar(range(len(sub)), v, bottom=bottom, label=p)
-            bottom = [b + x for b, x in zip(bottom, v)]
+        bottom = common.phase_bars(ax, sub, shown)
         for i, r in enumerate(sub):
             if not common.ok(r):
                 ax.text(i, bottom[i], r["status"], ha="center",

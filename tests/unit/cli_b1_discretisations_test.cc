@@ -33,7 +33,7 @@ namespace
       folder);
     EXPECT_EQ(r.status, 0) << r.output;
     const auto summary = nlohmann::json::parse(
-      cli::read_file(cli::join(folder, out + "/summary.json")));
+      cli::read_file(cli::join(cli::join(folder, out), "summary.json")));
     EXPECT_EQ(summary.at("status"), "ok");
     std::array<double, 3> f;
     for (unsigned int d = 0; d < 3; ++d)

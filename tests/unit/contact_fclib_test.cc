@@ -24,7 +24,16 @@ namespace
   {
     const char *env = std::getenv("IGABDE_FCLIB_DIR");
     return env ? std::string(env) :
-                 std::string(IGABDE_SOURCE_DIR) + "/../shared/fclib/data";
+                 (std::filesystem::path(IGABDE_SOURCE_DIR) / ".." / "shared" /
+                  "fclib" / "data")
+                   .string();
+  }
+
+  /// The corpus file @p relative (e.g. "hdf5_global/CubeH8.hdf5").
+  std::string
+  fclib_file(const std::string &relative)
+  {
+    return (std::filesystem::path(fclib_dir()) / relative).string();
   }
 
   // The elastic problems the solver targets (research/contact-solvers.md
@@ -33,7 +42,7 @@ namespace
   elastic_problems()
   {
     std::vector<std::string> files;
-    const std::string        dat = fclib_dir() + "/siconos_dat";
+    const std::string        dat = fclib_file("siconos_dat");
     if (std::filesystem::is_directory(dat))
       for (const auto &e : std::filesystem::directory_iterator(dat))
         {
@@ -41,10 +50,10 @@ namespace
           if (name.rfind("Rover", 0) == 0 || name.rfind("Confeti", 0) == 0)
             files.push_back(e.path().string());
         }
-    files.push_back(fclib_dir() +
-                    "/hdf5_global/LMGC_GlobalFrictionContactProblem00046.hdf5");
-    files.push_back(fclib_dir() + "/hdf5_global/CubeH8.hdf5");
-    files.push_back(fclib_dir() + "/siconos_dat/FC3D_Example1.dat");
+    files.push_back(
+      fclib_file("hdf5_global/LMGC_GlobalFrictionContactProblem00046.hdf5"));
+    files.push_back(fclib_file("hdf5_global/CubeH8.hdf5"));
+    files.push_back(fclib_file("siconos_dat/FC3D_Example1.dat"));
     return files;
   }
 } // namespace
@@ -63,9 +72,9 @@ TEST(ContactFclib, ReadersAgree)
   SKIP_WITHOUT_FCLIB();
   // The same problem stored dense and sparse-block.
   const ContactProblem dense =
-    read_siconos_dat(fclib_dir() + "/siconos_dat/FC3D_Example1.dat");
+    read_siconos_dat(fclib_file("siconos_dat/FC3D_Example1.dat"));
   const ContactProblem sbm =
-    read_siconos_dat(fclib_dir() + "/siconos_dat/FC3D_Example1_SBM.dat");
+    read_siconos_dat(fclib_file("siconos_dat/FC3D_Example1_SBM.dat"));
   EXPECT_EQ(dense.n_contacts, 3u);
   EXPECT_EQ(dense.n_components, 3u);
   EXPECT_EQ((dense.W - sbm.W).norm(), 0.);
@@ -74,7 +83,7 @@ TEST(ContactFclib, ReadersAgree)
 
   // A local HDF5 problem (compressed-row W). Its /solution group holds
   // zeros (a placeholder), so only sizes and finiteness are checked here.
-  const std::string local = fclib_dir() + "/hdf5_local/Capsules-i97-269.hdf5";
+  const std::string local = fclib_file("hdf5_local/Capsules-i97-269.hdf5");
   EXPECT_EQ(classify_fclib_file(local), FclibFileKind::hdf5_local);
   const ContactProblem capsules = read_fclib_problem(local);
   EXPECT_EQ(capsules.n_contacts, 216u);
@@ -87,7 +96,7 @@ TEST(ContactFclib, ReadersAgree)
   // gravity must all be pressed together (with f of the wrong sign every
   // contact would open); the solution is reached in a couple of steps.
   const std::string global =
-    fclib_dir() + "/hdf5_global/Box_Stacks-i0035-31-0.hdf5";
+    fclib_file("hdf5_global/Box_Stacks-i0035-31-0.hdf5");
   EXPECT_EQ(classify_fclib_file(global), FclibFileKind::hdf5_global);
   const ContactProblem boxes = read_fclib_problem(global);
   EXPECT_EQ(boxes.n_contacts, 31u);
@@ -97,11 +106,10 @@ TEST(ContactFclib, ReadersAgree)
   EXPECT_EQ(rb.n_open, 0u);
   EXPECT_LE(rb.iterations, 3u);
 
-  EXPECT_EQ(classify_fclib_file(fclib_dir() +
-                                "/hdf5_global/Chute-ndof-768-nc-4-3.hdf5"),
+  EXPECT_EQ(classify_fclib_file(
+              fclib_file("hdf5_global/Chute-ndof-768-nc-4-3.hdf5")),
             FclibFileKind::hdf5_global_rolling);
-  EXPECT_EQ(classify_fclib_file(fclib_dir() +
-                                "/siconos_dat/GFC3D_Example1.dat"),
+  EXPECT_EQ(classify_fclib_file(fclib_file("siconos_dat/GFC3D_Example1.dat")),
             FclibFileKind::siconos_global_dat);
 }
 
@@ -110,7 +118,10 @@ TEST(ContactFclib, ReadersAgree)
 TEST(ContactFclib, BadFilesThrowNamingTheFile)
 {
   SKIP_WITHOUT_FCLIB();
-  const std::string missing = "/nonexistent/problem.hdf5";
+  // A folder that does not exist below the scratch folder.
+  const std::string missing = (std::filesystem::temp_directory_path() /
+                               "igabde-no-such-folder" / "problem.hdf5")
+                                .string();
   try
     {
       read_fclib_local(missing);
@@ -138,10 +149,9 @@ TEST(ContactFclib, BadFilesThrowNamingTheFile)
     }
   std::filesystem::remove(truncated);
   // A local reader on a global file.
-  EXPECT_ANY_THROW(read_fclib_local(fclib_dir() + "/hdf5_global/CubeH8.hdf5"));
+  EXPECT_ANY_THROW(read_fclib_local(fclib_file("hdf5_global/CubeH8.hdf5")));
   // Not a problem at all.
-  EXPECT_ANY_THROW(
-    read_fclib_problem(fclib_dir() + "/siconos_dat/ACinputs.dat"));
+  EXPECT_ANY_THROW(read_fclib_problem(fclib_file("siconos_dat/ACinputs.dat")));
 }
 
 

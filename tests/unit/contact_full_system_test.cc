@@ -9,6 +9,7 @@
 
 #include "cli_helpers.h"
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <nlohmann/json.hpp>
@@ -47,9 +48,8 @@ namespace
     for (unsigned int s = 1; s <= run.summary["load_steps"].size(); ++s)
       {
         std::ostringstream name;
-        name << out << "/contact-" << std::setw(4) << std::setfill('0') << s
-             << ".csv";
-        std::ifstream            csv(name.str());
+        name << "contact-" << std::setw(4) << std::setfill('0') << s << ".csv";
+        std::ifstream            csv(std::filesystem::path(out) / name.str());
         std::string              line;
         std::vector<std::string> states;
         std::getline(csv, line); // header
