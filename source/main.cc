@@ -35,7 +35,7 @@ namespace
   print_usage(std::ostream &out)
   {
     out
-      << "Usage: igabde SCENE.prm [--quiet] "
+      << "Usage: igabde SCENE.prm [--quiet] [--force] "
          "[--set \"Section/Name=value\"]...\n"
          "       igabde --print-parameters [prm|json]\n"
          "       igabde --help\n\n"
@@ -43,7 +43,13 @@ namespace
          "log and\nVTU/PVD fields into its output folder (Output/Directory, "
          "default\noutput/<scene name>/). --set overrides any parameter "
          "(repeatable).\n--quiet leaves out the progress lines (Output/Progress = "
-         "false).\nScenes live in prm/; doc/ explains every study.\n";
+         "false).\n--force runs a scene whose size estimate exceeds the free "
+         "memory\n(without it, such a scene stops at once with the estimate); "
+         "IGABDE_MEMORY_LIMIT=GiB\nin the environment caps the memory the "
+         "estimate is held against.\n"
+         "SIGINT or SIGTERM ends a run with the finished load steps written "
+         "and\nsummary.json marked 'interrupted'.\n"
+         "Scenes live in prm/; doc/ explains every study.\n";
   }
 } // namespace
 
@@ -66,6 +72,7 @@ main(int argc, char **argv)
 
   std::string                                      scene_file;
   std::vector<std::pair<std::string, std::string>> overrides;
+  bool                                             force = false;
   for (int i = 1; i < argc; ++i)
     {
       const std::string arg = argv[i];
@@ -93,6 +100,8 @@ main(int argc, char **argv)
                                                   ParameterHandler::PRM);
           return 0;
         }
+      else if (arg == "--force")
+        force = true;
       else if (arg == "--quiet" || arg == "-q")
         overrides.emplace_back("Output/Progress", "false");
       else if (arg == "--set")
@@ -137,5 +146,5 @@ main(int argc, char **argv)
       print_usage(std::cerr);
       return 2;
     }
-  return igabde::scene::run_scene(scene_file, overrides);
+  return igabde::scene::run_scene(scene_file, overrides, force);
 }

@@ -13,12 +13,17 @@
 #include <igabde/scene/geometry.h>
 #include <igabde/scene/load_controller.h>
 #include <igabde/scene/simulator.h>
+#include <igabde/scene/size_estimate.h>
 
 #include <deal.II/base/data_out_base.h>
 #include <deal.II/base/mpi.h>
 
 #include <algorithm>
+#include <array>
+#include <atomic>
 #include <cctype>
+#include <csignal>
+#include <fcntl.h>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -26,6 +31,7 @@
 #include <iostream>
 #include <map>
 #include <sstream>
+#include <unistd.h>
 
 namespace igabde
 {
@@ -33,6 +39,64 @@ namespace igabde
   {
     namespace
     {
+      /**
+       * What a SIGINT or SIGTERM leaves behind. While a run goes on, the
+       * simulator keeps here, rendered in advance, the summary.json it would
+       * end with if interrupted now (the finished load steps, status
+       * 'interrupted' and the reason) and the line for the screen; the
+       * handler only writes them out (open/write/close are
+       * async-signal-safe) and ends the process with 128 + the signal. Two
+       * buffers: the simulator renders into the one the handler does not
+       * read, then publishes it.
+       */
+      struct InterruptRecord
+      {
+        /// Set by run_scene: only the command-line run handles signals.
+        bool        enabled = false;
+        std::string summary_path;
+        std::string log_path;
+        /// [buffer][0: SIGINT, 1: SIGTERM]: the summary and the screen line.
+        std::array<std::array<std::string, 2>, 2> summary;
+        std::array<std::array<std::string, 2>, 2> line;
+        std::atomic<int>                          published{-1};
+      };
+
+      InterruptRecord interrupt_record;
+
+      extern "C" void
+      write_interrupted_summary_and_exit(int signal)
+      {
+        const int b = interrupt_record.published.load();
+        const int s = (signal == SIGINT ? 0 : 1);
+        if (b >= 0)
+          {
+            const std::string &text = interrupt_record.summary[b][s];
+            const int fd = ::open(interrupt_record.summary_path.c_str(),
+                                  O_WRONLY | O_CREAT | O_TRUNC,
+                                  0644);
+            if (fd >= 0)
+              {
+                [[maybe_unused]] const auto n =
+                  ::write(fd, text.data(), text.size());
+                ::close(fd);
+              }
+            const std::string          &line = interrupt_record.line[b][s];
+            [[maybe_unused]] const auto n =
+              ::write(STDERR_FILENO, line.data(), line.size());
+            const int log =
+              ::open(interrupt_record.log_path.c_str(), O_WRONLY | O_APPEND);
+            if (log >= 0)
+              {
+                [[maybe_unused]] const auto m =
+                  ::write(log, line.data(), line.size());
+                ::close(log);
+              }
+          }
+        ::_exit(128 + signal);
+      }
+
+
+
       /// Writes to two streams at once (screen and log.txt).
       class TeeBuffer : public std::streambuf
       {
@@ -61,6 +125,24 @@ namespace igabde
       private:
         std::streambuf *a, *b;
       };
+
+
+
+      /**
+       * Writes @p text to @p path through a neighbouring temporary file and
+       * a rename, so a reader (or an interrupted run) finds either the old
+       * file or the new one, never half of one.
+       */
+      void
+      write_file_atomically(const std::string &path, const std::string &text)
+      {
+        const std::string part = path + ".part";
+        {
+          std::ofstream out(part);
+          out << text;
+        }
+        std::filesystem::rename(part, path);
+      }
     } // namespace
 
 
@@ -263,6 +345,7 @@ namespace igabde
           {"name", body->name()},
           {"n_dofs", static_cast<unsigned long long>(body->n_dofs())},
           {"n_elements", body->n_elements()},
+          {"matrix_entries", body->stiffness_matrix().n_nonzero_elements()},
           {"free_rigid_modes", body->free_rigid_mode_names()}});
       summary["bodies"] = per_body;
 
@@ -293,6 +376,10 @@ namespace igabde
           bodies[b]->factorize(
             schur ? stage->contact_operators(b) :
                     std::vector<discretization::PointOperator<dim>>());
+          if (bodies[b]->factor_entries() > 0. && summary.contains("bodies") &&
+              b < summary["bodies"].size())
+            summary["bodies"][b]["factor_entries"] =
+              bodies[b]->factor_entries();
           if (parameters.output.progress)
             {
               pcout << "  [progress] " << bodies[b]->name()
@@ -457,6 +544,15 @@ namespace igabde
       for (unsigned int s = 0; s < steps.size(); ++s)
         {
           const auto [load_factor, displacement_factor] = steps[s];
+          // Steps 1..s are written: summary.json, steps.csv and the fields
+          // stay with them if this step fails or the run is killed.
+          run_phase = "load step " + std::to_string(s + 1) + " of " +
+                      std::to_string(steps.size()) + " (" +
+                      (s == 0 ? std::string("no step finished") :
+                                "steps 1.." + std::to_string(s) +
+                                  " finished and written") +
+                      ")";
+          write_summary("running", "");
           pcout << "Load step " << s + 1 << "/" << steps.size()
                 << ": load factor " << load_factor << ", displacement factor "
                 << displacement_factor << std::endl;
@@ -770,7 +866,7 @@ namespace igabde
     Simulator<dim>::write_step_table() const
     {
       // steps.csv: one row per load step, full precision, for plots.
-      std::ofstream csv(output_directory + "/steps.csv");
+      std::ostringstream csv;
       csv << "step,load_factor,displacement_factor";
       if (contact_stage)
         {
@@ -806,6 +902,7 @@ namespace igabde
             }
           csv << "\n";
         }
+      write_file_atomically(output_directory + "/steps.csv", csv.str());
     }
 
 
@@ -832,8 +929,38 @@ namespace igabde
         }
       timing["total"]   = total;
       summary["timing"] = timing;
-      std::ofstream(output_directory + "/summary.json")
-        << summary.dump(2) << "\n";
+      write_file_atomically(output_directory + "/summary.json",
+                            summary.dump(2) + "\n");
+      if (interrupt_record.enabled)
+        {
+          if (status == "running")
+            {
+              const int b = 1 - std::max(0, interrupt_record.published.load());
+              nlohmann::json copy = summary;
+              copy["status"]      = "interrupted";
+              for (const int s : {0, 1})
+                {
+                  const std::string reason = std::string("interrupted by ") +
+                                             (s == 0 ? "SIGINT" : "SIGTERM") +
+                                             " during " + run_phase;
+                  copy["error"]                  = reason;
+                  interrupt_record.summary[b][s] = copy.dump(2) + "\n";
+                  interrupt_record.line[b][s]    = "igabde: " + reason +
+                                                "; the finished steps are in " +
+                                                output_directory + "/\n";
+                }
+              // Set once, before the first publication: the handler reads it.
+              if (interrupt_record.summary_path.empty())
+                {
+                  interrupt_record.summary_path =
+                    output_directory + "/summary.json";
+                  interrupt_record.log_path = output_directory + "/log.txt";
+                }
+              interrupt_record.published.store(b);
+            }
+          else
+            interrupt_record.published.store(-1);
+        }
 
       // deal.II's timing table, to a file always and to the screen unless
       // the scene switches it off.
@@ -859,7 +986,17 @@ namespace igabde
       // (and steps.csv, timing.txt start empty), so that the results of an
       // earlier run in the same folder are never taken for this one's, even
       // if this run is killed.
+      run_phase = "the set-up (no load step finished)";
       write_summary("running", "");
+      {
+        const SizeEstimate size  = estimate_size(parameters, scene_file);
+        summary["size_estimate"] = size.to_json();
+        if (parameters.output.progress)
+          pcout << "  [progress] size estimate: " << size.describe() << " ("
+                << std::setprecision(3)
+                << available_memory_bytes() / std::pow(2., 30) << " GiB free)"
+                << std::setprecision(6) << std::endl;
+      }
       setup_bodies();
       solve_load_steps();
       write_summary("ok", "");
@@ -1164,13 +1301,20 @@ namespace igabde
 
     int
     run_scene(const std::string &scene_file,
-              const std::vector<std::pair<std::string, std::string>> &overrides)
+              const std::vector<std::pair<std::string, std::string>> &overrides,
+              const bool                                              force)
     {
       ParameterHandler prm;
       AllParameters    parameters;
       try
         {
           parameters = parse_scene(prm, scene_file, overrides);
+          // Before anything is built: a scene that cannot fit the memory
+          // stops at once (the geometry is checked on the way).
+          if (force)
+            estimate_size(parameters, scene_file);
+          else
+            check_size(parameters, scene_file, available_memory_bytes());
         }
       catch (const ExceptionBase &e)
         {
@@ -1224,16 +1368,33 @@ namespace igabde
         return 1;
       };
 
+      // SIGINT/SIGTERM: the finished steps stay, summary.json says
+      // 'interrupted' and why.
+      interrupt_record.enabled = true;
+      struct sigaction handler = {};
+      handler.sa_handler       = write_interrupted_summary_and_exit;
+      sigemptyset(&handler.sa_mask);
+      struct sigaction previous_int, previous_term;
+      sigaction(SIGINT, &handler, &previous_int);
+      sigaction(SIGTERM, &handler, &previous_term);
+      int status = 0;
       if (parameters.dimension == 2)
         {
           Simulator<2> simulator(parameters, scene_file, dir, log);
-          return run(simulator);
+          status = run(simulator);
         }
       else
         {
           Simulator<3> simulator(parameters, scene_file, dir, log);
-          return run(simulator);
+          status = run(simulator);
         }
+      interrupt_record.published.store(-1);
+      sigaction(SIGINT, &previous_int, nullptr);
+      sigaction(SIGTERM, &previous_term, nullptr);
+      interrupt_record.enabled = false;
+      interrupt_record.summary_path.clear();
+      interrupt_record.log_path.clear();
+      return status;
     }
   } // namespace scene
 } // namespace igabde

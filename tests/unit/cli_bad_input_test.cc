@@ -128,3 +128,18 @@ TEST(CliBadInput, SupportComponentOutsideTheDimension)
                                "Body 1/Supports: 'z' in '0: z' is not a "
                                "component");
 }
+
+
+
+TEST(CliBadInput, SceneBeyondTheMachinesMemory)
+{
+  // V3 at 12 refinements: about 5e8 unknowns and terabytes of factor. The
+  // size guard stops it before anything is built, with the estimate, the
+  // largest refinement that fits and the way past the guard.
+  expect_refused_at_parse_time("too-large",
+                               "Discretization/Refinements=12",
+                               "needs more memory than the machine has free");
+  expect_refused_at_parse_time("too-large-2",
+                               "Discretization/Refinements=12",
+                               "igabde --force runs it anyway");
+}

@@ -125,6 +125,8 @@ namespace igabde
       std::unique_ptr<contact::ContactStage<dim>>              contact_stage;
       std::vector<std::vector<std::pair<double, std::string>>> pvd_records;
       nlohmann::json                                           step_records;
+      /// Where the run is, for the reason an interrupted run gives.
+      std::string run_phase;
     };
 
     /**
@@ -153,9 +155,9 @@ namespace igabde
      * the right dimension. Returns the process exit status.
      */
     int
-    run_scene(
-      const std::string                                      &scene_file,
-      const std::vector<std::pair<std::string, std::string>> &overrides);
+    run_scene(const std::string &scene_file,
+              const std::vector<std::pair<std::string, std::string>> &overrides,
+              const bool force = false);
   } // namespace scene
 } // namespace igabde
 

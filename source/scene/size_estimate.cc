@@ -1,0 +1,341 @@
+#include <igabde/base/utilities.h>
+
+#include <igabde/scene/geometry.h>
+#include <igabde/scene/size_estimate.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <iomanip>
+#include <limits>
+#include <sstream>
+#include <unistd.h>
+
+namespace igabde
+{
+  namespace scene
+  {
+    namespace
+    {
+      /**
+       * Factor entries per k^2 w^2 n log2(n) (2D) or k^2 w^2 n^{4/3} (3D),
+       * where n counts nodes (control points), k the components and w the
+       * width of a separator in node layers (p for a C^{p-1} spline, about
+       * (q+1)/2 for FE_Q(q)). Measured with MUMPS' nested-dissection
+       * factorisation (the larger ratio seen on V5, B2, NURBS p = 2, 3 and
+       * FE_Q(1), FE_Q(2), with a margin for the pre-asymptotic growth in
+       * 3D): doc/robustness.md.
+       */
+      constexpr double factor_constant_2d = 3.;
+      constexpr double factor_constant_3d = 10.;
+
+      /// Bytes per sparse-matrix entry: the value and column index of the
+      /// assembled matrix (12) and the solver's copy of its upper triangle
+      /// (16 per entry, half of them).
+      constexpr double bytes_per_matrix_entry = 20.;
+      /// Bytes per factor entry: the value and the solver's working space
+      /// (MUMPS' default relaxation, 20 %, rounded up).
+      constexpr double bytes_per_factor_entry = 8. * 1.25;
+
+      /// Resident size of an igabde process before the scene is built (the
+      /// V3 2D scene, 144 unknowns, ends with a resident set of 171 MB).
+      constexpr double bytes_per_process = 170. * 1024. * 1024.;
+
+
+
+      template <int dim>
+      SizeEstimate::BodySize
+      estimate_body(const BodyParameters                         &body,
+                    const std::string                            &name,
+                    const discretization::DiscretizationSettings &settings,
+                    const unsigned int                            refinements,
+                    const unsigned int                            contact_face,
+                    const bool                                    contact,
+                    const std::string                            &scene_file)
+      {
+        const nurbs::NurbsPatch<dim> geometry =
+          make_geometry<dim>(body,
+                             scene_file + ": " + name + "/",
+                             settings.degree);
+        const bool              nurbs = (settings.type == "nurbs");
+        const double            split = std::pow(2., refinements);
+        std::array<double, dim> nodes;
+        SizeEstimate::BodySize  size;
+        size.name       = name;
+        size.n_elements = 1.;
+        // Separator width (node layers) and matrix entries per row and
+        // component, per direction.
+        double width = 0., couplings = 1.;
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            const double spans = geometry.breakpoints(d).size() - 1.;
+            size.n_elements *= spans * split;
+            if (nurbs)
+              {
+                const unsigned int p = geometry.degree(d);
+                // Each refinement inserts one simple knot per span.
+                nodes[d] = geometry.n_control_points(d) + spans * (split - 1.);
+                couplings *= 2. * p + 1.;
+                width = std::max(width, double(p));
+              }
+            else
+              {
+                const double q = settings.degree;
+                nodes[d]       = q * spans * split + 1.;
+                // A node on a cell edge couples with 2q+1 nodes, one inside
+                // a cell with q+1.
+                couplings *= ((2. * q + 1.) + (q - 1.) * (q + 1.)) / q;
+                width = std::max(width, (q + 1.) / 2.);
+              }
+          }
+        double n = 1.;
+        for (unsigned int d = 0; d < dim; ++d)
+          n *= nodes[d];
+        const double k      = dim;
+        size.n_unknowns     = k * n;
+        size.matrix_entries = k * k * n * couplings;
+        const double growth =
+          (dim == 2 ? n * std::log2(std::max(n, 2.)) : n * std::cbrt(n));
+        size.factor_entries =
+          (dim == 2 ? factor_constant_2d : factor_constant_3d) * k * k * width *
+          width * growth;
+        size.factor_entries =
+          std::min(size.factor_entries, size.n_unknowns * size.n_unknowns / 2.);
+        if (contact)
+          {
+            double face = 1.;
+            for (unsigned int d = 0; d < dim; ++d)
+              if (d != contact_face / 2)
+                face *= nodes[d];
+            size.face_unknowns = k * face;
+          }
+        return size;
+      }
+
+
+
+      template <int dim>
+      SizeEstimate
+      estimate(const AllParameters &parameters,
+               const std::string   &scene_file,
+               const unsigned int   refinements)
+      {
+        const auto  &c = parameters.contact;
+        SizeEstimate e;
+        e.bytes_process = bytes_per_process;
+        e.bodies.push_back(estimate_body<dim>(parameters.body1,
+                                              "Body 1",
+                                              parameters.discretization,
+                                              refinements,
+                                              c.slave_face,
+                                              c.enabled,
+                                              scene_file));
+        if (parameters.body2.type == "deformable")
+          e.bodies.push_back(estimate_body<dim>(parameters.body2,
+                                                "Body 2",
+                                                parameters.discretization,
+                                                refinements,
+                                                c.master_face,
+                                                c.enabled,
+                                                scene_file));
+        const bool direct =
+          (parameters.discretization.linear_solver != "cg-amg");
+        double vectors = 0.;
+        for (const auto &b : e.bodies)
+          {
+            e.bytes_matrix += bytes_per_matrix_entry * b.matrix_entries;
+            // Multigrid hierarchy: about the matrix again.
+            e.bytes_factor +=
+              (direct ? bytes_per_factor_entry * b.factor_entries :
+                        12. * b.matrix_entries);
+            // Solution, load and prescribed fields, right-hand sides.
+            vectors += 8. * 8. * b.n_unknowns;
+          }
+        e.bytes_matrix += vectors;
+        if (c.enabled)
+          {
+            // One pair per node of Body 1's contact face.
+            const double pairs =
+              e.bodies[0].face_unknowns / static_cast<double>(dim);
+            e.contact_unknowns =
+              pairs * (c.friction_coefficient > 0. ? dim : 1.);
+            const double n_c = e.contact_unknowns;
+            // Schur complement and its product with the point operators per
+            // body; flexibility, Newton matrix and its factor.
+            for (const auto &b : e.bodies)
+              e.bytes_dense += 8. * (b.face_unknowns * b.face_unknowns +
+                                     b.face_unknowns * n_c);
+            e.bytes_dense += 8. * 3. * n_c * n_c;
+          }
+        if (parameters.output.write_vtu)
+          {
+            // Patches of (s+1)^dim points per cell with the coordinates,
+            // displacement, strain, stress and von Mises stress, and the
+            // writer's copy.
+            const double points = std::pow(
+              std::max(1u, parameters.discretization.output_subdivisions) + 1.,
+              dim);
+            const double fields = dim + dim + dim * (dim + 1) + 1;
+            for (const auto &b : e.bodies)
+              e.bytes_output =
+                std::max(e.bytes_output,
+                         2. * 8. * fields * points * b.n_elements);
+          }
+        return e;
+      }
+    } // namespace
+
+
+
+    double
+    SizeEstimate::total_bytes() const
+    {
+      return bytes_process + bytes_matrix + bytes_factor + bytes_dense +
+             bytes_output;
+    }
+
+
+
+    double
+    SizeEstimate::total_unknowns() const
+    {
+      double n = 0.;
+      for (const auto &b : bodies)
+        n += b.n_unknowns;
+      return n;
+    }
+
+
+
+    std::string
+    SizeEstimate::describe() const
+    {
+      double factor = 0.;
+      for (const auto &b : bodies)
+        factor += b.factor_entries;
+      std::ostringstream s;
+      s << std::setprecision(3) << total_unknowns() << " unknowns, " << factor
+        << " factor entries, " << contact_unknowns
+        << " contact unknowns: about " << total_bytes() / std::pow(2., 30)
+        << " GiB";
+      return s.str();
+    }
+
+
+
+    nlohmann::json
+    SizeEstimate::to_json() const
+    {
+      nlohmann::json j;
+      nlohmann::json per_body = nlohmann::json::array();
+      for (const auto &b : bodies)
+        per_body.push_back({{"name", b.name},
+                            {"n_elements", b.n_elements},
+                            {"n_unknowns", b.n_unknowns},
+                            {"matrix_entries", b.matrix_entries},
+                            {"factor_entries", b.factor_entries},
+                            {"face_unknowns", b.face_unknowns}});
+      j["bodies"]           = per_body;
+      j["contact_unknowns"] = contact_unknowns;
+      j["bytes"]            = {{"matrix", bytes_matrix},
+                               {"factor", bytes_factor},
+                               {"dense", bytes_dense},
+                               {"output", bytes_output},
+                               {"process", bytes_process},
+                               {"total", total_bytes()}};
+      return j;
+    }
+
+
+
+    SizeEstimate
+    estimate_size(const AllParameters &parameters,
+                  const std::string   &scene_file,
+                  const int            refinements)
+    {
+      const unsigned int r =
+        (refinements < 0 ? parameters.discretization.refinements :
+                           static_cast<unsigned int>(refinements));
+      return parameters.dimension == 2 ?
+               estimate<2>(parameters, scene_file, r) :
+               estimate<3>(parameters, scene_file, r);
+    }
+
+
+
+    double
+    available_memory_bytes()
+    {
+      double        available = std::numeric_limits<double>::max();
+      std::ifstream meminfo("/proc/meminfo");
+      std::string   key;
+      double        kib = 0.;
+      std::string   unit;
+      bool          found = false;
+      while (!found && meminfo >> key >> kib >> unit)
+        if (key == "MemAvailable:")
+          {
+            available = kib * 1024.;
+            found     = true;
+          }
+      if (!found)
+        {
+          const long pages = sysconf(_SC_PHYS_PAGES);
+          const long size  = sysconf(_SC_PAGE_SIZE);
+          if (pages > 0 && size > 0)
+            available = double(pages) * double(size);
+        }
+      // A share of a machine others use too.
+      if (const char *limit = std::getenv("IGABDE_MEMORY_LIMIT"))
+        {
+          char        *end = nullptr;
+          const double gib = std::strtod(limit, &end);
+          AssertThrow(
+            end != limit && *end == '\0' && std::isfinite(gib) && gib > 0.,
+            base::ExcInput(std::string("IGABDE_MEMORY_LIMIT = '") + limit +
+                           "' must be a positive number of GiB (e.g. 8)"));
+          available = std::min(available, gib * std::pow(2., 30));
+        }
+      return available;
+    }
+
+
+
+    SizeEstimate
+    check_size(const AllParameters &parameters,
+               const std::string   &scene_file,
+               const double         available)
+    {
+      const SizeEstimate e    = estimate_size(parameters, scene_file);
+      const double       need = e.total_bytes();
+      if (std::isfinite(need) && need <= available)
+        return e;
+
+      const double       gib = std::pow(2., 30);
+      std::ostringstream m;
+      m << std::setprecision(3) << scene_file
+        << ": this scene needs more memory than the machine has free: "
+        << e.describe() << ", against " << available / gib << " GiB free. ";
+      int fits = -1;
+      for (int r = static_cast<int>(parameters.discretization.refinements) - 1;
+           r >= 0;
+           --r)
+        if (estimate_size(parameters, scene_file, r).total_bytes() <= available)
+          {
+            fits = r;
+            break;
+          }
+      if (fits >= 0)
+        m << "Discretization/Refinements = " << fits << " fits (about "
+          << estimate_size(parameters, scene_file, fits).total_bytes() / gib
+          << " GiB); ";
+      else
+        m << "Even Discretization/Refinements = 0 does not fit: use fewer "
+             "Subdivisions; ";
+      m << "igabde --force runs it anyway.";
+      AssertThrow(false, base::ExcInput(m.str()));
+      return e;
+    }
+  } // namespace scene
+} // namespace igabde
