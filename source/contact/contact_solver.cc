@@ -58,14 +58,6 @@ namespace igabde
 
 
 
-    std::vector<std::string>
-    available_contact_solvers()
-    {
-      return {"bde", "penalty", "augmented-lagrange"};
-    }
-
-
-
     std::unique_ptr<ContactSolver>
     create_contact_solver(const ContactSolverSettings &settings)
     {

@@ -12,9 +12,10 @@ namespace igabde
   {
     template <int dim>
     nurbs::NurbsPatch<dim>
-    make_geometry(const BodyParameters &body,
-                  const std::string    &where,
-                  const unsigned int    degree)
+    make_geometry(const BodyParameters          &body,
+                  const std::string             &where,
+                  const unsigned int             degree,
+                  std::array<unsigned int, dim> *subdivisions)
     {
       const auto need_2d = [&]() {
         AssertThrow(dim == 2,
@@ -106,14 +107,19 @@ namespace igabde
           AssertThrow(count >= 1 && count == std::floor(count) && count < 1e4,
                       base::ExcInput(where + "Subdivisions = '" +
                                      body.subdivisions +
-                                     "': counts must be integers >= 1."));
+                                     "': counts must be integers from 1 to "
+                                     "9999 (then Discretization/Refinements "
+                                     "for finer meshes)."));
           n_spans[d] = static_cast<unsigned int>(count);
         }
       // k-refinement: elevate first, then insert knots, so that the base
       // subdivisions (and later refinements) give C^{p-1} spaces, not the C0
       // space that inserting before elevating would leave.
       nurbs::elevate_to_degree(patch, degree);
-      nurbs::subdivide(patch, n_spans);
+      if (subdivisions != nullptr)
+        *subdivisions = n_spans;
+      else
+        nurbs::subdivide(patch, n_spans);
       return patch;
     }
 
@@ -167,8 +173,14 @@ namespace igabde
 
 
     template nurbs::NurbsPatch<2>
-    make_geometry<2>(const BodyParameters &, const std::string &, unsigned int);
+    make_geometry<2>(const BodyParameters &,
+                     const std::string &,
+                     unsigned int,
+                     std::array<unsigned int, 2> *);
     template nurbs::NurbsPatch<3>
-    make_geometry<3>(const BodyParameters &, const std::string &, unsigned int);
+    make_geometry<3>(const BodyParameters &,
+                     const std::string &,
+                     unsigned int,
+                     std::array<unsigned int, 3> *);
   } // namespace scene
 } // namespace igabde

@@ -54,10 +54,14 @@ namespace igabde
                     const bool                                    contact,
                     const std::string                            &scene_file)
       {
-        const nurbs::NurbsPatch<dim> geometry =
+        // The exact geometry before its subdivisions (a split beyond the
+        // memory must not be built to be counted).
+        std::array<unsigned int, dim> subdivisions;
+        const nurbs::NurbsPatch<dim>  geometry =
           make_geometry<dim>(body,
                              scene_file + ": " + name + "/",
-                             settings.degree);
+                             settings.degree,
+                             &subdivisions);
         const bool              nurbs = (settings.type == "nurbs");
         const double            split = std::pow(2., refinements);
         std::array<double, dim> nodes;
@@ -69,13 +73,15 @@ namespace igabde
         double width = 0., couplings = 1.;
         for (unsigned int d = 0; d < dim; ++d)
           {
-            const double spans = geometry.breakpoints(d).size() - 1.;
+            const double base_spans = geometry.breakpoints(d).size() - 1.;
+            const double spans      = base_spans * subdivisions[d];
             size.n_elements *= spans * split;
             if (nurbs)
               {
                 const unsigned int p = geometry.degree(d);
-                // Each refinement inserts one simple knot per span.
-                nodes[d] = geometry.n_control_points(d) + spans * (split - 1.);
+                // Subdivisions and refinements insert simple knots.
+                nodes[d] = geometry.n_control_points(d) +
+                           base_spans * (subdivisions[d] * split - 1.);
                 couplings *= 2. * p + 1.;
                 width = std::max(width, double(p));
               }

@@ -35,7 +35,7 @@ namespace igabde
       sample_points() const override;
 
     private:
-      const std::vector<discretization::SurfacePoint<dim>> no_samples;
+      const std::vector<discretization::SurfacePoint<dim>> no_samples{};
     };
 
 

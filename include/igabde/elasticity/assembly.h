@@ -291,8 +291,12 @@ namespace igabde
                     SparseMatrix<double>                   &matrix,
                     Vector<double>                         &rhs)
     {
-      const auto [lambda, mu]   = lame_parameters(material);
-      const bool has_body_force = body_force.norm() > 0.;
+      // Named copies, not a structured binding: the assembly lambda below
+      // captures them (C++17 allows no capture of a binding).
+      const auto   lame           = lame_parameters(material);
+      const double lambda         = lame.first;
+      const double mu             = lame.second;
+      const bool   has_body_force = body_force.norm() > 0.;
 
       struct Scratch
       {

@@ -5,6 +5,7 @@
 
 #include <igabde/scene/parameters.h>
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -16,13 +17,16 @@ namespace igabde
      * @brief The exact NURBS geometry a body's parameters name, elevated to
      * at least @p degree and then split into its base subdivisions (knot
      * insertion after elevation: C^{p-1} across the new knots); @p where
-     * prefixes error messages.
+     * prefixes error messages. With @p subdivisions, the split is checked
+     * and returned there but not applied: the size guard counts the
+     * subdivided patch without building it.
      */
     template <int dim>
     nurbs::NurbsPatch<dim>
-    make_geometry(const BodyParameters &body,
-                  const std::string    &where,
-                  const unsigned int    degree);
+    make_geometry(const BodyParameters          &body,
+                  const std::string             &where,
+                  const unsigned int             degree,
+                  std::array<unsigned int, dim> *subdivisions = nullptr);
 
     /**
      * @brief The patch faces of the geometry named @p geometry (a

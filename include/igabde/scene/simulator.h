@@ -4,6 +4,7 @@
 #include <igabde/discretization/body.h>
 
 #include <igabde/scene/parameters.h>
+#include <igabde/scene/scene_reader.h>
 
 #include <deal.II/base/conditional_ostream.h>
 #include <deal.II/base/timer.h>
@@ -128,17 +129,6 @@ namespace igabde
       /// Where the run is, for the reason an interrupted run gives.
       std::string run_phase;
     };
-
-    /**
-     * @brief Declares every parameter in @p prm, reads @p scene_file, applies
-     * the "Section/Name" = value overrides and returns the checked
-     * parameters; throws base::ExcInput with a one-line message on bad input.
-     */
-    AllParameters
-    parse_scene(
-      ParameterHandler                                       &prm,
-      const std::string                                      &scene_file,
-      const std::vector<std::pair<std::string, std::string>> &overrides);
 
     /**
      * @brief Runs a scene in this process (tests, studies) and returns its
