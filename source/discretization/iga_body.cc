@@ -230,8 +230,12 @@ namespace igabde
                   const types::global_dof_index i  = dim * a + c;
                   const auto                    it = values.find(i);
                   if (it != values.end())
+                    // Equal to round-off of the values and of the body's
+                    // size (a prescribed zero against 1e-17 m agrees).
                     AssertThrow(std::abs(it->second - bc.value[c]) <=
-                                  1e-12 * std::max(1., std::abs(bc.value[c])),
+                                  1e-12 * std::max({std::abs(bc.value[c]),
+                                                    std::abs(it->second),
+                                                    diameter}),
                                 ExcMessage(
                                   "Body '" + name +
                                   "': two supports prescribe different "

@@ -4,7 +4,9 @@
 
 #include <igabde/scene/geometry.h>
 
+#include <algorithm>
 #include <cmath>
+#include <sstream>
 
 namespace igabde
 {
@@ -116,6 +118,46 @@ namespace igabde
       // subdivisions (and later refinements) give C^{p-1} spaces, not the C0
       // space that inserting before elevating would leave.
       nurbs::elevate_to_degree(patch, degree);
+
+      // Point loads lie in or on the body: checked here, when the scene is
+      // read, on a copy split into at most 8 parts per span (starting
+      // points enough for the closest-point Newton; the image is the same).
+      if (!body.point_loads.empty())
+        {
+          nurbs::NurbsPatch<dim>        check = patch;
+          std::array<unsigned int, dim> parts;
+          for (unsigned int d = 0; d < dim; ++d)
+            parts[d] = std::min(n_spans[d], 8u);
+          nurbs::subdivide(check, parts);
+          Point<dim> lo = check.control_point(0), hi = lo;
+          for (unsigned int a = 0; a < check.n_control_points(); ++a)
+            for (unsigned int d = 0; d < dim; ++d)
+              {
+                lo[d] = std::min(lo[d], check.control_point(a)[d]);
+                hi[d] = std::max(hi[d], check.control_point(a)[d]);
+              }
+          const double diameter = (hi - lo).norm();
+          for (const auto &load : body.point_loads)
+            {
+              Point<dim> x;
+              for (unsigned int d = 0; d < dim; ++d)
+                x[d] = load.location[d];
+              double           distance = 0.;
+              const Point<dim> xi =
+                check.closest_parametric_point(x, nullptr, &distance);
+              // The coincidence tolerance of the pairing (doc/robustness.md).
+              if (distance > 1e-8 * diameter)
+                {
+                  std::ostringstream m;
+                  m << where << "Point loads: the point (" << x
+                    << ") is not in the body (distance " << distance
+                    << " from its closest point (" << check.value(xi)
+                    << ")); give a point in or on the body.";
+                  AssertThrow(false, base::ExcInput(m.str()));
+                }
+            }
+        }
+
       if (subdivisions != nullptr)
         *subdivisions = n_spans;
       else

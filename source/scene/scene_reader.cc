@@ -14,36 +14,6 @@ namespace igabde
 {
   namespace scene
   {
-    namespace
-    {
-      void
-      set_override(ParameterHandler  &prm,
-                   const std::string &path,
-                   const std::string &value)
-      {
-        const std::vector<std::string> parts = base::split(path, '/');
-        AssertThrow(!parts.empty(),
-                    base::ExcInput("--set: '" + path +
-                                   "' is not of the form "
-                                   "'Section/Name=value'."));
-        for (unsigned int i = 0; i + 1 < parts.size(); ++i)
-          prm.enter_subsection(parts[i]);
-        try
-          {
-            prm.set(parts.back(), value);
-          }
-        catch (const ExceptionBase &e)
-          {
-            for (unsigned int i = 0; i + 1 < parts.size(); ++i)
-              prm.leave_subsection();
-            AssertThrow(false,
-                        base::ExcInput("--set " + path + "=" + value + ": " +
-                                       base::exception_message(e)));
-          }
-        for (unsigned int i = 0; i + 1 < parts.size(); ++i)
-          prm.leave_subsection();
-      }
-    } // namespace
 
 
 
@@ -112,6 +82,88 @@ namespace igabde
         if (best_distance <= std::max<std::size_t>(3, name.size() / 3))
           result += " Did you mean '" + best + "'?";
         return result + " (igabde --print-parameters lists every parameter.)";
+      }
+
+
+
+      /**
+       * " Did you mean 'Section/Name'?" with the declared parameter path
+       * nearest to @p path (for --set, where the whole path is known), and
+       * where to find the list.
+       */
+      std::string
+      suggest_path(const ParameterHandler &prm, const std::string &path)
+      {
+        std::ostringstream listing;
+        prm.print_parameters(listing, ParameterHandler::ShortPRM);
+        std::istringstream       in(listing.str());
+        std::vector<std::string> sections;
+        std::string              line, best;
+        unsigned int             best_distance = 1000;
+        while (std::getline(in, line))
+          {
+            line = base::trim(line);
+            if (line.rfind("subsection ", 0) == 0)
+              sections.push_back(base::trim(line.substr(11)));
+            else if (line == "end" && !sections.empty())
+              sections.pop_back();
+            else if (line.rfind("set ", 0) == 0)
+              {
+                std::string candidate;
+                for (const auto &section : sections)
+                  candidate += section + "/";
+                candidate += base::trim(line.substr(4, line.find('=') - 4));
+                const unsigned int d = edit_distance(path, candidate);
+                if (d < best_distance)
+                  {
+                    best_distance = d;
+                    best          = candidate;
+                  }
+              }
+          }
+        std::string result;
+        if (best_distance <= std::max<std::size_t>(3, path.size() / 3))
+          result += " Did you mean '" + best + "'?";
+        return result + " (igabde --print-parameters lists every parameter.)";
+      }
+    } // namespace
+
+
+
+    namespace
+    {
+      void
+      set_override(ParameterHandler  &prm,
+                   const std::string &path,
+                   const std::string &value)
+      {
+        const std::vector<std::string> parts = base::split(path, '/');
+        AssertThrow(!parts.empty(),
+                    base::ExcInput("--set: '" + path +
+                                   "' is not of the form "
+                                   "'Section/Name=value'."));
+        for (unsigned int i = 0; i + 1 < parts.size(); ++i)
+          prm.enter_subsection(parts[i]);
+        try
+          {
+            prm.set(parts.back(), value);
+          }
+        catch (const ExceptionBase &e)
+          {
+            for (unsigned int i = 0; i + 1 < parts.size(); ++i)
+              prm.leave_subsection();
+            std::string message = base::exception_message(e);
+            // An entry deal.II does not know: name the nearest declared one.
+            if (message.find("not yet declared") != std::string::npos ||
+                message.find("No entry with name") != std::string::npos)
+              message =
+                "'" + path + "' is not a parameter." + suggest_path(prm, path);
+            AssertThrow(false,
+                        base::ExcInput("--set " + path + "=" + value + ": " +
+                                       message));
+          }
+        for (unsigned int i = 0; i + 1 < parts.size(); ++i)
+          prm.leave_subsection();
       }
     } // namespace
 

@@ -21,14 +21,16 @@ namespace
    * no scene banner, no output folder, hence no summary.json and no VTU.
    */
   void
-  expect_refused_at_parse_time(const std::string &name,
-                               const std::string &setting,
-                               const std::string &parameter)
+  expect_refused_at_parse_time(
+    const std::string &name,
+    const std::string &setting,
+    const std::string &parameter,
+    const std::string &scene_name = "v3-contact-patch-2d.prm")
   {
     SCOPED_TRACE(setting);
     const cli::ScratchFolder folder("bad-input-" + name);
     const std::string        scene =
-      cli::join(std::string(IGABDE_SOURCE_DIR), "prm/v3-contact-patch-2d.prm");
+      cli::join(cli::join(std::string(IGABDE_SOURCE_DIR), "prm"), scene_name);
     const auto result = cli::run_igabde("'" + scene + "' --set \"" + setting +
                                           "\" --set 'Output/Directory=out'",
                                         folder);
@@ -142,4 +144,104 @@ TEST(CliBadInput, SceneBeyondTheMachinesMemory)
   expect_refused_at_parse_time("too-large-2",
                                "Discretization/Refinements=12",
                                "igabde --force runs it anyway");
+}
+
+
+
+TEST(CliBadInput, MisspelledParameterInSetWithDidYouMean)
+{
+  expect_refused_at_parse_time("misspelled",
+                               "Body 1/Youngs modulus=5",
+                               "Did you mean 'Body 1/Young's modulus'?");
+  expect_refused_at_parse_time("misspelled-section",
+                               "Bdy 1/Poisson's ratio=0.2",
+                               "Did you mean 'Body 1/Poisson's ratio'?");
+}
+
+
+
+TEST(CliBadInput, WrongTypeNamesTheExpectedPattern)
+{
+  expect_refused_at_parse_time("type",
+                               "Body 1/Young's modulus=abc",
+                               "does not match the given pattern");
+}
+
+
+
+TEST(CliBadInput, DegreeOutsideOneToSix)
+{
+  expect_refused_at_parse_time("degree0",
+                               "Discretization/Degree=0",
+                               "Integer range 1...6");
+  expect_refused_at_parse_time("degree30",
+                               "Discretization/Degree=30",
+                               "Integer range 1...6");
+}
+
+
+
+TEST(CliBadInput, NotANumberOrInfinite)
+{
+  expect_refused_at_parse_time("nan",
+                               "Body 1/Young's modulus=nan",
+                               "Body 1/Young's modulus=nan");
+  expect_refused_at_parse_time("inf",
+                               "Body 1/Upper corner=1, inf",
+                               "Body 1/Upper corner: 'inf' is not a number");
+  expect_refused_at_parse_time("inf-mu",
+                               "Contact/Friction coefficient=inf",
+                               "Contact/Friction coefficient=inf");
+}
+
+
+
+TEST(CliBadInput, InnerRadiusNotBelowOuter)
+{
+  expect_refused_at_parse_time("radii",
+                               "Body 1/Inner radius=3",
+                               "Body 1/Inner radius (3.000000) must be smaller "
+                               "than Outer radius",
+                               "v2-lame-cylinder.prm");
+}
+
+
+
+TEST(CliBadInput, PointLoadOutsideTheBody)
+{
+  // Found during set-up before (exit status 1, a failed summary.json).
+  expect_refused_at_parse_time("point-load",
+                               "Body 1/Point loads=100, 100 : 0, -1",
+                               "Body 1/Point loads: the point (100 100) is not "
+                               "in the body");
+}
+
+
+
+TEST(CliBadInput, SubdivisionsOutOfRange)
+{
+  expect_refused_at_parse_time("subdivisions",
+                               "Body 1/Subdivisions=0, 2",
+                               "counts must be integers from 1 to 9999");
+}
+
+
+
+TEST(CliBadInput, UnwritableOutputDirectory)
+{
+  // A folder below a regular file cannot be created.
+  const cli::ScratchFolder folder("bad-input-output");
+  std::ofstream(cli::join(folder.path, "file")) << "x";
+  const std::string scene =
+    cli::join(std::string(IGABDE_SOURCE_DIR), "prm/v3-contact-patch-2d.prm");
+  const auto result =
+    cli::run_igabde("'" + scene + "' --set 'Output/Directory=file/out'",
+                    folder);
+  EXPECT_EQ(result.status, 2) << result.output;
+  EXPECT_EQ(result.output.find('\n'), result.output.size() - 1)
+    << result.output;
+  EXPECT_NE(result.output.find("Output/Directory = 'file/out' cannot be "
+                               "created"),
+            std::string::npos)
+    << result.output;
 }

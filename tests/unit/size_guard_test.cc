@@ -197,16 +197,16 @@ TEST(SizeGuard, MemoryLimitAndForce)
 
 TEST(SizeGuard, InterruptedRunKeepsTheFinishedSteps)
 {
-  // SIGTERM during a 60-step V4 run, once two steps are written: exit status
+  // SIGTERM during a 200-step V4 run, once two steps are written: exit status
   // 128 + 15, summary.json 'interrupted' naming the step, the finished
   // steps in summary.json and steps.csv, their fields on disk.
   const cli::ScratchFolder folder("interrupt", "size");
   std::string              loads, displacements;
-  for (int i = 0; i < 60; ++i)
+  for (int i = 0; i < 200; ++i)
     {
       loads += std::string(i ? ", " : "") + "1";
       displacements +=
-        std::string(i ? ", " : "") + std::to_string(i / 59.).substr(0, 8);
+        std::string(i ? ", " : "") + std::to_string(i / 199.).substr(0, 8);
     }
   const std::string command =
     std::string(IGABDE_EXECUTABLE) + " '" + scene("v4-sliding-block.prm") +
@@ -223,10 +223,10 @@ TEST(SizeGuard, InterruptedRunKeepsTheFinishedSteps)
   EXPECT_EQ(summary.at("status"), "interrupted");
   const std::size_t finished = summary.at("load_steps").size();
   EXPECT_GE(finished, 2u);
-  EXPECT_LT(finished, 60u);
+  EXPECT_LT(finished, 200u);
   const std::string error = summary.at("error");
   EXPECT_NE(error.find("interrupted by SIGTERM during load step " +
-                       std::to_string(finished + 1) + " of 60"),
+                       std::to_string(finished + 1) + " of 200"),
             std::string::npos)
     << error;
   // One row per finished step (and the header).
