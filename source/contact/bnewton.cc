@@ -783,6 +783,102 @@ namespace igabde
 
 
 
+      /// "pairs 3, 17, 40" (at most eight named, then "+N more").
+      std::string
+      pair_list_text(const std::vector<unsigned int> &pairs)
+      {
+        std::string text = pairs.size() == 1 ? "pair " : "pairs ";
+        for (unsigned int k = 0; k < pairs.size() && k < 8; ++k)
+          text += (k > 0 ? ", " : "") + std::to_string(pairs[k]);
+        if (pairs.size() > 8)
+          text += " (+" + std::to_string(pairs.size() - 8) + " more)";
+        return text;
+      }
+
+
+
+      /// The piece of each pair (status and closed normal), for comparing
+      /// active sets between iterations.
+      std::vector<int>
+      active_set(const std::vector<Branch> &branches)
+      {
+        std::vector<int> set;
+        set.reserve(branches.size());
+        for (const Branch &br : branches)
+          set.push_back(2 * static_cast<int>(br.status) + (br.closed ? 1 : 0));
+        return set;
+      }
+
+
+
+      /**
+       * What a failed phase involves, for its diagnosis: pairs with
+       * non-finite forces or residuals; else, if the last active sets of
+       * the phase repeat (fewer distinct sets than half the window), a cycle
+       * and the pairs whose piece changes in it; else the three pairs with
+       * the largest residual.
+       */
+      std::string
+      describe_failure(const std::vector<std::vector<int>> &sets,
+                       const unsigned int                   window,
+                       const Vec                           &x,
+                       const Vec                           &H,
+                       const unsigned int                   n_contacts,
+                       const unsigned int                   d,
+                       std::vector<unsigned int>           &involved)
+      {
+        involved.clear();
+        for (unsigned int c = 0; c < n_contacts; ++c)
+          if (!x.segment(c * d, d).allFinite() ||
+              (H.size() >= (c + 1) * d && !H.segment(c * d, d).allFinite()))
+            involved.push_back(c);
+        if (!involved.empty())
+          return "; non-finite at " + pair_list_text(involved);
+
+        const unsigned int w =
+          std::min<unsigned int>(window,
+                                 static_cast<unsigned int>(sets.size()));
+        if (w >= 4)
+          {
+            std::vector<std::vector<int>> last(sets.end() - w, sets.end());
+            std::vector<std::vector<int>> distinct = last;
+            std::sort(distinct.begin(), distinct.end());
+            distinct.erase(std::unique(distinct.begin(), distinct.end()),
+                           distinct.end());
+            if (distinct.size() >= 2 && 2 * distinct.size() <= w)
+              {
+                for (unsigned int c = 0; c < n_contacts; ++c)
+                  for (const auto &set : last)
+                    if (c < set.size() && set[c] != last.front()[c])
+                      {
+                        involved.push_back(c);
+                        break;
+                      }
+                return "; cycling between " + std::to_string(distinct.size()) +
+                       " active sets in the last " + std::to_string(w) +
+                       " iterations, changing the state of " +
+                       pair_list_text(involved);
+              }
+          }
+        if (H.size() < n_contacts * d || n_contacts == 0)
+          return "";
+        std::vector<unsigned int> order(n_contacts);
+        for (unsigned int c = 0; c < n_contacts; ++c)
+          order[c] = c;
+        const unsigned int k = std::min(3u, n_contacts);
+        std::partial_sort(order.begin(),
+                          order.begin() + k,
+                          order.end(),
+                          [&](const unsigned int a, const unsigned int b) {
+                            return H.segment(a * d, d).norm() >
+                                   H.segment(b * d, d).norm();
+                          });
+        involved.assign(order.begin(), order.begin() + k);
+        return "; largest residual at " + pair_list_text(involved);
+      }
+
+
+
       struct PhaseOutcome
       {
         bool        converged = false;
@@ -865,8 +961,11 @@ namespace igabde
         std::ostream                         *out;
         bool                                  have_best  = false;
         double                                best_score = 0.;
-        Vec                                   best_x;
-        Vec                                   converged_x;
+        /// Iterations whose Newton matrix was singular (Levenberg-Marquardt
+        /// steps).
+        unsigned int singular_iterations = 0;
+        Vec          best_x;
+        Vec          converged_x;
       };
 
 
@@ -893,13 +992,33 @@ namespace igabde
         unsigned int        local_it      = 0;
         double              last_theta    = 0.;
 
+        // The active set of every iteration of this phase, and how a
+        // failure is reported: the iteration, and the pairs involved.
+        std::vector<std::vector<int>> sets;
+        const auto                    fail = [&](const std::string &what) {
+          const std::string pairs =
+            describe_failure(sets,
+                             std::max(4u, settings.stall_iterations),
+                             x,
+                             H,
+                             problem.n_contacts,
+                             problem.n_components,
+                             result.pairs_involved);
+          return PhaseOutcome{false,
+                              what + " at iteration " +
+                                std::to_string(result.iterations) + pairs};
+        };
+
         Vec u = sys.displacement(x);
         sys.residual(x, u, H, &branches);
         for (;;)
           {
+            sets.push_back(active_set(branches));
+            if (sets.size() > std::max(4u, settings.stall_iterations))
+              sets.erase(sets.begin());
             const double theta = 0.5 * H.squaredNorm();
             if (!std::isfinite(theta) || !x.allFinite())
-              return {false, "non-finite values (NaN/inf) in H"};
+              return fail("non-finite values (NaN/inf) in H");
             double err, balanced, eq_err;
             // The FCLIB error may be out of reach in floating point when
             // forces and displacements have very different scales: accept
@@ -932,19 +1051,18 @@ namespace igabde
                 return {true, "converged"};
               }
             if (local_it >= budget || out_of_iterations())
-              return {false, "iteration limit"};
+              return fail("iteration limit");
             if (out_of_time())
-              return {false, "time limit"};
+              return fail("time limit");
             if (theta < best_theta * (1. - 1e-3))
               {
                 best_theta    = theta;
                 last_progress = local_it;
               }
             else if (local_it - last_progress >= settings.stall_iterations)
-              return {false,
-                      "stall (no decrease of |H| in " +
-                        std::to_string(settings.stall_iterations) +
-                        " iterations)"};
+              return fail("stall (no decrease of |H| in " +
+                          std::to_string(settings.stall_iterations) +
+                          " iterations)");
 
             ++local_it;
             ++result.iterations;
@@ -955,6 +1073,8 @@ namespace igabde
             const NewtonMatrix J(sys, branches, settings.use_symmetry);
             rec.n_reduced = J.n_reduced();
             Vec dx        = J.direction(H, rec.note);
+            if (rec.note.find("lm") != std::string::npos)
+              ++singular_iterations;
 
             const Vec grad          = J.apply_transpose(H);
             double    slope         = grad.dot(J.apply(dx));
@@ -1024,9 +1144,8 @@ namespace igabde
             result.history.push_back(rec);
             log_record(rec);
             if (!accepted)
-              return {false,
-                      "line-search failure (no decrease along the "
-                      "Newton and the steepest-descent directions)"};
+              return fail("line-search failure (no decrease along the "
+                          "Newton and the steepest-descent directions)");
 
             x += step * dx;
             u = sys.displacement(x);
@@ -1271,6 +1390,15 @@ namespace igabde
       else
         result.diagnosis =
           "not converged: " + outcome.reason + " [" + reasons + "]";
+      if (result.converged)
+        result.pairs_involved.clear();
+      else if (driver.singular_iterations > 0)
+        result.diagnosis +=
+          "; the Newton matrix was singular in " +
+          std::to_string(driver.singular_iterations) + " of " +
+          std::to_string(result.iterations) +
+          " iterations (Levenberg-Marquardt steps): redundant pairs, or a "
+          "body held only through contact";
 
       // Final per-contact status at (p, u), with the phase-1 radius.
       {

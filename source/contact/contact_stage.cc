@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
+#include <sstream>
 
 namespace igabde
 {
@@ -586,8 +587,27 @@ namespace igabde
             << solution.max_penetration << std::endl;
 
       StepResult<dim> result;
-      result.converged       = solution.converged;
-      result.diagnosis       = solution.diagnosis;
+      result.converged = solution.converged;
+      result.diagnosis = solution.diagnosis;
+      // Where the pairs the failure involves are (numbered as in the
+      // contact CSV files).
+      if (!solution.converged && !solution.pairs_involved.empty())
+        {
+          std::ostringstream where;
+          where << std::setprecision(4) << "; where:";
+          for (unsigned int k = 0; k < solution.pairs_involved.size() && k < 8;
+               ++k)
+            {
+              const unsigned int i = solution.pairs_involved[k];
+              if (i >= pair_list.size())
+                continue;
+              where << (k > 0 ? "," : "") << " pair " << i << " at (";
+              for (unsigned int d = 0; d < dim; ++d)
+                where << (d > 0 ? ", " : "") << pair_list[i].x1[d];
+              where << ")";
+            }
+          result.diagnosis += where.str();
+        }
       result.iterations      = solution.iterations;
       result.residual        = solution.residual;
       result.n_open          = solution.n_open;

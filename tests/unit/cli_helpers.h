@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -74,11 +75,24 @@ namespace cli
     return result;
   }
 
+  /**
+   * The igabde executable the tests run: the environment variable
+   * IGABDE_EXECUTABLE if set (the sanitizer job of contrib/run-tests runs
+   * these tests with the AddressSanitizer build's executable), else the one
+   * built beside the tests.
+   */
+  inline std::string
+  executable()
+  {
+    const char *env = std::getenv("IGABDE_EXECUTABLE");
+    return env != nullptr && *env != '\0' ? env : IGABDE_EXECUTABLE;
+  }
+
   /// Runs igabde with @p arguments in @p folder.
   inline RunResult
   run_igabde(const std::string &arguments, const std::string &folder)
   {
-    return run_in(folder, std::string(IGABDE_EXECUTABLE) + " " + arguments);
+    return run_in(folder, executable() + " " + arguments);
   }
 
   /**

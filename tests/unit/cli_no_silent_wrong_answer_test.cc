@@ -69,7 +69,7 @@ TEST(NoSilentWrongAnswer, KilledRunLeavesNoOldOkSummary)
   ASSERT_TRUE(
     contains(read_file(cli::join(s.path, "out/summary.json")), "\"ok\""));
   const std::string command =
-    std::string(IGABDE_EXECUTABLE) + " " + scene("b2-curved-beams.prm") +
+    cli::executable() + " " + scene("b2-curved-beams.prm") +
     " --quiet --set 'Body 1/Subdivisions=8,16,8'"
     " --set 'Body 2/Subdivisions=8,16,8' --set 'Output/Directory=out'"
     " > /dev/null & pid=$!; for i in $(seq 200); do"

@@ -169,7 +169,7 @@ TEST(SizeGuard, MemoryLimitAndForce)
   // parse time; --force runs it past the guard (and only past the guard).
   const cli::ScratchFolder folder("force", "size");
   const std::string        run =
-    "IGABDE_MEMORY_LIMIT=0.01 " + std::string(IGABDE_EXECUTABLE) + " '" +
+    "IGABDE_MEMORY_LIMIT=0.01 " + cli::executable() + " '" +
     scene("v3-contact-patch-2d.prm") +
     "' --quiet --set 'Output/Write vtu=false' --set 'Output/Directory=out'";
   const auto refused = cli::run_in(folder, run);
@@ -186,8 +186,8 @@ TEST(SizeGuard, MemoryLimitAndForce)
   EXPECT_EQ(forced_bad.status, 2) << forced_bad.output;
   const auto bad_limit =
     cli::run_in(folder,
-                "IGABDE_MEMORY_LIMIT=lots " + std::string(IGABDE_EXECUTABLE) +
-                  " '" + scene("v3-contact-patch-2d.prm") + "' --quiet");
+                "IGABDE_MEMORY_LIMIT=lots " + cli::executable() + " '" +
+                  scene("v3-contact-patch-2d.prm") + "' --quiet");
   EXPECT_EQ(bad_limit.status, 2) << bad_limit.output;
   EXPECT_NE(bad_limit.output.find("IGABDE_MEMORY_LIMIT"), std::string::npos)
     << bad_limit.output;
@@ -209,7 +209,7 @@ TEST(SizeGuard, InterruptedRunKeepsTheFinishedSteps)
         std::string(i ? ", " : "") + std::to_string(i / 199.).substr(0, 8);
     }
   const std::string command =
-    std::string(IGABDE_EXECUTABLE) + " '" + scene("v4-sliding-block.prm") +
+    cli::executable() + " '" + scene("v4-sliding-block.prm") +
     "' --set Discretization/Refinements=3 --set 'Load path/Load factors=" +
     loads + "' --set 'Load path/Displacement factors=" + displacements +
     "' --set 'Output/Directory=out' > screen.txt 2>&1 & pid=$!;"

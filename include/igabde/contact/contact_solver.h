@@ -75,6 +75,13 @@ namespace igabde
       double max_penetration = 0.;
       /** @brief Multiplier updates (augmented Lagrangian; else 0). */
       unsigned int updates = 0;
+      /**
+       * @brief When not converged: the pairs (indices into the problem's
+       * contacts) the failure involves, as the diagnosis names them: those
+       * that change state in a cycle, those with non-finite values, else
+       * those with the largest residual.
+       */
+      std::vector<unsigned int> pairs_involved;
 
       /** @brief Print the history table with 5 significant digits. */
       void
