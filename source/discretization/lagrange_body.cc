@@ -22,8 +22,13 @@
 #include <deal.II/numerics/data_out.h>
 #include <deal.II/numerics/data_postprocessor.h>
 
+#include <algorithm>
+#include <bitset>
 #include <fstream>
+#include <functional>
+#include <limits>
 #include <map>
+#include <sstream>
 
 namespace igabde
 {
@@ -108,6 +113,63 @@ namespace igabde
         AssertThrow(cell_and_point.first.state() == IteratorState::valid,
                     ExcMessage("The point lies outside the body."));
         return cell_and_point;
+      }
+
+      /**
+       * Position of the unit point @p unit on the sub-entity of the unit cell
+       * whose coordinates d with bit d of @p fixed set are fixed to bit d of
+       * @p values (0 or 1): the map @p exact if no vertex of the entity is
+       * marked in @p singular (deal.II's lexicographic vertex numbers), else
+       * the transfinite interpolation of the entity's boundary (Gordon and
+       * Hall), recursively: sum over the non-empty sets S of free directions,
+       * with sign (-1)^(|S|+1), of the blended positions on the entities with
+       * S fixed at 0 and 1. A line touching a singular vertex is its chord, a
+       * quadrilateral the Coons patch of its four lines, and so on.
+       */
+      template <int dim>
+      Point<dim>
+      transfinite_position(
+        const std::function<Point<dim>(const Point<dim> &)>          &exact,
+        const std::array<bool, GeometryInfo<dim>::vertices_per_cell> &singular,
+        const Point<dim>                                             &unit,
+        const unsigned int                                            fixed,
+        const unsigned int                                            values)
+      {
+        Point<dim> on_entity = unit;
+        for (unsigned int d = 0; d < dim; ++d)
+          if (fixed & (1u << d))
+            on_entity[d] = (values >> d) & 1u;
+        const unsigned int all     = (1u << dim) - 1;
+        const unsigned int free    = all & ~fixed;
+        bool               touches = false;
+        for (unsigned int v = 0; v <= all; ++v)
+          touches = touches || ((v & fixed) == values && singular[v]);
+        if (!touches || free == 0)
+          return exact(on_entity);
+
+        Point<dim> x;
+        for (unsigned int S = free; S != 0; S = (S - 1) & free)
+          {
+            const double sign =
+              (std::bitset<dim>(S).count() % 2 == 1) ? 1. : -1.;
+            // Every assignment c of 0 or 1 to the directions in S.
+            for (unsigned int c = S;; c = (c - 1) & S)
+              {
+                double weight = sign;
+                for (unsigned int d = 0; d < dim; ++d)
+                  if (S & (1u << d))
+                    weight *=
+                      (c & (1u << d)) ? on_entity[d] : 1. - on_entity[d];
+                x += weight * transfinite_position<dim>(exact,
+                                                        singular,
+                                                        unit,
+                                                        fixed | S,
+                                                        values | c);
+                if (c == 0)
+                  break;
+              }
+          }
+        return x;
       }
     } // namespace
 
@@ -199,8 +261,85 @@ namespace igabde
           euler_vector[i]        = x[this->dof_components[i]];
           this->dof_locations[i] = x;
         }
+
+      // Where the NURBS map is singular (det J = 0 at a cell vertex: the
+      // 180-degree corner where the two arcs of the Hertz quarter disc meet,
+      // the doubled control point at the corner (L, L) of the plate with
+      // hole), no interpolant of the map is a valid element: its Jacobian at
+      // that vertex is interpolation error of either sign (for FE_Q(2) and
+      // FE_Q(3) on V5's mesh it is negative: a folded sliver). Every line,
+      // face and cell touching such a vertex takes instead the transfinite
+      // interpolation of its boundary (Coons), lines the straight chord of
+      // their end points: the corner of the cell is then the convex corner
+      // of two chords, and everything that does not touch the vertex keeps
+      // the interpolated NURBS map, so the neighbours do not change. A
+      // vertex is singular when |det J| there is round-off next to its value
+      // at the cell centre (the builders' regular vertices have ratios of
+      // order one, singular ones about 1e-16).
+      {
+        const auto                          &base = fe.base_element(0);
+        std::vector<types::global_dof_index> local(fe.n_dofs_per_cell());
+        std::array<bool, GeometryInfo<dim>::vertices_per_cell> singular;
+        for (const auto &cell : dof_handler.active_cell_iterators())
+          {
+            const double centre =
+              std::abs(determinant(patch.jacobian(to_patch(cell->center()))));
+            for (const auto v : cell->vertex_indices())
+              singular[v] = std::abs(determinant(patch.jacobian(
+                              to_patch(cell->vertex(v))))) <= 1e-8 * centre;
+            if (std::none_of(singular.begin(), singular.end(), [](bool b) {
+                  return b;
+                }))
+              continue;
+            // The parametric cells are axis-parallel boxes.
+            const Point<dim> lower = cell->vertex(0);
+            const Point<dim> upper =
+              cell->vertex(GeometryInfo<dim>::vertices_per_cell - 1);
+            const auto exact = [&](const Point<dim> &unit) {
+              Point<dim> xi;
+              for (unsigned int d = 0; d < dim; ++d)
+                xi[d] = lower[d] + unit[d] * (upper[d] - lower[d]);
+              return patch.value(to_patch(xi));
+            };
+            cell->get_dof_indices(local);
+            for (unsigned int i = 0; i < local.size(); ++i)
+              {
+                const auto [component, k] = fe.system_to_component_index(i);
+                const Point<dim> x =
+                  transfinite_position<dim>(exact,
+                                            singular,
+                                            base.unit_support_point(k),
+                                            0u,
+                                            0u);
+                euler_vector[local[i]]        = x[component];
+                this->dof_locations[local[i]] = x;
+              }
+          }
+      }
       mapping =
         std::make_unique<MappingFEField<dim, dim>>(dof_handler, euler_vector);
+
+      // A geometry that is not one-to-one would give wrong integrals,
+      // probes and output without any other sign (deal.II only checks in
+      // Debug builds): check it at the quadrature and output points.
+      {
+        const unsigned int n_sub =
+          std::max(fe.degree, this->settings.output_subdivisions);
+        std::vector<Point<dim>> points =
+          QIterated<dim>(QTrapezoid<1>(), n_sub).get_points();
+        const auto gauss = QGauss<dim>(fe.degree + 1).get_points();
+        points.insert(points.end(), gauss.begin(), gauss.end());
+        const auto [ratio, centre] = min_jacobian_ratio(points);
+        std::ostringstream message;
+        message << "The FE_Q geometry of the body is not valid: the Jacobian "
+                   "of the cell around ("
+                << centre << ") changes sign (det ratio " << ratio
+                << "): the FE_Q(" << fe.degree
+                << ") interpolation of the NURBS map folds there. Use a "
+                   "finer mesh (Subdivisions, Refinements), a lower "
+                   "Discretization/Degree or Discretization/Type = nurbs.";
+        AssertThrow(ratio > 0., ExcMessage(message.str()));
+      }
 
       // Supports on patch faces, exact for constant values.
       this->constraints.clear();
@@ -228,6 +367,72 @@ namespace igabde
       DynamicSparsityPattern dsp(this->n_unknowns);
       DoFTools::make_sparsity_pattern(dof_handler, dsp);
       this->sparsity.copy_from(dsp);
+    }
+
+
+
+    template <int dim>
+    std::pair<double, Point<dim>>
+    LagrangeBody<dim>::min_jacobian_ratio(
+      const std::vector<Point<dim>> &unit_points) const
+    {
+      // From the nodes and the shape gradients directly, not through
+      // FEValues, which stops a Debug build at the first bad point.
+      const auto        &base   = fe.base_element(0);
+      const unsigned int n_base = base.n_dofs_per_cell();
+      Point<dim>         middle;
+      for (unsigned int d = 0; d < dim; ++d)
+        middle[d] = 0.5;
+      std::vector<double>                      middle_values(n_base);
+      std::vector<Tensor<1, dim>>              middle_gradients(n_base);
+      std::vector<std::vector<Tensor<1, dim>>> gradients(
+        unit_points.size(),
+        std::vector<Tensor<1, dim>>(n_base));
+      for (unsigned int k = 0; k < n_base; ++k)
+        {
+          middle_values[k]    = base.shape_value(k, middle);
+          middle_gradients[k] = base.shape_grad(k, middle);
+          for (unsigned int q = 0; q < unit_points.size(); ++q)
+            gradients[q][k] = base.shape_grad(k, unit_points[q]);
+        }
+      const auto jacobian = [&](const std::vector<Point<dim>>     &nodes,
+                                const std::vector<Tensor<1, dim>> &grads) {
+        Tensor<2, dim> J;
+        for (unsigned int k = 0; k < n_base; ++k)
+          J += outer_product(static_cast<const Tensor<1, dim> &>(nodes[k]),
+                             grads[k]);
+        return determinant(J);
+      };
+
+      std::pair<double, Point<dim>> worst(
+        std::numeric_limits<double>::infinity(),
+        Point<dim>());
+      std::vector<types::global_dof_index> local(fe.n_dofs_per_cell());
+      std::vector<Point<dim>>              nodes(n_base);
+      for (const auto &cell : dof_handler.active_cell_iterators())
+        {
+          cell->get_dof_indices(local);
+          for (unsigned int i = 0; i < local.size(); ++i)
+            {
+              const auto [component, k] = fe.system_to_component_index(i);
+              nodes[k][component]       = euler_vector[local[i]];
+            }
+          // Relative to |det J| at the centre, so that a cell inverted as a
+          // whole counts as negative too.
+          const double centre = std::abs(jacobian(nodes, middle_gradients));
+          for (unsigned int q = 0; q < unit_points.size(); ++q)
+            {
+              const double ratio = jacobian(nodes, gradients[q]) / centre;
+              if (!(ratio >= worst.first)) // NaN (centre = 0) is worst
+                {
+                  worst.first  = ratio;
+                  worst.second = Point<dim>();
+                  for (unsigned int k = 0; k < n_base; ++k)
+                    worst.second += middle_values[k] * nodes[k];
+                }
+            }
+        }
+      return worst;
     }
 
 

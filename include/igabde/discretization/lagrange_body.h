@@ -14,6 +14,8 @@
 #include <deal.II/fe/mapping_fe_field.h>
 
 #include <memory>
+#include <utility>
+#include <vector>
 
 namespace igabde
 {
@@ -61,6 +63,16 @@ namespace igabde
 
       double
       measure() const override;
+
+      /**
+       * @brief The smallest ratio det J(p) / |det J(centre)| of the cell maps
+       * over the points @p unit_points of the unit cell and all cells, and
+       * the centre of the cell where it occurs. Positive exactly when no
+       * cell is inverted at those points (a valid geometry); setup() checks
+       * it at the quadrature and output points.
+       */
+      std::pair<double, Point<dim>>
+      min_jacobian_ratio(const std::vector<Point<dim>> &unit_points) const;
 
     protected:
       void
