@@ -150,3 +150,34 @@ TEST(NoSilentWrongAnswer, ParameterSetTwiceInOneFileWarnsWithBothLines)
                        "again (first at line 4)"))
     << r.output;
 }
+
+
+
+TEST(NoSilentWrongAnswer, HertzZoneBelowThePairSpacingIsAWarning)
+{
+  // V5: Johnson's half-width a = sqrt(4 P R / (pi E*)) = 1.49 for P = 240,
+  // R = 8, E* = 1000 / 0.91, against a pair spacing near the axis of about
+  // R (pi / 2) / 64 = 0.2: several pairs inside the zone. With the load
+  // x 1e-4, a = 0.0149 is a tenth of one spacing: one pair carries the load
+  // and the Hertz figures measure the spacing; the run must say so.
+  const Scratch     s("hertz-resolution");
+  const std::string quiet   = " --quiet --set 'Output/Write vtu=false'";
+  const auto        nominal = run_igabde(scene("v5-hertz-2d.prm") + quiet +
+                                    " --set 'Output/Directory=nominal'",
+                                  s.path);
+  ASSERT_EQ(nominal.status, 0) << nominal.output;
+  EXPECT_FALSE(contains(read_file(cli::join(s.path, "nominal/summary.json")),
+                        "not resolved by the pairs"));
+  const auto tiny = run_igabde(
+    scene("v5-hertz-2d.prm") + quiet +
+      " --set 'Body 1/Tractions=3: vector 0, -0.0015'"
+      " --set 'Checks/Hertz line load=0.024' --set 'Output/Directory=tiny'",
+    s.path);
+  ASSERT_EQ(tiny.status, 0) << tiny.output;
+  const std::string summary = read_file(cli::join(s.path, "tiny/summary.json"));
+  EXPECT_TRUE(contains(summary, "not resolved by the pairs")) << summary;
+  EXPECT_TRUE(
+    contains(tiny.output + read_file(cli::join(s.path, "tiny/log.txt")),
+             "Refine the contact face"))
+    << tiny.output;
+}
