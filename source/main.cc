@@ -59,7 +59,7 @@ int
 main(int argc, char **argv)
 {
   using namespace dealii;
-  igabde::base::prefer_light_mpi_singleton();
+  const igabde::base::LightMpiSingleton light_mpi_singleton;
   // All cores for the task-based parts (WorkStream assembly, the parallel
   // multi-RHS solves); one MPI rank is the supported case so far.
   Utilities::MPI::MPI_InitFinalize mpi(argc,

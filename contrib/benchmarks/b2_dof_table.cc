@@ -25,12 +25,12 @@ int
 main(int argc, char **argv)
 {
   // MUMPS (the direct solver) runs on MPI_COMM_SELF.
-  igabde::base::prefer_light_mpi_singleton();
+  const igabde::base::LightMpiSingleton    light_mpi_singleton;
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   using namespace dealii;
   using namespace igabde;
   const std::array<std::array<unsigned int, 3>, 5> meshes = {
-    {{2, 2, 2}, {4, 4, 4}, {8, 8, 8}, {8, 16, 8}, {8, 32, 8}}};
+    {{{2, 2, 2}}, {{4, 4, 4}}, {{8, 8, 8}}, {{8, 16, 8}}, {{8, 32, 8}}}};
 
   std::cout << "| mesh (r x theta x y) | elements per beam | NURBS p=2 DOFs | "
                "FE_Q(2) DOFs | 20-node serendipity DOFs |\n"

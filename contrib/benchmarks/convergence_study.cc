@@ -22,7 +22,7 @@ int
 main(int argc, char **argv)
 {
   // MUMPS (the direct solver) runs on MPI_COMM_SELF.
-  igabde::base::prefer_light_mpi_singleton();
+  const igabde::base::LightMpiSingleton    light_mpi_singleton;
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   using namespace igabde;
   if (argc != 6)

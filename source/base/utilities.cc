@@ -2,7 +2,9 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <sstream>
+#include <system_error>
 
 namespace igabde
 {
@@ -168,8 +170,7 @@ namespace igabde
     parse_point<3>(const std::string &, const std::string &);
 
 
-    void
-    prefer_light_mpi_singleton()
+    LightMpiSingleton::LightMpiSingleton()
     {
       for (const char *launcher_variable :
            {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_RANK", "PMI_SIZE"})
@@ -178,6 +179,28 @@ namespace igabde
       const int keep_user_value = 0;
       setenv("OMPI_MCA_ess_singleton_isolated", "1", keep_user_value);
       setenv("OMPI_MCA_pml", "ob1", keep_user_value);
+      if (std::getenv("OMPI_MCA_orte_tmpdir_base") != nullptr)
+        return;
+      const char *tmpdir = std::getenv("TMPDIR");
+      std::string pattern =
+        std::string(tmpdir != nullptr && *tmpdir != '\0' ? tmpdir : "/tmp") +
+        "/igabde-mpi-XXXXXX";
+      // Without a private base the run still works, only with the shared
+      // one: no reason to stop here.
+      if (mkdtemp(pattern.data()) == nullptr)
+        return;
+      session_base = pattern;
+      setenv("OMPI_MCA_orte_tmpdir_base", session_base.c_str(), 1);
+    }
+
+
+
+    LightMpiSingleton::~LightMpiSingleton()
+    {
+      if (session_base.empty())
+        return;
+      std::error_code ignored;
+      std::filesystem::remove_all(session_base, ignored);
     }
   } // namespace base
 } // namespace igabde

@@ -25,7 +25,7 @@ __asan_default_options()
 int
 main(int argc, char **argv)
 {
-  igabde::base::prefer_light_mpi_singleton();
+  const igabde::base::LightMpiSingleton    light_mpi_singleton;
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   ::testing::InitGoogleTest(&argc, argv);
   return RUN_ALL_TESTS();

@@ -77,19 +77,40 @@ namespace igabde
     exception_message(const ExceptionBase &e);
 
     /**
-     * @brief Called before MPI is initialised: a process started without an
-     * MPI launcher asks Open MPI for a light singleton.
+     * @brief Constructed before MPI is initialised and destroyed after it is
+     * finalised: a process started without an MPI launcher runs as a light
+     * Open MPI singleton in a session directory of its own.
      *
      * By default an Open MPI singleton starts a helper daemon and probes the
      * UCX network layer: 0.4 s of a 0.45 s process start-up on the
      * reference machine, for a process that only talks to itself (MUMPS and
      * Trilinos run on MPI_COMM_SELF). This sets
      * OMPI_MCA_ess_singleton_isolated = 1 and OMPI_MCA_pml = ob1 unless the
-     * user has set them. Under a launcher (mpirun, srun) nothing changes;
-     * other MPI implementations ignore the variables.
+     * user has set them.
+     *
+     * Isolated singletons all name their session directory jf.0/1 under the
+     * same base; at MPI_Finalize one process removes the directory another
+     * one is creating, and the other's MPI_Init fails (two runs started
+     * together, as ctest -j2 or a study driver does). Unless the user has
+     * set OMPI_MCA_orte_tmpdir_base, each process therefore gets a base of
+     * its own under TMPDIR (or /tmp), removed again by the destructor.
+     *
+     * Under a launcher (mpirun, srun) nothing changes; other MPI
+     * implementations ignore the variables.
      */
-    void
-    prefer_light_mpi_singleton();
+    class LightMpiSingleton
+    {
+    public:
+      LightMpiSingleton();
+      ~LightMpiSingleton();
+      LightMpiSingleton(const LightMpiSingleton &) = delete;
+      LightMpiSingleton &
+      operator=(const LightMpiSingleton &) = delete;
+
+    private:
+      /** The private session base this object created; empty if none. */
+      std::string session_base;
+    };
   } // namespace base
 } // namespace igabde
 
