@@ -107,18 +107,16 @@ namespace igabde
     {
       m = (settings.friction_coefficient > 0. ? dim : 1);
       TimerOutput::Scope t(timer, "contact: pairs");
-      const auto         slave = bodies[0]->surface_points(settings.slave_face);
-      AssertThrow(!slave.empty(),
-                  base::ExcInput(settings.context + ": Contact/Slave face " +
-                                 std::to_string(settings.slave_face) +
-                                 " of Body 1 has no contact points."));
       if (!obstacle)
         master_face =
           std::make_unique<BodyFace<dim>>(*bodies[1], settings.master_face);
       const ContactSurface<dim> &master =
         obstacle ? static_cast<const ContactSurface<dim> &>(*obstacle) :
                    *master_face;
-      pair_list = pairing->make_pairs(slave, master, settings.context);
+      pair_list = pairing->make_pairs(*bodies[0],
+                                      settings.slave_face,
+                                      master,
+                                      settings.context);
 
       // The path: penalty methods solve the full system (as ANSYS does);
       // the BDE takes the path asked for, or under auto the condensed one

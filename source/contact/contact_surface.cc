@@ -55,6 +55,46 @@ namespace igabde
 
 
     template <int dim>
+    discretization::FaceGrid<dim>
+    ContactSurface<dim>::face_grid() const
+    {
+      AssertThrow(false,
+                  ExcMessage(description() + " has no face coordinates."));
+      return {};
+    }
+
+
+
+    template <int dim>
+    discretization::FacePoint<dim>
+    ContactSurface<dim>::face_point(const Point<dim - 1> &) const
+    {
+      AssertThrow(false,
+                  ExcMessage(description() + " has no face coordinates."));
+      return {};
+    }
+
+
+
+    template <int dim>
+    discretization::FaceGrid<dim>
+    BodyFace<dim>::face_grid() const
+    {
+      return body.face_grid(face);
+    }
+
+
+
+    template <int dim>
+    discretization::FacePoint<dim>
+    BodyFace<dim>::face_point(const Point<dim - 1> &eta) const
+    {
+      return body.face_point(face, eta);
+    }
+
+
+
+    template <int dim>
     bool
     Obstacle<dim>::deformable() const
     {
@@ -117,6 +157,8 @@ namespace igabde
 
 
 
+    template class ContactSurface<2>;
+    template class ContactSurface<3>;
     template class BodyFace<2>;
     template class BodyFace<3>;
     template class Obstacle<2>;

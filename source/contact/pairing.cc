@@ -2,7 +2,12 @@
 
 #include <igabde/contact/pairing.h>
 
+#include <deal.II/base/quadrature_lib.h>
+
 #include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
 #include <sstream>
 
 namespace igabde
@@ -81,6 +86,53 @@ namespace igabde
        * the contact face's size).
        */
       template <int dim>
+      std::string
+      to_string(const Point<dim> &x)
+      {
+        std::ostringstream o;
+        o << x;
+        return o.str();
+      }
+
+
+
+      /// The refusal when the two contact faces do not face each other.
+      template <int dim>
+      std::string
+      not_facing(const std::string         &context,
+                 const Point<dim>          &location,
+                 const ContactSurface<dim> &master)
+      {
+        return context + ": the contact surfaces do not face each other at (" +
+               to_string(location) +
+               "): the outward normal of Body 1's contact face points "
+               "away from " +
+               master.description() +
+               (master.deformable() ?
+                  std::string("; check Contact/Slave face and "
+                              "Contact/Master face.") :
+                  std::string(" (check Body 2/Plane normal: it must "
+                              "point towards Body 1) and Contact/Slave "
+                              "face."));
+      }
+
+
+
+      /// The refusal of an initial penetration.
+      template <int dim>
+      std::string
+      penetrates(const std::string         &context,
+                 const ContactSurface<dim> &master,
+                 const double               gap)
+      {
+        return context + ": Body 1 initially penetrates " +
+               master.description() + " (gap " + std::to_string(gap) +
+               "); move the bodies apart.";
+      }
+
+
+
+      template <int dim>
       ContactPair<dim>
       make_pair(const discretization::SurfacePoint<dim> &s,
                 const discretization::SurfacePoint<dim> &m,
@@ -96,31 +148,11 @@ namespace igabde
         pair.op2               = m.op;
         const Tensor<1, dim> n = m.normal;
         AssertThrow(s.normal * n < 0.,
-                    base::ExcInput(
-                      context +
-                      ": the contact surfaces do not face each "
-                      "other at (" +
-                      [&] {
-                        std::ostringstream o;
-                        o << s.location;
-                        return o.str();
-                      }() +
-                      "): the outward normal of Body 1's contact face points "
-                      "away from " +
-                      master.description() +
-                      (master.deformable() ?
-                         std::string("; check Contact/Slave face and "
-                                     "Contact/Master face.") :
-                         std::string(" (check Body 2/Plane normal: it must "
-                                     "point towards Body 1) and Contact/Slave "
-                                     "face."))));
+                    base::ExcInput(not_facing(context, s.location, master)));
         pair.frame = local_frame<dim>(n);
         pair.gap   = (pair.x1 - pair.x2) * n;
         AssertThrow(pair.gap >= -1e-10 * size,
-                    base::ExcInput(context + ": Body 1 initially penetrates " +
-                                   master.description() + " (gap " +
-                                   std::to_string(pair.gap) +
-                                   "); move the bodies apart."));
+                    base::ExcInput(penetrates(context, master, pair.gap)));
         pair.gap = std::max(pair.gap, 0.);
         return pair;
       }
@@ -130,7 +162,24 @@ namespace igabde
 
     template <int dim>
     std::vector<ContactPair<dim>>
-    PairingStrategy<dim>::make_pairs(
+    PointPairing<dim>::make_pairs(const discretization::Body<dim> &slave_body,
+                                  const types::boundary_id         slave_face,
+                                  const ContactSurface<dim>       &master,
+                                  const std::string &context) const
+    {
+      const auto slave = slave_body.surface_points(slave_face);
+      AssertThrow(!slave.empty(),
+                  base::ExcInput(context + ": Contact/Slave face " +
+                                 std::to_string(slave_face) +
+                                 " of Body 1 has no contact points."));
+      return make_pairs(slave, master, context);
+    }
+
+
+
+    template <int dim>
+    std::vector<ContactPair<dim>>
+    PointPairing<dim>::make_pairs(
       const std::vector<discretization::SurfacePoint<dim>> &slave,
       const ContactSurface<dim>                            &master,
       const std::string                                    &context) const
@@ -224,10 +273,396 @@ namespace igabde
 
 
 
+    namespace
+    {
+      /**
+       * Closest-point projection on a deformable master face in its face
+       * coordinates: Gauss-Newton on |x(eta) - x|^2 from the nearest of
+       * the face's element corners and midpoints, clamped to the face.
+       */
+      template <int dim>
+      class FaceProjector
+      {
+      public:
+        FaceProjector(const ContactSurface<dim> &master,
+                      const std::string         &context)
+          : master(master)
+          , grid(master.face_grid())
+          , context(context)
+        {
+          std::array<std::vector<double>, dim - 1> coords;
+          unsigned int                             n = 1;
+          for (unsigned int k = 0; k < dim - 1; ++k)
+            {
+              const auto &b = grid.breaks[k];
+              for (unsigned int e = 0; e + 1 < b.size(); ++e)
+                {
+                  coords[k].push_back(b[e]);
+                  coords[k].push_back(0.5 * (b[e] + b[e + 1]));
+                }
+              coords[k].push_back(b.back());
+              n *= coords[k].size();
+              extent = std::max(extent, b.back() - b.front());
+            }
+          for (unsigned int i = 0; i < n; ++i)
+            {
+              Point<dim - 1> eta;
+              unsigned int   rest = i;
+              for (unsigned int k = 0; k < dim - 1; ++k)
+                {
+                  eta[k] = coords[k][rest % coords[k].size()];
+                  rest /= coords[k].size();
+                }
+              sample_eta.push_back(eta);
+              sample_x.push_back(master.face_point(eta).location);
+            }
+        }
+
+        /// The face coordinates of the point of the face closest to @p x.
+        Point<dim - 1>
+        project(const Point<dim> &x) const
+        {
+          unsigned int best = 0;
+          for (unsigned int i = 1; i < sample_x.size(); ++i)
+            if ((sample_x[i] - x).norm_square() <
+                (sample_x[best] - x).norm_square())
+              best = i;
+          Point<dim - 1> eta = sample_eta[best];
+          for (unsigned int it = 0; it < 100; ++it)
+            {
+              const auto           fp = master.face_point(eta);
+              const Tensor<1, dim> r  = x - fp.location;
+              Point<dim - 1>       next;
+              if (dim == 2)
+                next[0] = eta[0] + (fp.tangents[0] * r) /
+                                     fp.tangents[0].norm_square();
+              else
+                {
+                  const auto  &t   = fp.tangents;
+                  const double a00 = t[0] * t[0];
+                  const double a01 = t[0] * t[dim - 2];
+                  const double a11 = t[dim - 2] * t[dim - 2];
+                  const double b0  = t[0] * r;
+                  const double b1  = t[dim - 2] * r;
+                  const double det = a00 * a11 - a01 * a01;
+                  next[0]          = eta[0] + (a11 * b0 - a01 * b1) / det;
+                  next[dim - 2]    = eta[dim - 2] + (a00 * b1 - a01 * b0) / det;
+                }
+              for (unsigned int k = 0; k < dim - 1; ++k)
+                next[k] = std::clamp(next[k],
+                                     grid.breaks[k].front(),
+                                     grid.breaks[k].back());
+              const double step = (next - eta).norm();
+              eta               = next;
+              if (step <= 1e-14 * extent)
+                return eta;
+            }
+          AssertThrow(false,
+                      ExcMessage(context +
+                                 ": the closest point projection of (" +
+                                 to_string(x) + ") on " + master.description() +
+                                 " did not converge in 100 iterations."));
+          return eta;
+        }
+
+        const ContactSurface<dim>          &master;
+        const discretization::FaceGrid<dim> grid;
+
+      private:
+        const std::string           context;
+        double                      extent = 0.;
+        std::vector<Point<dim - 1>> sample_eta;
+        std::vector<Point<dim>>     sample_x;
+      };
+
+
+
+      /// The integrals of one slave basis function N_j.
+      template <int dim>
+      struct WeightedIntegrals
+      {
+        double                                   area = 0.;
+        double                                   gap  = 0.;
+        Tensor<1, dim>                           normal;
+        Tensor<1, dim>                           x1, x2;
+        std::map<types::global_dof_index, double> op1, op2;
+      };
+
+
+
+      /// Adds N_j R_A (for every A of @p op) times @p w to @p row, and
+      /// remembers the unknowns of each A in @p dofs.
+      template <int dim>
+      void
+      add_row(const discretization::PointOperator<dim> &op,
+              const double                              w,
+              std::map<types::global_dof_index, double> &row,
+              std::map<types::global_dof_index,
+                       std::array<types::global_dof_index, dim>> &dofs)
+      {
+        for (unsigned int b = 0; b < op.weights.size(); ++b)
+          if (op.weights[b] != 0.)
+            {
+              row[op.dofs[b][0]] += w * op.weights[b];
+              dofs[op.dofs[b][0]] = op.dofs[b];
+            }
+      }
+
+
+
+      /// The operator (1/A) row, without entries below round-off.
+      template <int dim>
+      discretization::PointOperator<dim>
+      make_operator(const std::map<types::global_dof_index, double> &row,
+                    const double                                     area,
+                    const std::map<types::global_dof_index,
+                                   std::array<types::global_dof_index, dim>>
+                      &dofs)
+      {
+        discretization::PointOperator<dim> op;
+        for (const auto &[key, value] : row)
+          if (std::abs(value / area) > 1e-14)
+            {
+              op.weights.push_back(value / area);
+              op.dofs.push_back(dofs.at(key));
+            }
+        return op;
+      }
+    } // namespace
+
+
+
+    template <int dim>
+    std::string
+    WeightedGapPairing<dim>::name() const
+    {
+      return "weighted-gap";
+    }
+
+
+
+    template <int dim>
+    std::vector<ContactPair<dim>>
+    WeightedGapPairing<dim>::make_pairs(
+      const discretization::Body<dim> &slave_body,
+      const types::boundary_id         slave_face,
+      const ContactSurface<dim>       &master,
+      const std::string               &context) const
+    {
+      constexpr unsigned int fd    = dim - 1;
+      const auto             sgrid = slave_body.face_grid(slave_face);
+      std::unique_ptr<FaceProjector<dim>> projector;
+      if (master.deformable())
+        projector = std::make_unique<FaceProjector<dim>>(master, context);
+      // Gauss rule exact for N_j R_B on flat faces (degree p_s + p_m per
+      // direction) with one point to spare for the measure.
+      const unsigned int master_degree =
+        projector ? projector->grid.degree : sgrid.degree;
+      const QGauss<1> rule((sgrid.degree + master_degree) / 2 + 2);
+
+      std::map<types::global_dof_index, WeightedIntegrals<dim>> integrals;
+      std::map<types::global_dof_index,
+               std::array<types::global_dof_index, dim>>
+        dofs1, dofs2;
+
+      // The master point facing the slave point @p x: location, normal and
+      // operator.
+      const auto facing = [&](const Point<dim> &x) {
+        discretization::FacePoint<dim> m;
+        if (projector)
+          m = master.face_point(projector->project(x));
+        else
+          {
+            const auto cp = master.closest_point(x, nullptr);
+            m.location    = cp.location;
+            m.normal      = cp.normal;
+          }
+        return m;
+      };
+
+      // Slave elements, one by one.
+      std::array<unsigned int, fd> n_elements;
+      unsigned int                 n_total = 1;
+      for (unsigned int k = 0; k < fd; ++k)
+        {
+          n_elements[k] = sgrid.breaks[k].size() - 1;
+          n_total *= n_elements[k];
+        }
+      for (unsigned int element = 0; element < n_total; ++element)
+        {
+          Point<fd>                                lo, hi;
+          std::array<std::vector<double>, fd>      cuts;
+          unsigned int                             rest = element;
+          for (unsigned int k = 0; k < fd; ++k)
+            {
+              const unsigned int e = rest % n_elements[k];
+              rest /= n_elements[k];
+              lo[k]   = sgrid.breaks[k][e];
+              hi[k]   = sgrid.breaks[k][e + 1];
+              cuts[k] = {lo[k], hi[k]};
+            }
+
+          // Cuts where the projection of the element's centre line in
+          // direction k crosses a master element edge.
+          if (projector)
+            for (unsigned int k = 0; k < fd; ++k)
+              {
+                const auto master_eta = [&](const double t) {
+                  Point<fd> eta = 0.5 * (lo + hi);
+                  eta[k]        = t;
+                  return projector->project(
+                    slave_body.face_point(slave_face, eta).location);
+                };
+                const Point<fd> at_lo = master_eta(lo[k]);
+                const Point<fd> at_hi = master_eta(hi[k]);
+                for (unsigned int c = 0; c < fd; ++c)
+                  {
+                    const auto  &mb  = projector->grid.breaks[c];
+                    const double tol = 1e-12 * (mb.back() - mb.front());
+                    for (unsigned int i = 1; i + 1 < mb.size(); ++i)
+                      {
+                        // Illinois (regula falsi) on master_eta(t)[c] = mb[i].
+                        double a = lo[k], b = hi[k];
+                        double fa = at_lo[c] - mb[i], fb = at_hi[c] - mb[i];
+                        if (!((fa > tol && fb < -tol) ||
+                              (fa < -tol && fb > tol)))
+                          continue;
+                        double t    = a;
+                        int    side = 0;
+                        for (unsigned int it = 0; it < 200; ++it)
+                          {
+                            t               = (fa * b - fb * a) / (fa - fb);
+                            const double ft = master_eta(t)[c] - mb[i];
+                            if (std::abs(ft) <=
+                                1e-14 * (mb.back() - mb.front()))
+                              break;
+                            if (ft * fb > 0.)
+                              {
+                                b  = t;
+                                fb = ft;
+                                if (side == -1)
+                                  fa *= 0.5;
+                                side = -1;
+                              }
+                            else
+                              {
+                                a  = t;
+                                fa = ft;
+                                if (side == 1)
+                                  fb *= 0.5;
+                                side = 1;
+                              }
+                          }
+                        cuts[k].push_back(t);
+                      }
+                  }
+                std::sort(cuts[k].begin(), cuts[k].end());
+                cuts[k].erase(std::unique(cuts[k].begin(),
+                                          cuts[k].end(),
+                                          [&](const double x, const double y) {
+                                            return y - x <=
+                                                   1e-13 * (hi[k] - lo[k]);
+                                          }),
+                              cuts[k].end());
+              }
+
+          // Every piece with the tensor Gauss rule.
+          std::array<unsigned int, fd> n_pieces;
+          unsigned int                 n_piece_total = 1;
+          for (unsigned int k = 0; k < fd; ++k)
+            {
+              n_pieces[k] = cuts[k].size() - 1;
+              n_piece_total *= n_pieces[k];
+            }
+          const unsigned int nq = rule.size();
+          unsigned int       nq_total = 1;
+          for (unsigned int k = 0; k < fd; ++k)
+            nq_total *= nq;
+          for (unsigned int piece = 0; piece < n_piece_total; ++piece)
+            for (unsigned int q = 0; q < nq_total; ++q)
+              {
+                Point<fd>    eta;
+                double       weight = 1.;
+                unsigned int pr = piece, qr = q;
+                for (unsigned int k = 0; k < fd; ++k)
+                  {
+                    const unsigned int i  = pr % n_pieces[k];
+                    const unsigned int iq = qr % nq;
+                    pr /= n_pieces[k];
+                    qr /= nq;
+                    const double a = cuts[k][i], b = cuts[k][i + 1];
+                    eta[k]         = a + (b - a) * rule.point(iq)[0];
+                    weight *= (b - a) * rule.weight(iq);
+                  }
+                const auto s = slave_body.face_point(slave_face, eta);
+                const auto m = facing(s.location);
+                AssertThrow(s.normal * m.normal < 0.,
+                            base::ExcInput(
+                              not_facing(context, s.location, master)));
+                const double dA = weight * s.measure;
+                const double g  = (s.location - m.location) * m.normal;
+                for (unsigned int a = 0; a < s.op.weights.size(); ++a)
+                  if (s.op.weights[a] != 0.)
+                    {
+                      const double w   = s.op.weights[a] * dA;
+                      auto        &in  = integrals[s.op.dofs[a][0]];
+                      in.area += w;
+                      in.gap += w * g;
+                      in.normal += w * m.normal;
+                      in.x1 += w * s.location;
+                      in.x2 += w * m.location;
+                      add_row<dim>(s.op, w, in.op1, dofs1);
+                      add_row<dim>(m.op, w, in.op2, dofs2);
+                    }
+              }
+        }
+
+      double total = 0.;
+      for (const auto &entry : integrals)
+        total += entry.second.area;
+      std::vector<ContactPair<dim>> pairs;
+      for (const auto &[key, in] : integrals)
+        {
+          // Basis functions of the body that vanish on the face have no
+          // integral; those of the face have a positive one (B-splines,
+          // FE_Q tensor-product bases).
+          if (in.area <= 1e-12 * total)
+            {
+              AssertThrow(in.area >= -1e-12 * total, ExcInternalError());
+              continue;
+            }
+          ContactPair<dim> pair;
+          pair.area          = in.area;
+          pair.x1            = Point<dim>(in.x1 / in.area);
+          pair.x2            = Point<dim>(in.x2 / in.area);
+          pair.frame         = local_frame<dim>(in.normal / in.normal.norm());
+          pair.gap           = in.gap / in.area;
+          pair.op1           = make_operator<dim>(in.op1, in.area, dofs1);
+          pair.op2           = make_operator<dim>(in.op2, in.area, dofs2);
+          pairs.push_back(pair);
+        }
+      AssertThrow(!pairs.empty(),
+                  base::ExcInput(context + ": Contact/Slave face " +
+                                 std::to_string(slave_face) +
+                                 " of Body 1 has no contact points."));
+      double size = 0.;
+      for (const auto &pair : pairs)
+        size = std::max(size, (pair.x1 - pairs[0].x1).norm());
+      for (auto &pair : pairs)
+        {
+          AssertThrow(pair.gap >= -1e-10 * size,
+                      base::ExcInput(penetrates(context, master, pair.gap)));
+          pair.gap = std::max(pair.gap, 0.);
+        }
+      return pairs;
+    }
+
+
+
     std::vector<std::string>
     available_pairing_strategies()
     {
-      return {"node-to-surface", "node-to-node"};
+      return {"node-to-surface", "node-to-node", "weighted-gap"};
     }
 
 
@@ -241,6 +676,8 @@ namespace igabde
         return std::make_unique<NodeToSurfacePairing<dim>>();
       if (name == "node-to-node")
         return std::make_unique<NodeToNodePairing<dim>>();
+      if (name == "weighted-gap")
+        return std::make_unique<WeightedGapPairing<dim>>();
 
       std::string names;
       for (const auto &n : available_pairing_strategies())
@@ -258,8 +695,10 @@ namespace igabde
     local_frame<2>(const Tensor<1, 2> &);
     template Tensor<2, 3>
     local_frame<3>(const Tensor<1, 3> &);
-    template class PairingStrategy<2>;
-    template class PairingStrategy<3>;
+    template class PointPairing<2>;
+    template class PointPairing<3>;
+    template class WeightedGapPairing<2>;
+    template class WeightedGapPairing<3>;
     template class NodeToNodePairing<2>;
     template class NodeToNodePairing<3>;
     template class NodeToSurfacePairing<2>;

@@ -22,6 +22,7 @@
 #include <limits>
 #include <map>
 #include <sstream>
+#include <tuple>
 
 namespace igabde
 {
@@ -513,6 +514,50 @@ namespace igabde
     IgaBody<dim>::surface_points(const types::boundary_id face) const
     {
       return surface_points(face, default_placement);
+    }
+
+
+
+    template <int dim>
+    FaceGrid<dim>
+    IgaBody<dim>::face_grid(const types::boundary_id face) const
+    {
+      AssertThrow(face < 2 * dim,
+                  ExcMessage("Body '" + this->description().name + "': face " +
+                             std::to_string(face) + " does not exist."));
+      FaceGrid<dim> grid;
+      for (unsigned int e = 0, k = 0; e < dim; ++e)
+        if (e != face / 2)
+          grid.breaks[k++] = breaks[e];
+      grid.degree = max_degree();
+      return grid;
+    }
+
+
+
+    template <int dim>
+    FacePoint<dim>
+    IgaBody<dim>::face_point(const types::boundary_id face,
+                             const Point<dim - 1>    &eta) const
+    {
+      const unsigned int d = face / 2;
+      Point<dim>         xi;
+      for (unsigned int e = 0, k = 0; e < dim; ++e)
+        xi[e] = (e == d ? (face % 2 == 0 ? breaks[d].front() : breaks[d].back()) :
+                          eta[k++]);
+      const Tensor<2, dim> J = geometry.jacobian(xi);
+      FacePoint<dim>       result;
+      result.location                   = geometry.value(xi);
+      std::tie(result.measure, result.normal) = face_measure_and_normal(face, J);
+      for (unsigned int e = 0, k = 0; e < dim; ++e)
+        if (e != d)
+          {
+            for (unsigned int c = 0; c < dim; ++c)
+              result.tangents[k][c] = J[c][e];
+            ++k;
+          }
+      result.op = parametric_point_operator(xi);
+      return result;
     }
 
 

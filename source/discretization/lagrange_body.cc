@@ -24,6 +24,7 @@
 
 #include <algorithm>
 #include <bitset>
+#include <cmath>
 #include <fstream>
 #include <functional>
 #include <limits>
@@ -220,7 +221,7 @@ namespace igabde
       // curved beam) is used with its last parametric direction reversed;
       // the two faces of that direction swap their boundary ids so that
       // every face keeps its patch face number.
-      const bool reflect = (patch.orientation() < 0);
+      reflect = (patch.orientation() < 0);
       if (reflect)
         for (const auto &cell : triangulation.active_cell_iterators())
           for (const auto f : cell->face_indices())
@@ -236,6 +237,24 @@ namespace igabde
       dof_handler.reinit(triangulation);
       dof_handler.distribute_dofs(fe);
       this->n_unknowns = dof_handler.n_dofs();
+
+      // The cells by span, for face_point(): mesh breaks are the patch's,
+      // mirrored in the last direction when the mesh runs it backwards.
+      for (unsigned int d = 0; d < dim; ++d)
+        {
+          mesh_breaks[d] = patch.breakpoints(d);
+          if (reflect && d == dim - 1)
+            {
+              for (auto &b : mesh_breaks[d])
+                b = patch.parametric_lower()[d] + patch.parametric_upper()[d] -
+                    b;
+              std::sort(mesh_breaks[d].begin(), mesh_breaks[d].end());
+            }
+        }
+      cell_of_span.clear();
+      for (const auto &cell : dof_handler.active_cell_iterators())
+        cell_of_span[nurbs::span_of_point<dim>(mesh_breaks, cell->center())] =
+          cell;
 
       // Geometry: the exact NURBS map at the support points.
       std::vector<Point<dim>> parametric(this->n_unknowns);
@@ -564,6 +583,98 @@ namespace igabde
           point.normal = normals[key] / normals[key].norm();
           result.push_back(point);
         }
+      return result;
+    }
+
+
+
+    template <int dim>
+    FaceGrid<dim>
+    LagrangeBody<dim>::face_grid(const types::boundary_id face) const
+    {
+      AssertThrow(face < 2 * dim,
+                  ExcMessage("Body '" + this->description().name + "': face " +
+                             std::to_string(face) + " does not exist."));
+      FaceGrid<dim> grid;
+      for (unsigned int e = 0, k = 0; e < dim; ++e)
+        if (e != face / 2)
+          grid.breaks[k++] = patch.breakpoints(e);
+      grid.degree = fe.degree;
+      return grid;
+    }
+
+
+
+    template <int dim>
+    FacePoint<dim>
+    LagrangeBody<dim>::face_point(const types::boundary_id face,
+                                  const Point<dim - 1>    &eta) const
+    {
+      const unsigned int d = face / 2;
+      // The parametric point of the patch, then of the mesh.
+      Point<dim> xi;
+      for (unsigned int e = 0, k = 0; e < dim; ++e)
+        xi[e] = (e == d ? (face % 2 == 0 ? patch.parametric_lower()[d] :
+                                           patch.parametric_upper()[d]) :
+                          eta[k++]);
+      if (reflect)
+        xi[dim - 1] = patch.parametric_lower()[dim - 1] +
+                      patch.parametric_upper()[dim - 1] - xi[dim - 1];
+      const auto it =
+        cell_of_span.find(nurbs::span_of_point<dim>(mesh_breaks, xi));
+      Assert(it != cell_of_span.end(), ExcInternalError());
+      const auto &cell = it->second;
+
+      // Unit coordinates in the (axis-aligned, parametric) cell.
+      const auto box = cell->bounding_box().get_boundary_points();
+      Point<dim> unit;
+      double     scale[dim];
+      for (unsigned int e = 0; e < dim; ++e)
+        {
+          scale[e] = 1. / (box.second[e] - box.first[e]);
+          unit[e]  = std::min(1., std::max(0., (xi[e] - box.first[e]) * scale[e]));
+        }
+      // On the face exactly, so that the functions of the other nodes
+      // vanish there.
+      unit[d] = std::round(unit[d]);
+      if (reflect)
+        scale[dim - 1] = -scale[dim - 1];
+
+      std::vector<types::global_dof_index> local(fe.n_dofs_per_cell());
+      cell->get_dof_indices(local);
+      const auto    &base = fe.base_element(0);
+      FacePoint<dim> result;
+      result.op.weights.resize(base.n_dofs_per_cell());
+      result.op.dofs.resize(base.n_dofs_per_cell());
+      Tensor<2, dim> J; // dx/dxi (patch coordinates)
+      for (unsigned int k = 0; k < base.n_dofs_per_cell(); ++k)
+        {
+          const double         value = base.shape_value(k, unit);
+          const Tensor<1, dim> grad  = base.shape_grad(k, unit);
+          result.op.weights[k]       = value;
+          for (unsigned int c = 0; c < dim; ++c)
+            {
+              const auto i            = local[fe.component_to_system_index(c, k)];
+              result.op.dofs[k][c]    = i;
+              result.location[c] += value * euler_vector[i];
+              for (unsigned int e = 0; e < dim; ++e)
+                J[c][e] += euler_vector[i] * grad[e] * scale[e];
+            }
+        }
+      // Outward normal along +-grad xi_d = J^-T e_d; dGamma = |det J|
+      // |J^-T e_d| deta.
+      const Tensor<2, dim> G    = transpose(invert(J));
+      Tensor<1, dim>       g    = G * Tensor<1, dim>(Point<dim>::unit_vector(d));
+      const double         norm = g.norm();
+      result.normal             = (face % 2 == 0 ? -1. : 1.) / norm * g;
+      result.measure            = std::abs(determinant(J)) * norm;
+      for (unsigned int e = 0, k = 0; e < dim; ++e)
+        if (e != d)
+          {
+            for (unsigned int c = 0; c < dim; ++c)
+              result.tangents[k][c] = J[c][e];
+            ++k;
+          }
       return result;
     }
 

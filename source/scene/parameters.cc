@@ -1,6 +1,7 @@
 #include <igabde/base/utilities.h>
 
 #include <igabde/contact/contact_solver.h>
+#include <igabde/contact/pairing.h>
 
 #include <igabde/scene/geometry.h>
 #include <igabde/scene/parameters.h>
@@ -564,15 +565,23 @@ namespace igabde
                           "Where pairs sit on a NURBS surface: images of the "
                           "Greville abscissae, knot-grid points or Gauss "
                           "points. Lagrange surfaces use their nodes.");
-        prm.declare_entry("Pairing",
-                          "node-to-surface",
-                          Patterns::Selection("node-to-surface|node-to-node"),
-                          "How Body 1's contact points are paired with the "
-                          "surface they face. node-to-surface: the coincident "
-                          "point where the meshes match, else the closest "
-                          "point of the master face (exact on NURBS); "
-                          "node-to-node: matching meshes only (an error "
-                          "names the first point without a partner).");
+        std::string pairings;
+        for (const auto &name : contact::available_pairing_strategies())
+          pairings += (pairings.empty() ? "" : "|") + name;
+        prm.declare_entry(
+          "Pairing",
+          "node-to-surface",
+          Patterns::Selection(pairings),
+          "How Body 1's contact face is paired with the surface it faces. "
+          "node-to-surface: Body 1's points (Pair placement) with the "
+          "coincident point where the meshes match, else the closest point "
+          "of the master face (exact on NURBS); node-to-node: matching "
+          "meshes only (an error names the first point without a partner); "
+          "weighted-gap: one pair per basis function N_j of Body 1's face "
+          "(mortar-like), its gap, slip and operators integrated against "
+          "N_j over the face with the master side found by projection, "
+          "tributary area int N_j dGamma: transmits a uniform pressure "
+          "exactly on non-matching meshes.");
         prm.declare_entry("Tolerance",
                           "1e-10",
                           Patterns::Double(0.),
@@ -912,6 +921,14 @@ namespace igabde
                                      (body == &body1 ? "Body 1" : "Body 2") +
                                      "/Tractions: 'exact' needs Exact "
                                      "solution/Type other than none."));
+      AssertThrow(contact.pairing != "weighted-gap" ||
+                    contact.pair_placement == "greville",
+                  base::ExcInput(
+                    f + "Contact/Pair placement = " + contact.pair_placement +
+                    " places point pairs, but Contact/Pairing = weighted-gap "
+                    "has one pair per basis function of the slave face; "
+                    "remove Contact/Pair placement or use Pairing = "
+                    "node-to-surface."));
       if (contact.enabled)
         {
           // The contact faces must exist on the bodies that carry them.

@@ -52,6 +52,20 @@ namespace igabde
       virtual discretization::SurfacePoint<dim>
       closest_point(const Point<dim>                        &location,
                     const discretization::SurfacePoint<dim> *nearest) const = 0;
+
+      /**
+       * @brief The element grid of a deformable surface in its face
+       * coordinates (Body::face_grid()); an obstacle has none and throws.
+       */
+      virtual discretization::FaceGrid<dim>
+      face_grid() const;
+
+      /**
+       * @brief The point of a deformable surface at face coordinates
+       * @p eta (Body::face_point()); an obstacle throws.
+       */
+      virtual discretization::FacePoint<dim>
+      face_point(const Point<dim - 1> &eta) const;
     };
 
 
@@ -80,6 +94,12 @@ namespace igabde
       closest_point(
         const Point<dim>                        &location,
         const discretization::SurfacePoint<dim> *nearest) const override;
+
+      discretization::FaceGrid<dim>
+      face_grid() const override;
+
+      discretization::FacePoint<dim>
+      face_point(const Point<dim - 1> &eta) const override;
 
     private:
       const discretization::Body<dim>               &body;

@@ -5,6 +5,7 @@
 
 #include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>
+#include <deal.II/base/types.h>
 
 #include <memory>
 #include <string>
@@ -21,7 +22,9 @@ namespace igabde
      * surface it faces, with the local frame (rows: normal, tangents; the
      * normal is the facing surface's outward normal, pointing into Body 1),
      * the initial normal gap and the share of a uniform pressure the pair
-     * carries.
+     * carries. A weighted-gap pair is a basis function of Body 1's face:
+     * x1, x2 and the gap are then its weighted means and op1, op2 the
+     * weighted means of the point operators over its support.
      */
     template <int dim>
     struct ContactPair
@@ -36,11 +39,12 @@ namespace igabde
     };
 
     /**
-     * @brief How Body 1's contact points are paired with the surface they
-     * face. Implementations: NodeToNodePairing ("node-to-node", matching
-     * surfaces), NodeToSurfacePairing ("node-to-surface", closest point).
-     * A new strategy is one class deriving from this one (it chooses the
-     * facing point of a slave point on a deformable surface) plus one line
+     * @brief How Body 1's contact face is paired with the surface it faces.
+     * Implementations: NodeToNodePairing ("node-to-node", matching
+     * surfaces), NodeToSurfacePairing ("node-to-surface", closest point),
+     * both PointPairing, and WeightedGapPairing ("weighted-gap", one pair
+     * per basis function of the slave face, mortar-like). A new strategy is
+     * one class deriving from this one (or from PointPairing) plus one line
      * in create_pairing_strategy().
      */
     template <int dim>
@@ -54,11 +58,41 @@ namespace igabde
       name() const = 0;
 
       /**
+       * @brief The pairs of the patch face @p slave_face of @p slave_body
+       * (Body 1) against @p master, frames from the master normal. Throws
+       * an input error, naming @p context, when the surfaces do not face
+       * each other or Body 1 initially penetrates.
+       */
+      virtual std::vector<ContactPair<dim>>
+      make_pairs(const discretization::Body<dim> &slave_body,
+                 const types::boundary_id         slave_face,
+                 const ContactSurface<dim>       &master,
+                 const std::string               &context) const = 0;
+    };
+
+
+
+    /**
+     * @brief Pairs of points: Body 1's candidate points
+     * (Body::surface_points()) each with the point of the master surface it
+     * faces, chosen by facing_point().
+     */
+    template <int dim>
+    class PointPairing : public PairingStrategy<dim>
+    {
+    public:
+      /// make_pairs() below on the points of Body::surface_points().
+      std::vector<ContactPair<dim>>
+      make_pairs(const discretization::Body<dim> &slave_body,
+                 const types::boundary_id         slave_face,
+                 const ContactSurface<dim>       &master,
+                 const std::string               &context) const override;
+
+      /**
        * @brief The pairs of the points @p slave (Body 1's contact face)
        * against @p master: on an obstacle the projection, on a deformable
        * surface the point facing_point() chooses; frames from the master
-       * normal. Throws an input error, naming @p context, when the surfaces
-       * do not face each other or Body 1 initially penetrates.
+       * normal.
        */
       std::vector<ContactPair<dim>>
       make_pairs(const std::vector<discretization::SurfacePoint<dim>> &slave,
@@ -84,7 +118,7 @@ namespace igabde
      * a deformable master face (matching meshes; an error otherwise).
      */
     template <int dim>
-    class NodeToNodePairing : public PairingStrategy<dim>
+    class NodeToNodePairing : public PointPairing<dim>
     {
     public:
       std::string
@@ -105,7 +139,7 @@ namespace igabde
      * on NURBS faces).
      */
     template <int dim>
-    class NodeToSurfacePairing : public PairingStrategy<dim>
+    class NodeToSurfacePairing : public PointPairing<dim>
     {
     public:
       std::string
@@ -121,8 +155,45 @@ namespace igabde
     };
 
     /**
+     * @brief Weighted gap (mortar-like): the contact pressure lives in the
+     * trace space of Body 1's contact face, one pair per basis function
+     * N_j of the face (NURBS basis of the face, or the FE_Q face basis).
+     *
+     * Integrals run over the slave face, the master side found by closest
+     * point projection of each quadrature point: tributary area
+     * A_j = int N_j dGamma; operators op1_j = int N_j R_A dGamma / A_j (a
+     * row of the face's mass matrix) and op2_j = int N_j R_B(pi(x)) dGamma
+     * / A_j, so that the pair's relative displacement is the N_j-weighted
+     * mean of u1 - u2(pi(x)) and its force p_j distributes as the pressure
+     * p_j / A_j N_j on both faces; gap g_j = int N_j g dGamma / A_j with g
+     * the pointwise normal gap; frame from the N_j-weighted mean of the
+     * master normals. Each slave element is cut where the projection
+     * crosses a master element edge (located along the element's centre
+     * lines, in every face direction), and every piece is integrated with
+     * Gauss rules exact for the product of the two polynomial bases: on
+     * flat faces with edges of the master grid along the slave's
+     * parametric lines (boxes, the V3 patch test) the integrals are exact
+     * and a uniform pressure is transmitted exactly; elsewhere the cuts
+     * are those of the centre lines.
+     */
+    template <int dim>
+    class WeightedGapPairing : public PairingStrategy<dim>
+    {
+    public:
+      std::string
+      name() const override;
+
+      std::vector<ContactPair<dim>>
+      make_pairs(const discretization::Body<dim> &slave_body,
+                 const types::boundary_id         slave_face,
+                 const ContactSurface<dim>       &master,
+                 const std::string               &context) const override;
+    };
+
+    /**
      * @brief The strategy @p name names ("node-to-node",
-     * "node-to-surface"); an input error listing them otherwise.
+     * "node-to-surface", "weighted-gap"); an input error listing them
+     * otherwise.
      */
     template <int dim>
     std::unique_ptr<PairingStrategy<dim>>

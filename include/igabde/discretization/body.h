@@ -82,6 +82,41 @@ namespace igabde
     };
 
     /**
+     * @brief A point of a patch face given by its face coordinates (the
+     * patch's parametric coordinates without the face's normal direction,
+     * in order): what the weighted-gap pairing integrates with.
+     */
+    template <int dim>
+    struct FacePoint
+    {
+      /// Physical location (m).
+      Point<dim> location;
+      /// Outward unit normal of the body.
+      Tensor<1, dim> normal;
+      /// Surface measure per unit face-coordinate measure: dGamma = measure
+      /// deta (m per unit parameter in 2D, m^2 in 3D).
+      double measure = 0.;
+      /// dx/deta_k (m per unit parameter), one per face coordinate.
+      std::array<Tensor<1, dim>, dim - 1> tangents;
+      /// Displacement / point-force operator; on the face only the trace
+      /// basis (the face's control points or nodes) is non-zero.
+      PointOperator<dim> op;
+    };
+
+    /**
+     * @brief The element grid of a patch face in its face coordinates.
+     */
+    template <int dim>
+    struct FaceGrid
+    {
+      /// Element breaks per face coordinate (ascending; the face is the
+      /// box from the first to the last break).
+      std::array<std::vector<double>, dim - 1> breaks;
+      /// Largest degree of the basis in the face coordinates.
+      unsigned int degree = 1;
+    };
+
+    /**
      * @brief A deformable body, discretised by NURBS or by Lagrange elements.
      *
      * This is the small interface the contact layer and the simulator see:
@@ -243,6 +278,22 @@ namespace igabde
       closest_surface_point(const types::boundary_id face,
                             const Point<dim>        &location,
                             const SurfacePoint<dim> &nearest) const;
+
+      /**
+       * @brief The element grid of the patch face @p face in its face
+       * coordinates (knot spans of the face, or the face's cells).
+       */
+      virtual FaceGrid<dim>
+      face_grid(const types::boundary_id face) const = 0;
+
+      /**
+       * @brief The point of the patch face @p face at face coordinates
+       * @p eta (inside the box of face_grid()): location, outward normal,
+       * surface measure, tangents and operator.
+       */
+      virtual FacePoint<dim>
+      face_point(const types::boundary_id face,
+                 const Point<dim - 1>    &eta) const = 0;
 
       /**
        * @brief Solves K u = f for every column, with homogeneous supports

@@ -106,6 +106,15 @@ namespace igabde
       std::vector<SurfacePoint<dim>>
       surface_points(const types::boundary_id face) const override;
 
+      /// @brief The face's knot spans in its parametric coordinates.
+      FaceGrid<dim>
+      face_grid(const types::boundary_id face) const override;
+
+      /// @brief The exact NURBS face at the parametric point @p eta.
+      FacePoint<dim>
+      face_point(const types::boundary_id face,
+                 const Point<dim - 1>    &eta) const override;
+
       /**
        * @brief Relative L2 error of the displacement and relative energy
        * error sqrt(int (s - s_h) : C^-1 : (s - s_h) / int s : C^-1 : s);

@@ -13,6 +13,8 @@
 #include <deal.II/fe/fe_system.h>
 #include <deal.II/fe/mapping_fe_field.h>
 
+#include <array>
+#include <map>
 #include <memory>
 #include <utility>
 #include <vector>
@@ -48,6 +50,22 @@ namespace igabde
 
       std::vector<SurfacePoint<dim>>
       surface_points(const types::boundary_id face) const override;
+
+      /**
+       * @brief The face's cells: the knot spans of the patch the mesh was
+       * made from, in the patch's parametric coordinates.
+       */
+      FaceGrid<dim>
+      face_grid(const types::boundary_id face) const override;
+
+      /**
+       * @brief The isoparametric face at @p eta: the cell holding the
+       * parametric point, FE_Q values there, the mapped location and the
+       * normal from the mapped Jacobian.
+       */
+      FacePoint<dim>
+      face_point(const types::boundary_id face,
+                 const Point<dim - 1>    &eta) const override;
 
       ErrorNorms
       compute_errors(const Vector<double>     &u,
@@ -90,6 +108,15 @@ namespace igabde
       /// Physical position of every support point (the MappingFEField data).
       Vector<double>                            euler_vector;
       std::unique_ptr<MappingFEField<dim, dim>> mapping;
+      /// Whether the mesh runs the patch's last parametric direction
+      /// backwards (a left-handed patch).
+      bool reflect = false;
+      /// Cell breaks of the mesh per direction (mesh coordinates).
+      std::array<std::vector<double>, dim> mesh_breaks;
+      /// The cell of each span of mesh_breaks (face_point()).
+      std::map<std::array<unsigned int, dim>,
+               typename DoFHandler<dim>::active_cell_iterator>
+        cell_of_span;
     };
   } // namespace discretization
 } // namespace igabde

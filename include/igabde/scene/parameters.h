@@ -211,7 +211,8 @@ namespace igabde
       unsigned int master_face = 3;
       /// Where pairs sit on a NURBS surface: greville, knots or gauss.
       std::string pair_placement = "greville";
-      /// Pairing strategy: "node-to-surface" or "node-to-node".
+      /// Pairing strategy: "node-to-surface", "node-to-node" or
+      /// "weighted-gap".
       std::string pairing = "node-to-surface";
       /// Natural-map residual tolerance relative to ||q||.
       double tolerance = 1e-10;
