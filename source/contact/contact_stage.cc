@@ -416,10 +416,24 @@ namespace igabde
         }
       for (unsigned int k = 0; k < na; ++k)
         rhs(nr + k) = problem.b(k);
-      const Eigen::FullPivLU<Eigen::MatrixXd> lu(A);
-      if (!lu.isInvertible())
-        return {p0, a0};
-      const Eigen::VectorXd x = lu.solve(rhs);
+      // Forces that load held unknowns only, on both sides, move nothing:
+      // they make A singular, and their share of p is not determined (point
+      // pairs show them as zero rows, left out above; weighted-gap pairs,
+      // whose operators spread over a face's mass-matrix row, mix them into
+      // several pairs). The minimum-norm solution leaves them out, so that
+      // no force goes into the supports without need; a regular A is
+      // solved as before.
+      Eigen::FullPivLU<Eigen::MatrixXd> lu(A);
+      lu.setThreshold(1e-12);
+      Eigen::VectorXd x;
+      if (lu.rank() < A.rows())
+        {
+          Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(A);
+          cod.setThreshold(1e-12);
+          x = cod.solve(rhs);
+        }
+      else
+        x = lu.solve(rhs);
       if (!x.allFinite())
         return {p0, a0};
       Eigen::VectorXd p1 = Eigen::VectorXd::Zero(problem.n_rows());

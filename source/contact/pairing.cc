@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <sstream>
 
@@ -334,8 +335,8 @@ namespace igabde
               const Tensor<1, dim> r  = x - fp.location;
               Point<dim - 1>       next;
               if (dim == 2)
-                next[0] = eta[0] + (fp.tangents[0] * r) /
-                                     fp.tangents[0].norm_square();
+                next[0] =
+                  eta[0] + (fp.tangents[0] * r) / fp.tangents[0].norm_square();
               else
                 {
                   const auto  &t   = fp.tangents;
@@ -381,10 +382,10 @@ namespace igabde
       template <int dim>
       struct WeightedIntegrals
       {
-        double                                   area = 0.;
-        double                                   gap  = 0.;
-        Tensor<1, dim>                           normal;
-        Tensor<1, dim>                           x1, x2;
+        double                                    area = 0.;
+        double                                    gap  = 0.;
+        Tensor<1, dim>                            normal;
+        Tensor<1, dim>                            x1, x2;
         std::map<types::global_dof_index, double> op1, op2;
       };
 
@@ -394,9 +395,9 @@ namespace igabde
       /// remembers the unknowns of each A in @p dofs.
       template <int dim>
       void
-      add_row(const discretization::PointOperator<dim> &op,
-              const double                              w,
-              std::map<types::global_dof_index, double> &row,
+      add_row(const discretization::PointOperator<dim>           &op,
+              const double                                        w,
+              std::map<types::global_dof_index, double>          &row,
               std::map<types::global_dof_index,
                        std::array<types::global_dof_index, dim>> &dofs)
       {
@@ -413,11 +414,11 @@ namespace igabde
       /// The operator (1/A) row, without entries below round-off.
       template <int dim>
       discretization::PointOperator<dim>
-      make_operator(const std::map<types::global_dof_index, double> &row,
-                    const double                                     area,
-                    const std::map<types::global_dof_index,
-                                   std::array<types::global_dof_index, dim>>
-                      &dofs)
+      make_operator(
+        const std::map<types::global_dof_index, double>          &row,
+        const double                                              area,
+        const std::map<types::global_dof_index,
+                       std::array<types::global_dof_index, dim>> &dofs)
       {
         discretization::PointOperator<dim> op;
         for (const auto &[key, value] : row)
@@ -490,9 +491,9 @@ namespace igabde
         }
       for (unsigned int element = 0; element < n_total; ++element)
         {
-          Point<fd>                                lo, hi;
-          std::array<std::vector<double>, fd>      cuts;
-          unsigned int                             rest = element;
+          Point<fd>                           lo, hi;
+          std::array<std::vector<double>, fd> cuts;
+          unsigned int                        rest = element;
           for (unsigned int k = 0; k < fd; ++k)
             {
               const unsigned int e = rest % n_elements[k];
@@ -574,7 +575,7 @@ namespace igabde
               n_pieces[k] = cuts[k].size() - 1;
               n_piece_total *= n_pieces[k];
             }
-          const unsigned int nq = rule.size();
+          const unsigned int nq       = rule.size();
           unsigned int       nq_total = 1;
           for (unsigned int k = 0; k < fd; ++k)
             nq_total *= nq;
@@ -591,7 +592,7 @@ namespace igabde
                     pr /= n_pieces[k];
                     qr /= nq;
                     const double a = cuts[k][i], b = cuts[k][i + 1];
-                    eta[k]         = a + (b - a) * rule.point(iq)[0];
+                    eta[k] = a + (b - a) * rule.point(iq)[0];
                     weight *= (b - a) * rule.weight(iq);
                   }
                 const auto s = slave_body.face_point(slave_face, eta);
@@ -604,8 +605,8 @@ namespace igabde
                 for (unsigned int a = 0; a < s.op.weights.size(); ++a)
                   if (s.op.weights[a] != 0.)
                     {
-                      const double w   = s.op.weights[a] * dA;
-                      auto        &in  = integrals[s.op.dofs[a][0]];
+                      const double w  = s.op.weights[a] * dA;
+                      auto        &in = integrals[s.op.dofs[a][0]];
                       in.area += w;
                       in.gap += w * g;
                       in.normal += w * m.normal;
@@ -620,6 +621,58 @@ namespace igabde
       double total = 0.;
       for (const auto &entry : integrals)
         total += entry.second.area;
+
+      // Basis functions of the face whose unknowns supports hold in every
+      // component: their pressure goes straight into the support, on both
+      // sides where Body 2 is held there too (a clamped edge lying in the
+      // contact face, as in B2), and their pairs then make the flexibility
+      // singular in the normal direction. As mortar methods do at a
+      // Dirichlet boundary of the slave side, each is merged into the
+      // nearest free function of the face (N_k + N_j: every integral
+      // above is linear in N_j, so the pairs' sums add up); the merged
+      // basis still sums to one, so a uniform pressure stays exact.
+      {
+        std::vector<types::global_dof_index> held, free;
+        for (const auto &[key, in] : integrals)
+          if (in.area > 1e-12 * total)
+            {
+              bool supported = true;
+              for (unsigned int c = 0; c < dim; ++c)
+                supported =
+                  supported && slave_body.is_supported(dofs1.at(key)[c]);
+              (supported ? held : free).push_back(key);
+            }
+        if (!free.empty())
+          for (const auto j : held)
+            {
+              const auto &in_j = integrals.at(j);
+              const auto  x_j  = in_j.x1 / in_j.area;
+              auto        best = free.front();
+              double      dist = std::numeric_limits<double>::max();
+              for (const auto k : free)
+                {
+                  const auto  &in_k = integrals.at(k);
+                  const double d    = (in_k.x1 / in_k.area - x_j).norm();
+                  if (d < dist)
+                    {
+                      dist = d;
+                      best = k;
+                    }
+                }
+              auto &in_k = integrals.at(best);
+              in_k.area += in_j.area;
+              in_k.gap += in_j.gap;
+              in_k.normal += in_j.normal;
+              in_k.x1 += in_j.x1;
+              in_k.x2 += in_j.x2;
+              for (const auto &[dof, value] : in_j.op1)
+                in_k.op1[dof] += value;
+              for (const auto &[dof, value] : in_j.op2)
+                in_k.op2[dof] += value;
+              integrals.erase(j);
+            }
+      }
+
       std::vector<ContactPair<dim>> pairs;
       for (const auto &[key, in] : integrals)
         {
@@ -632,13 +685,13 @@ namespace igabde
               continue;
             }
           ContactPair<dim> pair;
-          pair.area          = in.area;
-          pair.x1            = Point<dim>(in.x1 / in.area);
-          pair.x2            = Point<dim>(in.x2 / in.area);
-          pair.frame         = local_frame<dim>(in.normal / in.normal.norm());
-          pair.gap           = in.gap / in.area;
-          pair.op1           = make_operator<dim>(in.op1, in.area, dofs1);
-          pair.op2           = make_operator<dim>(in.op2, in.area, dofs2);
+          pair.area  = in.area;
+          pair.x1    = Point<dim>(in.x1 / in.area);
+          pair.x2    = Point<dim>(in.x2 / in.area);
+          pair.frame = local_frame<dim>(in.normal / in.normal.norm());
+          pair.gap   = in.gap / in.area;
+          pair.op1   = make_operator<dim>(in.op1, in.area, dofs1);
+          pair.op2   = make_operator<dim>(in.op2, in.area, dofs2);
           pairs.push_back(pair);
         }
       AssertThrow(!pairs.empty(),

@@ -306,6 +306,15 @@ namespace igabde
 
 
     template <int dim>
+    bool
+    Body<dim>::is_supported(const types::global_dof_index i) const
+    {
+      return constraints.is_constrained(i);
+    }
+
+
+
+    template <int dim>
     types::global_dof_index
     Body<dim>::n_dofs() const
     {

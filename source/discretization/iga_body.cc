@@ -543,12 +543,14 @@ namespace igabde
       const unsigned int d = face / 2;
       Point<dim>         xi;
       for (unsigned int e = 0, k = 0; e < dim; ++e)
-        xi[e] = (e == d ? (face % 2 == 0 ? breaks[d].front() : breaks[d].back()) :
-                          eta[k++]);
+        xi[e] =
+          (e == d ? (face % 2 == 0 ? breaks[d].front() : breaks[d].back()) :
+                    eta[k++]);
       const Tensor<2, dim> J = geometry.jacobian(xi);
       FacePoint<dim>       result;
-      result.location                   = geometry.value(xi);
-      std::tie(result.measure, result.normal) = face_measure_and_normal(face, J);
+      result.location = geometry.value(xi);
+      std::tie(result.measure, result.normal) =
+        face_measure_and_normal(face, J);
       for (unsigned int e = 0, k = 0; e < dim; ++e)
         if (e != d)
           {

@@ -246,8 +246,8 @@ namespace igabde
           if (reflect && d == dim - 1)
             {
               for (auto &b : mesh_breaks[d])
-                b = patch.parametric_lower()[d] + patch.parametric_upper()[d] -
-                    b;
+                b =
+                  patch.parametric_lower()[d] + patch.parametric_upper()[d] - b;
               std::sort(mesh_breaks[d].begin(), mesh_breaks[d].end());
             }
         }
@@ -632,7 +632,8 @@ namespace igabde
       for (unsigned int e = 0; e < dim; ++e)
         {
           scale[e] = 1. / (box.second[e] - box.first[e]);
-          unit[e]  = std::min(1., std::max(0., (xi[e] - box.first[e]) * scale[e]));
+          unit[e] =
+            std::min(1., std::max(0., (xi[e] - box.first[e]) * scale[e]));
         }
       // On the face exactly, so that the functions of the other nodes
       // vanish there.
@@ -654,8 +655,8 @@ namespace igabde
           result.op.weights[k]       = value;
           for (unsigned int c = 0; c < dim; ++c)
             {
-              const auto i            = local[fe.component_to_system_index(c, k)];
-              result.op.dofs[k][c]    = i;
+              const auto i         = local[fe.component_to_system_index(c, k)];
+              result.op.dofs[k][c] = i;
               result.location[c] += value * euler_vector[i];
               for (unsigned int e = 0; e < dim; ++e)
                 J[c][e] += euler_vector[i] * grad[e] * scale[e];
@@ -663,8 +664,8 @@ namespace igabde
         }
       // Outward normal along +-grad xi_d = J^-T e_d; dGamma = |det J|
       // |J^-T e_d| deta.
-      const Tensor<2, dim> G    = transpose(invert(J));
-      Tensor<1, dim>       g    = G * Tensor<1, dim>(Point<dim>::unit_vector(d));
+      const Tensor<2, dim> G = transpose(invert(J));
+      Tensor<1, dim>       g = G * Tensor<1, dim>(Point<dim>::unit_vector(d));
       const double         norm = g.norm();
       result.normal             = (face % 2 == 0 ? -1. : 1.) / norm * g;
       result.measure            = std::abs(determinant(J)) * norm;

@@ -193,6 +193,13 @@ namespace igabde
       bool
       is_held(const types::global_dof_index i) const;
 
+      /**
+       * @brief Whether unknown @p i is held by a support (not by a pin of a
+       * free rigid mode, which moves with that mode).
+       */
+      bool
+      is_supported(const types::global_dof_index i) const;
+
       /// Whether flexibility() uses a Schur complement.
       bool
       has_schur_complement() const;
