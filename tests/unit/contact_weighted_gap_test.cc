@@ -17,7 +17,8 @@
 // meshes are solved beside them and their error printed (doc/verification.md
 // quotes it); they are not exact, which the test checks too, so that the
 // weighted-gap result cannot come from a configuration where any pairing
-// passes.
+// passes (except NURBS slave 3 on master 2, where a symmetry makes them
+// exact: derived below and checked as well).
 
 #include <igabde/nurbs/geometry_builders.h>
 
@@ -30,9 +31,11 @@
 
 #include <gtest/gtest.h>
 
+#include "cli_helpers.h"
 #include <cmath>
 #include <iomanip>
 #include <iostream>
+#include <nlohmann/json.hpp>
 #include <sstream>
 
 namespace
@@ -116,7 +119,7 @@ namespace
     cs.pairing              = pairing;
     cs.progress             = false;
     std::ostringstream log;
-    TimerOutput timer(log, TimerOutput::never, TimerOutput::wall_times);
+    TimerOutput        timer(log, TimerOutput::never, TimerOutput::wall_times);
     contact::ContactStage<dim> stage(cs, bodies, nullptr, log);
     stage.build_pairs(timer);
     for (unsigned int b = 0; b < bodies.size(); ++b)
@@ -135,10 +138,9 @@ namespace
     result.n_pairs = pairs.size();
     for (unsigned int i = 0; i < pairs.size(); ++i)
       {
-        result.normal_error =
-          std::max(result.normal_error,
-                   std::abs(p(m * i) / pairs[i].area - 1.));
-        double t = 0.;
+        result.normal_error = std::max(result.normal_error,
+                                       std::abs(p(m * i) / pairs[i].area - 1.));
+        double t            = 0.;
         for (unsigned int k = 1; k < m; ++k)
           t += p(m * i + k) * p(m * i + k);
         result.tangential_error =
@@ -182,8 +184,23 @@ namespace
             EXPECT_EQ(weighted.n_pairs,
                       static_cast<unsigned int>(
                         std::pow(per_direction, dim - 1)));
-            // The meshes do not match: point pairs miss the patch test.
-            EXPECT_GT(closest.normal_error, 1e-3);
+            // Point pairs miss the patch test where the master's space is
+            // not integrated exactly by the slave's pair rule (points x_i,
+            // weights A_i): the master then receives sum_i R_B(x_i) A_i
+            // instead of int R_B. The exception, derived by hand: NURBS
+            // slave 3 on master 2. The rule on the Greville abscissae 0,
+            // 1/6, 1/2, 5/6, 1 integrates the slave's splines, hence all
+            // quadratics; the master's space is the quadratics plus
+            // (x - 1/2)_+^2, and the rule and the integral are both
+            // symmetric about 1/2 while (x - 1/2)_+^2 + (1/2 - x)_+^2 is a
+            // quadratic, so that function is integrated exactly too (in 3D
+            // the rule is the tensor product). There node-to-surface passes.
+            // FE_Q(2) slave 3 on master 2 fails: Simpson's rule on the
+            // middle third misses the master's kink at 1/2.
+            if (type == "nurbs" && n_slave == 3 && n_master == 2)
+              EXPECT_LE(closest.normal_error, 1e-6);
+            else
+              EXPECT_GT(closest.normal_error, 1e-3);
           }
   }
 } // namespace
@@ -200,4 +217,48 @@ TEST(ContactWeightedGap, PatchTestOnNonMatchingMeshes2D)
 TEST(ContactWeightedGap, PatchTestOnNonMatchingMeshes3D)
 {
   run_cases<3>();
+}
+
+
+
+// The same patch test through the scene file and the command line, as a user
+// selects it: prm/v3-contact-patch-2d.prm (2D NURBS, degree 2) with
+// Contact/Pairing = weighted-gap and 2 spans on 3, mu = 0.3, and the 3D scene
+// with FE_Q(2), 2 spans on 3 (node-to-surface misses both by 15-52 %). The
+// scene's own check, summary.json's checks.pressure_uniformity = max_i |p_i / p
+// - 1| against the applied pressure 1, must be at most 1e-6.
+TEST(ContactWeightedGap, PatchTestFromTheSceneFile)
+{
+  struct Case
+  {
+    std::string scene, type, slave, master;
+  };
+  for (const Case &c : {Case{"v3-contact-patch-2d.prm", "nurbs", "2", "3"},
+                        Case{"v3-contact-patch-3d.prm", "lagrange", "2", "3"}})
+    {
+      SCOPED_TRACE(c.scene);
+      const cli::ScratchFolder scratch("weighted-gap", "wg");
+      const std::string        scene =
+        cli::join(std::string(IGABDE_SOURCE_DIR), "prm/" + c.scene);
+      const auto run = cli::run_igabde(
+        "'" + scene +
+          "' --quiet --set 'Contact/Pairing=weighted-gap'"
+          " --set 'Contact/Friction coefficient=0.3'"
+          " --set 'Discretization/Type=" +
+          c.type +
+          "' --set 'Discretization/Refinements=0'"
+          " --set 'Body 1/Subdivisions=" +
+          c.slave + "' --set 'Body 2/Subdivisions=" + c.master +
+          "' --set 'Output/Directory=out' --set 'Output/Write vtu=false'",
+        scratch.path);
+      ASSERT_EQ(run.status, 0) << run.output;
+      const auto summary = nlohmann::json::parse(
+        cli::read_file(cli::join(scratch.path, "out/summary.json")));
+      EXPECT_LE(summary.at("checks").at("pressure_uniformity").get<double>(),
+                1e-6);
+      // One pair per basis function of the slave face: NURBS p = 2 on 2
+      // spans has 4, FE_Q(2) on 2 x 2 cells 5 x 5.
+      EXPECT_EQ(summary.at("n_contact_pairs").get<unsigned int>(),
+                c.type == "nurbs" ? 4u : 25u);
+    }
 }
