@@ -24,12 +24,19 @@ namespace igabde
           alpha_modes.emplace_back(b, k);
       result.G.resize(m * nc, alpha_modes.size());
       result.loads.resize(alpha_modes.size());
+      unsigned int n_h = 1;
+      for (const auto *body : bodies)
+        n_h = std::max(n_h, body->n_histories());
+      result.history_loads = Eigen::MatrixXd::Zero(alpha_modes.size(), n_h);
       for (unsigned int a = 0; a < alpha_modes.size(); ++a)
         {
           const auto [b, k] = alpha_modes[a];
           const auto  &mode = bodies[b]->free_rigid_modes()[k];
           const double sign = (b == 0 ? 1. : -1.);
           result.loads(a)   = mode * bodies[b]->load_vector();
+          for (unsigned int h = 0; h < bodies[b]->n_histories(); ++h)
+            result.history_loads(a, h) =
+              mode * bodies[b]->history_load_vector(h);
           for (unsigned int i = 0; i < nc; ++i)
             {
               const Tensor<1, dim> r =
@@ -93,9 +100,10 @@ namespace igabde
       // equilibrium R^T (f_ext + f_contact) = 0 joining the BDE system.
       RigidModeColumns modes =
         rigid_mode_columns<dim>(pair_list, bodies, m, log);
-      result.alpha_modes        = modes.alpha_modes;
-      result.rigid_mode_loads   = modes.loads;
-      const Eigen::MatrixXd &GL = modes.G;
+      result.alpha_modes              = modes.alpha_modes;
+      result.rigid_mode_loads         = modes.loads;
+      result.rigid_mode_history_loads = modes.history_loads;
+      const Eigen::MatrixXd &GL       = modes.G;
 
       // Pairs whose two points are both held by supports carry no
       // information: their flexibility rows and rigid-mode rows vanish

@@ -235,12 +235,13 @@ namespace igabde
           condensed.pairs.push_back(pair_list[keep[i]]);
           problem.G.middleRows(m * i, m) = modes.G.middleRows(m * keep[i], m);
         }
-      condensed.alpha_modes      = modes.alpha_modes;
-      condensed.rigid_mode_loads = modes.loads;
-      pair_list                  = condensed.pairs;
-      problem.n_contacts         = pair_list.size();
-      problem.n_components       = m;
-      problem.q                  = Eigen::VectorXd::Zero(m * pair_list.size());
+      condensed.alpha_modes              = modes.alpha_modes;
+      condensed.rigid_mode_loads         = modes.loads;
+      condensed.rigid_mode_history_loads = modes.history_loads;
+      pair_list                          = condensed.pairs;
+      problem.n_contacts                 = pair_list.size();
+      problem.n_components               = m;
+      problem.q = Eigen::VectorXd::Zero(m * pair_list.size());
       problem.mu.assign(pair_list.size(), settings.friction_coefficient);
       problem.name = settings.context;
       problem.b    = Eigen::VectorXd::Zero(modes.alpha_modes.size());
@@ -550,6 +551,17 @@ namespace igabde
                                   std::vector<Vector<double>> &u,
                                   TimerOutput                 &timer)
     {
+      return solve_step(std::vector<double>{load_factor}, u, timer);
+    }
+
+
+
+    template <int dim>
+    StepResult<dim>
+    ContactStage<dim>::solve_step(const std::vector<double>   &factors,
+                                  std::vector<Vector<double>> &u,
+                                  TimerOutput                 &timer)
+    {
       ContactProblem       &problem = condensed.problem;
       const bool            full    = static_cast<bool>(coupled);
       const Eigen::VectorXd U       = relative_displacement(u);
@@ -569,7 +581,13 @@ namespace igabde
             problem.q(m * i + s) =
               U(m * i + s) - previous_external(m * i + s) - carry(m * i + s);
         }
-      problem.b = -load_factor * condensed.rigid_mode_loads;
+      // The loads floating bodies must balance: every history at its
+      // factor.
+      problem.b = Eigen::VectorXd::Zero(condensed.rigid_mode_loads.size());
+      for (unsigned int h = 0;
+           h < factors.size() && h < condensed.rigid_mode_history_loads.cols();
+           ++h)
+        problem.b -= factors[h] * condensed.rigid_mode_history_loads.col(h);
 
       problem.p_previous = p;
 

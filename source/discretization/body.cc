@@ -134,23 +134,32 @@ namespace igabde
         }
       factorize_matrix(interface_dofs);
 
-      // Superposition: the external loads and the prescribed displacements
-      // are two load cases, scaled separately by the load path.
-      std::vector<Vector<double>> columns(1, load_rhs);
-
-      Vector<double> u_d(n_unknowns);
+      // Superposition: one load case per load history (history 0 the
+      // external loads of the load factors, 1 the prescribed displacements
+      // of the displacement factors, 2.. named histories), each scaled by
+      // its own factor along the load path.
+      const unsigned int          n_h = history_rhs.size();
+      std::vector<Vector<double>> columns(history_rhs);
+      std::vector<Vector<double>> lifts(n_h, Vector<double>(n_unknowns));
       for (types::global_dof_index i = 0; i < n_unknowns; ++i)
         if (prescribed_constraints.is_constrained(i))
-          u_d[i] = prescribed_constraints.get_inhomogeneity(i);
-      Vector<double> rhs_d(n_unknowns);
-      system_matrix.vmult(rhs_d, u_d);
-      rhs_d *= -1.;
-      columns.push_back(rhs_d);
-
+          {
+            const auto         it = prescribed_history.find(i);
+            const unsigned int h =
+              (it != prescribed_history.end() ? it->second : 1u);
+            AssertIndexRange(h, n_h);
+            lifts[h][i] = prescribed_constraints.get_inhomogeneity(i);
+          }
+      for (unsigned int h = 0; h < n_h; ++h)
+        {
+          Vector<double> rhs_d(n_unknowns);
+          system_matrix.vmult(rhs_d, lifts[h]);
+          columns[h] -= rhs_d;
+        }
       solve(columns);
-      u_load       = columns[0];
-      u_prescribed = columns[1];
-      u_prescribed += u_d;
+      u_history = columns;
+      for (unsigned int h = 0; h < n_h; ++h)
+        u_history[h] += lifts[h];
     }
 
 
@@ -354,7 +363,7 @@ namespace igabde
     const Vector<double> &
     Body<dim>::load_solution() const
     {
-      return u_load;
+      return u_history[0];
     }
 
 
@@ -363,7 +372,7 @@ namespace igabde
     const Vector<double> &
     Body<dim>::prescribed_solution() const
     {
-      return u_prescribed;
+      return u_history[1];
     }
 
 
@@ -373,6 +382,101 @@ namespace igabde
     Body<dim>::load_vector() const
     {
       return load_rhs;
+    }
+
+
+
+    template <int dim>
+    unsigned int
+    Body<dim>::n_histories() const
+    {
+      return history_rhs.size();
+    }
+
+
+
+    template <int dim>
+    const Vector<double> &
+    Body<dim>::history_solution(const unsigned int h) const
+    {
+      AssertIndexRange(h, u_history.size());
+      return u_history[h];
+    }
+
+
+
+    template <int dim>
+    const Vector<double> &
+    Body<dim>::history_load_vector(const unsigned int h) const
+    {
+      AssertIndexRange(h, history_rhs.size());
+      return history_rhs[h];
+    }
+
+
+
+    template <int dim>
+    Vector<double>
+    Body<dim>::external_solution(const std::vector<double> &factors) const
+    {
+      Vector<double> u(n_unknowns);
+      for (unsigned int h = 0; h < u_history.size() && h < factors.size(); ++h)
+        u.add(factors[h], u_history[h]);
+      return u;
+    }
+
+
+
+    template <int dim>
+    Vector<double>
+    Body<dim>::external_load_vector(const std::vector<double> &factors) const
+    {
+      Vector<double> f(n_unknowns);
+      for (unsigned int h = 0; h < history_rhs.size() && h < factors.size();
+           ++h)
+        f.add(factors[h], history_rhs[h]);
+      return f;
+    }
+
+
+
+    template <int dim>
+    void
+    Body<dim>::assemble_history_loads(
+      const std::function<void(const Tensor<1, dim> &,
+                               const std::vector<NeumannCondition<dim>> &,
+                               SparseMatrix<double> &,
+                               Vector<double> &)> &assemble,
+      const std::function<void(const PointLoad<dim> &, Vector<double> &)>
+        &point_load)
+    {
+      const BodyDescription<dim> &d   = description();
+      const unsigned int          n_h = d.n_histories();
+      history_rhs.assign(n_h, Vector<double>(n_unknowns));
+      SparseMatrix<double> scratch;
+      for (unsigned int h = 0; h < n_h; ++h)
+        {
+          std::vector<NeumannCondition<dim>> tractions;
+          for (const auto &t : d.tractions)
+            if (t.history == h)
+              tractions.push_back(t);
+          if (h == 0)
+            {
+              system_matrix.reinit(sparsity);
+              assemble(d.body_force, tractions, system_matrix, history_rhs[h]);
+            }
+          else if (!tractions.empty())
+            {
+              // K again, into a scratch matrix: only scenes with tractions
+              // on their own histories pay for it.
+              scratch.reinit(sparsity);
+              assemble(Tensor<1, dim>(), tractions, scratch, history_rhs[h]);
+            }
+          for (const auto &load : d.point_loads)
+            if (load.history == h)
+              point_load(load, history_rhs[h]);
+        }
+      load_rhs = history_rhs[0];
     }
 
 

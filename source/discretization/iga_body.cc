@@ -215,6 +215,7 @@ namespace igabde
       const std::string name = this->description().name;
       this->constraints.clear();
       this->prescribed_constraints.clear();
+      this->prescribed_history.clear();
       std::map<types::global_dof_index, double> values;
       for (const auto &bc : this->description().dirichlet)
         {
@@ -231,21 +232,36 @@ namespace igabde
                   const types::global_dof_index i  = dim * a + c;
                   const auto                    it = values.find(i);
                   if (it != values.end())
-                    // Equal to round-off of the values and of the body's
-                    // size (a prescribed zero against 1e-17 m agrees).
-                    AssertThrow(std::abs(it->second - bc.value[c]) <=
-                                  1e-12 * std::max({std::abs(bc.value[c]),
-                                                    std::abs(it->second),
-                                                    diameter}),
-                                ExcMessage(
-                                  "Body '" + name +
-                                  "': two supports prescribe different "
-                                  "values of component " +
-                                  std::to_string(c) +
-                                  " where their faces meet (face " +
-                                  std::to_string(bc.boundary_id) +
-                                  "); make them agree on the common edge."));
-                  values[i] = bc.value[c];
+                    {
+                      // Equal to round-off of the values and of the body's
+                      // size (a prescribed zero against 1e-17 m agrees).
+                      AssertThrow(std::abs(it->second - bc.value[c]) <=
+                                    1e-12 * std::max({std::abs(bc.value[c]),
+                                                      std::abs(it->second),
+                                                      diameter}),
+                                  ExcMessage(
+                                    "Body '" + name +
+                                    "': two supports prescribe different "
+                                    "values of component " +
+                                    std::to_string(c) +
+                                    " where their faces meet (face " +
+                                    std::to_string(bc.boundary_id) +
+                                    "); make them agree on the common edge."));
+                      // A non-zero value on two histories would follow
+                      // whichever came last.
+                      AssertThrow(bc.value[c] == 0. ||
+                                    this->prescribed_history[i] == bc.history,
+                                  ExcMessage(
+                                    "Body '" + name +
+                                    "': two supports prescribe component " +
+                                    std::to_string(c) +
+                                    " on different load histories where "
+                                    "their faces meet (face " +
+                                    std::to_string(bc.boundary_id) +
+                                    "); give them the same '@ history'."));
+                    }
+                  values[i]                   = bc.value[c];
+                  this->prescribed_history[i] = bc.history;
                 }
         }
       for (const auto &[i, v] : values)
@@ -287,9 +303,6 @@ namespace igabde
                                " does not exist; patch faces are 0.." +
                                std::to_string(2 * dim - 1) + "."));
 
-      this->system_matrix.reinit(this->sparsity);
-      this->load_rhs.reinit(this->n_unknowns);
-
       // Cells: p+1 (p+2 rational) Gauss points per direction; faces one
       // more.
       nurbs::NurbsValues<dim> cell_values(geometry,
@@ -302,19 +315,27 @@ namespace igabde
         QGauss<dim - 1>(n_quadrature_points_1d() + 1),
         update_values | update_quadrature_points | update_normal_vectors |
           update_JxW_values);
-      elasticity::assemble_system<dim>(parametric_mesh.begin_active(),
-                                       parametric_mesh.end(),
-                                       cell_values,
-                                       face_values,
-                                       desc.material,
-                                       desc.body_force,
-                                       desc.tractions,
-                                       this->system_matrix,
-                                       this->load_rhs);
-
-      // Point loads: P_A = R_A(xi_X) P (method.md, sec. 3).
-      for (const auto &load : desc.point_loads)
-        point_operator(load.location).distribute(load.force, this->load_rhs);
+      // One load vector per load history; K with history 0, which holds
+      // the body force.
+      this->assemble_history_loads(
+        [&](const Tensor<1, dim>                     &body_force,
+            const std::vector<NeumannCondition<dim>> &tractions,
+            SparseMatrix<double>                     &matrix,
+            Vector<double>                           &rhs) {
+          elasticity::assemble_system<dim>(parametric_mesh.begin_active(),
+                                           parametric_mesh.end(),
+                                           cell_values,
+                                           face_values,
+                                           desc.material,
+                                           body_force,
+                                           tractions,
+                                           matrix,
+                                           rhs);
+        },
+        // Point loads: P_A = R_A(xi_X) P (method.md, sec. 3).
+        [&](const PointLoad<dim> &load, Vector<double> &rhs) {
+          point_operator(load.location).distribute(load.force, rhs);
+        });
     }
 
 

@@ -363,6 +363,7 @@ namespace igabde
       // Supports on patch faces, exact for constant values.
       this->constraints.clear();
       this->prescribed_constraints.clear();
+      this->prescribed_history.clear();
       for (const auto &bc : this->description().dirichlet)
         {
           std::vector<bool> mask(bc.components.begin(), bc.components.end());
@@ -376,8 +377,22 @@ namespace igabde
                 this->constraints.add_line(i);
               if (!this->prescribed_constraints.is_constrained(i))
                 this->prescribed_constraints.add_line(i);
+              else
+                // A non-zero value on two histories would follow whichever
+                // came last.
+                AssertThrow(bc.value[this->dof_components[i]] == 0. ||
+                              this->prescribed_history[i] == bc.history,
+                            ExcMessage(
+                              "Body '" + this->description().name +
+                              "': two supports prescribe component " +
+                              std::to_string(this->dof_components[i]) +
+                              " on different load histories where their "
+                              "faces meet (face " +
+                              std::to_string(bc.boundary_id) +
+                              "); give them the same '@ history'."));
               this->prescribed_constraints
                 .set_inhomogeneity(i, bc.value[this->dof_components[i]]);
+              this->prescribed_history[i] = bc.history;
             }
         }
       this->constraints.close();
@@ -460,8 +475,6 @@ namespace igabde
     void
     LagrangeBody<dim>::assemble()
     {
-      this->system_matrix.reinit(this->sparsity);
-      this->load_rhs.reinit(this->n_unknowns);
       const auto &description = this->description();
 
       const elasticity::FEValuesEvaluator<dim> cell_values(
@@ -475,18 +488,24 @@ namespace igabde
         QGauss<dim - 1>(fe.degree + 1),
         update_values | update_quadrature_points | update_normal_vectors |
           update_JxW_values);
-      elasticity::assemble_system<dim>(dof_handler.begin_active(),
-                                       dof_handler.end(),
-                                       cell_values,
-                                       face_values,
-                                       description.material,
-                                       description.body_force,
-                                       description.tractions,
-                                       this->system_matrix,
-                                       this->load_rhs);
-
-      for (const auto &load : description.point_loads)
-        point_operator(load.location).distribute(load.force, this->load_rhs);
+      this->assemble_history_loads(
+        [&](const Tensor<1, dim>                     &body_force,
+            const std::vector<NeumannCondition<dim>> &tractions,
+            SparseMatrix<double>                     &matrix,
+            Vector<double>                           &rhs) {
+          elasticity::assemble_system<dim>(dof_handler.begin_active(),
+                                           dof_handler.end(),
+                                           cell_values,
+                                           face_values,
+                                           description.material,
+                                           body_force,
+                                           tractions,
+                                           matrix,
+                                           rhs);
+        },
+        [&](const PointLoad<dim> &load, Vector<double> &rhs) {
+          point_operator(load.location).distribute(load.force, rhs);
+        });
     }
 
 

@@ -26,26 +26,25 @@ namespace igabde
     template <int dim>
     typename LoadController<dim>::Outcome
     LoadController<dim>::advance(const unsigned int           step,
-                                 const double                 l0,
-                                 const double                 d0,
-                                 const double                 l1,
-                                 const double                 d1,
+                                 const std::vector<double>   &f0,
+                                 const std::vector<double>   &f1,
                                  std::vector<Vector<double>> &u,
                                  TimerOutput                 &timer)
     {
       Outcome outcome;
       // Targets still to reach, the next one last, with their depth: a
       // failed target at depth k is replaced by the midpoint and itself,
-      // both at depth k + 1.
-      std::vector<std::tuple<double, double, unsigned int>> targets = {
-        {l1, d1, 0}};
-      double l = l0, d = d0;
+      // both at depth k + 1. A target is the factor of every load history.
+      std::vector<std::pair<std::vector<double>, unsigned int>> targets = {
+        {f1, 0}};
+      std::vector<double> f = f0;
+      f.resize(f1.size(), 0.);
       while (!targets.empty())
         {
-          const auto [lt, dt, depth] = targets.back();
-          const auto state           = stage.save_state();
-          u                          = external(lt, dt);
-          outcome.last               = stage.solve_step(lt, u, timer);
+          const auto [ft, depth] = targets.back();
+          const auto state       = stage.save_state();
+          u                      = external(ft);
+          outcome.last           = stage.solve_step(ft, u, timer);
           outcome.iterations += outcome.last.iterations;
           ++outcome.contact_solves;
           if (outcome.last.converged)
@@ -57,8 +56,7 @@ namespace igabde
                             "condition: " +
                             outcome.last.first_violation));
               targets.pop_back();
-              l = lt;
-              d = dt;
+              f = ft;
               continue;
             }
           stage.restore_state(state);
@@ -68,8 +66,11 @@ namespace igabde
                  "(cut "
               << depth + 1 << " of at most " << max_cuts << ")" << std::endl;
           ++outcome.cuts;
-          std::get<2>(targets.back()) = depth + 1;
-          targets.emplace_back(0.5 * (l + lt), 0.5 * (d + dt), depth + 1);
+          targets.back().second = depth + 1;
+          std::vector<double> middle(ft.size());
+          for (unsigned int h = 0; h < ft.size(); ++h)
+            middle[h] = 0.5 * (f[h] + ft[h]);
+          targets.emplace_back(middle, depth + 1);
         }
       outcome.success = true;
       return outcome;

@@ -14,6 +14,23 @@ namespace igabde
 {
   namespace scene
   {
+    namespace
+    {
+      /// Splits "entry @ history" into the entry and the history name
+      /// (empty when there is no '@').
+      std::pair<std::string, std::string>
+      split_history(const std::string &entry)
+      {
+        const auto at = entry.find('@');
+        if (at == std::string::npos)
+          return {entry, ""};
+        return {base::trim(entry.substr(0, at)),
+                base::trim(entry.substr(at + 1))};
+      }
+    } // namespace
+
+
+
     void
     OutputParameters::declare_parameters(ParameterHandler &prm)
     {
@@ -330,9 +347,10 @@ namespace igabde
                                  std::to_string(dimension) +
                                  "D; choose another geometry or Dimension."));
 
-      // Supports: "face: x y=0.1; face: z".
-      for (const std::string &item : base::split(supports_text, ';'))
+      // Supports: "face: x y=0.1; face: z", each optionally "@ history".
+      for (const std::string &entry : base::split(supports_text, ';'))
         {
+          const auto [item, history] = split_history(entry);
           const auto [key, value] =
             base::split_entry(item,
                               where + "Supports",
@@ -376,13 +394,15 @@ namespace igabde
           AssertThrow(any,
                       base::ExcInput(where + "Supports: '" + item +
                                      "' names no component."));
+          support.history = history;
           supports.push_back(support);
         }
 
       // Tractions: "face: pressure p", "face: vector tx, ty", "face: exact".
-      for (const std::string &item : base::split(tractions_text, ';'))
+      for (const std::string &entry : base::split(tractions_text, ';'))
         {
-          const auto [key, rest] = base::split_entry(
+          const auto [item, history] = split_history(entry);
+          const auto [key, rest]     = base::split_entry(
             item,
             where + "Tractions",
             "'face: pressure p', 'face: vector tx, ty' or 'face: exact'");
@@ -411,19 +431,22 @@ namespace igabde
                         base::ExcInput(where + "Tractions: '" + rest +
                                        "' is not 'pressure p', 'vector tx, "
                                        "ty[, tz]' or 'exact'."));
+          traction.history = history;
           tractions.push_back(traction);
         }
 
       // Point loads: "x, y[, z] : fx, fy[, fz]".
-      for (const std::string &item : base::split(point_loads_text, ';'))
+      for (const std::string &entry : base::split(point_loads_text, ';'))
         {
+          const auto [item, history] = split_history(entry);
           const auto [location, force] =
             base::split_entry(item,
                               where + "Point loads",
                               "'x, y[, z] : fx, fy[, fz]'");
           point_loads.push_back(
             {read_vector(location, dimension, where + "Point loads"),
-             read_vector(force, dimension, where + "Point loads")});
+             read_vector(force, dimension, where + "Point loads"),
+             history});
         }
       body_force =
         read_vector(body_force_text, dimension, where + "Body force");
@@ -716,6 +739,17 @@ namespace igabde
                           "Explicit factor of the prescribed displacements "
                           "per step; as many as Load factors, or empty "
                           "(then equal to the load factors).");
+        prm.declare_entry(
+          "Histories",
+          "",
+          Patterns::Anything(),
+          "Named load histories, 'name: f1, f2, ...; name2: ...', one factor "
+          "per step each (as many as the steps). A traction, point load or "
+          "support entry follows one by ending in '@ name', e.g. Tractions "
+          "= '3: pressure 10 @ normal; 1: vector -2, 0 @ shear'; entries "
+          "without it follow Load factors (loads) or Displacement factors "
+          "(prescribed displacements). The body force follows Load "
+          "factors.");
       }
       prm.leave_subsection();
     }
@@ -733,6 +767,26 @@ namespace igabde
         displacement_factors =
           base::parse_doubles(prm.get("Displacement factors"),
                               "Load path/Displacement factors");
+        histories.clear();
+        for (const std::string &item : base::split(prm.get("Histories"), ';'))
+          {
+            const auto [name, values] =
+              base::split_entry(item,
+                                "Load path/Histories",
+                                "'name: f1, f2, ...'");
+            AssertThrow(name.find_first_of(" \t,;:@") == std::string::npos &&
+                          name != "load" && name != "displacement",
+                        base::ExcInput("Load path/Histories: '" + name +
+                                       "' is not a usable name (one word, "
+                                       "not 'load' or 'displacement')."));
+            for (const auto &h : histories)
+              AssertThrow(h.first != name,
+                          base::ExcInput("Load path/Histories: '" + name +
+                                         "' is declared twice."));
+            histories.emplace_back(
+              name,
+              base::parse_doubles(values, "Load path/Histories/" + name));
+          }
       }
       prm.leave_subsection();
     }
@@ -756,6 +810,49 @@ namespace igabde
       for (unsigned int s = 0; s < lf.size(); ++s)
         result.emplace_back(lf[s], df[s]);
       return result;
+    }
+
+
+
+    std::vector<std::vector<double>>
+    LoadPathParameters::history_factors() const
+    {
+      const auto                       base_steps = steps();
+      std::vector<std::vector<double>> result;
+      for (unsigned int s = 0; s < base_steps.size(); ++s)
+        {
+          std::vector<double> f = {base_steps[s].first, base_steps[s].second};
+          for (const auto &h : histories)
+            f.push_back(s < h.second.size() ? h.second[s] : 0.);
+          result.push_back(f);
+        }
+      return result;
+    }
+
+
+
+    unsigned int
+    LoadPathParameters::history_index(const std::string &name,
+                                      const unsigned int default_index) const
+    {
+      if (name.empty())
+        return default_index;
+      if (name == "load")
+        return 0;
+      if (name == "displacement")
+        return 1;
+      for (unsigned int k = 0; k < histories.size(); ++k)
+        if (histories[k].first == name)
+          return 2 + k;
+      std::string names = "load, displacement";
+      for (const auto &h : histories)
+        names += ", " + h.first;
+      AssertThrow(false,
+                  base::ExcInput("load history '" + name +
+                                 "' is not declared in Load path/Histories; "
+                                 "declared: " +
+                                 names + "."));
+      return default_index;
     }
 
 
@@ -973,6 +1070,41 @@ namespace igabde
                     " entries but Load path/Load factors has " +
                     std::to_string(load_path.load_factors.size()) +
                     "; give both lists the same length."));
+      const std::size_t n_steps = load_path.steps().size();
+      for (const auto &h : load_path.histories)
+        AssertThrow(h.second.size() == n_steps,
+                    base::ExcInput(f + "Load path/Histories: '" + h.first +
+                                   "' has " + std::to_string(h.second.size()) +
+                                   " factors but the load path has " +
+                                   std::to_string(n_steps) +
+                                   " steps; give one factor per step."));
+      // Every history a load entry names must exist.
+      for (const auto *body : {&body1, &body2})
+        {
+          const std::string where =
+            f + (body == &body1 ? "Body 1" : "Body 2") + ": ";
+          const auto known = [&](const std::string &name) {
+            bool found =
+              name.empty() || name == "load" || name == "displacement";
+            std::string names = "load, displacement";
+            for (const auto &h : load_path.histories)
+              {
+                found = found || h.first == name;
+                names += ", " + h.first;
+              }
+            AssertThrow(found,
+                        base::ExcInput(where + "load history '" + name +
+                                       "' is not declared in Load "
+                                       "path/Histories; declared: " +
+                                       names + "."));
+          };
+          for (const auto &s : body->supports)
+            known(s.history);
+          for (const auto &t : body->tractions)
+            known(t.history);
+          for (const auto &l : body->point_loads)
+            known(l.history);
+        }
     }
   } // namespace scene
 } // namespace igabde

@@ -221,12 +221,14 @@ namespace igabde
               bc.components[c] = support.components[c];
               bc.value[c]      = support.values[c];
             }
+          bc.history = parameters.load_path.history_index(support.history, 1);
           d.dirichlet.push_back(bc);
         }
       for (const TractionParameters &traction : body.tractions)
         {
           discretization::NeumannCondition<dim> bc;
           bc.boundary_id = static_cast<types::boundary_id>(traction.face);
+          bc.history = parameters.load_path.history_index(traction.history, 0);
           switch (traction.kind)
             {
               case TractionParameters::Kind::pressure:
@@ -265,6 +267,8 @@ namespace igabde
           discretization::PointLoad<dim> point_load;
           point_load.location = Point<dim>(tensor(load.location));
           point_load.force    = tensor(load.force);
+          point_load.history =
+            parameters.load_path.history_index(load.history, 0);
           d.point_loads.push_back(point_load);
         }
       d.body_force = tensor(body.body_force);
@@ -519,15 +523,11 @@ namespace igabde
         }
 
       // Displacement of every body under the external loads alone.
-      const auto external = [&](const double load_factor,
-                                const double displacement_factor) {
+      // (one factor per load history).
+      const auto external = [&](const std::vector<double> &factors) {
         std::vector<Vector<double>> u(bodies.size());
         for (unsigned int b = 0; b < bodies.size(); ++b)
-          {
-            u[b] = bodies[b]->load_solution();
-            u[b] *= load_factor;
-            u[b].add(displacement_factor, bodies[b]->prescribed_solution());
-          }
+          u[b] = bodies[b]->external_solution(factors);
         return u;
       };
       std::unique_ptr<LoadController<dim>> controller;
@@ -540,10 +540,12 @@ namespace igabde
           scene_file,
           parameters.output.solver_details ? pcout.get_stream() : discard);
 
-      double previous_load = 0., previous_displacement = 0.;
+      const auto history_factors = parameters.load_path.history_factors();
+      std::vector<double> previous(history_factors.front().size(), 0.);
       for (unsigned int s = 0; s < steps.size(); ++s)
         {
           const auto [load_factor, displacement_factor] = steps[s];
+          const std::vector<double> &factors            = history_factors[s];
           // Steps 1..s are written: summary.json, steps.csv and the fields
           // stay with them if this step fails or the run is killed.
           run_phase = "load step " + std::to_string(s + 1) + " of " +
@@ -555,22 +557,30 @@ namespace igabde
           write_summary("running", "");
           pcout << "Load step " << s + 1 << "/" << steps.size()
                 << ": load factor " << load_factor << ", displacement factor "
-                << displacement_factor << std::endl;
-          std::vector<Vector<double>> u =
-            external(load_factor, displacement_factor);
-          nlohmann::json record;
+                << displacement_factor;
+          for (unsigned int k = 0; k < parameters.load_path.histories.size();
+               ++k)
+            pcout << ", " << parameters.load_path.histories[k].first << " "
+                  << factors[2 + k];
+          pcout << std::endl;
+          std::vector<Vector<double>> u = external(factors);
+          nlohmann::json              record;
           record["step"]                = s + 1;
           record["load_factor"]         = load_factor;
           record["displacement_factor"] = displacement_factor;
+          if (!parameters.load_path.histories.empty())
+            {
+              nlohmann::json named;
+              for (unsigned int k = 0;
+                   k < parameters.load_path.histories.size();
+                   ++k)
+                named[parameters.load_path.histories[k].first] = factors[2 + k];
+              record["history_factors"] = named;
+            }
           if (controller)
             {
-              const auto  outcome         = controller->advance(s + 1,
-                                                       previous_load,
-                                                       previous_displacement,
-                                                       load_factor,
-                                                       displacement_factor,
-                                                       u,
-                                                       timer);
+              const auto outcome =
+                controller->advance(s + 1, previous, factors, u, timer);
               const auto &last            = outcome.last;
               record["newton_iterations"] = outcome.iterations;
               record["contact_solves"]    = outcome.contact_solves;
@@ -620,9 +630,8 @@ namespace igabde
                           " is not finite (overflow: check the load and "
                           "displacement factors, the loads and Young's "
                           "modulus of the scene)."));
-          record_forces(u, load_factor, record);
-          previous_load         = load_factor;
-          previous_displacement = displacement_factor;
+          record_forces(u, factors, record);
+          previous = factors;
           step_records.push_back(record);
           summary["load_steps"] = step_records;
           if (contact_stage)
@@ -638,7 +647,7 @@ namespace igabde
     template <int dim>
     void
     Simulator<dim>::record_forces(const std::vector<Vector<double>> &u,
-                                  const double    load_factor,
+                                  const std::vector<double>         &factors,
                                   nlohmann::json &record) const
     {
       const auto to_json = [](const Tensor<1, dim> &t) {
@@ -651,8 +660,7 @@ namespace igabde
       Tensor<1, dim> on_body1;
       for (unsigned int b = 0; b < bodies.size(); ++b)
         {
-          Vector<double> applied = bodies[b]->load_vector();
-          applied *= load_factor;
+          Vector<double> applied = bodies[b]->external_load_vector(factors);
           Tensor<1, dim> contact_force;
           if (contact_stage)
             {
@@ -868,6 +876,9 @@ namespace igabde
       // steps.csv: one row per load step, full precision, for plots.
       std::ostringstream csv;
       csv << "step,load_factor,displacement_factor";
+      // Named load histories, when the scene has any.
+      for (const auto &h : parameters.load_path.histories)
+        csv << "," << h.first << "_factor";
       if (contact_stage)
         {
           csv << ",status,contact_solves,newton_iterations,residual,n_open,"
@@ -882,6 +893,11 @@ namespace igabde
           csv << r.at("step").get<double>() << ","
               << r.at("load_factor").get<double>() << ","
               << r.at("displacement_factor").get<double>();
+          for (const auto &h : parameters.load_path.histories)
+            csv << ","
+                << (r.contains("history_factors") ?
+                      r.at("history_factors").at(h.first).get<double>() :
+                      0.);
           if (contact_stage)
             {
               const auto value = [&](const char *key) {

@@ -33,6 +33,9 @@ namespace igabde
       std::vector<std::pair<unsigned int, unsigned int>> alpha_modes;
       /// r_k . f_ext of every column at load factor 1.
       Eigen::VectorXd rigid_mode_loads;
+      /// r_k . f_h of every column (rows) and load history h (columns), at
+      /// factor 1 (Body::history_load_vector()).
+      Eigen::MatrixXd rigid_mode_history_loads;
       /// Pairs left out (both points held by supports).
       unsigned int n_dropped = 0;
       /// |W - W^T| / |W| before symmetrisation.
@@ -64,6 +67,8 @@ namespace igabde
       std::vector<std::pair<unsigned int, unsigned int>> alpha_modes;
       /// r_k . f_ext of every column at load factor 1.
       Eigen::VectorXd loads;
+      /// r_k . f_h per column (rows) and load history h (columns).
+      Eigen::MatrixXd history_loads;
     };
 
     template <int dim>

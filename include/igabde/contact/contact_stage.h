@@ -219,6 +219,16 @@ namespace igabde
                  TimerOutput                 &timer);
 
       /**
+       * @brief As above, with one factor per load history
+       * (Body::n_histories(): 0 the load factor, 1 the displacement
+       * factor, 2.. named histories; missing ones count as 0).
+       */
+      StepResult<dim>
+      solve_step(const std::vector<double>   &factors,
+                 std::vector<Vector<double>> &u,
+                 TimerOutput                 &timer);
+
+      /**
        * @brief The state a load step starts from (forces, rigid-mode
        * amplitudes, the friction history), to retry a step.
        */

@@ -18,6 +18,8 @@
 #include <deal.II/lac/vector.h>
 
 #include <array>
+#include <functional>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -30,6 +32,10 @@ namespace igabde
 
     template <int dim>
     struct BodyDescription;
+    template <int dim>
+    struct NeumannCondition;
+    template <int dim>
+    struct PointLoad;
 
     /// Exact solution of a verification scene (elasticity room).
     template <int dim>
@@ -323,6 +329,34 @@ namespace igabde
       load_vector() const;
 
       /**
+       * @brief Number of load histories (BodyDescription::n_histories()):
+       * 0 the load factors, 1 the displacement factors, 2.. named ones.
+       */
+      unsigned int
+      n_histories() const;
+
+      /// Displacement under the loads and prescribed displacements of load
+      /// history @p h at factor 1.
+      const Vector<double> &
+      history_solution(const unsigned int h) const;
+
+      /// External load vector of load history @p h at factor 1.
+      const Vector<double> &
+      history_load_vector(const unsigned int h) const;
+
+      /**
+       * @brief Displacement under the external loads and prescribed
+       * displacements at the history factors @p factors (one per
+       * history; missing ones count as 0).
+       */
+      Vector<double>
+      external_solution(const std::vector<double> &factors) const;
+
+      /// External load vector at the history factors @p factors.
+      Vector<double>
+      external_load_vector(const std::vector<double> &factors) const;
+
+      /**
        * @brief Rigid modes (as unknown vectors) that the supports leave free;
        * empty when the body is fixed. Such a body is held only by contact.
        */
@@ -392,8 +426,27 @@ namespace igabde
       SparsityPattern sparsity;
       /// Unconstrained stiffness (assembled by the derived class).
       SparseMatrix<double> system_matrix;
-      /// External loads at factor 1 (assembled by the derived class).
+      /// External loads of history 0 at factor 1 (history_rhs[0]).
       Vector<double> load_rhs;
+      /// External loads of each load history at factor 1.
+      std::vector<Vector<double>> history_rhs;
+      /// Load history of each unknown with a prescribed value.
+      std::map<types::global_dof_index, unsigned int> prescribed_history;
+
+      /**
+       * @brief Assembles K (with history 0) and one load vector per load
+       * history: @p assemble(body_force, tractions, matrix, rhs) adds K and
+       * the loads of the given tractions and body force, @p point_load adds
+       * one point load to a load vector.
+       */
+      void
+      assemble_history_loads(
+        const std::function<void(const Tensor<1, dim> &,
+                                 const std::vector<NeumannCondition<dim>> &,
+                                 SparseMatrix<double> &,
+                                 Vector<double> &)> &assemble,
+        const std::function<void(const PointLoad<dim> &, Vector<double> &)>
+          &point_load);
 
     private:
       void
@@ -411,10 +464,10 @@ namespace igabde
       /// body.cc so that this header stays free of solver libraries.
       struct LinearSolver;
       std::unique_ptr<LinearSolver> linear_solver;
-      Vector<double>                u_load;
-      Vector<double>                u_prescribed;
-      std::vector<Vector<double>>   rigid_modes;
-      std::vector<std::string>      rigid_mode_names;
+      /// Solution of each load history at factor 1.
+      std::vector<Vector<double>> u_history;
+      std::vector<Vector<double>> rigid_modes;
+      std::vector<std::string>    rigid_mode_names;
     };
 
     /**

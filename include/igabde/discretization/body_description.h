@@ -12,6 +12,7 @@
 #include <deal.II/base/tensor.h>
 #include <deal.II/base/types.h>
 
+#include <algorithm>
 #include <array>
 #include <functional>
 #include <memory>
@@ -37,6 +38,8 @@ namespace igabde
       std::array<bool, dim> components{};
       /// Prescribed value per component (m), constant on the face.
       Tensor<1, dim> value;
+      /// Load history scaling the value (1: the displacement factors).
+      unsigned int history = 1;
     };
 
     /// Traction t(x, n) in Pa, given the point and the outward unit normal.
@@ -54,6 +57,8 @@ namespace igabde
       types::boundary_id boundary_id = 0;
       /// Traction as a function of the physical point and outward normal.
       TractionFunction<dim> traction;
+      /// Load history scaling the traction (0: the load factors).
+      unsigned int history = 0;
     };
 
     /**
@@ -66,6 +71,8 @@ namespace igabde
       Point<dim> location;
       /// Force (N, or N/m in 2D).
       Tensor<1, dim> force;
+      /// Load history scaling the force (0: the load factors).
+      unsigned int history = 0;
     };
 
     /**
@@ -87,8 +94,23 @@ namespace igabde
       std::vector<NeumannCondition<dim>> tractions;
       /// Point loads.
       std::vector<PointLoad<dim>> point_loads;
-      /// Body force per unit volume (N/m^3).
+      /// Body force per unit volume (N/m^3), on history 0.
       Tensor<1, dim> body_force;
+
+      /// Number of load histories the loads refer to: 2 (load and
+      /// displacement factors) or more.
+      unsigned int
+      n_histories() const
+      {
+        unsigned int n = 2;
+        for (const auto &d : dirichlet)
+          n = std::max(n, d.history + 1);
+        for (const auto &t : tractions)
+          n = std::max(n, t.history + 1);
+        for (const auto &p : point_loads)
+          n = std::max(n, p.history + 1);
+        return n;
+      }
     };
   } // namespace discretization
 } // namespace igabde

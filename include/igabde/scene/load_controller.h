@@ -20,7 +20,8 @@ namespace igabde
 
     /**
      * @brief Step cutting: takes a contact scene through the load increment
-     * from (l0, d0) to (l1, d1) (load and displacement factors). When the
+     * from the factors f0 to f1 (one per load history: load factor,
+     * displacement factor, named histories). When the
      * contact solve of an increment does not converge, the increment is
      * halved (loads interpolated linearly) and both halves are solved, at
      * most max_cuts halvings deep.
@@ -32,7 +33,7 @@ namespace igabde
       /// Displacements of every body under the external loads alone at a
       /// load and displacement factor.
       using ExternalSolution =
-        std::function<std::vector<Vector<double>>(double, double)>;
+        std::function<std::vector<Vector<double>>(const std::vector<double> &)>;
 
       /// What the increment took.
       struct Outcome
@@ -59,15 +60,13 @@ namespace igabde
 
       /**
        * @brief Solves the increment; on success @p u holds the total
-       * displacement at (l1, d1). A solution that violates a contact
+       * displacement at the factors @p f1. A solution that violates a contact
        * condition is not cut: it is an error.
        */
       Outcome
       advance(const unsigned int           step,
-              const double                 l0,
-              const double                 d0,
-              const double                 l1,
-              const double                 d1,
+              const std::vector<double>   &f0,
+              const std::vector<double>   &f1,
               std::vector<Vector<double>> &u,
               TimerOutput                 &timer);
 

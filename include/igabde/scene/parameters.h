@@ -55,6 +55,9 @@ namespace igabde
       /// Prescribed displacement (m) of each held component at
       /// displacement factor 1.
       std::array<double, 3> values = {{0., 0., 0.}};
+      /// Load history scaling the values ('@ name'; empty: Displacement
+      /// factors).
+      std::string history;
     };
 
     /**
@@ -78,6 +81,8 @@ namespace igabde
       Kind kind = Kind::pressure;
       /// Pressure (one value) or traction (dimension values), in Pa.
       std::vector<double> values;
+      /// Load history scaling the traction ('@ name'; empty: Load factors).
+      std::string history;
     };
 
     /**
@@ -89,6 +94,8 @@ namespace igabde
       std::vector<double> location;
       /// The force (N), dimension values.
       std::vector<double> force;
+      /// Load history scaling the force ('@ name'; empty: Load factors).
+      std::string history;
     };
 
     /**
@@ -268,6 +275,9 @@ namespace igabde
       std::vector<double> load_factors;
       /// Explicit displacement factors per step.
       std::vector<double> displacement_factors;
+      /// Named load histories: a factor per step each, referenced from
+      /// load entries by '@ name'.
+      std::vector<std::pair<std::string, std::vector<double>>> histories;
 
       /// Declares the "Load path" subsection.
       static void
@@ -279,6 +289,22 @@ namespace igabde
       /// Load and displacement factor of every step.
       std::vector<std::pair<double, double>>
       steps() const;
+
+      /**
+       * @brief The factors of every history at every step: [step][h], with
+       * h = 0 the load factor, 1 the displacement factor and 2 + k the k-th
+       * named history.
+       */
+      std::vector<std::vector<double>>
+      history_factors() const;
+
+      /**
+       * @brief The index in history_factors() of the history a load entry
+       * names (@p name; empty: @p default_index).
+       */
+      unsigned int
+      history_index(const std::string &name,
+                    const unsigned int default_index) const;
     };
 
     /**

@@ -104,7 +104,7 @@ namespace igabde
       /// Contact resultants and support reactions of the finished step.
       void
       record_forces(const std::vector<Vector<double>> &u,
-                    const double                       load_factor,
+                    const std::vector<double>         &factors,
                     nlohmann::json                    &record) const;
 
       const AllParameters parameters;
