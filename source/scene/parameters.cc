@@ -170,7 +170,8 @@ namespace igabde
           Patterns::Anything(),
           "Prescribed displacements on patch faces: 'face: components; ...' "
           "where a component is x, y or z, optionally with a value "
-          "(x=0.05) scaled by the step's displacement factor; e.g. "
+          "(x=0.05) scaled by the step's displacement factor (or by the "
+          "load history 'name' when the entry ends in '@ name'); e.g. "
           "'0: x; 2: y'. Faces: 0/1 low/high end of parametric direction "
           "0, 2/3 of direction 1, 4/5 of direction 2; a face the Geometry "
           "does not have is refused when the scene is read.");
@@ -181,12 +182,15 @@ namespace igabde
           "Tractions on patch faces, scaled by the load factor: "
           "'face: pressure p' (t = -p n), 'face: vector tx, ty[, tz]' or "
           "'face: exact' (sigma_exact n from the Exact solution); separated "
-          "by ';'.");
+          "by ';'. An entry ending in '@ name' follows the load history "
+          "'name' of Load path/Histories instead.");
         prm.declare_entry("Point loads",
                           "",
                           Patterns::Anything(),
                           "Point forces 'x, y[, z] : fx, fy[, fz]; ...' (N), "
-                          "scaled by the load factor.");
+                          "scaled by the load factor, or by the load history "
+                          "'name' of Load path/Histories when the entry ends "
+                          "in '@ name'.");
         prm.declare_entry("Body force",
                           "0, 0, 0",
                           Patterns::Anything(),
