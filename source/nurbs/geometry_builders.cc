@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <tuple>
+#include <utility>
 
 namespace igabde
 {
@@ -23,6 +25,70 @@ namespace igabde
       {
         static const KnotVector kv(2, {0., 0., 0., 1., 1., 1.});
         return kv;
+      }
+
+      /**
+       * One element of degree 2 in both directions from its boundary net
+       * P[i][j], w[i][j] (i along direction 0): the interior point is the
+       * bilinear Coons blend of the homogeneous boundary net,
+       * Pw11 = (edge midpoints) / 2 - (corners) / 4.
+       */
+      NurbsPatch<2>
+      coons_quadratic_patch(std::array<std::array<Point<2>, 3>, 3> P,
+                            std::array<std::array<double, 3>, 3>   w)
+      {
+        Tensor<1, 2> pw;
+        double       ww = 0.;
+        auto         add =
+          [&](const unsigned int i, const unsigned int j, const double c) {
+            pw += c * w[i][j] * static_cast<const Tensor<1, 2> &>(P[i][j]);
+            ww += c * w[i][j];
+          };
+        add(0, 1, 0.5);
+        add(2, 1, 0.5);
+        add(1, 0, 0.5);
+        add(1, 2, 0.5);
+        add(0, 0, -0.25);
+        add(2, 0, -0.25);
+        add(0, 2, -0.25);
+        add(2, 2, -0.25);
+        AssertThrow(ww > 0., ExcInternalError());
+        w[1][1] = ww;
+        P[1][1] = Point<2>(pw / ww);
+
+        std::vector<Point<2>> points;
+        std::vector<double>   weights;
+        for (unsigned int j = 0; j < 3; ++j)
+          for (unsigned int i = 0; i < 3; ++i)
+            {
+              points.push_back(P[i][j]);
+              weights.push_back(w[i][j]);
+            }
+        return NurbsPatch<2>({{quadratic(), quadratic()}}, points, weights);
+      }
+
+      /// The point at polar angle @p degrees and distance @p r from @p c.
+      Point<2>
+      polar(const Point<2> &c, const double r, const double degrees)
+      {
+        const double t = degrees * M_PI / 180.;
+        return Point<2>(c[0] + r * std::cos(t), c[1] + r * std::sin(t));
+      }
+
+      /**
+       * The middle control point and weight of the circular arc of radius
+       * @p R about @p c from @p from to @p to degrees (less than 180 deg
+       * apart): the tangents' intersection, weight cos(half the angle).
+       */
+      std::pair<Point<2>, double>
+      arc_middle(const Point<2> &c,
+                 const double    R,
+                 const double    from,
+                 const double    to)
+      {
+        const double half = 0.5 * (to - from) * M_PI / 180.;
+        return {polar(c, R / std::cos(half), 0.5 * (from + to)),
+                std::cos(half)};
       }
     } // namespace
 
@@ -227,6 +293,79 @@ namespace igabde
             weights.push_back(w[i][j]);
           }
       return NurbsPatch<2>({{quadratic(), quadratic()}}, points, weights);
+    }
+
+
+
+    NurbsPatch<2>
+    make_half_disc(const Point<2> &c, const double R)
+    {
+      AssertThrow(R > 0.,
+                  ExcMessage("make_half_disc: the radius must be positive."));
+      std::array<std::array<Point<2>, 3>, 3> P; // P[i][j]
+      std::array<std::array<double, 3>, 3>   w;
+      // Corners: the arc's ends at 225 and 315 deg, the diameter's ends.
+      P[0][0] = polar(c, R, 225.);
+      P[2][0] = polar(c, R, 315.);
+      P[0][2] = polar(c, R, 180.);
+      P[2][2] = polar(c, R, 0.);
+      w[0][0] = w[2][0] = w[0][2] = w[2][2] = 1.;
+      std::tie(P[1][0], w[1][0]) = arc_middle(c, R, 225., 315.); // bottom
+      std::tie(P[0][1], w[0][1]) = arc_middle(c, R, 225., 180.); // left
+      std::tie(P[2][1], w[2][1]) = arc_middle(c, R, 315., 360.); // right
+      // The diameter, its middle weighted as the bottom arc's so that
+      // direction 0 is parametrised alike at both ends of direction 1.
+      P[1][2] = c;
+      w[1][2] = w[1][0];
+      return coons_quadratic_patch(P, w);
+    }
+
+
+
+    NurbsPatch<2>
+    make_full_disc(const Point<2> &c, const double R)
+    {
+      AssertThrow(R > 0.,
+                  ExcMessage("make_full_disc: the radius must be positive."));
+      std::array<std::array<Point<2>, 3>, 3> P; // P[i][j]
+      std::array<std::array<double, 3>, 3>   w;
+      P[0][0] = polar(c, R, 225.);
+      P[2][0] = polar(c, R, 315.);
+      P[0][2] = polar(c, R, 135.);
+      P[2][2] = polar(c, R, 45.);
+      w[0][0] = w[2][0] = w[0][2] = w[2][2] = 1.;
+      std::tie(P[1][0], w[1][0]) = arc_middle(c, R, 225., 315.); // bottom
+      std::tie(P[1][2], w[1][2]) = arc_middle(c, R, 135., 45.);  // top
+      std::tie(P[0][1], w[0][1]) = arc_middle(c, R, 225., 135.); // left
+      std::tie(P[2][1], w[2][1]) = arc_middle(c, R, 315., 405.); // right
+      return coons_quadratic_patch(P, w);
+    }
+
+
+
+    NurbsPatch<3>
+    make_cylinder(const Point<3> &base_centre,
+                  const double    R,
+                  const double    height,
+                  const bool      full)
+    {
+      AssertThrow(height > 0.,
+                  ExcMessage("make_cylinder: the height must be positive."));
+      const Point<2>      c(base_centre[0], base_centre[1]);
+      const NurbsPatch<2> disc =
+        full ? make_full_disc(c, R) : make_half_disc(c, R);
+      std::vector<Point<3>> points;
+      std::vector<double>   weights;
+      for (unsigned int k = 0; k < 2; ++k)
+        for (unsigned int a = 0; a < disc.n_control_points(); ++a)
+          {
+            const Point<2> &p = disc.control_point(a);
+            points.emplace_back(p[0], p[1], base_centre[2] + k * height);
+            weights.push_back(disc.weight(a));
+          }
+      return NurbsPatch<3>({{quadratic(), quadratic(), linear()}},
+                           points,
+                           weights);
     }
 
 

@@ -33,6 +33,10 @@ namespace igabde
       AssertThrow(body.geometry == "box" ||
                     body.geometry == "plate with hole" ||
                     body.geometry == "hertz quarter disc" ||
+                    body.geometry == "full disc" ||
+                    body.geometry == "half disc" ||
+                    body.geometry == "full cylinder" ||
+                    body.geometry == "half cylinder" ||
                     body.inner_radius < body.outer_radius,
                   base::ExcInput(where + "Inner radius (" +
                                  std::to_string(body.inner_radius) +
@@ -82,6 +86,32 @@ namespace igabde
           need_2d();
           if constexpr (dim == 2)
             patch = nurbs::make_hertz_quarter_disc(body.radius);
+        }
+      else if (body.geometry == "full disc" || body.geometry == "half disc" ||
+               body.geometry == "full cylinder" ||
+               body.geometry == "half cylinder")
+        {
+          const bool cylinder = (body.geometry == "full cylinder" ||
+                                 body.geometry == "half cylinder");
+          cylinder ? need_3d() : need_2d();
+          AssertThrow(body.radius > 0.,
+                      base::ExcInput(
+                        where + "Radius = " + std::to_string(body.radius) +
+                        " must be > 0 for Geometry = " + body.geometry + "."));
+          AssertThrow(!cylinder || body.width > 0.,
+                      base::ExcInput(
+                        where + "Width = " + std::to_string(body.width) +
+                        " must be > 0 for Geometry = " + body.geometry + "."));
+          Point<dim> c;
+          if (!base::trim(body.centre).empty())
+            c = base::parse_point<dim>(body.centre, where + "Centre");
+          const bool full =
+            (body.geometry == "full disc" || body.geometry == "full cylinder");
+          if constexpr (dim == 2)
+            patch = full ? nurbs::make_full_disc(c, body.radius) :
+                           nurbs::make_half_disc(c, body.radius);
+          else
+            patch = nurbs::make_cylinder(c, body.radius, body.width, full);
         }
       else if (body.geometry == "curved beam")
         {
@@ -202,6 +232,28 @@ namespace igabde
                 "upper arc",
                 "lower arc (contact)",
                 "cut y = R"};
+      if ((geometry == "full disc" && dimension == 2) ||
+          (geometry == "full cylinder" && dimension == 3))
+        {
+          std::vector<std::string> faces = {"left arc",
+                                            "right arc",
+                                            "bottom arc",
+                                            "top arc"};
+          if (dimension == 3)
+            faces.insert(faces.end(), {"z = Centre z", "z = Centre z + Width"});
+          return faces;
+        }
+      if ((geometry == "half disc" && dimension == 2) ||
+          (geometry == "half cylinder" && dimension == 3))
+        {
+          std::vector<std::string> faces = {"left arc",
+                                            "right arc",
+                                            "bottom arc",
+                                            "diameter y = Centre y"};
+          if (dimension == 3)
+            faces.insert(faces.end(), {"z = Centre z", "z = Centre z + Width"});
+          return faces;
+        }
       if (geometry == "curved beam" && dimension == 3)
         return {"inner face r = r0",
                 "outer face r = r1",

@@ -108,14 +108,20 @@ namespace igabde
           "box",
           Patterns::Selection("box|quarter annulus|thick cylinder|"
                               "plate with hole|hertz quarter disc|"
-                              "curved beam"),
+                              "curved beam|full disc|half disc|"
+                              "full cylinder|half cylinder"),
           "Exact NURBS geometry. box: [Lower corner, Upper corner]. quarter "
           "annulus / thick cylinder: Inner/Outer radius, 0..90 degrees "
           "(3D: extruded by Width along z). plate with hole: the quarter "
           "[0,Plate size]^2 minus the hole of radius Inner radius. hertz "
           "quarter disc: lower right quarter of a disc of Radius touching "
           "y = 0 at the origin. curved beam: quarter annulus in the x-z "
-          "plane extruded in y by Width.");
+          "plane extruded in y by Width. full disc / half disc (2D): the "
+          "disc of Radius about Centre, or its lower half y <= Centre y "
+          "(faces 0 left, 1 right, 2 bottom arc, 3 top arc or diameter). "
+          "full cylinder / half cylinder (3D): those extruded along z from "
+          "Centre z by Width (faces 4: z = Centre z, 5: z = Centre z + "
+          "Width).");
         prm.declare_entry("Lower corner",
                           "",
                           Patterns::Anything(),
@@ -139,7 +145,14 @@ namespace igabde
         prm.declare_entry("Radius",
                           "8",
                           Patterns::Double(0.),
-                          "Radius (m) of the Hertz cylinder.");
+                          "Radius (m) of the hertz quarter disc and of the "
+                          "full/half discs and cylinders.");
+        prm.declare_entry("Centre",
+                          "",
+                          Patterns::Anything(),
+                          "full/half disc: centre (m), 'x, y'; full/half "
+                          "cylinder: centre of the base face z = const, "
+                          "'x, y, z'. Empty: the origin.");
         prm.declare_entry("Width",
                           "1",
                           Patterns::Double(0.),
@@ -309,6 +322,7 @@ namespace igabde
         inner_radius     = prm.get_double("Inner radius");
         outer_radius     = prm.get_double("Outer radius");
         radius           = prm.get_double("Radius");
+        centre           = prm.get("Centre");
         width            = prm.get_double("Width");
         plate_size       = prm.get_double("Plate size");
         subdivisions     = prm.get("Subdivisions");

@@ -123,6 +123,63 @@ namespace igabde
     make_hertz_quarter_disc(const double R);
 
     /**
+     * @brief The lower half {y <= c_y} of the disc of radius @p R centred at
+     * @p centre = c: its flat face is the diameter y = c_y on top, its
+     * lowest point c - (0, R) at the middle of the bottom face.
+     *
+     * Both directions are degree 2 with knots [0 0 0 1 1 1] (one element);
+     * direction 0 runs from left to right, direction 1 from the bottom arc
+     * up to the diameter. Polar angles theta are measured from +x at c.
+     * Faces:
+     *  - 0: the left arc, theta from 225 deg (bottom) to 180 deg (c_x - R,
+     *    c_y);
+     *  - 1: the right arc, theta from 315 deg to 360 deg (c_x + R, c_y);
+     *  - 2: the bottom arc, theta from 225 deg to 315 deg, through the
+     *    lowest point at its middle (xi_0 = 1/2): the contact face;
+     *  - 3: the diameter y = c_y, from (c_x - R, c_y) to (c_x + R, c_y):
+     *    where a load goes.
+     * Right-handed. det J > 0 everywhere except at the two corners
+     * xi = (0, 0) and (1, 0) (theta = 225 and 315 deg), where the bottom arc
+     * meets a side arc at a straight angle and J has rank one; no
+     * quadrature point sits there. The interior control point is the
+     * bilinear Coons blend of the homogeneous boundary net (as
+     * make_hertz_quarter_disc()).
+     */
+    NurbsPatch<2>
+    make_half_disc(const Point<2> &centre, const double R);
+
+    /**
+     * @brief The full disc of radius @p R centred at @p centre, one
+     * element of degree 2 in both directions (the nine-point disc: corner
+     * control points on the circle at 45, 135, 225, 315 deg, the centre
+     * control point at c with weight sqrt(2) - 1).
+     *
+     * Direction 0 runs from left to right, direction 1 from bottom to top.
+     * Faces, each a 90-degree arc: 0: left, theta from 225 deg to 135 deg;
+     * 1: right, theta from 315 deg to 45 deg; 2: bottom, theta from 225
+     * deg to 315 deg (lowest point c - (0, R) at its middle); 3: top, theta
+     * from 135 deg to 45 deg (highest point at its middle). Right-handed;
+     * J has rank one at the four corners (straight angles on the circle)
+     * and is regular elsewhere.
+     */
+    NurbsPatch<2>
+    make_full_disc(const Point<2> &centre, const double R);
+
+    /**
+     * @brief make_half_disc() (@p full false) or make_full_disc() (@p full
+     * true) in the x-y plane around (c_x, c_y), extruded along z from c_z
+     * to c_z + @p height (direction 2, degree 1), c = @p base_centre.
+     *
+     * Faces 0-3 as the 2D patch (now surfaces along z), 4: z = c_z,
+     * 5: z = c_z + height. Right-handed.
+     */
+    NurbsPatch<3>
+    make_cylinder(const Point<3> &base_centre,
+                  const double    R,
+                  const double    height,
+                  const bool      full);
+
+    /**
      * @brief Raises the degree of every direction of @p patch to at least
      * @p degree (k-refinement when followed by knot insertion).
      */

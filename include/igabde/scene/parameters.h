@@ -116,8 +116,11 @@ namespace igabde
       double inner_radius = 1.;
       /// Radii of annulus-like geometries (m).
       double outer_radius = 2.;
-      /// Radius of the Hertz cylinder (m).
+      /// Radius of the Hertz quarter disc, the discs and cylinders (m).
       double radius = 8.;
+      /// Centre of the discs (base centre of the cylinders), comma-separated
+      /// (m); empty: the origin.
+      std::string centre;
       /// Extrusion width of 3D geometries (m).
       double width = 1.;
       /// Half-size L of the plate with a hole (m).
