@@ -4,6 +4,8 @@
 
 #include <deal.II/base/quadrature_lib.h>
 
+#include <Eigen/Dense>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -434,10 +436,17 @@ namespace igabde
 
 
     template <int dim>
+    WeightedGapPairing<dim>::WeightedGapPairing(const bool dual)
+      : dual(dual)
+    {}
+
+
+
+    template <int dim>
     std::string
     WeightedGapPairing<dim>::name() const
     {
-      return "weighted-gap";
+      return dual ? "weighted-gap" : "weighted-gap-standard";
     }
 
 
@@ -462,6 +471,7 @@ namespace igabde
       const QGauss<1> rule((sgrid.degree + master_degree) / 2 + 2);
 
       std::map<types::global_dof_index, WeightedIntegrals<dim>> integrals;
+      const bool dual_basis = dual;
       std::map<types::global_dof_index,
                std::array<types::global_dof_index, dim>>
         dofs1, dofs2;
@@ -567,6 +577,72 @@ namespace igabde
                               cuts[k].end());
               }
 
+          // The element's dual basis (biorthogonal to its face basis):
+          // psi_j = sum_k A_jk N_k with A = D M^{-1}, M_jk = int_e N_j N_k,
+          // D = diag(int_e N_j), so that int_e psi_j N_k = delta_jk D_jj.
+          std::map<types::global_dof_index, unsigned int> local;
+          Eigen::MatrixXd                                 dual;
+          if (dual_basis)
+            {
+              std::vector<std::vector<std::pair<unsigned int, double>>> values;
+              std::vector<double>                                       dAs;
+              std::array<unsigned int, fd>                              n_q1;
+              unsigned int nq_e = 1;
+              for (unsigned int k = 0; k < fd; ++k)
+                {
+                  n_q1[k] = rule.size();
+                  nq_e *= rule.size();
+                }
+              for (unsigned int q = 0; q < nq_e; ++q)
+                {
+                  Point<fd>    eta;
+                  double       weight = 1.;
+                  unsigned int qr     = q;
+                  for (unsigned int k = 0; k < fd; ++k)
+                    {
+                      const unsigned int iq = qr % n_q1[k];
+                      qr /= n_q1[k];
+                      eta[k] = lo[k] + (hi[k] - lo[k]) * rule.point(iq)[0];
+                      weight *= (hi[k] - lo[k]) * rule.weight(iq);
+                    }
+                  const auto s = slave_body.face_point(slave_face, eta);
+                  dAs.push_back(weight * s.measure);
+                  values.emplace_back();
+                  for (unsigned int a = 0; a < s.op.weights.size(); ++a)
+                    if (s.op.weights[a] != 0.)
+                      {
+                        const auto key = s.op.dofs[a][0];
+                        const auto it  = local.emplace(key, local.size()).first;
+                        values.back().emplace_back(it->second, s.op.weights[a]);
+                      }
+                }
+              const unsigned int n            = local.size();
+              Eigen::MatrixXd    M            = Eigen::MatrixXd::Zero(n, n);
+              Eigen::VectorXd    D            = Eigen::VectorXd::Zero(n);
+              double             element_area = 0.;
+              for (unsigned int q = 0; q < values.size(); ++q)
+                {
+                  element_area += dAs[q];
+                  for (const auto &[j, nj] : values[q])
+                    {
+                      D(j) += nj * dAs[q];
+                      for (const auto &[k, nk] : values[q])
+                        M(j, k) += nj * nk * dAs[q];
+                    }
+                }
+              // Functions of the cell that vanish on the face (FE_Q) have
+              // no share: identity rows keep M regular, D = 0 drops them.
+              for (unsigned int j = 0; j < n; ++j)
+                if (D(j) <= 1e-12 * element_area)
+                  {
+                    M.row(j).setZero();
+                    M.col(j).setZero();
+                    M(j, j) = 1.;
+                    D(j)    = 0.;
+                  }
+              dual = D.asDiagonal() * M.inverse();
+            }
+
           // Every piece with the tensor Gauss rule.
           std::array<unsigned int, fd> n_pieces;
           unsigned int                 n_piece_total = 1;
@@ -602,19 +678,47 @@ namespace igabde
                               not_facing(context, s.location, master)));
                 const double dA = weight * s.measure;
                 const double g  = (s.location - m.location) * m.normal;
-                for (unsigned int a = 0; a < s.op.weights.size(); ++a)
-                  if (s.op.weights[a] != 0.)
-                    {
-                      const double w  = s.op.weights[a] * dA;
-                      auto        &in = integrals[s.op.dofs[a][0]];
-                      in.area += w;
-                      in.gap += w * g;
-                      in.normal += w * m.normal;
-                      in.x1 += w * s.location;
-                      in.x2 += w * m.location;
-                      add_row<dim>(s.op, w, in.op1, dofs1);
-                      add_row<dim>(m.op, w, in.op2, dofs2);
-                    }
+                if (!dual_basis)
+                  {
+                    for (unsigned int a = 0; a < s.op.weights.size(); ++a)
+                      if (s.op.weights[a] != 0.)
+                        {
+                          const double w  = s.op.weights[a] * dA;
+                          auto        &in = integrals[s.op.dofs[a][0]];
+                          in.area += w;
+                          in.gap += w * g;
+                          in.normal += w * m.normal;
+                          in.x1 += w * s.location;
+                          in.x2 += w * m.location;
+                          add_row<dim>(s.op, w, in.op1, dofs1);
+                          add_row<dim>(m.op, w, in.op2, dofs2);
+                        }
+                  }
+                else
+                  {
+                    Eigen::VectorXd N = Eigen::VectorXd::Zero(local.size());
+                    for (unsigned int a = 0; a < s.op.weights.size(); ++a)
+                      if (s.op.weights[a] != 0.)
+                        N(local.at(s.op.dofs[a][0])) = s.op.weights[a];
+                    const Eigen::VectorXd psi = dual * N;
+                    for (const auto &[key, j] : local)
+                      {
+                        const double w_n = N(j) * dA;
+                        const double w_d = psi(j) * dA;
+                        if (w_n == 0. && w_d == 0.)
+                          continue;
+                        auto &in = integrals[key];
+                        // Areas, frames and locations with the face basis
+                        // (non-negative); gaps and operators with the dual.
+                        in.area += w_n;
+                        in.gap += w_d * g;
+                        in.normal += w_n * m.normal;
+                        in.x1 += w_n * s.location;
+                        in.x2 += w_n * m.location;
+                        add_row<dim>(s.op, w_d, in.op1, dofs1);
+                        add_row<dim>(m.op, w_d, in.op2, dofs2);
+                      }
+                  }
               }
         }
 
@@ -715,7 +819,10 @@ namespace igabde
     std::vector<std::string>
     available_pairing_strategies()
     {
-      return {"node-to-surface", "node-to-node", "weighted-gap"};
+      return {"node-to-surface",
+              "node-to-node",
+              "weighted-gap",
+              "weighted-gap-standard"};
     }
 
 
@@ -730,7 +837,9 @@ namespace igabde
       if (name == "node-to-node")
         return std::make_unique<NodeToNodePairing<dim>>();
       if (name == "weighted-gap")
-        return std::make_unique<WeightedGapPairing<dim>>();
+        return std::make_unique<WeightedGapPairing<dim>>(true);
+      if (name == "weighted-gap-standard")
+        return std::make_unique<WeightedGapPairing<dim>>(false);
 
       std::string names;
       for (const auto &n : available_pairing_strategies())

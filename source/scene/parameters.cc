@@ -620,9 +620,15 @@ namespace igabde
           "meshes only (an error names the first point without a partner); "
           "weighted-gap: one pair per basis function N_j of Body 1's face "
           "(mortar-like), its gap, slip and operators integrated against "
-          "N_j over the face with the master side found by projection, "
-          "tributary area int N_j dGamma: transmits a uniform pressure "
-          "exactly on non-matching meshes.");
+          "the dual basis function psi_j (int psi_j N_k = delta_jk int N_j, "
+          "element by element) over the face with the master side found "
+          "by projection, tributary area int N_j dGamma: transmits a "
+          "uniform pressure exactly on non-matching meshes, and its pair "
+          "pressures are N_j-weighted means of the pressure (smooth up to "
+          "the edge of a contact zone); weighted-gap-standard: the same "
+          "integrated against N_j itself (its pair pressures are the "
+          "coefficients of the pressure in the N_j, which oscillate next "
+          "to the edge of a contact zone).");
         prm.declare_entry("Tolerance",
                           "1e-10",
                           Patterns::Double(0.),
@@ -1036,12 +1042,13 @@ namespace igabde
                                      (body == &body1 ? "Body 1" : "Body 2") +
                                      "/Tractions: 'exact' needs Exact "
                                      "solution/Type other than none."));
-      AssertThrow(contact.pairing != "weighted-gap" ||
+      AssertThrow(contact.pairing.rfind("weighted-gap", 0) != 0 ||
                     contact.pair_placement == "greville",
                   base::ExcInput(
                     f + "Contact/Pair placement = " + contact.pair_placement +
-                    " places point pairs, but Contact/Pairing = weighted-gap "
-                    "has one pair per basis function of the slave face; "
+                    " places point pairs, but Contact/Pairing = " +
+                    contact.pairing +
+                    " has one pair per basis function of the slave face; "
                     "remove Contact/Pair placement or use Pairing = "
                     "node-to-surface."));
       if (contact.enabled)

@@ -13,12 +13,13 @@
 // condition numbers below 1e3 on these blocks).
 //
 // Cases: slave (upper) 2x2 on master 3x3 and 3x3 on 2x2, 2D and 3D, NURBS
-// p = 2 and FE_Q(2), mu = 0 and 0.3. The node-to-surface pairs of the same
-// meshes are solved beside them and their error printed (doc/verification.md
-// quotes it); they are not exact, which the test checks too, so that the
-// weighted-gap result cannot come from a configuration where any pairing
-// passes (except NURBS slave 3 on master 2, where a symmetry makes them
-// exact: derived below and checked as well).
+// p = 2 and FE_Q(2), mu = 0 and 0.3, the gap weighted by the dual basis
+// psi_j (Pairing = weighted-gap) and by N_j (weighted-gap-standard). The
+// node-to-surface pairs of the same meshes are solved beside them and their
+// error printed (doc/verification.md quotes it); they are not exact, which the
+// test checks too, so that the weighted-gap result cannot come from a
+// configuration where any pairing passes (except NURBS slave 3 on master 2,
+// where a symmetry makes them exact: derived below and checked as well).
 
 #include <igabde/nurbs/geometry_builders.h>
 
@@ -162,28 +163,38 @@ namespace
             name << dim << "D " << type << " slave " << n_slave << " on master "
                  << n_master << " mu=" << mu;
             SCOPED_TRACE(name.str());
-            const auto weighted =
-              patch_test<dim>(type, "weighted-gap", n_slave, n_master, mu);
             const auto closest =
               patch_test<dim>(type, "node-to-surface", n_slave, n_master, mu);
-            std::cout << "[ patch    ] " << name.str() << ": weighted-gap "
-                      << weighted.n_pairs << " pairs, max |p/A - 1| "
-                      << std::scientific << std::setprecision(2)
-                      << weighted.normal_error << ", max |p_t|/A "
-                      << weighted.tangential_error << "; node-to-surface "
+            // Both weightings of the gap (the dual basis psi_j, the
+            // default, and N_j itself) sum to one over the face.
+            for (const std::string pairing :
+                 {"weighted-gap", "weighted-gap-standard"})
+              {
+                SCOPED_TRACE(pairing);
+                const auto weighted =
+                  patch_test<dim>(type, pairing, n_slave, n_master, mu);
+                std::cout << "[ patch    ] " << name.str() << ": " << pairing
+                          << " " << weighted.n_pairs << " pairs, max |p/A - 1| "
+                          << std::scientific << std::setprecision(2)
+                          << weighted.normal_error << ", max |p_t|/A "
+                          << weighted.tangential_error << std::defaultfloat
+                          << std::endl;
+                EXPECT_LE(weighted.normal_error, 1e-6);
+                EXPECT_LE(weighted.tangential_error, 1e-6);
+                // The slave face's trace space: (n (p = 2) + 2)^(dim-1)
+                // functions for NURBS, (2 n + 1)^(dim-1) nodes for FE_Q(2).
+                const unsigned int per_direction =
+                  (type == "nurbs" ? n_slave + 2 : 2 * n_slave + 1);
+                EXPECT_EQ(weighted.n_pairs,
+                          static_cast<unsigned int>(
+                            std::pow(per_direction, dim - 1)));
+              }
+            std::cout << "[ patch    ] " << name.str() << ": node-to-surface "
                       << closest.n_pairs << " pairs, max |p/A - 1| "
+                      << std::scientific << std::setprecision(2)
                       << closest.normal_error << ", max |p_t|/A "
                       << closest.tangential_error << std::defaultfloat
                       << std::endl;
-            EXPECT_LE(weighted.normal_error, 1e-6);
-            EXPECT_LE(weighted.tangential_error, 1e-6);
-            // The slave face's trace space: (n (p = 2) + 2)^(dim-1)
-            // functions for NURBS, (2 n + 1)^(dim-1) nodes for FE_Q(2).
-            const unsigned int per_direction =
-              (type == "nurbs" ? n_slave + 2 : 2 * n_slave + 1);
-            EXPECT_EQ(weighted.n_pairs,
-                      static_cast<unsigned int>(
-                        std::pow(per_direction, dim - 1)));
             // Point pairs miss the patch test where the master's space is
             // not integrated exactly by the slave's pair rule (points x_i,
             // weights A_i): the master then receives sum_i R_B(x_i) A_i

@@ -42,8 +42,9 @@ namespace igabde
      * @brief How Body 1's contact face is paired with the surface it faces.
      * Implementations: NodeToNodePairing ("node-to-node", matching
      * surfaces), NodeToSurfacePairing ("node-to-surface", closest point),
-     * both PointPairing, and WeightedGapPairing ("weighted-gap", one pair
-     * per basis function of the slave face, mortar-like). A new strategy is
+     * both PointPairing, and WeightedGapPairing ("weighted-gap" and
+     * "weighted-gap-standard", one pair per basis function of the slave
+     * face, mortar-like). A new strategy is
      * one class deriving from this one (or from PointPairing) plus one line
      * in create_pairing_strategy().
      */
@@ -180,6 +181,22 @@ namespace igabde
     class WeightedGapPairing : public PairingStrategy<dim>
     {
     public:
+      /**
+       * @brief With @p dual (the default, "weighted-gap"), gaps, slips and
+       * operators are weighted by the dual basis psi_j of the slave face
+       * instead of N_j: on each slave element e, psi_j = sum_k A_jk N_k with
+       * A = D M^{-1}, M_jk = int_e N_j N_k, D = diag(int_e N_j), so that
+       * int psi_j N_k = delta_jk int N_j (biorthogonal). The pair's force
+       * then goes to the slave control point (node) j alone and its
+       * pressure p_j = force / int N_j is the N_j-weighted mean of the
+       * contact pressure, which does not oscillate at the edge of a contact
+       * zone the way the coefficients of the N_j expansion do
+       * ("weighted-gap-standard", @p dual false). Both sum to one, so a
+       * uniform pressure is transmitted exactly either way. Areas, frames
+       * and locations are N_j-weighted in both.
+       */
+      explicit WeightedGapPairing(const bool dual = true);
+
       std::string
       name() const override;
 
@@ -188,12 +205,16 @@ namespace igabde
                  const types::boundary_id         slave_face,
                  const ContactSurface<dim>       &master,
                  const std::string               &context) const override;
+
+    private:
+      /// Weights psi_j (dual basis) instead of N_j.
+      const bool dual;
     };
 
     /**
      * @brief The strategy @p name names ("node-to-node",
-     * "node-to-surface", "weighted-gap"); an input error listing them
-     * otherwise.
+     * "node-to-surface", "weighted-gap", "weighted-gap-standard"); an input
+     * error listing them otherwise.
      */
     template <int dim>
     std::unique_ptr<PairingStrategy<dim>>

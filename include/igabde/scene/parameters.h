@@ -221,8 +221,8 @@ namespace igabde
       unsigned int master_face = 3;
       /// Where pairs sit on a NURBS surface: greville, knots or gauss.
       std::string pair_placement = "greville";
-      /// Pairing strategy: "node-to-surface", "node-to-node" or
-      /// "weighted-gap".
+      /// Pairing strategy: "node-to-surface", "node-to-node",
+      /// "weighted-gap" or "weighted-gap-standard".
       std::string pairing = "node-to-surface";
       /// Natural-map residual tolerance relative to ||q||.
       double tolerance = 1e-10;
