@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 namespace igabde
@@ -48,87 +49,146 @@ namespace igabde
       result.half_width_exact    = a;
       result.peak_pressure_exact = p0;
 
-      // Pair pressures by distance from the symmetry axis.
+      // Pair pressures by signed distance from the symmetry axis; a full
+      // model has pairs on both sides, a half model on one.
       const Tensor<1, 2> e = axis_direction / axis_direction.norm();
-      std::vector<std::pair<double, double>> profile;
+      const Tensor<1, 2> e_normal({-e[1], e[0]});
+      std::vector<std::pair<double, double>> signed_profile;
+      double                                 peak = 0., extent = 0.;
       for (const auto &pair : pairs)
         {
           const Tensor<1, 2> r = pair.location - axis_point;
-          profile.emplace_back((r - (r * e) * e).norm(), pair.pressure());
+          signed_profile.emplace_back(r * e_normal, pair.pressure());
+          peak   = std::max(peak, pair.pressure());
+          extent = std::max(extent, std::abs(r * e_normal));
         }
-      std::sort(profile.begin(), profile.end());
-      double peak = 0.;
-      for (const auto &[x, pr] : profile)
-        peak = std::max(peak, pr);
       result.peak_pressure = peak;
-
-      // Half-width: the last loaded pair (loaded: above 1e-6 of the peak,
-      // the solver's round-off), refined by the ellipse
-      // p^2 = c (a^2 - x^2) through the last two loaded pairs, kept between
-      // the last loaded and the first open pair.
-      int last = -1;
-      for (unsigned int k = 0; k < profile.size(); ++k)
-        if (profile[k].second > 1e-6 * peak)
+      {
+        double force = 0., moment = 0.;
+        for (const auto &pair : pairs)
           {
-            last = k;
-            ++result.n_loaded;
+            const Tensor<1, 2> r = pair.location - axis_point;
+            const double       x = r * e_normal;
+            force += pair.force_local[0];
+            moment += pair.force_local[0] * x * x;
           }
-      double a_h = (last >= 0 ? profile[last].first : 0.);
-      if (last >= 1)
-        {
-          const double x1 = profile[last - 1].first,
-                       p1 = profile[last - 1].second;
-          const double x2 = profile[last].first, p2 = profile[last].second;
-          if (p1 > p2)
-            {
-              const double a2 =
-                (p1 * p1 * x2 * x2 - p2 * p2 * x1 * x1) / (p1 * p1 - p2 * p2);
-              double       estimate = std::sqrt(std::max(a2, 0.));
-              const double upper =
-                (last + 1 < int(profile.size()) ? profile[last + 1].first :
-                                                  estimate);
-              a_h = std::min(std::max(estimate, x2), upper);
-            }
-        }
-      result.half_width = a_h;
-      if (last >= 0 && last + 1 < int(profile.size()))
-        result.edge_pair_spacing =
-          profile[last + 1].first - profile[last].first;
-      else if (last >= 1)
-        result.edge_pair_spacing =
-          profile[last].first - profile[last - 1].first;
+        result.half_width_moment =
+          (force > 0. ? 2. * std::sqrt(std::max(moment, 0.) / force) : 0.);
+      }
+      // Loaded: above 1e-6 of the peak, the solver's round-off.
+      for (const auto &[x, pr] : signed_profile)
+        if (pr > 1e-6 * peak)
+          ++result.n_loaded;
 
-      // L2 distance of the piecewise linear pair profile to Johnson's over
-      // |x| <= 1.2 a.
-      auto p_h = [&](const double x) {
-        if (x <= profile.front().first)
-          return profile.front().second;
-        for (unsigned int k = 1; k < profile.size(); ++k)
-          if (x <= profile[k].first)
-            {
-              const double t = (x - profile[k - 1].first) /
-                               (profile[k].first - profile[k - 1].first);
-              return (1 - t) * profile[k - 1].second + t * profile[k].second;
-            }
-        return profile.back().second;
-      };
-      double             e2 = 0., n2 = 0.;
-      const unsigned int n_samples = 4000;
-      for (unsigned int k = 0; k < n_samples; ++k)
+      // Each side as a profile by distance from the axis (pairs on the
+      // axis belong to both); a side with fewer than two pairs off the
+      // axis is the symmetry plane of a half model and is left out.
+      std::vector<std::vector<std::pair<double, double>>> sides;
+      const double on_axis = 1e-12 * extent;
+      for (const double sign : {1., -1.})
         {
-          const double x  = 1.2 * a * (k + 0.5) / n_samples;
-          const double pe = (x < a ? p0 * std::sqrt(1. - x * x / (a * a)) : 0.);
-          e2 += std::pow(p_h(x) - pe, 2);
-          n2 += pe * pe;
+          std::vector<std::pair<double, double>> side;
+          unsigned int                           off_axis = 0;
+          for (const auto &[x, pr] : signed_profile)
+            if (sign * x >= -on_axis)
+              {
+                side.emplace_back(std::abs(x), pr);
+                if (sign * x > on_axis)
+                  ++off_axis;
+              }
+          std::sort(side.begin(), side.end());
+          if (off_axis >= 2)
+            sides.push_back(side);
         }
-      result.profile_l2_error = std::sqrt(e2 / n2);
+
+      double       a_sum = 0., e2 = 0., n2 = 0.;
+      unsigned int n_sides = 0;
+      result.pair_spacing  = std::numeric_limits<double>::max();
+      for (const auto &profile : sides)
+        {
+          // Half-width: the last loaded pair, refined by the ellipse
+          // p^2 = c (a^2 - x^2) through the last two loaded pairs, kept
+          // between the last loaded and the first open pair.
+          int last = -1;
+          for (unsigned int k = 0; k < profile.size(); ++k)
+            if (profile[k].second > 1e-6 * peak)
+              last = k;
+          double a_h = (last >= 0 ? profile[last].first : 0.);
+          if (last >= 1)
+            {
+              const double x1 = profile[last - 1].first,
+                           p1 = profile[last - 1].second;
+              const double x2 = profile[last].first, p2 = profile[last].second;
+              if (p1 > p2)
+                {
+                  const double a2 = (p1 * p1 * x2 * x2 - p2 * p2 * x1 * x1) /
+                                    (p1 * p1 - p2 * p2);
+                  double       estimate = std::sqrt(std::max(a2, 0.));
+                  const double upper =
+                    (last + 1 < int(profile.size()) ? profile[last + 1].first :
+                                                      estimate);
+                  a_h = std::min(std::max(estimate, x2), upper);
+                }
+            }
+          a_sum += a_h;
+          ++n_sides;
+          if (last >= 0 && last + 1 < int(profile.size()))
+            result.edge_pair_spacing =
+              std::max(result.edge_pair_spacing,
+                       profile[last + 1].first - profile[last].first);
+          else if (last >= 1)
+            result.edge_pair_spacing =
+              std::max(result.edge_pair_spacing,
+                       profile[last].first - profile[last - 1].first);
+          result.pair_spacing =
+            std::min(result.pair_spacing, profile[1].first - profile[0].first);
+
+          // L2 distance of the piecewise linear pair profile to Johnson's
+          // over |x| <= 1.2 a.
+          auto p_h = [&](const double x) {
+            if (x <= profile.front().first)
+              return profile.front().second;
+            for (unsigned int k = 1; k < profile.size(); ++k)
+              if (x <= profile[k].first)
+                {
+                  const double t = (x - profile[k - 1].first) /
+                                   (profile[k].first - profile[k - 1].first);
+                  return (1 - t) * profile[k - 1].second +
+                         t * profile[k].second;
+                }
+            return profile.back().second;
+          };
+          const unsigned int n_samples = 4000;
+          for (unsigned int k = 0; k < n_samples; ++k)
+            {
+              const double x = 1.2 * a * (k + 0.5) / n_samples;
+              const double pe =
+                (x < a ? p0 * std::sqrt(1. - x * x / (a * a)) : 0.);
+              e2 += std::pow(p_h(x) - pe, 2);
+              n2 += pe * pe;
+            }
+        }
+      if (n_sides == 0)
+        result.pair_spacing = 0.;
+      result.half_width       = (n_sides > 0 ? a_sum / n_sides : 0.);
+      result.profile_l2_error = (n2 > 0. ? std::sqrt(e2 / n2) : 0.);
+
+      // Pair by pair inside |x| < 0.9 a, where the profile is smooth on the
+      // scale of the pairs (its curvature grows as (1 - x^2/a^2)^{-3/2}
+      // towards the edge, a factor 12 at 0.9 a).
+      for (const auto &[x, pr] : signed_profile)
+        if (std::abs(x) < 0.9 * a)
+          {
+            const double pe = p0 * std::sqrt(1. - x * x / (a * a));
+            result.max_pair_deviation =
+              std::max(result.max_pair_deviation, std::abs(pr - pe) / p0);
+            ++result.n_inner_pairs;
+          }
 
       // Resolution: the pairs resolve the contact zone only when several
       // of them lie inside it; with the zone narrower than the pair
       // spacing next to the axis, one pair carries the whole load and the
       // figures above measure the spacing, not the method.
-      if (profile.size() >= 2)
-        result.pair_spacing = profile[1].first - profile[0].first;
       if (result.n_loaded < 3 || a < 2. * result.pair_spacing)
         {
           std::ostringstream w;

@@ -792,6 +792,11 @@ namespace igabde
                   checks["pressure_l2_rel_error"]     = r.profile_l2_error;
                   checks["hertz_loaded_pairs"]        = r.n_loaded;
                   checks["hertz_edge_pair_spacing"]   = r.edge_pair_spacing;
+                  checks["hertz_half_width_moment"]   = r.half_width_moment;
+                  checks["hertz_half_width_moment_error"] =
+                    std::abs(r.half_width_moment / r.half_width_exact - 1.);
+                  checks["hertz_max_pair_deviation"] = r.max_pair_deviation;
+                  checks["hertz_inner_pairs"]        = r.n_inner_pairs;
                   pcout << "  Hertz: half-width " << std::setprecision(5)
                         << r.half_width << " (Johnson " << r.half_width_exact
                         << "), peak pressure " << r.peak_pressure

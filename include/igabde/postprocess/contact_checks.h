@@ -55,14 +55,29 @@ namespace igabde
       struct Result
       {
         /// Half-width from the pairs: the last loaded pair, refined by the
-        /// ellipse through the last two loaded pairs.
-        double half_width          = 0.;
+        /// ellipse through the last two loaded pairs; the mean of the two
+        /// sides of the axis when both have pairs (a full model), the one
+        /// side of a half model.
+        double half_width = 0.;
+        /// Half-width from the second moment of the pair forces about the
+        /// axis: Johnson's profile has int p x^2 / int p = a^2 / 4, so
+        /// a_m = 2 sqrt(sum F_i x_i^2 / sum F_i). It uses every pair, not
+        /// the edge ones: it does not depend on whether a pair's pressure
+        /// is a point value (node-to-surface) or a mean over the support
+        /// of a basis function (weighted-gap), and is biased by O(h^2) (a
+        /// pair's force acts at one x_i).
+        double half_width_moment   = 0.;
         double half_width_exact    = 0.;
         double peak_pressure       = 0.;
         double peak_pressure_exact = 0.;
         /// L2 distance of the piecewise linear pair profile to Johnson's
-        /// over |x| <= 1.2 a, relative.
+        /// over |x| <= 1.2 a, relative (both sides together).
         double profile_l2_error = 0.;
+        /// Largest |p_i - p(x_i)| / p0 over the pairs inside |x| < 0.9 a
+        /// (Johnson's a and p0; p_i the pair pressure, x_i its distance
+        /// from the axis), and how many pairs lie there.
+        double       max_pair_deviation = 0.;
+        unsigned int n_inner_pairs      = 0;
         /// Pairs carrying load, and the pair spacing next to the axis.
         unsigned int n_loaded     = 0;
         double       pair_spacing = 0.;
