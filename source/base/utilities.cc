@@ -181,10 +181,13 @@ namespace igabde
       setenv("OMPI_MCA_pml", "ob1", keep_user_value);
       if (std::getenv("OMPI_MCA_orte_tmpdir_base") != nullptr)
         return;
-      const char *tmpdir = std::getenv("TMPDIR");
-      std::string pattern =
-        std::string(tmpdir != nullptr && *tmpdir != '\0' ? tmpdir : "/tmp") +
-        "/igabde-mpi-XXXXXX";
+      // TMPDIR, else the system's temporary folder.
+      std::error_code no_temporary_folder;
+      const auto      temporary =
+        std::filesystem::temp_directory_path(no_temporary_folder);
+      if (no_temporary_folder)
+        return;
+      std::string pattern = (temporary / "igabde-mpi-XXXXXX").string();
       // Without a private base the run still works, only with the shared
       // one: no reason to stop here.
       if (mkdtemp(pattern.data()) == nullptr)

@@ -93,7 +93,8 @@ namespace igabde
      * one is creating, and the other's MPI_Init fails (two runs started
      * together, as ctest -j2 or a study driver does). Unless the user has
      * set OMPI_MCA_orte_tmpdir_base, each process therefore gets a base of
-     * its own under TMPDIR (or /tmp), removed again by the destructor.
+     * its own in the temporary folder (TMPDIR), removed again by the
+     * destructor.
      *
      * Under a launcher (mpirun, srun) nothing changes; other MPI
      * implementations ignore the variables.
