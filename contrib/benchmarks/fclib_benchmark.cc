@@ -8,7 +8,7 @@
 //   folder               default $IGABDE_FCLIB_DIR, else
 //                        ../shared/fclib/data (run from the repository root)
 //   max_iterations       iteration budget per problem (default 300)
-//   seconds_per_problem  wall-time limit per solve (default 20)
+//   seconds_per_problem  wall-time limit per solve (default 60)
 //   max_rows             larger problems (rows of the dense W) are skipped
 //                        (default 6000)
 //
@@ -54,7 +54,7 @@ main(int argc, char **argv)
     folder = args[0];
   const unsigned int max_iterations =
     args.size() > 1 ? std::stoi(args[1]) : 300;
-  const double seconds  = args.size() > 2 ? std::stod(args[2]) : 20.;
+  const double seconds  = args.size() > 2 ? std::stod(args[2]) : 60.;
   const long   max_rows = args.size() > 3 ? std::stol(args[3]) : 6000;
 
   if (!std::filesystem::is_directory(folder))

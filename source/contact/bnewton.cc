@@ -363,9 +363,12 @@ namespace igabde
 
         // The Newton direction for the residual H; appends "lm " to
         // @p note if the reduced matrix was (nearly) singular and a
-        // Levenberg-Marquardt step was taken instead.
+        // Levenberg-Marquardt step was taken instead, regularised by
+        // lm_relative times the largest diagonal entry of J^T J.
         Vec
-        direction(const Vec &H, std::string &note) const
+        direction(const Vec   &H,
+                  std::string &note,
+                  const double lm_relative) const
         {
           const unsigned int n = m + na;
           Vec                dx(n);
@@ -392,13 +395,13 @@ namespace igabde
               const SparseMatrix K = sparse_matrix();
               if (!sparse_lu(K, rhs, dN))
                 {
-                  dN = sparse_lm(K, rhs);
+                  dN = sparse_lm(K, rhs, lm_relative);
                   note += "lm ";
                 }
             }
           else if (!dense_lu(rhs, dN))
             {
-              dN = dense_lm(rhs);
+              dN = dense_lm(rhs, lm_relative);
               note += "lm ";
             }
           for (unsigned int a = 0; a < nN; ++a)
@@ -574,11 +577,12 @@ namespace igabde
 
         // Levenberg-Marquardt: (K^T K + lambda I) d = K^T rhs.
         Vec
-        dense_lm(const Vec &rhs) const
+        dense_lm(const Vec &rhs, const double lm_relative) const
         {
           const Mat    K   = dense_matrix();
           const Mat    KtK = K.transpose() * K;
-          const double lm = 1e-10 * std::max(KtK.diagonal().maxCoeff(), 1e-300);
+          const double lm =
+            lm_relative * std::max(KtK.diagonal().maxCoeff(), 1e-300);
           return (KtK + lm * Mat::Identity(K.rows(), K.rows()))
             .ldlt()
             .solve(K.transpose() * rhs);
@@ -696,10 +700,13 @@ namespace igabde
         // slower here than the simplicial LDL^T: on KaplasTower 0.66 s
         // against 0.46 s over the 17 iterations.)
         Vec
-        sparse_lm(const SparseMatrix &K, const Vec &rhs) const
+        sparse_lm(const SparseMatrix &K,
+                  const Vec          &rhs,
+                  const double        lm_relative) const
         {
           SparseMatrix KtK = K.transpose() * K;
-          const double lm = 1e-10 * std::max(KtK.diagonal().maxCoeff(), 1e-300);
+          const double lm =
+            lm_relative * std::max(KtK.diagonal().maxCoeff(), 1e-300);
           SparseMatrix I(K.cols(), K.cols());
           I.setIdentity();
           KtK += lm * I;
@@ -1072,7 +1079,16 @@ namespace igabde
             sys.apply_floating_tie_rule(x, u, branches);
             const NewtonMatrix J(sys, branches, settings.use_symmetry);
             rec.n_reduced = J.n_reduced();
-            Vec dx        = J.direction(H, rec.note);
+            // Levenberg-Marquardt parameter relative to max diag J^T J:
+            // the square of the relative residual (Yamashita and
+            // Fukushima: fast local convergence without a nonsingular
+            // Newton matrix, the rigid stacks of FCLIB), between 1e-10
+            // far from the solution and 1e-14, below which it would sink
+            // under the rounding of J^T J and leave its null space to
+            // noise.
+            const double lm_relative =
+              std::isfinite(err) ? std::clamp(err * err, 1e-14, 1e-10) : 1e-10;
+            Vec dx = J.direction(H, rec.note, lm_relative);
             if (rec.note.find("lm") != std::string::npos)
               ++singular_iterations;
 
@@ -1289,7 +1305,7 @@ namespace igabde
               const double   eps_ref = max_diag > 0. ? max_diag : 1.;
               double         eps     = eps_ref;
               double         err    = driver.have_best ? driver.best_score : 1.;
-              unsigned int   n_fail = 0;
+              unsigned int   n_fail = 0, n_idle = 0;
               std::string    prox_reason = "iteration limit";
               ContactProblem sub         = problem;
               while (!driver.out_of_iterations() && !driver.out_of_time())
@@ -1318,9 +1334,25 @@ namespace igabde
                                          false,
                                          50);
                     }
-                  if (in.converged)
+                  if (in.converged && xi == xk)
                     {
-                      xk = xi;
+                      // The subproblem is solved where it starts (its
+                      // relative residual is measured against q - eps x_k,
+                      // which a large eps makes large): a smaller eps
+                      // brings it nearer the original problem; without
+                      // that the loop would turn without iterating.
+                      eps = std::max(eps * 0.1, 1e-12 * eps_ref);
+                      if (++n_idle > 12)
+                        {
+                          prox_reason = "stall (every proximal subproblem "
+                                        "is solved at the current iterate)";
+                          break;
+                        }
+                    }
+                  else if (in.converged)
+                    {
+                      n_idle = 0;
+                      xk     = xi;
                       const Vec uk =
                         problem.relative_displacement(xk.head(m), xk.tail(na));
                       double       e_fclib, e_bal, eq;

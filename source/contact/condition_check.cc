@@ -145,14 +145,21 @@ namespace igabde
                  std::max(pt - mu * pn, 0.) / F,
                  c,
                  "|p_t| = " + format(pt) + ", mu p_n = " + format(mu * pn));
-          if (ut / D > tolerance)
+          // Where the pair slips: p_t = -mu p_n u_t/|u_t|. Measured, like
+          // the complementarity, as the smaller of its force form
+          // |p_t + mu p_n u_t/|u_t||/F and its displacement form
+          // |u_t + |u_t| p_t/(mu p_n)|/D: the direction of a slip lost in
+          // the rounding of u_t changes the answer by that slip only.
+          // (mu p_n <= 0 leaves p_t = 0 to the cone condition.)
+          if (ut > 0. && mu * pn > 0.)
             {
-              double e = 0.;
+              double ef = 0., ed = 0.;
               for (unsigned int k = 1; k < d; ++k)
                 {
-                  const double ek =
-                    p[o + k] + mu * std::max(pn, 0.) * u[o + k] / ut;
-                  e += ek * ek;
+                  const double fk = p[o + k] + mu * pn * u[o + k] / ut;
+                  const double dk = u[o + k] + ut * p[o + k] / (mu * pn);
+                  ef += fk * fk;
+                  ed += dk * dk;
                 }
               std::string pts = "p_t = (", uts = "u_t = (";
               for (unsigned int k = 1; k < d; ++k)
@@ -161,7 +168,7 @@ namespace igabde
                   uts += format(u[o + k]) + (k + 1 < d ? ", " : ")");
                 }
               update(slip,
-                     std::sqrt(e) / F,
+                     std::min(std::sqrt(ef) / F, std::sqrt(ed) / D),
                      c,
                      pts + ", " + uts + ", mu p_n = " + format(mu * pn));
             }

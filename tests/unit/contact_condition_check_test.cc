@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 using namespace igabde::contact;
 
 namespace
@@ -171,4 +173,32 @@ TEST(ContactConditionCheck, ScaleAware)
         EXPECT_FALSE(bad.passed());
         EXPECT_EQ(bad.first_violation().rfind("slip direction", 0), 0u);
       }
+}
+
+
+
+// The slip direction is measured, like the complementarity, as the smaller
+// of its force and displacement forms: a slip turned 90 degrees from its
+// force has force form |p_t + mu p_n u_t/|u_t||/F = |(0.7, -0.1)| = 0.707
+// and displacement form |u_t + |u_t| p_t/(mu p_n)|/D = sqrt(2) s for a slip
+// of length s (D = 1). A slip of 1e-9 whose direction is lost passes; the
+// same mismatch on a slip of 1e-3 is reported, with the hand-derived size.
+TEST(ContactConditionCheck, SlipDirectionWeightedByTheSlip)
+{
+  const ContactProblem  problem = slip_problem();
+  const Eigen::VectorXd p0      = exact_p();
+  for (const double s : {1e-9, 1e-3})
+    {
+      Eigen::VectorXd u = problem.relative_displacement(p0);
+      u[1]              = 0.6 * s;
+      u[2]              = -0.8 * s;
+      const ConditionReport report =
+        check_contact_conditions(problem, p0, u, 1e-6);
+      double slip = -1.;
+      for (const ConditionViolation &cv : report.conditions)
+        if (cv.name.rfind("slip direction", 0) == 0)
+          slip = cv.max_violation;
+      EXPECT_NEAR(slip, std::sqrt(2.) * s, 1e-12 * s);
+      EXPECT_EQ(report.passed(), s < 1e-6) << report.describe();
+    }
 }

@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -183,4 +184,38 @@ TEST(ContactFclib, ElasticProblemsSolve)
       n_solved += result.converged;
     }
   EXPECT_GE(n_solved, 20u);
+}
+
+
+
+// Rigid capsule heaps whose reduced Newton matrix is singular at every
+// iteration: with a fixed Levenberg-Marquardt parameter (1e-10 max diag
+// J^T J) the Newton steps lost the directions of the small singular values
+// and stalled near a relative natural map of 1e-7 (300 iterations); the
+// parameter now shrinks with the residual. Solved means the FCLIB measure
+// <= 1e-8, and the post-solve condition check at 1e-6.
+TEST(ContactFclib, SingularRigidHeapsReachTheFclibTolerance)
+{
+  SKIP_WITHOUT_FCLIB();
+  const BNewtonSolver solver{BNewtonSolver::Settings()};
+  for (const std::string name :
+       {"Capsules-i100-1090.dat", "Capsules-i100-889.dat"})
+    {
+      SCOPED_TRACE(name);
+      const ContactProblem problem =
+        read_fclib_problem(fclib_file("siconos_dat/" + name));
+      const BNewtonSolver::Result result = solver.solve(problem);
+      EXPECT_TRUE(result.converged) << result.summary();
+      EXPECT_LE(result.residual, 1e-8) << result.summary();
+      // The case this test is about: Levenberg-Marquardt steps were taken.
+      EXPECT_TRUE(std::any_of(result.history.begin(),
+                              result.history.end(),
+                              [](const auto &record) {
+                                return record.note.find("lm") !=
+                                       std::string::npos;
+                              }));
+      const ConditionReport report =
+        check_contact_conditions(problem, result.p, result.u, 1e-6);
+      EXPECT_TRUE(report.passed()) << report.describe();
+    }
 }
