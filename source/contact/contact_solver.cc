@@ -21,7 +21,12 @@ namespace igabde
           << std::setw(12) << residual << std::setw(12) << balanced_residual
           << std::setw(12) << step << std::setw(6) << n_open << std::setw(6)
           << n_stick << std::setw(6) << n_slip << std::setw(6) << n_reduced
-          << ' ' << note << '\n';
+          << ' ' << note
+          << (linear_iterations > 0 ?
+                std::string(note.empty() ? "" : " ") + "gmres " +
+                  std::to_string(linear_iterations) :
+                std::string())
+          << '\n';
       out.flags(f);
     }
 
@@ -53,6 +58,13 @@ namespace igabde
         s << ", equilibrium residual " << equilibrium_residual;
       s << ", open/stick/slip " << n_open << '/' << n_stick << '/' << n_slip
         << ": " << diagnosis;
+      std::string krylov;
+      for (const ContactIterationRecord &rec : history)
+        if (rec.linear_iterations > 0)
+          krylov +=
+            (krylov.empty() ? "" : " ") + std::to_string(rec.linear_iterations);
+      if (!krylov.empty())
+        s << "; GMRES iterations per Newton step: " << krylov;
       return s.str();
     }
 

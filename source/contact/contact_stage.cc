@@ -119,13 +119,9 @@ namespace igabde
                                       settings.context);
 
       // The path: penalty methods solve the full system (as ANSYS does);
-      // the BDE takes the path asked for, or under auto the condensed one
-      // until its dense system outgrows the sparse one (measured on B2 at
-      // 16x64x16, 3 510 contact unknowns: the dense B-Newton takes 20 s
-      // there and its W 99 MB; the coupled system stays sparse).
+      // the BDE takes the path asked for, or under auto the one the cost
+      // model (path_cost.h) estimates cheaper.
       ContactSolverSettings solver_settings = settings.solver;
-      const unsigned int    n_contact       = m * pair_list.size();
-      const unsigned int    dense_limit     = 3000;
       if (settings.solver.algorithm != "bde")
         {
           resolved_path = "full";
@@ -133,15 +129,13 @@ namespace igabde
         }
       else if (settings.solver.path == "auto")
         {
-          resolved_path = n_contact > dense_limit ? "full" : "condensed";
-          path_why =
-            "auto: " + std::to_string(n_contact) + " contact unknowns " +
-            (n_contact > dense_limit ? "> " : "<= ") +
-            std::to_string(dense_limit) + " (dense W of " +
-            std::to_string(static_cast<unsigned long>(8. * n_contact *
-                                                      n_contact / 1048576.)) +
-            " MiB and a dense factorisation per Newton step "
-            "against a sparse one)";
+          const PathCostEstimate e =
+            estimate_path_costs(path_cost_inputs(),
+                                PathCostConstants::measured());
+          resolved_path               = e.path;
+          path_why                    = e.reason;
+          estimated_condensed_seconds = e.condensed_seconds;
+          estimated_full_seconds      = e.full_seconds;
         }
       else
         {
@@ -153,6 +147,39 @@ namespace igabde
       if (settings.log_solves)
         log << "  contact: " << solver->name() << " on the " << resolved_path
             << " path (" << path_why << ")" << std::endl;
+    }
+
+
+
+    template <int dim>
+    PathCostInputs
+    ContactStage<dim>::path_cost_inputs() const
+    {
+      PathCostInputs inputs;
+      inputs.contact_unknowns = m * pair_list.size();
+      // The unknowns the pair points move, per deformable body (the Schur
+      // complement of the condensed path is formed on them).
+      const unsigned int n_sides = obstacle ? 1u : 2u;
+      for (unsigned int side = 0; side < n_sides; ++side)
+        {
+          std::vector<bool> touched(bodies[side]->n_dofs(), false);
+          for (const auto &pair : pair_list)
+            {
+              const auto &op = side == 0 ? pair.op1 : pair.op2;
+              for (unsigned int k = 0; k < op.weights.size(); ++k)
+                for (unsigned int c = 0; c < dim; ++c)
+                  if (op.weights[k] != 0. &&
+                      !bodies[side]->is_held(op.dofs[k][c]))
+                    touched[op.dofs[k][c]] = true;
+            }
+          inputs.face_unknowns.push_back(
+            std::count(touched.begin(), touched.end(), true));
+        }
+      inputs.factor_entries = settings.factor_entries;
+      inputs.newton_iterations =
+        PathCostConstants::measured().iterations_per_step *
+        std::max(1u, settings.n_load_steps);
+      return inputs;
     }
 
 
@@ -646,7 +673,11 @@ namespace igabde
       result.max_penetration = std::max(solution.max_penetration, 0.);
       result.updates         = solution.updates;
       for (const auto &rec : solution.history)
-        result.residual_history.push_back(rec.residual);
+        {
+          result.residual_history.push_back(rec.residual);
+          if (rec.linear_iterations > 0)
+            result.linear_iterations.push_back(rec.linear_iterations);
+        }
       if (!solution.converged)
         return result;
 
@@ -762,13 +793,16 @@ namespace igabde
       s.n_pairs    = pair_list.size();
       s.n_unknowns = condensed.problem.n_rows() + condensed.problem.n_alpha();
       s.friction   = (m > 1);
-      s.rigid_obstacle       = static_cast<bool>(obstacle);
-      s.floating_rigid_modes = condensed.alpha_modes.size();
-      s.pairs_left_out       = condensed.n_dropped;
-      s.algorithm            = settings.solver.algorithm;
-      s.path                 = resolved_path;
-      s.path_reason          = path_why;
-      s.coupled_nonzeros     = coupled ? coupled->n_nonzeros() : 0.;
+      s.rigid_obstacle              = static_cast<bool>(obstacle);
+      s.floating_rigid_modes        = condensed.alpha_modes.size();
+      s.pairs_left_out              = condensed.n_dropped;
+      s.algorithm                   = settings.solver.algorithm;
+      s.path                        = resolved_path;
+      s.path_reason                 = path_why;
+      s.estimated_condensed_seconds = estimated_condensed_seconds;
+      s.estimated_full_seconds      = estimated_full_seconds;
+      s.cost_inputs                 = path_cost_inputs();
+      s.coupled_nonzeros            = coupled ? coupled->n_nonzeros() : 0.;
       return s;
     }
 

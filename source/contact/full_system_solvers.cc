@@ -72,7 +72,26 @@ namespace igabde
 
 
 
-      // Newton increment for the per-pair blocks A, B and the residuals.
+      // The accuracy of an iterative solve of the Newton system (an
+      // inexact Newton method, Eisenstat and Walker's forcing term
+      // eta = c |F_k| / |F_0|): the linear residual at most eta times the
+      // Newton residual |F_k|, with eta = 1e-2 min(1, |F_k| / |F_0|) and
+      // not below 1e-12. Far from the solution a rough direction is
+      // enough (the pair states still change); near it eta falls with the
+      // residual, so the Newton residual falls as |F_k|^2 / |F_0| per
+      // iteration once the states are settled (1 -> 1e-2 -> 1e-6 ->
+      // 1e-14), the direct path's answer to the same stopping test.
+      double
+      krylov_tolerance(const double norm, const double first_norm)
+      {
+        const double ratio = first_norm > 0. ? norm / first_norm : 1.;
+        return std::max(1e-12, 1e-2 * std::min(1., ratio));
+      }
+
+
+
+      // Newton increment for the per-pair blocks A, B and the residuals;
+      // the iterations of an iterative solver go into @p rec.
       bool
       newton_increment(const ContactProblem               &problem,
                        const std::vector<Eigen::Matrix3d> &A,
@@ -80,13 +99,17 @@ namespace igabde
                        const Vec                          &r_w,
                        const Vec                          &H,
                        const Vec                          &e,
+                       const double                        tolerance,
                        Iterate                            &dx,
-                       std::string                        &why)
+                       std::string                        &why,
+                       ContactIterationRecord             &rec)
       {
         problem.coupled->factorize(A, B);
         const Vec  e_rhs = (e.size() > 0 ? Vec(-e) : Vec());
         const bool ok =
-          problem.coupled->solve(-r_w, -H, e_rhs, dx.w, dx.p, dx.alpha, why);
+          problem.coupled
+            ->solve(-r_w, -H, e_rhs, dx.w, dx.p, dx.alpha, why, tolerance);
+        rec.linear_iterations = problem.coupled->linear_iterations();
         if (ok &&
             !(dx.w.allFinite() && dx.p.allFinite() && dx.alpha.allFinite()))
           {
@@ -193,7 +216,7 @@ namespace igabde
         Vec                          P(problem.n_rows());
         result.status.assign(nc, ContactStatus::open);
         PenaltyOutcome outcome;
-        double         last_residual = 0.;
+        double         last_residual = 0., first_norm = 0.;
         for (unsigned int it = 0;; ++it)
           {
             Vec u = relative_displacement(problem, x);
@@ -273,9 +296,23 @@ namespace igabde
                                  "penalty factor converges more easily)";
                 return outcome;
               }
-            Iterate     dx;
-            std::string why;
-            if (!newton_increment(problem, A, B, r_w, H, e, dx, why))
+            Iterate      dx;
+            std::string  why;
+            const double F_norm =
+              std::sqrt(H.squaredNorm() + r_w.squaredNorm() +
+                        (e.size() > 0 ? e.squaredNorm() : 0.));
+            if (it == 0)
+              first_norm = F_norm;
+            if (!newton_increment(problem,
+                                  A,
+                                  B,
+                                  r_w,
+                                  H,
+                                  e,
+                                  krylov_tolerance(F_norm, first_norm),
+                                  dx,
+                                  why,
+                                  rec))
               {
                 result.history.push_back(rec);
                 outcome.reason = why;
@@ -416,7 +453,7 @@ namespace igabde
 
       std::vector<Eigen::Matrix3d> A(nc), B(nc);
       Vec                          u, H, r_w, e;
-      double                       last_theta = 0.;
+      double                       last_theta = 0., first_norm = 0.;
       for (unsigned int it = 0;; ++it)
         {
           const double           theta = evaluate(x, u, H, r_w, e, true);
@@ -477,7 +514,18 @@ namespace igabde
             }
           Iterate     dx;
           std::string why;
-          if (!newton_increment(problem, A, B, r_w, H, e, dx, why))
+          if (it == 0)
+            first_norm = rec.h_norm;
+          if (!newton_increment(problem,
+                                A,
+                                B,
+                                r_w,
+                                H,
+                                e,
+                                krylov_tolerance(rec.h_norm, first_norm),
+                                dx,
+                                why,
+                                rec))
             {
               result.diagnosis = why;
               result.history.push_back(rec);

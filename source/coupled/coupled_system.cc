@@ -3,10 +3,13 @@
 #include <igabde/coupled/coupled_system.h>
 
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/solver_control.h>
+#include <deal.II/lac/solver_gmres.h>
 #include <deal.II/lac/trilinos_vector.h>
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 namespace igabde
 {
@@ -19,17 +22,23 @@ namespace igabde
       const unsigned int                                    n_components,
       const Eigen::MatrixXd                                &G,
       const bool                                            obstacle,
-      const std::string                                    &solver)
+      const std::string                                    &solver,
+      const unsigned int krylov_max_iterations)
       : bodies(bodies)
       , d(n_components)
       , n_pairs(pairs.size())
       , n_alpha(G.cols())
       , G(G)
-      , solver_type(solver == "klu" ? "Amesos_Klu" : "Amesos_Mumps")
+      , solver_type(solver == "klu"       ? "Amesos_Klu" :
+                    solver == "gmres-amg" ? "gmres-amg" :
+                                            "Amesos_Mumps")
+      , krylov(solver == "gmres-amg")
+      , krylov_max_iterations(krylov_max_iterations)
     {
-      AssertThrow(solver == "mumps" || solver == "klu",
+      AssertThrow(solver == "mumps" || solver == "klu" || solver == "gmres-amg",
                   base::ExcInput("Contact/Full system solver = " + solver +
-                                 " is not known; use mumps or klu."));
+                                 " is not known; use mumps, klu or "
+                                 "gmres-amg."));
       for (const auto *body : bodies)
         {
           offsets.push_back(n_u);
@@ -143,6 +152,123 @@ namespace igabde
 
       all = complete_index_set(n_total);
       matrix.reinit(all, all, dsp, MPI_COMM_SELF);
+      if (krylov)
+        setup_krylov();
+    }
+
+
+
+    template <int dim>
+    void
+    CoupledSystem<dim>::setup_krylov()
+    {
+      // The displacement block: K of both bodies, held rows scale times
+      // identity (as in the Newton matrix); it never changes, so its AMG
+      // is set up once.
+      displacement_set = complete_index_set(n_u);
+      DynamicSparsityPattern dsp(n_u, n_u);
+      for (unsigned int b = 0; b < bodies.size(); ++b)
+        {
+          const SparseMatrix<double> &K = bodies[b]->stiffness_matrix();
+          for (types::global_dof_index i = 0; i < K.m(); ++i)
+            {
+              const unsigned int gi = offsets[b] + i;
+              if (held[gi])
+                dsp.add(gi, gi);
+              else
+                for (auto e = K.begin(i); e != K.end(i); ++e)
+                  if (!held[offsets[b] + e->column()])
+                    dsp.add(gi, offsets[b] + e->column());
+            }
+        }
+      K_matrix.reinit(displacement_set, displacement_set, dsp, MPI_COMM_SELF);
+      std::vector<double> diagonal(n_u, scale);
+      for (unsigned int b = 0; b < bodies.size(); ++b)
+        {
+          const SparseMatrix<double> &K = bodies[b]->stiffness_matrix();
+          for (types::global_dof_index i = 0; i < K.m(); ++i)
+            {
+              const unsigned int gi = offsets[b] + i;
+              if (held[gi])
+                {
+                  K_matrix.set(gi, gi, scale);
+                  continue;
+                }
+              for (auto e = K.begin(i); e != K.end(i); ++e)
+                if (!held[offsets[b] + e->column()])
+                  K_matrix.set(gi, offsets[b] + e->column(), e->value());
+              diagonal[gi] = K.diag_element(i);
+            }
+        }
+      K_matrix.compress(VectorOperation::insert);
+
+      // Near null space of the AMG: the rigid-body modes of each body
+      // (translations and rotations about its centre, from the control
+      // points or nodes: exact rigid motions of the discrete space).
+      // Smoothed aggregation with translations only coarsens the bending
+      // of slender bodies badly.
+      const unsigned int n_modes = (dim == 2 ? 3 : 6);
+      null_space.assign(std::size_t(n_modes) * n_u, 0.);
+      bool node_blocks = true;
+      for (unsigned int b = 0; b < bodies.size(); ++b)
+        {
+          Point<dim>   centre;
+          const auto  &body = *bodies[b];
+          const double n    = std::max<double>(body.n_dofs(), 1.);
+          for (types::global_dof_index i = 0; i < body.n_dofs(); ++i)
+            centre += body.dof_location(i) / n;
+          double size = 0.;
+          for (types::global_dof_index i = 0; i < body.n_dofs(); ++i)
+            size = std::max(size, body.dof_location(i).distance(centre));
+          size = size > 0. ? size : 1.;
+          for (types::global_dof_index i = 0; i < body.n_dofs(); ++i)
+            {
+              const std::size_t    g  = offsets[b] + i;
+              const unsigned int   c  = body.dof_component(i);
+              const Tensor<1, dim> x  = (body.dof_location(i) - centre) / size;
+              node_blocks             = node_blocks && (g % dim == c);
+              null_space[c * n_u + g] = 1.;
+              if (dim == 2)
+                null_space[2 * n_u + g] = (c == 0 ? -x[1] : x[0]);
+              else
+                {
+                  // Rotations about x, y, z: (0,-z,y), (z,0,-x), (-y,x,0).
+                  const double rx[3]      = {0., -x[dim - 1], x[1]};
+                  const double ry[3]      = {x[dim - 1], 0., -x[0]};
+                  const double rz[3]      = {-x[1], x[0], 0.};
+                  null_space[3 * n_u + g] = rx[c];
+                  null_space[4 * n_u + g] = ry[c];
+                  null_space[5 * n_u + g] = rz[c];
+                }
+            }
+        }
+      TrilinosWrappers::PreconditionAMG::AdditionalData data;
+      data.elliptic              = true;
+      data.higher_order_elements = true;
+      data.smoother_sweeps       = 2;
+      data.aggregation_threshold = 1e-4;
+      Teuchos::ParameterList              list;
+      std::unique_ptr<Epetra_MultiVector> unused;
+      data.set_parameters(list, unused, K_matrix);
+      list.set("null space: type", "pre-computed");
+      list.set("null space: dimension", static_cast<int>(n_modes));
+      list.set("null space: vectors", null_space.data());
+      // ML aggregates blocks of "PDE equations" consecutive unknowns: the
+      // components of one control point or node when they are numbered
+      // together, else one unknown at a time.
+      list.set("PDE equations", node_blocks ? dim : 1);
+      amg.initialize(K_matrix, list);
+
+      // C D^-1 C^T, the flexibility of the pairs if each unknown were held
+      // by its own diagonal stiffness (sparse: pairs that share no unknown
+      // do not couple).
+      std::vector<Eigen::Triplet<double>> entries;
+      for (unsigned int r = 0; r < d * n_pairs; ++r)
+        for (const auto &[g, v] : C_rows[r])
+          entries.emplace_back(r, g, v / std::sqrt(diagonal[g]));
+      Eigen::SparseMatrix<double> C_scaled(d * n_pairs, n_u);
+      C_scaled.setFromTriplets(entries.begin(), entries.end());
+      local_flexibility = C_scaled * C_scaled.transpose();
     }
 
 
@@ -328,10 +454,53 @@ namespace igabde
               }
           }
       matrix.compress(VectorOperation::add);
+      factorization_error.clear();
+      if (krylov)
+        {
+          // S~ = [(B + A C D^-1 C^T) s, A G; G^T s, 0].
+          const unsigned int                  m = d * n_pairs;
+          std::vector<Eigen::Triplet<double>> entries;
+          for (unsigned int i = 0; i < n_pairs; ++i)
+            for (unsigned int s = 0; s < d; ++s)
+              {
+                const unsigned int row = d * i + s;
+                for (unsigned int t = 0; t < d; ++t)
+                  {
+                    if (B[i](s, t) != 0.)
+                      entries.emplace_back(row, d * i + t, B[i](s, t) * scale);
+                    if (A[i](s, t) != 0.)
+                      for (Eigen::SparseMatrix<double>::InnerIterator
+                             e(local_flexibility, d * i + t);
+                           e;
+                           ++e)
+                        entries.emplace_back(row,
+                                             e.row(),
+                                             A[i](s, t) * e.value() * scale);
+                  }
+                for (unsigned int a = 0; a < n_alpha; ++a)
+                  {
+                    double ag = 0.;
+                    for (unsigned int t = 0; t < d; ++t)
+                      ag += A[i](s, t) * G(d * i + t, a);
+                    if (ag != 0.)
+                      entries.emplace_back(row, m + a, ag);
+                    if (G(row, a) != 0.)
+                      entries.emplace_back(m + a, row, G(row, a) * scale);
+                  }
+              }
+          Eigen::SparseMatrix<double> S(m + n_alpha, m + n_alpha);
+          S.setFromTriplets(entries.begin(), entries.end());
+          S.makeCompressed();
+          schur_lu.analyzePattern(S);
+          schur_lu.factorize(S);
+          if (schur_lu.info() != Eigen::Success)
+            factorization_error = "the Schur-complement approximation of "
+                                  "the preconditioner is singular";
+          return;
+        }
       direct = std::make_unique<TrilinosWrappers::SolverDirect>(
         control,
         TrilinosWrappers::SolverDirect::AdditionalData(false, solver_type));
-      factorization_error.clear();
       try
         {
           direct->initialize(matrix);
@@ -354,9 +523,20 @@ namespace igabde
                               Eigen::VectorXd       &dw,
                               Eigen::VectorXd       &dp,
                               Eigen::VectorXd       &dalpha,
-                              std::string           &why) const
+                              std::string           &why,
+                              const double           relative_tolerance) const
     {
-      Assert(direct, ExcMessage("factorize() first"));
+      Assert(direct || krylov, ExcMessage("factorize() first"));
+      last_iterations = 0;
+      if (krylov && !factorization_error.empty())
+        {
+          why = "the Newton matrix of the coupled system cannot be solved "
+                "by gmres-amg: " +
+                factorization_error +
+                " (a floating body whose pairs are all open is held by "
+                "nothing)";
+          return false;
+        }
       if (!factorization_error.empty())
         {
           why = "the Newton matrix of the coupled system is singular (" +
@@ -374,26 +554,74 @@ namespace igabde
       for (unsigned int a = 0; a < n_alpha; ++a)
         rhs[n_u + d * n_pairs + a] = r_alpha[a];
       rhs.compress(VectorOperation::insert);
-      try
+      if (krylov)
         {
-          // One step of iterative refinement against the assembled matrix
-          // (Amesos does not refine; near the solution the Newton
-          // direction must be accurate to the rounding of the residual).
-          direct->solve(x, rhs);
-          TrilinosWrappers::MPI::Vector residual(all, MPI_COMM_SELF),
-            correction(all, MPI_COMM_SELF);
-          matrix.vmult(residual, x);
-          residual.sadd(-1., rhs);
-          direct->solve(correction, residual);
-          x += correction;
+          // Right preconditioning: GMRES measures the residual of the
+          // Newton system itself (rows in force units), not a
+          // preconditioned one.
+          const double  target = relative_tolerance * rhs.l2_norm();
+          SolverControl gmres_control(krylov_max_iterations,
+                                      target,
+                                      false,
+                                      false);
+          SolverGMRES<TrilinosWrappers::MPI::Vector> gmres(
+            gmres_control,
+            SolverGMRES<TrilinosWrappers::MPI::Vector>::AdditionalData(102,
+                                                                       true));
+          struct Preconditioner
+          {
+            const CoupledSystem<dim> *system;
+            void
+            vmult(TrilinosWrappers::MPI::Vector       &dst,
+                  const TrilinosWrappers::MPI::Vector &src) const
+            {
+              system->apply_preconditioner(dst, src);
+            }
+          } preconditioner{this};
+          try
+            {
+              if (target > 0.)
+                gmres.solve(matrix, x, rhs, preconditioner);
+              last_iterations = gmres_control.last_step();
+            }
+          catch (const SolverControl::NoConvergence &e)
+            {
+              last_iterations = e.last_step;
+              std::ostringstream message;
+              message << "GMRES (AMG and Schur-complement preconditioner) "
+                         "did not converge on the Newton matrix of the "
+                         "coupled system: "
+                      << e.last_step << " iterations, residual "
+                      << e.last_residual / rhs.l2_norm()
+                      << " relative to the right-hand side, required "
+                      << relative_tolerance
+                      << " (raise Contact/Krylov max iterations, or use "
+                         "Contact/Full system solver = mumps)";
+              why = message.str();
+              return false;
+            }
         }
-      catch (const std::exception &e)
-        {
-          why = std::string("the sparse direct solver failed on the Newton "
-                            "matrix: ") +
-                e.what();
-          return false;
-        }
+      else
+        try
+          {
+            // One step of iterative refinement against the assembled matrix
+            // (Amesos does not refine; near the solution the Newton
+            // direction must be accurate to the rounding of the residual).
+            direct->solve(x, rhs);
+            TrilinosWrappers::MPI::Vector residual(all, MPI_COMM_SELF),
+              correction(all, MPI_COMM_SELF);
+            matrix.vmult(residual, x);
+            residual.sadd(-1., rhs);
+            direct->solve(correction, residual);
+            x += correction;
+          }
+        catch (const std::exception &e)
+          {
+            why = std::string("the sparse direct solver failed on the Newton "
+                              "matrix: ") +
+                  e.what();
+            return false;
+          }
       dw.resize(n_u);
       dp.resize(d * n_pairs);
       dalpha.resize(n_alpha);
@@ -404,6 +632,57 @@ namespace igabde
       for (unsigned int a = 0; a < n_alpha; ++a)
         dalpha[a] = x[n_u + d * n_pairs + a];
       return true;
+    }
+
+
+
+    template <int dim>
+    void
+    CoupledSystem<dim>::apply_preconditioner(
+      TrilinosWrappers::MPI::Vector       &dst,
+      const TrilinosWrappers::MPI::Vector &src) const
+    {
+      // Block back substitution with P = [K U; 0 S~]: y = S~^-1 g, then
+      // x = AMG(f - U y) = AMG(f + C^T s y_p).
+      const unsigned int m = d * n_pairs;
+      Eigen::VectorXd    g(m + n_alpha);
+      for (unsigned int i = 0; i < m + n_alpha; ++i)
+        g[i] = src[n_u + i];
+      const Eigen::VectorXd         y = schur_lu.solve(g);
+      TrilinosWrappers::MPI::Vector f(displacement_set, MPI_COMM_SELF),
+        x(displacement_set, MPI_COMM_SELF);
+      const double *in  = src.begin();
+      double       *out = f.begin();
+      for (unsigned int i = 0; i < n_u; ++i)
+        out[i] = in[i];
+      for (unsigned int r = 0; r < m; ++r)
+        for (const auto &[j, v] : C_rows[r])
+          out[j] += v * scale * y[r];
+      amg.vmult(x, f);
+      double       *result = dst.begin();
+      const double *xs     = x.begin();
+      for (unsigned int i = 0; i < n_u; ++i)
+        result[i] = xs[i];
+      for (unsigned int i = 0; i < m + n_alpha; ++i)
+        result[n_u + i] = y[i];
+    }
+
+
+
+    template <int dim>
+    unsigned int
+    CoupledSystem<dim>::linear_iterations() const
+    {
+      return last_iterations;
+    }
+
+
+
+    template <int dim>
+    bool
+    CoupledSystem<dim>::iterative() const
+    {
+      return krylov;
     }
 
 

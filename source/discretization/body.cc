@@ -278,6 +278,16 @@ namespace igabde
 
 
     template <int dim>
+    const Point<dim> &
+    Body<dim>::dof_location(const types::global_dof_index i) const
+    {
+      AssertIndexRange(i, dof_locations.size());
+      return dof_locations[i];
+    }
+
+
+
+    template <int dim>
     Tensor<1, dim>
     Body<dim>::support_reaction(const Vector<double> &u,
                                 const Vector<double> &f) const

@@ -571,9 +571,20 @@ namespace igabde
                           "chatter between pair states).");
         prm.declare_entry("Full system solver",
                           "mumps",
-                          Patterns::Selection("mumps|klu"),
-                          "Sparse direct solver (Trilinos Amesos) of the "
-                          "coupled Newton matrix on the full path.");
+                          Patterns::Selection("mumps|klu|gmres-amg"),
+                          "Linear solver of the coupled Newton matrix on "
+                          "the full path: mumps or klu (sparse direct, "
+                          "Trilinos Amesos), or gmres-amg (GMRES with a "
+                          "block preconditioner: AMG on the stiffness, a "
+                          "sparse LU of an approximate Schur complement on "
+                          "the pair forces; each Newton step solved to "
+                          "1e-2 min(1, |F_k|/|F_0|) of its residual).");
+        prm.declare_entry("Krylov max iterations",
+                          "1000",
+                          Patterns::Integer(1),
+                          "gmres-amg: GMRES iteration limit per Newton "
+                          "step; reaching it fails the contact solve with "
+                          "the iterations and the residual.");
         prm.declare_entry("Path",
                           "auto",
                           Patterns::Selection("condensed|full|auto"),
@@ -672,6 +683,7 @@ namespace igabde
         penalty_factor            = prm.get_double("Penalty factor");
         tangential_penalty_factor = prm.get_double("Tangential penalty factor");
         full_system_solver        = prm.get("Full system solver");
+        krylov_max_iterations     = prm.get_integer("Krylov max iterations");
         penalty_line_search       = prm.get_bool("Penalty line search");
         path                      = prm.get("Path");
         condensation              = prm.get("Condensation");

@@ -435,6 +435,9 @@ namespace igabde
           cs.context                          = scene_file;
           cs.progress                         = parameters.output.progress;
           cs.log_solves = parameters.output.solver_details;
+          for (const auto &b : estimate_size(parameters, scene_file).bodies)
+            cs.factor_entries.push_back(b.factor_entries);
+          cs.n_load_steps = steps.size();
 
           // The obstacle Body 2 stands for, if it is not deformable.
           std::unique_ptr<contact::Obstacle<dim>> obstacle;
@@ -464,20 +467,22 @@ namespace igabde
             std::vector<const discretization::Body<dim> *> deformable;
             for (const auto &body : bodies)
               deformable.push_back(body.get());
-            const std::string solver = c.full_system_solver;
+            const std::string  solver         = c.full_system_solver;
+            const unsigned int max_iterations = c.krylov_max_iterations;
             contact_stage->set_coupled_factory(
-              [deformable,
-               solver](const std::vector<contact::ContactPair<dim>> &pairs,
-                       const unsigned int     n_components,
-                       const Eigen::MatrixXd &G,
-                       const bool             obstacle) {
+              [deformable, solver, max_iterations](
+                const std::vector<contact::ContactPair<dim>> &pairs,
+                const unsigned int                            n_components,
+                const Eigen::MatrixXd                        &G,
+                const bool                                    obstacle) {
                 return std::make_shared<coupled::CoupledSystem<dim>>(
                   deformable,
                   pairs,
                   n_components,
                   G,
                   obstacle,
-                  solver);
+                  solver,
+                  max_iterations);
               });
             Timer clock;
             contact_stage->prepare(timer);
@@ -503,6 +508,18 @@ namespace igabde
           summary["contact_algorithm"]        = s.algorithm;
           summary["contact_path"]             = s.path;
           summary["contact_path_reason"]      = s.path_reason;
+          if (s.estimated_condensed_seconds > 0. ||
+              s.estimated_full_seconds > 0.)
+            summary["contact_path_estimated_seconds"] = {
+              {"condensed", s.estimated_condensed_seconds},
+              {"full", s.estimated_full_seconds}};
+          summary["contact_path_cost_inputs"] = {
+            {"contact_unknowns", s.cost_inputs.contact_unknowns},
+            {"face_unknowns", s.cost_inputs.face_unknowns},
+            {"factor_entries", s.cost_inputs.factor_entries},
+            {"newton_iterations", s.cost_inputs.newton_iterations}};
+          if (c.full_system_solver != "mumps" && s.path == "full")
+            summary["full_system_solver"] = c.full_system_solver;
           if (s.path == "full")
             summary["coupled_matrix_nonzeros"] = s.coupled_nonzeros;
           if (s.algorithm != "bde")
@@ -594,6 +611,8 @@ namespace igabde
               if (parameters.contact.algorithm == "augmented-lagrange")
                 record["multiplier_updates"] = last.updates;
               record["residual_history"] = last.residual_history;
+              if (!last.linear_iterations.empty())
+                record["krylov_iterations"] = last.linear_iterations;
               if (!outcome.success)
                 {
                   record["diagnosis"] = last.diagnosis;

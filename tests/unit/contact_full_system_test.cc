@@ -185,3 +185,69 @@ TEST(FullSystem, PenaltyApproachesTheBdeAnswerAsFknGrows)
         }
     }
 }
+
+
+
+// GMRES with the block preconditioner solves the same Newton systems as
+// MUMPS, each to 1e-2 min(1, |F_k|/|F_0|) of the Newton residual: the
+// Newton stops on the same test (Contact/Tolerance = 1e-12), so the answers
+// agree as the two paths do (1e-8, the states exactly), and every Newton
+// step reports its GMRES iterations.
+TEST(FullSystem, KrylovAgreesWithTheDirectSolver)
+{
+  for (const std::string scene :
+       {"v3-contact-patch-2d", "v3-contact-patch-3d", "b2-curved-beams"})
+    {
+      cli::ScratchFolder folder(scene, "krylov");
+      const SceneRun     direct = run_scene(scene,
+                                        "--set Contact/Path=full",
+                                        cli::join(folder.path, "d"));
+      const SceneRun     krylov =
+        run_scene(scene,
+                  "--set Contact/Path=full "
+                  "--set 'Contact/Full system solver=gmres-amg'",
+                  cli::join(folder.path, "k"));
+      ASSERT_EQ(krylov.summary["contact_path"], "full") << scene;
+      ASSERT_EQ(krylov.summary["full_system_solver"], "gmres-amg") << scene;
+      ASSERT_EQ(direct.status.size(), krylov.status.size()) << scene;
+      EXPECT_LT(deviation(direct, krylov), 1e-8) << scene;
+      for (unsigned int s = 0; s < krylov.status.size(); ++s)
+        {
+          EXPECT_EQ(direct.status[s], krylov.status[s])
+            << scene << ", step " << s + 1;
+          const auto &step = krylov.summary["load_steps"][s];
+          ASSERT_TRUE(step.contains("krylov_iterations")) << scene;
+          EXPECT_GE(step["krylov_iterations"].size(), 1u) << scene;
+        }
+    }
+}
+
+
+
+// A GMRES that stops at its iteration limit fails the step with the
+// iterations and the residual in one line, and the run fails (exit status,
+// summary.json): never a silent wrong answer.
+TEST(FullSystem, KrylovFailureIsReported)
+{
+  cli::ScratchFolder folder("b2", "krylov-fail");
+  const std::string  out = cli::join(folder.path, "out");
+  const auto         r   = cli::run_igabde(
+    cli::join(std::string(IGABDE_SOURCE_DIR), "prm/b2-curved-beams.prm") +
+      " --set 'Output/Directory=" + out +
+      "' --set 'Output/Write vtu=false' --set Contact/Path=full "
+                "--set 'Contact/Full system solver=gmres-amg' "
+                "--set 'Contact/Krylov max iterations=1' "
+                "--set 'Contact/Max step cuts=0'",
+    folder.path);
+  EXPECT_NE(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("GMRES (AMG and Schur-complement preconditioner) "
+                          "did not converge"),
+            std::string::npos)
+    << r.output;
+  EXPECT_NE(r.output.find(": 1 iterations, residual "), std::string::npos)
+    << r.output;
+  std::ifstream in(cli::join(out, "summary.json"));
+  ASSERT_TRUE(in);
+  const auto summary = nlohmann::json::parse(in);
+  EXPECT_EQ(summary["status"], "failed");
+}

@@ -34,6 +34,9 @@ namespace igabde
       unsigned int n_open = 0, n_stick = 0, n_slip = 0;
       /** @brief Size of the reduced linear system. */
       unsigned int n_reduced = 0;
+      /** @brief Iterations of the iterative linear solve of this Newton
+       * step (full path with gmres-amg; 0 otherwise). */
+      unsigned int linear_iterations = 0;
       /** @brief Remarks: "lm", "gradient", "best-trial", ... */
       std::string note;
 

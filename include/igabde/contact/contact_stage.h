@@ -9,6 +9,7 @@
 #include <igabde/contact/contact_solver.h>
 #include <igabde/contact/obstacle.h>
 #include <igabde/contact/pairing.h>
+#include <igabde/contact/path_cost.h>
 
 #include <deal.II/base/timer.h>
 
@@ -48,6 +49,11 @@ namespace igabde
       bool progress = true;
       /// Write the solver's one-line summary of every solve to the log.
       bool log_solves = true;
+      /// Estimated sparse factor entries of each deformable body and the
+      /// number of load steps: inputs of the cost model of Contact/Path =
+      /// auto (path_cost.h).
+      std::vector<double> factor_entries;
+      unsigned int        n_load_steps = 1;
     };
 
     /**
@@ -77,6 +83,9 @@ namespace igabde
       /// Residual of every iteration of the last solve (the solver's
       /// measure: relative natural map, or the penalty residual).
       std::vector<double> residual_history;
+      /// GMRES iterations of every Newton step of the last solve (full
+      /// path with Contact/Full system solver = gmres-amg; else empty).
+      std::vector<unsigned int> linear_iterations;
     };
 
     /**
@@ -125,6 +134,11 @@ namespace igabde
       std::string path, path_reason;
       /// Nonzeros of the coupled Newton matrix (full path).
       double coupled_nonzeros = 0.;
+      /// Contact/Path = auto: the estimated seconds of both paths (else
+      /// both 0).
+      double estimated_condensed_seconds = 0., estimated_full_seconds = 0.;
+      /// The inputs of that cost model for the pairs kept.
+      PathCostInputs cost_inputs;
     };
 
     /**
@@ -204,6 +218,14 @@ namespace igabde
       /// "condensed" or "full" (decided by build_pairs()).
       const std::string &
       path() const;
+
+      /**
+       * @brief The inputs of the cost model of Contact/Path = auto for the
+       * pairs built (face unknowns from the pair operators, factor entries
+       * and load steps from the settings).
+       */
+      PathCostInputs
+      path_cost_inputs() const;
 
       /**
        * @brief Solves a load step at load factor @p load_factor
@@ -310,6 +332,8 @@ namespace igabde
       CondensedContact<dim>         condensed;
       /// The path taken, and why.
       std::string resolved_path = "condensed", path_why;
+      /// Contact/Path = auto: the cost model's estimates (seconds).
+      double estimated_condensed_seconds = 0., estimated_full_seconds = 0.;
       /// Full path: the coupled system and its factory.
       CoupledFactory                   coupled_factory;
       std::shared_ptr<CoupledOperator> coupled;

@@ -29,11 +29,12 @@ namespace igabde
      *   [ A C    B     A G ] [dp    ] = [r_p    ]
      *   [ 0      G^T   0   ] [dalpha]   [r_alpha]
      * @endcode
-     * with a sparse solver. This interface keeps the contact layer free of
-     * the body classes and of the linear-algebra library that holds K; the
-     * implementation (coupled/coupled_system.h) assembles the block matrix.
-     * Vectors are Eigen vectors of the sizes n_dofs(), n_rows() (the
-     * problem's) and n_alpha().
+     * with a sparse direct solver, or with preconditioned GMRES to a
+     * tolerance the Newton chooses per iteration. This interface keeps the
+     * contact layer free of the body classes and of the linear-algebra library
+     * that holds K; the implementation (coupled/coupled_system.h) assembles the
+     * block matrix. Vectors are Eigen vectors of the sizes n_dofs(), n_rows()
+     * (the problem's) and n_alpha().
      */
     class CoupledOperator
     {
@@ -85,7 +86,10 @@ namespace igabde
        * @brief Solves the Newton system factorised last for the right-hand
        * sides @p r_w, @p r_p, @p r_alpha; returns false (with a reason in
        * @p why) when the linear solver fails (singular matrix, no
-       * convergence).
+       * convergence). An iterative solver stops when the residual of the
+       * Newton system is at most @p relative_tolerance times the norm of
+       * the right-hand side (all rows in force units); a direct solver
+       * ignores it.
        */
       virtual bool
       solve(const Eigen::VectorXd &r_w,
@@ -94,7 +98,26 @@ namespace igabde
             Eigen::VectorXd       &dw,
             Eigen::VectorXd       &dp,
             Eigen::VectorXd       &dalpha,
-            std::string           &why) const = 0;
+            std::string           &why,
+            const double           relative_tolerance = 1e-12) const = 0;
+
+      /**
+       * @brief Iterations of the last solve() of an iterative solver (0 for
+       * a direct one).
+       */
+      virtual unsigned int
+      linear_iterations() const
+      {
+        return 0;
+      }
+
+      /** @brief Whether solve() is iterative (its accuracy is chosen per
+       * call). */
+      virtual bool
+      iterative() const
+      {
+        return false;
+      }
 
       /**
        * @brief A stiffness (force per length) per pair from the underlying

@@ -8,10 +8,13 @@
 
 #include <deal.II/base/index_set.h>
 
+#include <deal.II/lac/trilinos_precondition.h>
 #include <deal.II/lac/trilinos_solver.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
+#include <deal.II/lac/trilinos_vector.h>
 
 #include <Eigen/Dense>
+#include <Eigen/SparseLU>
 
 #include <memory>
 #include <string>
@@ -30,8 +33,10 @@ namespace igabde
      * stiffness, the pair operator C from each pair's PointOperators and
      * local frame, and the rigid-mode columns G, in one Trilinos sparse
      * matrix factorised by a sparse direct solver through Amesos (MUMPS by
-     * default, KLU on request). The matrix is built on index sets, as the
-     * distributed version will need; today it lives on one process.
+     * default, KLU on request), or solved by GMRES with a block
+     * preconditioner ("gmres-amg"; see factorize()). The matrix is built
+     * on index sets, as the distributed version will need; today it lives
+     * on one process.
      *
      * Unknown order: Body 1's unknowns, Body 2's, then the pair forces
      * (pair by pair, normal first) and the rigid-mode amplitudes. Held
@@ -48,7 +53,9 @@ namespace igabde
        * @param n_components Components per pair (1 frictionless, else dim).
        * @param G The rigid-mode columns of the contact problem.
        * @param obstacle Whether Body 1 faces a rigid obstacle.
-       * @param solver "mumps" or "klu".
+       * @param solver "mumps", "klu" or "gmres-amg".
+       * @param krylov_max_iterations GMRES iteration limit per solve
+       * (gmres-amg).
        */
       CoupledSystem(
         const std::vector<const discretization::Body<dim> *> &bodies,
@@ -56,7 +63,8 @@ namespace igabde
         const unsigned int                                    n_components,
         const Eigen::MatrixXd                                &G,
         const bool                                            obstacle,
-        const std::string                                    &solver);
+        const std::string                                    &solver,
+        const unsigned int krylov_max_iterations = 1000);
 
       unsigned int
       n_dofs() const override;
@@ -75,6 +83,23 @@ namespace igabde
       equilibrium_scale(const Eigen::VectorXd &w,
                         const Eigen::VectorXd &p) const override;
 
+      /**
+       * Direct solvers factorise the assembled matrix. gmres-amg builds
+       * instead the block upper-triangular preconditioner
+       * @code
+       *   P = [ K   U ]    U = [-C^T s  0],
+       *       [ 0   S~]    S~ = [ (B + A C D^-1 C^T) s   A G ]
+       *                         [  G^T s                  0  ]
+       * @endcode
+       * (s the force scale, D the diagonal of K): one V-cycle of smoothed
+       * aggregation AMG (Trilinos ML, the bodies' rigid-body modes as near
+       * null space; set up once, K does not change) for K, and a sparse LU
+       * of S~, the Schur complement of the Newton matrix with K^-1
+       * replaced by D^-1 (pairs couple only through shared unknowns, so S~
+       * is sparse). With the exact K^-1 in S~, GMRES would converge in two
+       * iterations (Murphy, Golub and Wathen); D^-1 leaves the long-range
+       * part of the flexibility to the iteration.
+       */
       void
       factorize(const std::vector<Eigen::Matrix3d> &A,
                 const std::vector<Eigen::Matrix3d> &B) override;
@@ -86,7 +111,14 @@ namespace igabde
             Eigen::VectorXd       &dw,
             Eigen::VectorXd       &dp,
             Eigen::VectorXd       &dalpha,
-            std::string           &why) const override;
+            std::string           &why,
+            const double           relative_tolerance) const override;
+
+      unsigned int
+      linear_iterations() const override;
+
+      bool
+      iterative() const override;
 
       const Eigen::VectorXd &
       pair_stiffness() const override;
@@ -127,6 +159,28 @@ namespace igabde
       std::unique_ptr<TrilinosWrappers::SolverDirect> direct;
       /// Why the last factorisation failed (empty if it did not).
       std::string factorization_error;
+
+      /// gmres-amg: the iteration limit, the displacement block K (held
+      /// rows: scale times identity) and its AMG, D^-1 C^T of the Schur
+      /// approximation (n_u x rows of C), the LU of S~, the last count.
+      bool                                         krylov = false;
+      unsigned int                                 krylov_max_iterations = 1000;
+      IndexSet                                     displacement_set;
+      TrilinosWrappers::SparseMatrix               K_matrix;
+      TrilinosWrappers::PreconditionAMG            amg;
+      std::vector<double>                          null_space;
+      Eigen::SparseMatrix<double>                  local_flexibility;
+      Eigen::SparseLU<Eigen::SparseMatrix<double>> schur_lu;
+      mutable unsigned int                         last_iterations = 0;
+
+      /// Builds K_matrix, the AMG and the local flexibility C D^-1 C^T.
+      void
+      setup_krylov();
+
+      /// Applies P^-1 (gmres-amg).
+      void
+      apply_preconditioner(TrilinosWrappers::MPI::Vector       &dst,
+                           const TrilinosWrappers::MPI::Vector &src) const;
     };
   } // namespace coupled
 } // namespace igabde

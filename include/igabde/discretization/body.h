@@ -259,6 +259,10 @@ namespace igabde
       unsigned int
       dof_component(const types::global_dof_index i) const;
 
+      /// Control point (NURBS) or node (Lagrange) of unknown @p i.
+      const Point<dim> &
+      dof_location(const types::global_dof_index i) const;
+
       /**
        * @brief Resultant of the support reactions: the sum over the
        * supported unknowns of (K u - f)_i per component, for the

@@ -210,8 +210,10 @@ namespace igabde
       double tangential_penalty_factor = 1.;
       /// Line search on the penalty Newton steps.
       bool penalty_line_search = true;
-      /// Sparse direct solver of the full path: "mumps" or "klu".
+      /// Linear solver of the full path: "mumps", "klu" or "gmres-amg".
       std::string full_system_solver = "mumps";
+      /// GMRES iteration limit per Newton step (gmres-amg).
+      unsigned int krylov_max_iterations = 1000;
       /// "schur" (Schur complement on the contact face) or "columns" (one
       /// solve per pair direction).
       std::string condensation = "schur";

@@ -1,0 +1,56 @@
+#include <igabde/contact/path_cost.h>
+
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+
+namespace igabde
+{
+  namespace contact
+  {
+    PathCostConstants
+    PathCostConstants::measured()
+    {
+      // contrib/benchmarks/path-cost, 2026-11-23 (doc/performance.md).
+      PathCostConstants c;
+      c.dense               = 3.0e-11;
+      c.schur               = 3.0e-11;
+      c.sparse              = 1.0e-11;
+      c.iterations_per_step = 8.;
+      return c;
+    }
+
+
+
+    PathCostEstimate
+    estimate_path_costs(const PathCostInputs    &inputs,
+                        const PathCostConstants &constants)
+    {
+      const double m    = inputs.contact_unknowns;
+      const double N    = inputs.newton_iterations;
+      double       face = 0., factor = 0.;
+      for (const double n_I : inputs.face_unknowns)
+        face += n_I * n_I * n_I / 3. + n_I * n_I * m + n_I * m * m;
+      for (const double L : inputs.factor_entries)
+        factor += std::pow(L, 1.5);
+      const double     condensation = constants.schur * face;
+      const double     bnewton      = constants.dense * N * m * m * m / 3.;
+      PathCostEstimate e;
+      e.condensed_seconds = condensation + bnewton;
+      e.full_seconds      = constants.sparse * N * factor;
+      e.path = (e.full_seconds < e.condensed_seconds ? "full" : "condensed");
+      std::ostringstream s;
+      s << std::setprecision(3) << "auto: estimated condensed "
+        << e.condensed_seconds << " s (condensation " << condensation
+        << " s, dense B-Newton " << bnewton << " s for " << m
+        << " contact unknowns) against full " << e.full_seconds << " s (" << N
+        << " sparse factorisations of ";
+      double entries = 0.;
+      for (const double L : inputs.factor_entries)
+        entries += L;
+      s << entries << " factor entries): " << e.path << " is cheaper";
+      e.reason = s.str();
+      return e;
+    }
+  } // namespace contact
+} // namespace igabde
