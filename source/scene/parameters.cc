@@ -591,8 +591,9 @@ namespace igabde
                           "condensed: flexibility matrix and dense BDE "
                           "system; full: uncondensed sparse system "
                           "(displacements and pair forces together); auto: "
-                          "condensed up to 3000 contact unknowns, full "
-                          "beyond (penalty and augmented-lagrange always "
+                          "the path a cost model estimates cheaper (contact "
+                          "unknowns, face unknowns, estimated sparse factor "
+                          "size; penalty and augmented-lagrange always "
                           "solve the full system).");
         prm.declare_entry("Condensation",
                           "schur",
