@@ -215,9 +215,13 @@ TEST(FullSystem, KrylovAgreesWithTheDirectSolver)
         {
           EXPECT_EQ(direct.status[s], krylov.status[s])
             << scene << ", step " << s + 1;
+          // (V3's bilateral start is already the answer: no Newton step.)
           const auto &step = krylov.summary["load_steps"][s];
-          ASSERT_TRUE(step.contains("krylov_iterations")) << scene;
-          EXPECT_GE(step["krylov_iterations"].size(), 1u) << scene;
+          if (step["newton_iterations"].get<int>() > 0)
+            {
+              ASSERT_TRUE(step.contains("krylov_iterations")) << scene;
+              EXPECT_GE(step["krylov_iterations"].size(), 1u) << scene;
+            }
         }
     }
 }

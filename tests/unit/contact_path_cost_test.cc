@@ -63,3 +63,21 @@ TEST(PathCost, FullWinsWithManyPairsOnASmallFactor)
   EXPECT_EQ(e.path, "full");
   EXPECT_NE(e.reason.find("full is cheaper"), std::string::npos) << e.reason;
 }
+
+
+
+// The measured constants on the inputs summary.json recorded for B2 with
+// FE_Q(2) at 8x32x8 (3 264 contact unknowns, 3 264 face unknowns per beam,
+// estimated factors of 1.011e8 entries per beam): the condensed path, which
+// took 36 s against 96 s for the full path on this machine (2026-11-23).
+TEST(PathCost, MeasuredConstantsChooseCondensedForB2LagrangeAt8x32x8)
+{
+  PathCostInputs in;
+  in.contact_unknowns  = 3264.;
+  in.face_unknowns     = {3264., 3264.};
+  in.factor_entries    = {1.011e8, 1.011e8};
+  in.newton_iterations = 8.;
+  const PathCostEstimate e =
+    estimate_path_costs(in, PathCostConstants::measured());
+  EXPECT_EQ(e.path, "condensed") << e.reason;
+}
