@@ -37,6 +37,14 @@ trilinear interpolation of its 8 corner points, what a straight-sided
 output would give) and must reject it: a chord midpoint of a 45 degree
 element is at r = 5 cos(22.5 deg) = 4.62.
 
+It also runs V5 (prm/v5-hertz-2d.prm, a disc on a rigid plane under a
+distributed load) and checks that no sample of the von Mises stress
+exceeds Hertz's peak pressure p0 (summary.json's hertz_peak_pressure_exact,
+Johnson's closed form): in line contact the von Mises stress peaks below
+the surface at about 0.56 p0 (nu = 0.3), and the rest of the disc carries
+the applied traction, far less. The sample at the patch corner where the
+NURBS map is singular once read 1.6e5 against p0 = 102.
+
 Exit status 77 (ctest SKIP_RETURN_CODE) when Python's vtk module (Debian's
 python3-vtk9) is missing.
 
@@ -377,6 +385,33 @@ def check_run(folder, discretization, summary):
         print("  %s: %d pairs" % (where, grid.GetNumberOfPoints()))
 
 
+def check_v5(igabde, folder):
+    """No von Mises sample of V5 above Hertz's p0 (see the module text)."""
+    scene = os.path.join(ROOT, "prm", "v5-hertz-2d.prm")
+    result = subprocess.run([igabde, scene, "--quiet",
+                             "--set", "Output/Directory=%s" % folder],
+                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                            text=True, timeout=120)
+    if not check(result.returncode == 0, "V5: igabde failed (status %d): %s"
+                 % (result.returncode, result.stdout[-500:])):
+        return
+    with open(os.path.join(folder, "summary.json")) as f:
+        p0 = json.load(f)["checks"]["hertz_peak_pressure_exact"]
+    vtus = [f for f in sorted(os.listdir(folder))
+            if f.startswith("solution-") and f.endswith(".vtu")]
+    check(len(vtus) > 0, "V5: no solution VTU")
+    for name in vtus:
+        grid = read_vtu(os.path.join(folder, name))
+        vm = point_fields(grid)["von_mises"]
+        points = vtk_to_numpy(grid.GetPoints().GetData())
+        worst = int(numpy.argmax(vm))
+        check(vm[worst] <= p0, "V5 %s: von Mises %.4g at (%.4g, %.4g) above "
+              "Hertz's p0 = %.4g" % (name, vm[worst], points[worst][0],
+                                     points[worst][1], p0))
+        print("V5 %s: largest von Mises %.4g = %.2f p0" % (name, vm[worst],
+                                                          vm[worst] / p0))
+
+
 def main():
     if len(sys.argv) != 2:
         sys.exit(__doc__.split("\n\n")[-1])
@@ -388,6 +423,7 @@ def main():
             print("B2 %s, %d x %d x %d per beam:" % ((discretization,)
                                                       + SPANS))
             check_run(folder, discretization, summary)
+        check_v5(igabde, os.path.join(scratch, "v5"))
     if failures:
         print("vtu_output_test: %d failure(s):" % len(failures))
         for f in failures:
