@@ -61,6 +61,25 @@ namespace igabde
 
 
 
+      // The tangential pair directions held by supports on both sides (an
+      // empty row of C and of G): no displacement moves them and their
+      // force enters no body's equations. The BDE gives them p = 0 and
+      // u = 0 (the supports take whatever friction would carry there);
+      // left to the contact law, a stick piece there is a zero row of the
+      // Newton matrix.
+      std::vector<bool>
+      held_directions(const ContactProblem &problem)
+      {
+        const unsigned int d = problem.n_components;
+        std::vector<bool>  held(problem.n_rows(), false);
+        for (unsigned int row = 0; row < problem.n_rows(); ++row)
+          held[row] = row % d != 0 && problem.coupled->pair_row_is_held(row) &&
+                      (problem.n_alpha() == 0 || problem.G.row(row).isZero());
+        return held;
+      }
+
+
+
       // G^T p - b (empty without floating bodies).
       Vec
       equilibrium_rows(const ContactProblem &problem, const Vec &p)
@@ -425,7 +444,8 @@ namespace igabde
       const PairWeights   weights = pair_weights(problem, settings.r_factor);
       ContactSolverResult result;
 
-      std::vector<PairPiece> pieces(nc);
+      std::vector<PairPiece>  pieces(nc);
+      const std::vector<bool> held = held_directions(problem);
       // theta and the residuals at y (pieces when asked).
       const auto evaluate = [&](const Iterate &y,
                                 Vec           &u,
@@ -434,6 +454,9 @@ namespace igabde
                                 Vec           &e,
                                 const bool     with_pieces) {
         u = relative_displacement(problem, y);
+        for (unsigned int row = 0; row < m; ++row)
+          if (held[row])
+            u[row] = 0.;
         H.resize(m);
         for (unsigned int c = 0; c < nc; ++c)
           pair_law(d,
@@ -445,6 +468,18 @@ namespace igabde
                    u.data() + c * d,
                    H.data() + c * d,
                    with_pieces ? &pieces[c] : nullptr);
+        for (unsigned int row = 0; row < m; ++row)
+          if (held[row])
+            {
+              H[row] = y.p[row];
+              if (with_pieces)
+                {
+                  const unsigned int c = row / d, k = row % d;
+                  pieces[c].A.row(k).setZero();
+                  pieces[c].B.row(k).setZero();
+                  pieces[c].B(k, k) = 1.;
+                }
+            }
         r_w = problem.coupled->equilibrium_residual(y.w, y.p);
         e   = equilibrium_rows(problem, y.p);
         return 0.5 * (H.squaredNorm() + r_w.squaredNorm() +

@@ -310,6 +310,16 @@ namespace igabde
 
 
     template <int dim>
+    bool
+    CoupledSystem<dim>::pair_row_is_held(const unsigned int row) const
+    {
+      AssertIndexRange(row, C_rows.size());
+      return C_rows[row].empty();
+    }
+
+
+
+    template <int dim>
     double
     CoupledSystem<dim>::n_nonzeros() const
     {

@@ -132,6 +132,39 @@ TEST(FullSystem, AgreesWithTheCondensedPath)
 
 
 
+// A thin frictional strip (V3 2D, 100 x 2 spans per body, 0.02 thick,
+// mu = 0.3) whose first pair has its tangential direction held by the
+// x supports of both bodies: that direction is an empty row of C, and the
+// full path stopped with a singular Newton matrix there (a stick piece is
+// a zero row; Body 1 then started with every pair open, held by nothing).
+// Such a direction carries no force (the supports take it); the full path
+// now gives the condensed answer and every pair's state.
+TEST(FullSystem, PairDirectionsHeldOnBothSidesCarryNoForce)
+{
+  const std::string  scene = "v3-contact-patch-2d";
+  const std::string  strip = "--set Discretization/Refinements=0 "
+                             "--set 'Body 1/Subdivisions=100, 2' "
+                             "--set 'Body 2/Subdivisions=100, 2' "
+                             "--set 'Body 1/Upper corner=1, 0.02' "
+                             "--set 'Body 2/Lower corner=0, -0.02' "
+                             "--set 'Contact/Friction coefficient=0.3' ";
+  cli::ScratchFolder folder(scene, "held");
+  const SceneRun     condensed = run_scene(scene,
+                                       strip + "--set Contact/Path=condensed",
+                                       cli::join(folder.path, "c"));
+  const SceneRun     full      = run_scene(scene,
+                                  strip + "--set Contact/Path=full",
+                                  cli::join(folder.path, "f"));
+  ASSERT_EQ(full.summary["status"], "ok");
+  ASSERT_EQ(condensed.summary["status"], "ok");
+  EXPECT_LT(deviation(condensed, full), 1e-8);
+  ASSERT_EQ(condensed.status.size(), full.status.size());
+  for (unsigned int s = 0; s < full.status.size(); ++s)
+    EXPECT_EQ(condensed.status[s], full.status[s]) << "step " << s + 1;
+}
+
+
+
 // The augmented Lagrangian stops on the natural-map test of the BDE: its
 // answer is the BDE answer (1e-6 with the 1e-12 tolerance).
 TEST(FullSystem, AugmentedLagrangeReachesTheBdeAnswer)

@@ -134,6 +134,15 @@ namespace igabde
       /** @brief Number of nonzero entries of the last Newton matrix. */
       virtual double
       n_nonzeros() const = 0;
+
+      /**
+       * @brief Whether row @p row of C (pair row / d, component row % d)
+       * is empty: that direction of the pair is held by supports on both
+       * sides, so no displacement moves it and its force enters no body's
+       * equations (the supports take it).
+       */
+      virtual bool
+      pair_row_is_held(const unsigned int row) const = 0;
     };
   } // namespace contact
 } // namespace igabde

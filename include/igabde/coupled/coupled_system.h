@@ -123,6 +123,9 @@ namespace igabde
       const Eigen::VectorXd &
       pair_stiffness() const override;
 
+      bool
+      pair_row_is_held(const unsigned int row) const override;
+
       double
       n_nonzeros() const override;
 
