@@ -246,7 +246,7 @@ namespace igabde
       const double cw = std::cos(M_PI / 8.); // 45-degree arcs
       // Boundary control points and weights (homogeneous Coons interior).
       std::array<std::array<Point<2>, 3>, 3> P; // P[i][j]
-      std::array<std::array<double, 3>, 3>   w;
+      std::array<std::array<double, 3>, 3>   w{};
       P[0][0] = Point<2>(0., 0.);
       w[0][0] = 1.;
       P[1][0] = Point<2>(R * (s - 1.), 0.); // tangents at -90 and -45 deg
@@ -264,35 +264,7 @@ namespace igabde
       P[1][2] = Point<2>(0.5 * R, R);
       w[1][2] = cw;
 
-      // Interior point: bilinear Coons blend of the homogeneous boundary net,
-      // Pw11 = (edge midpoints)/2 - (corners)/4.
-      Tensor<1, 2> pw;
-      double       ww = 0.;
-      auto         add =
-        [&](const unsigned int i, const unsigned int j, const double c) {
-          pw += c * w[i][j] * static_cast<const Tensor<1, 2> &>(P[i][j]);
-          ww += c * w[i][j];
-        };
-      add(0, 1, 0.5);
-      add(2, 1, 0.5);
-      add(1, 0, 0.5);
-      add(1, 2, 0.5);
-      add(0, 0, -0.25);
-      add(2, 0, -0.25);
-      add(0, 2, -0.25);
-      add(2, 2, -0.25);
-      w[1][1] = ww;
-      P[1][1] = Point<2>(pw / ww);
-
-      std::vector<Point<2>> points;
-      std::vector<double>   weights;
-      for (unsigned int j = 0; j < 3; ++j)
-        for (unsigned int i = 0; i < 3; ++i)
-          {
-            points.push_back(P[i][j]);
-            weights.push_back(w[i][j]);
-          }
-      return NurbsPatch<2>({{quadratic(), quadratic()}}, points, weights);
+      return coons_quadratic_patch(P, w);
     }
 
 
@@ -303,7 +275,7 @@ namespace igabde
       AssertThrow(R > 0.,
                   ExcMessage("make_half_disc: the radius must be positive."));
       std::array<std::array<Point<2>, 3>, 3> P; // P[i][j]
-      std::array<std::array<double, 3>, 3>   w;
+      std::array<std::array<double, 3>, 3>   w{};
       // Corners: the arc's ends at 225 and 315 deg, the diameter's ends.
       P[0][0] = polar(c, R, 225.);
       P[2][0] = polar(c, R, 315.);
@@ -328,7 +300,7 @@ namespace igabde
       AssertThrow(R > 0.,
                   ExcMessage("make_full_disc: the radius must be positive."));
       std::array<std::array<Point<2>, 3>, 3> P; // P[i][j]
-      std::array<std::array<double, 3>, 3>   w;
+      std::array<std::array<double, 3>, 3>   w{};
       P[0][0] = polar(c, R, 225.);
       P[2][0] = polar(c, R, 315.);
       P[0][2] = polar(c, R, 135.);
