@@ -906,6 +906,7 @@ namespace igabde
           , start(std::chrono::steady_clock::now())
           , m(original.n_rows())
           , na(original.n_alpha())
+          , r_factor(settings.r_factor)
         {
           out = settings.log_stream ? settings.log_stream : &std::cout;
         }
@@ -965,9 +966,12 @@ namespace igabde
         BNewtonSolver::Result                &result;
         std::chrono::steady_clock::time_point start;
         const unsigned int                    m, na;
-        std::ostream                         *out;
-        bool                                  have_best  = false;
-        double                                best_score = 0.;
+        /// The factor c of r in use (Settings::r_factor, then 1 after the
+        /// phase that resets it).
+        double        r_factor;
+        std::ostream *out;
+        bool          have_best  = false;
+        double        best_score = 0.;
         /// Iterations whose Newton matrix was singular (Levenberg-Marquardt
         /// steps).
         unsigned int singular_iterations = 0;
@@ -986,7 +990,7 @@ namespace igabde
                      const bool            on_original,
                      const unsigned int    budget)
       {
-        const Weights w = pair_weights(problem, settings.r_factor);
+        const Weights w = pair_weights(problem, r_factor);
         const System  sys(problem, w, radius, settings);
         const double  sigma = settings.armijo_sigma;
         const double  beta  = settings.armijo_beta;
@@ -1294,6 +1298,27 @@ namespace igabde
                                       settings.max_iterations);
               reasons += "; " + phase_name("newton", other(radius)) + ": " +
                          outcome.reason;
+            }
+          // Phase 2b: r from the flexibility alone (c = 1), when the
+          // chosen factor is far from it. The solution does not depend on
+          // r, but the merit |H|^2 weighs the displacement rows by r: with
+          // c = 1e-4 (B1) the line search hardly sees the penetration and
+          // the active sets cycle; c = 1 balances force and displacement.
+          if (!outcome.converged && settings.switch_radius &&
+              std::abs(std::log10(settings.r_factor)) > 1. &&
+              !driver.out_of_iterations() && !driver.out_of_time())
+            {
+              driver.r_factor = 1.;
+              Vec x3          = driver.have_best ? driver.best_x : x;
+              outcome         = driver.newton(problem,
+                                      radius,
+                                      x3,
+                                      settings.tolerance,
+                                      phase_name("newton-r1", radius),
+                                      true,
+                                      settings.max_iterations);
+              reasons +=
+                "; " + phase_name("newton-r1", radius) + ": " + outcome.reason;
             }
           // Phase 3: proximal point.
           if (!outcome.converged && settings.proximal &&

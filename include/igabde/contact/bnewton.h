@@ -77,7 +77,11 @@ namespace igabde
      *    theta in Settings::stall_iterations iterations.
      * Phases: (1) Newton with Settings::radius; (2) if that ends without
      * convergence and Settings::switch_radius, Newton with the other radius
-     * from the best iterate so far; (3) if still not converged and
+     * from the best iterate so far; (2b) if Settings::switch_radius and
+     * r_factor is more than ten times away from 1, Newton with r_factor = 1
+     * (r from the flexibility alone; the solution does not depend on r, the
+     * merit function does), from the best iterate; (3) if still not
+     * converged and
      * Settings::proximal, proximal-point outer iterations (Acary et al.
      * 2018, PPA-NSN): the subproblem W + eps I, q - eps p_k (centred on the
      * current iterate, strongly monotone) is solved by Newton, eps starting
