@@ -234,7 +234,8 @@ namespace igabde
     SparseCholesky::initialize(
       const SparseMatrix<double>                 &matrix,
       const std::vector<bool>                    &eliminated,
-      const std::vector<types::global_dof_index> &interface)
+      const std::vector<types::global_dof_index> &interface,
+      const PivotOrder                            pivot_order)
     {
       Data &d = *data;
       d.release();
@@ -322,17 +323,20 @@ namespace igabde
           std::vector<double> schur_values(std::size_t(n_s) * n_s, 0.);
           d.id.schur = (n_s > 0 ? schur_values.data() : nullptr);
 
-          // Pivot order: MUMPS' own (approximate minimum degree when a
-          // Schur complement is asked for) or nested dissection with the
-          // Schur unknowns last, whichever MUMPS' analysis estimates to
-          // need fewer flops. Nested dissection halves them on 3D
-          // stiffness matrices; on 2D ones minimum degree can be cheaper.
-          d.call(1);
+          // Pivot order (PivotOrder): MUMPS' own (approximate minimum
+          // degree when a Schur complement is asked for), nested
+          // dissection with the Schur unknowns last, or whichever of the
+          // two MUMPS' analysis estimates to need fewer flops.
+          const bool both = (pivot_order == PivotOrder::cheaper_of_both);
+          if (pivot_order != PivotOrder::nested_dissection)
+            d.call(1);
           const std::vector<MUMPS_INT> order =
-            nested_dissection_order(d.free_dofs.size(),
-                                    d.rows,
-                                    d.cols,
-                                    schur_list);
+            (pivot_order == PivotOrder::minimum_degree ?
+               std::vector<MUMPS_INT>() :
+               nested_dissection_order(d.free_dofs.size(),
+                                       d.rows,
+                                       d.cols,
+                                       schur_list));
           if (!order.empty())
             {
               const double minimum_degree_flops = d.id.rinfog[0];
@@ -340,13 +344,15 @@ namespace igabde
               d.id.perm_in         = const_cast<MUMPS_INT *>(order.data());
               d.id.icntl[icntl(7)] = 1;
               d.call(1);
-              if (d.id.rinfog[0] > minimum_degree_flops)
+              if (both && d.id.rinfog[0] > minimum_degree_flops)
                 {
                   d.id.perm_in         = nullptr;
                   d.id.icntl[icntl(7)] = automatic;
                   d.call(1);
                 }
             }
+          else if (pivot_order == PivotOrder::nested_dissection)
+            d.call(1); // METIS failed: MUMPS orders.
 
           // Factorisation; more workspace if MUMPS asks.
           d.id.job = 2;

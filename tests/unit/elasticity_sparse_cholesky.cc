@@ -78,6 +78,18 @@ TEST(SparseCholesky, SchurComplementAndSolveMatchDenseAlgebra)
   for (unsigned int a = 0; a < interface.size(); ++a)
     for (unsigned int b = 0; b < interface.size(); ++b)
       EXPECT_NEAR(cholesky.schur_complement()(a, b), S(a, b), 1e-12 * S.norm());
+  // The same complement whatever the pivot order.
+  using Order = igabde::elasticity::SparseCholesky::PivotOrder;
+  for (const Order order : {Order::minimum_degree, Order::nested_dissection})
+    {
+      igabde::elasticity::SparseCholesky ordered;
+      ordered.initialize(chain.matrix, eliminated, interface, order);
+      for (unsigned int a = 0; a < interface.size(); ++a)
+        for (unsigned int b = 0; b < interface.size(); ++b)
+          EXPECT_NEAR(ordered.schur_complement()(a, b),
+                      S(a, b),
+                      1e-12 * S.norm());
+    }
 
   // C^T S^{-1} C for two columns.
   FullMatrix<double> C(interface.size(), 2);
