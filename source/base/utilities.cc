@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <dlfcn.h>
 #include <filesystem>
 #include <sstream>
 #include <system_error>
@@ -168,6 +169,29 @@ namespace igabde
     parse_point<2>(const std::string &, const std::string &);
     template Point<3>
     parse_point<3>(const std::string &, const std::string &);
+
+
+    std::string
+    memory_allocator()
+    {
+      using mallctl_type =
+        int (*)(const char *, void *, std::size_t *, void *, std::size_t);
+      const auto mallctl =
+        reinterpret_cast<mallctl_type>(dlsym(RTLD_DEFAULT, "mallctl"));
+      if (mallctl == nullptr)
+        return "system";
+      const char *version = nullptr;
+      const char *thp     = nullptr;
+      std::size_t size    = sizeof(const char *);
+      std::string result  = "jemalloc";
+      if (mallctl("version", &version, &size, nullptr, 0) == 0 && version)
+        result += " " + std::string(version);
+      size = sizeof(const char *);
+      if (mallctl("opt.thp", &thp, &size, nullptr, 0) == 0 && thp)
+        result += ", transparent huge pages " + std::string(thp);
+      return result;
+    }
+
 
 
     LightMpiSingleton::LightMpiSingleton()

@@ -166,6 +166,8 @@ namespace igabde
       summary["discretization"] = parameters.discretization.type;
       summary["degree"]         = parameters.discretization.degree;
       summary["refinements"]    = parameters.discretization.refinements;
+      // The seconds below depend on it (doc/performance.md).
+      summary["memory_allocator"] = base::memory_allocator();
     }
 
 

@@ -99,6 +99,23 @@ namespace igabde
      * Under a launcher (mpirun, srun) nothing changes; other MPI
      * implementations ignore the variables.
      */
+    class LightMpiSingleton;
+
+    /**
+     * @brief The memory allocator this process runs on: `"jemalloc
+     * <version>, transparent huge pages <opt.thp>"` when jemalloc serves
+     * malloc (the executables link it unless configured with
+     * IGABDE_JEMALLOC=OFF or the sanitizers: doc/performance.md), else
+     * `"system"`.
+     *
+     * Looked up at run time (dlsym of jemalloc's `mallctl`), so that a
+     * program linked without jemalloc reports what it really uses.
+     */
+    std::string
+    memory_allocator();
+
+
+
     class LightMpiSingleton
     {
     public:
