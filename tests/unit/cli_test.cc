@@ -6,6 +6,7 @@
 #include "cli_helpers.h"
 #include <array>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -210,4 +211,32 @@ TEST(Cli, MinimalScenesRunWithDefaults)
   EXPECT_NE(face.output.find("Supports"), std::string::npos) << face.output;
   EXPECT_NE(face.output.find("patch face 0..3"), std::string::npos)
     << face.output;
+}
+
+
+
+TEST(Cli, SummaryNamesTheAllocatorTheBuildLinked)
+{
+  // The executable links jemalloc on transparent huge pages unless the
+  // build was configured without it (CMake IGABDE_JEMALLOC, or the
+  // sanitizers); summary.json says which one served the run.
+  const cli::ScratchFolder scratch("allocator");
+  const std::string        scene =
+    cli::join(std::string(IGABDE_SOURCE_DIR), "prm/v3-contact-patch-2d.prm");
+  const auto result = run_igabde("'" + scene +
+                                   "' --quiet --set 'Output/Directory=out' "
+                                   "--set 'Output/Write vtu=false'",
+                                 scratch.path);
+  ASSERT_EQ(result.status, 0) << result.output;
+  const std::string summary =
+    read_file(cli::join(scratch.path, "out/summary.json"));
+  const bool linked = (IGABDE_EXPECT_JEMALLOC != 0) &&
+                      std::getenv("IGABDE_EXECUTABLE") == nullptr;
+  if (linked)
+    EXPECT_NE(summary.find("\"memory_allocator\": \"jemalloc"),
+              std::string::npos)
+      << summary;
+  else
+    EXPECT_NE(summary.find("\"memory_allocator\":"), std::string::npos)
+      << summary;
 }
