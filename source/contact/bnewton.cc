@@ -364,11 +364,15 @@ namespace igabde
         // The Newton direction for the residual H; appends "lm " to
         // @p note if the reduced matrix was (nearly) singular and a
         // Levenberg-Marquardt step was taken instead, regularised by
-        // lm_relative times the largest diagonal entry of J^T J.
+        // lm_relative times the largest diagonal entry of J^T J. Without
+        // @p try_lu the step is Levenberg-Marquardt's unless the Cholesky
+        // path applies (the LU is known to fail: a singular matrix the
+        // iterations before).
         Vec
         direction(const Vec   &H,
                   std::string &note,
-                  const double lm_relative) const
+                  const double lm_relative,
+                  const bool   try_lu = true) const
         {
           const unsigned int n = m + na;
           Vec                dx(n);
@@ -393,13 +397,13 @@ namespace igabde
           else if (sys.sparse)
             {
               const SparseMatrix K = sparse_matrix();
-              if (!sparse_lu(K, rhs, dN))
+              if (!try_lu || !sparse_lu(K, rhs, dN))
                 {
                   dN = sparse_lm(K, rhs, lm_relative);
                   note += "lm ";
                 }
             }
-          else if (!dense_lu(rhs, dN))
+          else if (!try_lu || !dense_lu(rhs, dN))
             {
               dN = dense_lm(rhs, lm_relative);
               note += "lm ";
@@ -1001,7 +1005,8 @@ namespace igabde
         double              best_theta    = std::numeric_limits<double>::max();
         unsigned int        last_progress = 0;
         unsigned int        local_it      = 0;
-        double              last_theta    = 0.;
+        unsigned int        singular_streak = 0;
+        double              last_theta      = 0.;
 
         // The active set of every iteration of this phase, and how a
         // failure is reported: the iteration, and the pairs involved.
@@ -1092,9 +1097,19 @@ namespace igabde
             // noise.
             const double lm_relative =
               std::isfinite(err) ? std::clamp(err * err, 1e-14, 1e-10) : 1e-10;
-            Vec dx = J.direction(H, rec.note, lm_relative);
+            // After two singular Newton matrices in a row (a hyperstatic
+            // stack of rigid bodies: every iteration's, KaplasTower's 19)
+            // the LU is tried only every fifth iteration: its failure costs
+            // as much as the Levenberg-Marquardt step itself.
+            const bool try_lu = singular_streak < 2 || local_it % 5 == 0;
+            Vec        dx     = J.direction(H, rec.note, lm_relative, try_lu);
             if (rec.note.find("lm") != std::string::npos)
-              ++singular_iterations;
+              {
+                ++singular_iterations;
+                ++singular_streak;
+              }
+            else
+              singular_streak = 0;
 
             const Vec grad          = J.apply_transpose(H);
             double    slope         = grad.dot(J.apply(dx));
