@@ -176,5 +176,20 @@ namespace igabde
       return alpha;
     }
 
+
+
+    std::vector<bool>
+    held_pair_directions(const ContactProblem &problem)
+    {
+      const unsigned int d = problem.n_components;
+      std::vector<bool>  held(problem.n_rows(), false);
+      if (problem.coupled == nullptr)
+        return held;
+      for (unsigned int row = 0; row < problem.n_rows(); ++row)
+        held[row] = row % d != 0 && problem.coupled->pair_row_is_held(row) &&
+                    (problem.n_alpha() == 0 || problem.G.row(row).isZero());
+      return held;
+    }
+
   } // namespace contact
 } // namespace igabde

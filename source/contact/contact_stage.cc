@@ -530,16 +530,12 @@ namespace igabde
       std::vector<Eigen::Matrix3d> A(pair_list.size(), Eigen::Matrix3d::Zero()),
         B(pair_list.size(), Eigen::Matrix3d::Zero());
       Eigen::VectorXd r_p = Eigen::VectorXd::Zero(problem.n_rows());
-      // Tangential directions held by supports on both sides (an empty row
-      // of C and of G) carry no force, as in the solver: a glued one would
-      // be a zero row.
-      const auto held = [&](const unsigned int row) {
-        return row % m != 0 && coupled->pair_row_is_held(row) &&
-               (na == 0 || problem.G.row(row).isZero());
-      };
+      // Directions held by supports on both sides carry no force, as in the
+      // solver: a glued one would be a zero row.
+      const std::vector<bool> held = held_pair_directions(problem);
       for (unsigned int i = 0; i < pair_list.size(); ++i)
         for (unsigned int s = 0; s < m; ++s)
-          if (closed[i] && !held(m * i + s))
+          if (closed[i] && !held[m * i + s])
             {
               A[i](s, s)     = k[i];
               r_p[m * i + s] = -k[i] * problem.q[m * i + s];

@@ -61,25 +61,6 @@ namespace igabde
 
 
 
-      // The tangential pair directions held by supports on both sides (an
-      // empty row of C and of G): no displacement moves them and their
-      // force enters no body's equations. The BDE gives them p = 0 and
-      // u = 0 (the supports take whatever friction would carry there);
-      // left to the contact law, a stick piece there is a zero row of the
-      // Newton matrix.
-      std::vector<bool>
-      held_directions(const ContactProblem &problem)
-      {
-        const unsigned int d = problem.n_components;
-        std::vector<bool>  held(problem.n_rows(), false);
-        for (unsigned int row = 0; row < problem.n_rows(); ++row)
-          held[row] = row % d != 0 && problem.coupled->pair_row_is_held(row) &&
-                      (problem.n_alpha() == 0 || problem.G.row(row).isZero());
-        return held;
-      }
-
-
-
       // G^T p - b (empty without floating bodies).
       Vec
       equilibrium_rows(const ContactProblem &problem, const Vec &p)
@@ -445,7 +426,7 @@ namespace igabde
       ContactSolverResult result;
 
       std::vector<PairPiece>  pieces(nc);
-      const std::vector<bool> held = held_directions(problem);
+      const std::vector<bool> held = held_pair_directions(problem);
       // theta and the residuals at y (pieces when asked).
       const auto evaluate = [&](const Iterate &y,
                                 Vec           &u,

@@ -99,8 +99,6 @@ namespace igabde
      * Under a launcher (mpirun, srun) nothing changes; other MPI
      * implementations ignore the variables.
      */
-    class LightMpiSingleton;
-
     /**
      * @brief The memory allocator this process runs on: `"jemalloc
      * <version>, transparent huge pages <opt.thp>"` when jemalloc serves

@@ -160,6 +160,17 @@ namespace igabde
                    const Eigen::VectorXd &alpha0    = {},
                    const Eigen::VectorXd &direction = {});
 
+    /**
+     * @brief The tangential pair directions held by supports on both sides
+     * (full path: an empty row of C, and of G with floating bodies): no
+     * displacement moves them and their force enters no body's equations,
+     * so they carry p = 0 and u = 0 (the supports take whatever friction
+     * would carry there). Left to the contact law, a stick piece there is a
+     * zero row of the Newton matrix. All false without problem.coupled.
+     */
+    std::vector<bool>
+    held_pair_directions(const ContactProblem &problem);
+
   } // namespace contact
 } // namespace igabde
 
