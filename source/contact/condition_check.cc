@@ -82,7 +82,7 @@ namespace igabde
 
 
     ConditionReport
-    check_contact_conditions(const ContactProblem  &problem,
+    check_contact_conditions(const ContactData     &problem,
                              const Eigen::VectorXd &p,
                              const Eigen::VectorXd &u,
                              const double           tolerance)

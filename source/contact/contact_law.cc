@@ -54,14 +54,6 @@ namespace igabde
       PairWeights        w;
       w.r_n.resize(nc);
       w.r_t.resize(nc);
-      if (problem.W.size() == 0 && problem.coupled)
-        {
-          // Full path: no W; the stiffness of the underlying elements is
-          // the scale (any r > 0 gives the same solution set).
-          w.r_n = factor * problem.coupled->pair_stiffness();
-          w.r_t = w.r_n;
-          return w;
-        }
       double max_diag = 0.;
       if (problem.n_rows() > 0)
         max_diag = problem.W.diagonal().maxCoeff();
@@ -245,7 +237,7 @@ namespace igabde
 
 
     double
-    natural_map_error(const ContactProblem  &problem,
+    natural_map_error(const ContactData     &problem,
                       const Eigen::VectorXd &p,
                       const Eigen::VectorXd &u)
     {
@@ -282,7 +274,7 @@ namespace igabde
 
 
     double
-    relative_natural_map_error(const ContactProblem  &problem,
+    relative_natural_map_error(const ContactData     &problem,
                                const Eigen::VectorXd &p,
                                const Eigen::VectorXd &u)
     {
@@ -298,7 +290,7 @@ namespace igabde
 
 
     double
-    relative_equilibrium_error(const ContactProblem  &problem,
+    relative_equilibrium_error(const ContactData     &problem,
                                const Eigen::VectorXd &p,
                                double                &absolute)
     {
@@ -320,8 +312,21 @@ namespace igabde
                                const Eigen::VectorXd &p,
                                const Eigen::VectorXd &u)
     {
-      const unsigned int d       = problem.n_components;
-      const PairWeights  weights = pair_weights(problem, 1.);
+      return balanced_natural_map_error(problem,
+                                        pair_weights(problem, 1.),
+                                        p,
+                                        u);
+    }
+
+
+
+    double
+    balanced_natural_map_error(const ContactData     &problem,
+                               const PairWeights     &weights,
+                               const Eigen::VectorXd &p,
+                               const Eigen::VectorXd &u)
+    {
+      const unsigned int d   = problem.n_components;
       double             sum = 0., sum_q = 0., sum_p = 0.;
       double             y[3], x[3], e;
       for (unsigned int c = 0; c < problem.n_contacts; ++c)

@@ -11,7 +11,7 @@ namespace igabde
   namespace contact
   {
     unsigned int
-    ContactProblem::n_rows() const
+    ContactData::n_rows() const
     {
       return n_contacts * n_components;
     }
@@ -19,7 +19,7 @@ namespace igabde
 
 
     unsigned int
-    ContactProblem::n_alpha() const
+    ContactData::n_alpha() const
     {
       return static_cast<unsigned int>(G.cols());
     }
@@ -27,7 +27,7 @@ namespace igabde
 
 
     bool
-    ContactProblem::has_friction() const
+    ContactData::has_friction() const
     {
       return n_components > 1;
     }
@@ -35,7 +35,7 @@ namespace igabde
 
 
     void
-    ContactProblem::check_consistency() const
+    ContactData::check_consistency() const
     {
       const std::string where =
         "ContactProblem" + (name.empty() ? std::string() : " '" + name + "'");
@@ -45,19 +45,12 @@ namespace igabde
                                      "3, not " +
                                      std::to_string(n_components)));
       const Eigen::Index m = n_rows();
-      AssertThrow((W.rows() == m && W.cols() == m) ||
-                    (coupled && W.size() == 0),
-                  dealii::ExcMessage(
-                    where + ": W must be " + std::to_string(m) + " x " +
-                    std::to_string(m) + ", is " + std::to_string(W.rows()) +
-                    " x " + std::to_string(W.cols())));
       AssertThrow(q.size() == m,
                   dealii::ExcMessage(where + ": q must have " +
                                      std::to_string(m) + " entries, has " +
                                      std::to_string(q.size())));
-      AssertThrow(W.allFinite() && q.allFinite(),
-                  dealii::ExcMessage(where +
-                                     ": W or q has non-finite entries"));
+      AssertThrow(q.allFinite(),
+                  dealii::ExcMessage(where + ": q has non-finite entries"));
       if (has_friction())
         {
           AssertThrow(mu.size() == n_contacts,
@@ -88,6 +81,24 @@ namespace igabde
                       dealii::ExcMessage(where +
                                          ": G or b has non-finite entries"));
         }
+    }
+
+
+
+    void
+    ContactProblem::check_consistency() const
+    {
+      ContactData::check_consistency();
+      const std::string where =
+        "ContactProblem" + (name.empty() ? std::string() : " '" + name + "'");
+      const Eigen::Index m = n_rows();
+      AssertThrow(W.rows() == m && W.cols() == m,
+                  dealii::ExcMessage(
+                    where + ": W must be " + std::to_string(m) + " x " +
+                    std::to_string(m) + ", is " + std::to_string(W.rows()) +
+                    " x " + std::to_string(W.cols())));
+      AssertThrow(W.allFinite(),
+                  dealii::ExcMessage(where + ": W has non-finite entries"));
     }
 
 
@@ -140,7 +151,7 @@ namespace igabde
 
 
     Eigen::VectorXd
-    touching_alpha(const ContactProblem  &problem,
+    touching_alpha(const ContactData     &problem,
                    const Eigen::VectorXd &alpha0,
                    const Eigen::VectorXd &direction)
     {
@@ -177,19 +188,6 @@ namespace igabde
     }
 
 
-
-    std::vector<bool>
-    held_pair_directions(const ContactProblem &problem)
-    {
-      const unsigned int d = problem.n_components;
-      std::vector<bool>  held(problem.n_rows(), false);
-      if (problem.coupled == nullptr)
-        return held;
-      for (unsigned int row = 0; row < problem.n_rows(); ++row)
-        held[row] = row % d != 0 && problem.coupled->pair_row_is_held(row) &&
-                    (problem.n_alpha() == 0 || problem.G.row(row).isZero());
-      return held;
-    }
 
   } // namespace contact
 } // namespace igabde

@@ -2,7 +2,7 @@
 
 #include <igabde/contact/bnewton.h>
 #include <igabde/contact/contact_solver.h>
-#include <igabde/contact/full_system_solvers.h>
+#include <igabde/contact/penalty_solvers.h>
 
 #include <iomanip>
 #include <ostream>
@@ -73,23 +73,15 @@ namespace igabde
     std::unique_ptr<ContactSolver>
     create_contact_solver(const ContactSolverSettings &settings)
     {
-      // One line per algorithm.
-      if (settings.algorithm == "bde" && settings.path == "full")
-        return std::make_unique<FullBNewtonSolver>(settings.bnewton);
-      if (settings.algorithm == "bde")
-        return std::make_unique<BNewtonSolver>(settings.bnewton);
-      if (settings.algorithm == "penalty")
-        return std::make_unique<PenaltySolver>(settings);
-      if (settings.algorithm == "augmented-lagrange")
-        return std::make_unique<AugmentedLagrangeSolver>(settings);
-
-      std::string names;
-      for (const auto &name : available_contact_solvers())
-        names += (names.empty() ? "" : ", ") + name;
-      AssertThrow(false,
-                  base::ExcInput("Contact/Algorithm = " + settings.algorithm +
-                                 " is not available; use one of: " + names +
-                                 "."));
+      switch (settings.algorithm)
+        {
+          case Algorithm::bde:
+            return std::make_unique<BNewtonSolver>(settings.bnewton);
+          case Algorithm::penalty:
+            return std::make_unique<PenaltySolver>(settings);
+          case Algorithm::augmented_lagrange:
+            return std::make_unique<AugmentedLagrangeSolver>(settings);
+        }
       return nullptr;
     }
   } // namespace contact

@@ -14,7 +14,43 @@ namespace igabde
     std::vector<std::string>
     available_contact_solvers()
     {
-      return {"bde", "penalty", "augmented-lagrange"};
+      return {to_string(Algorithm::bde),
+              to_string(Algorithm::penalty),
+              to_string(Algorithm::augmented_lagrange)};
+    }
+
+
+
+    std::string
+    to_string(const Algorithm algorithm)
+    {
+      switch (algorithm)
+        {
+          case Algorithm::bde:
+            return "bde";
+          case Algorithm::penalty:
+            return "penalty";
+          case Algorithm::augmented_lagrange:
+            return "augmented-lagrange";
+        }
+      return "";
+    }
+
+
+
+    std::string
+    to_string(const Path path)
+    {
+      switch (path)
+        {
+          case Path::condensed:
+            return "condensed";
+          case Path::full:
+            return "full";
+          case Path::automatic:
+            return "auto";
+        }
+      return "";
     }
   } // namespace contact
 } // namespace igabde

@@ -17,10 +17,12 @@ namespace igabde
       const ContactSettings                                         &settings,
       const std::vector<std::unique_ptr<discretization::Body<dim>>> &bodies,
       std::unique_ptr<Obstacle<dim>>                                 obstacle,
-      std::ostream                                                  &log)
+      std::ostream                                                  &log,
+      const CoupledFactory<dim> &coupled_factory)
       : settings(settings)
       , bodies(bodies)
       , obstacle(std::move(obstacle))
+      , coupled_factory(coupled_factory)
       , pairing(create_pairing_strategy<dim>(settings.pairing))
       , log(log)
     {
@@ -29,6 +31,11 @@ namespace igabde
                                  ": contact needs Body 2 (deformable) or a "
                                  "rigid plane."));
     }
+
+
+
+    template <int dim>
+    ContactStage<dim>::~ContactStage() = default;
 
 
 
@@ -45,7 +52,7 @@ namespace igabde
     typename ContactStage<dim>::State
     ContactStage<dim>::save_state() const
     {
-      return {p, alpha, u_rel, previous_external, w, status, has_previous};
+      return {x, u_rel, previous_external, status, has_previous};
     }
 
 
@@ -54,11 +61,9 @@ namespace igabde
     void
     ContactStage<dim>::restore_state(const State &state)
     {
-      p                 = state.p;
-      alpha             = state.alpha;
+      x                 = state.x;
       u_rel             = state.u_rel;
       previous_external = state.previous_external;
-      w                 = state.w;
       status            = state.status;
       has_previous      = state.has_previous;
     }
@@ -69,7 +74,7 @@ namespace igabde
     const ContactProblem &
     ContactStage<dim>::condensed_problem() const
     {
-      return condensed.problem;
+      return contact.problem;
     }
 
 
@@ -78,7 +83,7 @@ namespace igabde
     double
     ContactStage<dim>::flexibility_asymmetry() const
     {
-      return condensed.asymmetry;
+      return contact.asymmetry;
     }
 
 
@@ -87,7 +92,7 @@ namespace igabde
     const Eigen::VectorXd &
     ContactStage<dim>::forces() const
     {
-      return p;
+      return x.p;
     }
 
 
@@ -121,32 +126,69 @@ namespace igabde
       // The path: penalty methods solve the full system (as ANSYS does);
       // the BDE takes the path asked for, or under auto the one the cost
       // model (path_cost.h) estimates cheaper.
-      ContactSolverSettings solver_settings = settings.solver;
-      if (settings.solver.algorithm != "bde")
+      Path path = settings.solver.path;
+      if (settings.solver.algorithm != Algorithm::bde)
         {
-          resolved_path = "full";
-          path_why      = settings.solver.algorithm + " solves the full system";
+          path = Path::full;
+          path_why =
+            to_string(settings.solver.algorithm) + " solves the full system";
         }
-      else if (settings.solver.path == "auto")
+      else if (path == Path::automatic)
         {
           const PathCostEstimate e =
             estimate_path_costs(path_cost_inputs(),
                                 PathCostConstants::measured());
-          resolved_path               = e.path;
+          path                        = e.path;
           path_why                    = e.reason;
           estimated_condensed_seconds = e.condensed_seconds;
           estimated_full_seconds      = e.full_seconds;
         }
       else
-        {
-          resolved_path = settings.solver.path;
-          path_why      = "Contact/Path = " + settings.solver.path;
-        }
-      solver_settings.path = resolved_path;
-      solver               = create_contact_solver(solver_settings);
+        path_why = "Contact/Path = " + to_string(path);
+      resolved_path = path;
+      // The names of the phases in the timing table and the log.
+      const bool full = (path == Path::full);
+      prepare_section =
+        full ? "contact: coupled system" : "contact: condensation";
+      solver_section = full ? "full-system solve" : "B-Newton";
+      solver_label   = (settings.solver.algorithm == Algorithm::bde ?
+                          std::string("B-Newton") :
+                          to_string(settings.solver.algorithm)) +
+                     (full ? " (full system)" : "");
+
+      std::vector<const discretization::Body<dim> *> deformable;
+      for (const auto &body : bodies)
+        deformable.push_back(body.get());
+      if (full)
+        contact_path =
+          std::make_unique<CoupledPath<dim>>(deformable,
+                                             m,
+                                             settings.friction_coefficient,
+                                             bool(obstacle),
+                                             coupled_factory,
+                                             settings.context,
+                                             log);
+      else
+        contact_path =
+          std::make_unique<CondensedPath<dim>>(deformable,
+                                               m,
+                                               settings.friction_coefficient,
+                                               settings.schur_condensation,
+                                               settings.context,
+                                               log,
+                                               settings.progress);
+      // The full path's merit adds the displacement equations, which the
+      // first Newton step satisfies to rounding: its line search is
+      // monotone (the non-monotone rule lets |H| grow for steps that the
+      // coupled system's rounding then pays for).
+      ContactSolverSettings solver_settings = settings.solver;
+      if (full)
+        solver_settings.bnewton.nonmonotone_memory = 1;
+      solver = create_contact_solver(solver_settings);
       if (settings.log_solves)
-        log << "  contact: " << solver->name() << " on the " << resolved_path
-            << " path (" << path_why << ")" << std::endl;
+        log << "  contact: " << solver->name() << " on the "
+            << to_string(resolved_path) << " path (" << path_why << ")"
+            << std::endl;
     }
 
 
@@ -185,7 +227,7 @@ namespace igabde
 
 
     template <int dim>
-    const std::string &
+    Path
     ContactStage<dim>::path() const
     {
       return resolved_path;
@@ -194,10 +236,11 @@ namespace igabde
 
 
     template <int dim>
-    void
-    ContactStage<dim>::set_coupled_factory(const CoupledFactory &factory)
+    std::vector<discretization::PointOperator<dim>>
+    ContactStage<dim>::factorization_interface(const unsigned int b) const
     {
-      coupled_factory = factory;
+      Assert(contact_path, ExcMessage("build_pairs() first"));
+      return contact_path->factorization_interface(b, pair_list);
     }
 
 
@@ -206,145 +249,32 @@ namespace igabde
     void
     ContactStage<dim>::prepare(TimerOutput &timer)
     {
-      if (resolved_path == "full")
-        couple(timer);
-      else
-        condense(timer);
-    }
-
-
-
-    template <int dim>
-    void
-    ContactStage<dim>::couple(TimerOutput &timer)
-    {
-      AssertThrow(coupled_factory,
-                  ExcMessage("ContactStage::couple: no coupled-system "
-                             "factory (set_coupled_factory())"));
-      TimerOutput::Scope t(timer, "contact: coupled system");
-      std::vector<const discretization::Body<dim> *> deformable;
-      for (const auto &body : bodies)
-        deformable.push_back(body.get());
-      RigidModeColumns modes =
-        rigid_mode_columns<dim>(pair_list, deformable, m, log);
-
-      // Pairs whose points move with held unknowns only (and with no rigid
-      // mode) carry no information; leave them out as condense() does.
-      std::vector<unsigned int> keep;
-      const double              max_g =
-        modes.G.size() > 0 ? modes.G.cwiseAbs().maxCoeff() : 0.;
-      for (unsigned int i = 0; i < pair_list.size(); ++i)
-        {
-          bool moves = false;
-          for (unsigned int side = 0; side < (obstacle ? 1u : 2u); ++side)
-            {
-              const auto &op = side == 0 ? pair_list[i].op1 : pair_list[i].op2;
-              for (unsigned int k = 0; k < op.weights.size(); ++k)
-                for (unsigned int c = 0; c < dim; ++c)
-                  moves = moves || (op.weights[k] != 0. &&
-                                    !bodies[side]->is_held(op.dofs[k][c]));
-            }
-          const double g_row =
-            modes.G.cols() > 0 ? modes.G.row(m * i).cwiseAbs().maxCoeff() : 0.;
-          if (moves || g_row > 1e-12 * max_g)
-            keep.push_back(i);
-        }
-      condensed           = CondensedContact<dim>();
-      condensed.n_dropped = pair_list.size() - keep.size();
-      AssertThrow(!keep.empty(),
-                  base::ExcInput(settings.context +
-                                 ": every contact pair is held by supports on "
-                                 "both sides; nothing can touch."));
-      ContactProblem &problem = condensed.problem;
-      problem.G.resize(m * keep.size(), modes.G.cols());
-      for (unsigned int i = 0; i < keep.size(); ++i)
-        {
-          condensed.pairs.push_back(pair_list[keep[i]]);
-          problem.G.middleRows(m * i, m) = modes.G.middleRows(m * keep[i], m);
-        }
-      condensed.alpha_modes              = modes.alpha_modes;
-      condensed.rigid_mode_loads         = modes.loads;
-      condensed.rigid_mode_history_loads = modes.history_loads;
-      pair_list                          = condensed.pairs;
-      problem.n_contacts                 = pair_list.size();
-      problem.n_components               = m;
-      problem.q = Eigen::VectorXd::Zero(m * pair_list.size());
-      problem.mu.assign(pair_list.size(), settings.friction_coefficient);
-      problem.name = settings.context;
-      problem.b    = Eigen::VectorXd::Zero(modes.alpha_modes.size());
-      coupled      = coupled_factory(pair_list, m, problem.G, bool(obstacle));
-      problem.coupled = coupled;
-      problem.check_consistency();
-
-      log << "  contact: " << pair_list.size() << " pairs ("
-          << (obstacle ? obstacle->kind() : std::string("two bodies")) << ", "
-          << m * pair_list.size() << " contact unknowns"
-          << (m == 1 ? ", frictionless: no tangential unknowns" : "") << ")"
-          << std::endl;
-      if (settings.log_solves)
-        log << "  contact: coupled system of " << coupled->n_dofs()
-            << " displacement and " << m * pair_list.size() + problem.n_alpha()
-            << " contact unknowns, " << coupled->n_nonzeros()
-            << " nonzeros in its Newton matrix" << std::endl;
-      if (condensed.n_dropped > 0)
-        log << "  contact: left out " << condensed.n_dropped
-            << " pairs whose two points are both held by supports (zero "
-               "flexibility, no information)"
-            << std::endl;
-      p                 = Eigen::VectorXd::Zero(problem.n_rows());
-      alpha             = Eigen::VectorXd::Zero(problem.n_alpha());
-      previous_external = Eigen::VectorXd::Zero(problem.n_rows());
-      w                 = Eigen::VectorXd::Zero(coupled->n_dofs());
-    }
-
-
-
-    template <int dim>
-    std::vector<discretization::PointOperator<dim>>
-    ContactStage<dim>::contact_operators(const unsigned int b) const
-    {
-      std::vector<discretization::PointOperator<dim>> ops;
-      for (const auto &pair : pair_list)
-        ops.push_back(b == 0 ? pair.op1 : pair.op2);
-      return ops;
-    }
-
-
-
-    template <int dim>
-    void
-    ContactStage<dim>::condense(TimerOutput &timer)
-    {
+      Assert(contact_path, ExcMessage("build_pairs() first"));
       {
-        TimerOutput::Scope t(timer, "contact: condensation");
-        std::vector<const discretization::Body<dim> *> deformable;
-        for (const auto &body : bodies)
-          deformable.push_back(body.get());
-        condensed = contact::condense<dim>(pair_list,
-                                           deformable,
-                                           m,
-                                           settings.friction_coefficient,
-                                           settings.context,
-                                           log,
-                                           settings.progress);
+        TimerOutput::Scope t(timer, prepare_section);
+        contact_path->prepare(pair_list, contact);
       }
-      pair_list                     = condensed.pairs;
-      const ContactProblem &problem = condensed.problem;
+      pair_list                     = contact.pairs;
+      const ContactProblem &problem = contact.problem;
       log << "  contact: " << pair_list.size() << " pairs ("
           << (obstacle ? obstacle->kind() : std::string("two bodies")) << ", "
           << m * pair_list.size() << " contact unknowns"
           << (m == 1 ? ", frictionless: no tangential unknowns" : "") << ")"
           << std::endl;
-      if (condensed.n_dropped > 0)
-        log << "  contact: left out " << condensed.n_dropped
+      const std::string formed = contact_path->description(contact);
+      if (settings.log_solves && !formed.empty())
+        log << "  contact: " << formed << std::endl;
+      if (contact.n_dropped > 0)
+        log << "  contact: left out " << contact.n_dropped
             << " pairs whose two points are both held by supports (zero "
                "flexibility, no information)"
             << std::endl;
-      if (condensed.asymmetry > 1e-8)
-        log << "  contact: warning: flexibility asymmetry "
-            << condensed.asymmetry << std::endl;
-      p                 = Eigen::VectorXd::Zero(problem.n_rows());
-      alpha             = Eigen::VectorXd::Zero(problem.n_alpha());
+      if (contact.asymmetry > 1e-8)
+        log << "  contact: warning: flexibility asymmetry " << contact.asymmetry
+            << std::endl;
+      x.p               = Eigen::VectorXd::Zero(problem.n_rows());
+      x.alpha           = Eigen::VectorXd::Zero(problem.n_alpha());
+      x.w               = Eigen::VectorXd::Zero(contact_path->op().n_dofs());
       previous_external = Eigen::VectorXd::Zero(problem.n_rows());
     }
 
@@ -383,108 +313,51 @@ namespace igabde
 
 
     template <int dim>
-    std::pair<Eigen::VectorXd, Eigen::VectorXd>
+    ContactIterate
     ContactStage<dim>::initial_guess() const
     {
       // Candidate 1, first step: no force, rigid modes placed so that the
       // closest pair just touches (with every pair open the alpha columns of
-      // the Newton matrix vanish). Later steps: the previous step's forces
-      // and rigid-mode amplitudes (warm start).
-      const ContactProblem &problem = condensed.problem;
-      const Eigen::VectorXd p0 =
-        has_previous ? p : Eigen::VectorXd::Zero(problem.n_rows());
-      const Eigen::VectorXd a0 = has_previous ? alpha :
-                                 problem.n_alpha() > 0 ?
-                                                touching_alpha(problem) :
-                                                Eigen::VectorXd::Zero(0);
+      // the Newton matrix vanish). Later steps: the previous step's forces,
+      // rigid-mode amplitudes and contact displacement (warm start).
+      const ContactProblem &problem = contact.problem;
+      ContactOperator      &op      = contact_path->op();
+      ContactIterate        x0;
+      x0.p     = has_previous ? x.p : Eigen::VectorXd::Zero(problem.n_rows());
+      x0.alpha = has_previous          ? x.alpha :
+                 problem.n_alpha() > 0 ? touching_alpha(problem) :
+                                         Eigen::VectorXd::Zero(0);
+      x0.w     = has_previous ? x.w : Eigen::VectorXd::Zero(op.n_dofs());
 
-      // Candidate 2: a bilateral solve, W_cc p_c + G_c alpha = -q_c and
-      // G_c^T p_c = b, over the pairs expected closed and sticking: in the
-      // first step those that touch in the undeformed geometry, later those
-      // closed at the end of the previous step. On flat matching surfaces
-      // with zero gap every pair is at a tie of the min function, where the
-      // first Newton matrix is a poor model, and after a load change the
-      // warm start violates the equilibrium of floating bodies by the whole
-      // change; this start is exact when the contact state does not change.
-      // The better candidate by natural-map plus equilibrium residual is
-      // used.
-      std::vector<unsigned int> rows;
-      // Directions held by supports on both sides (zero flexibility, no
-      // rigid motion) carry no force and are left out of this start.
-      const double max_diag = problem.W.diagonal().cwiseAbs().maxCoeff();
-      const double max_g =
-        (problem.G.size() > 0 ? problem.G.cwiseAbs().maxCoeff() : 0.);
-      const std::vector<bool> closed = expected_closed();
-      for (unsigned int i = 0; i < pair_list.size(); ++i)
-        if (closed[i])
-          for (unsigned int s = 0; s < m; ++s)
-            {
-              const unsigned int r = m * i + s;
-              const double       g =
-                (problem.G.cols() > 0 ? problem.G.row(r).cwiseAbs().maxCoeff() :
-                                        0.);
-              if (problem.W(r, r) > 1e-12 * max_diag || g > 1e-12 * max_g)
-                rows.push_back(r);
-            }
-      if (rows.empty())
-        return {p0, a0};
-      const unsigned int nr = rows.size(), na = problem.n_alpha();
-      Eigen::MatrixXd    A = Eigen::MatrixXd::Zero(nr + na, nr + na);
-      Eigen::VectorXd    rhs(nr + na);
-      for (unsigned int i = 0; i < nr; ++i)
-        {
-          for (unsigned int j = 0; j < nr; ++j)
-            A(i, j) = problem.W(rows[i], rows[j]);
-          for (unsigned int k = 0; k < na; ++k)
-            {
-              A(i, nr + k) = problem.G(rows[i], k);
-              A(nr + k, i) = problem.G(rows[i], k);
-            }
-          rhs(i) = -problem.q(rows[i]);
-        }
-      for (unsigned int k = 0; k < na; ++k)
-        rhs(nr + k) = problem.b(k);
-      // Forces that load held unknowns only, on both sides, move nothing:
-      // they make A singular, and their share of p is not determined (point
-      // pairs show them as zero rows, left out above; weighted-gap pairs,
-      // whose operators spread over a face's mass-matrix row, mix them into
-      // several pairs). The minimum-norm solution leaves them out, so that
-      // no force goes into the supports without need; a regular A is
-      // solved as before.
-      Eigen::FullPivLU<Eigen::MatrixXd> lu(A);
-      lu.setThreshold(1e-12);
-      Eigen::VectorXd x;
-      if (lu.rank() < A.rows())
-        {
-          Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(A);
-          cod.setThreshold(1e-12);
-          x = cod.solve(rhs);
-        }
-      else
-        x = lu.solve(rhs);
-      if (!x.allFinite())
-        return {p0, a0};
-      Eigen::VectorXd p1 = Eigen::VectorXd::Zero(problem.n_rows());
-      for (unsigned int i = 0; i < nr; ++i)
-        p1(rows[i]) = x(i);
-      const Eigen::VectorXd a1 = x.tail(na);
+      // Candidate 2: the path's bilateral solve over the pairs expected
+      // closed and sticking: in the first step those that touch in the
+      // undeformed geometry, later those closed at the end of the previous
+      // step. On flat matching surfaces with zero gap every pair is at a
+      // tie of the min function, where the first Newton matrix is a poor
+      // model, and after a load change the warm start violates the
+      // equilibrium of floating bodies by the whole change; this start is
+      // exact when the contact state does not change. The better candidate
+      // by natural-map plus equilibrium residual is used.
+      ContactIterate x1;
+      if (!op.bilateral_start(problem, expected_closed(), x1))
+        return x0;
 
       // Natural-map residual plus the equilibrium of floating bodies (the
       // natural map alone is zero for p = 0 with every pair open).
-      const auto error = [&](const Eigen::VectorXd &pp,
-                             const Eigen::VectorXd &aa) {
-        double e =
-          relative_natural_map_error(problem,
-                                     pp,
-                                     problem.relative_displacement(pp, aa));
+      const unsigned int na    = problem.n_alpha();
+      const auto         error = [&](const ContactIterate &y) {
+        Eigen::VectorXd u = op.displacement(y.p, y.w) + problem.q;
         if (na > 0)
-          e += (problem.G.transpose() * pp - problem.b).norm() /
+          u += problem.G * y.alpha;
+        double e = relative_natural_map_error(problem, y.p, u);
+        if (na > 0)
+          e += (problem.G.transpose() * y.p - problem.b).norm() /
                std::max(problem.b.norm(), 1e-300);
         return e;
       };
-      if (error(p1, a1) < error(p0, a0))
-        return {p1, a1};
-      return {p0, a0};
+      if (error(x1) < error(x0))
+        return x1;
+      return x0;
     }
 
 
@@ -507,75 +380,6 @@ namespace igabde
 
 
     template <int dim>
-    std::tuple<Eigen::VectorXd, Eigen::VectorXd, Eigen::VectorXd>
-    ContactStage<dim>::initial_guess_full() const
-    {
-      // As initial_guess(), on the coupled system: the warm start, or the
-      // bilateral solve with the expected-closed pairs glued (u_c = 0) and
-      // the others free of force.
-      const ContactProblem &problem = condensed.problem;
-      const unsigned int    na      = problem.n_alpha();
-      const Eigen::VectorXd p0 =
-        has_previous ? p : Eigen::VectorXd::Zero(problem.n_rows());
-      const Eigen::VectorXd a0 = has_previous ? alpha :
-                                 na > 0       ? touching_alpha(problem) :
-                                                Eigen::VectorXd::Zero(0);
-      const Eigen::VectorXd w0 =
-        has_previous ? w : Eigen::VectorXd::Zero(coupled->n_dofs());
-
-      const std::vector<bool> closed = expected_closed();
-      if (std::find(closed.begin(), closed.end(), true) == closed.end())
-        return {p0, a0, w0};
-      const Eigen::VectorXd       &k = coupled->pair_stiffness();
-      std::vector<Eigen::Matrix3d> A(pair_list.size(), Eigen::Matrix3d::Zero()),
-        B(pair_list.size(), Eigen::Matrix3d::Zero());
-      Eigen::VectorXd r_p = Eigen::VectorXd::Zero(problem.n_rows());
-      // Directions held by supports on both sides carry no force, as in the
-      // solver: a glued one would be a zero row.
-      const std::vector<bool> held = held_pair_directions(problem);
-      for (unsigned int i = 0; i < pair_list.size(); ++i)
-        for (unsigned int s = 0; s < m; ++s)
-          if (closed[i] && !held[m * i + s])
-            {
-              A[i](s, s)     = k[i];
-              r_p[m * i + s] = -k[i] * problem.q[m * i + s];
-            }
-          else
-            B[i](s, s) = 1.;
-      Eigen::VectorXd w1, p1, a1;
-      std::string     why;
-      coupled->factorize(A, B);
-      if (!coupled->solve(Eigen::VectorXd::Zero(coupled->n_dofs()),
-                          r_p,
-                          na > 0 ? Eigen::VectorXd(problem.b) :
-                                   Eigen::VectorXd(),
-                          w1,
-                          p1,
-                          a1,
-                          why) ||
-          !p1.allFinite() || !w1.allFinite())
-        return {p0, a0, w0};
-
-      const auto error = [&](const Eigen::VectorXd &pp,
-                             const Eigen::VectorXd &aa,
-                             const Eigen::VectorXd &ww) {
-        Eigen::VectorXd u = coupled->apply_C(ww) + problem.q;
-        if (na > 0)
-          u += problem.G * aa;
-        double e = relative_natural_map_error(problem, pp, u);
-        if (na > 0)
-          e += (problem.G.transpose() * pp - problem.b).norm() /
-               std::max(problem.b.norm(), 1e-300);
-        return e;
-      };
-      if (error(p1, a1, w1) < error(p0, a0, w0))
-        return {p1, a1, w1};
-      return {p0, a0, w0};
-    }
-
-
-
-    template <int dim>
     StepResult<dim>
     ContactStage<dim>::solve_step(const double                 load_factor,
                                   std::vector<Vector<double>> &u,
@@ -592,15 +396,14 @@ namespace igabde
                                   std::vector<Vector<double>> &u,
                                   TimerOutput                 &timer)
     {
-      ContactProblem       &problem = condensed.problem;
-      const bool            full    = static_cast<bool>(coupled);
+      ContactProblem       &problem = contact.problem;
+      ContactOperator      &op      = contact_path->op();
       const Eigen::VectorXd U       = relative_displacement(u);
       // What the previous step's contact forces contribute to the pair
       // displacements (subtracted from the tangential increments).
-      Eigen::VectorXd carry =
-        full ? coupled->apply_C(w) : Eigen::VectorXd(problem.W * p);
+      Eigen::VectorXd carry = op.displacement(x.p, x.w);
       if (problem.n_alpha() > 0)
-        carry += problem.G * alpha;
+        carry += problem.G * x.alpha;
 
       // Normal rows: total relative displacement, gap included. Tangential
       // rows: increments of this step (friction is incremental).
@@ -613,36 +416,20 @@ namespace igabde
         }
       // The loads floating bodies must balance: every history at its
       // factor.
-      problem.b = Eigen::VectorXd::Zero(condensed.rigid_mode_loads.size());
+      problem.b = Eigen::VectorXd::Zero(contact.rigid_mode_loads.size());
       for (unsigned int h = 0;
-           h < factors.size() && h < condensed.rigid_mode_history_loads.cols();
+           h < factors.size() && h < contact.rigid_mode_history_loads.cols();
            ++h)
-        problem.b -= factors[h] * condensed.rigid_mode_history_loads.col(h);
-
-      problem.p_previous = p;
+        problem.b -= factors[h] * contact.rigid_mode_history_loads.col(h);
 
       ContactSolverResult solution;
       {
-        TimerOutput::Scope t(timer,
-                             full ? "contact: full-system solve" :
-                                    "contact: B-Newton");
-        if (full)
-          {
-            const auto [p0, alpha0, w0] = initial_guess_full();
-            problem.w0                  = w0;
-            solution                    = solver->solve(problem, p0, alpha0);
-          }
-        else
-          {
-            const auto [p0, alpha0] = initial_guess();
-            solution                = solver->solve(problem, p0, alpha0);
-          }
+        TimerOutput::Scope t(timer, "contact: " + solver_section);
+        solution = solver->solve(problem, op, initial_guess(), x.p);
       }
       if (settings.log_solves)
-        log << "  " << (solver->name() == "bde" ? "B-Newton" : solver->name())
-            << (full ? " (full system)" : "") << ": " << solution.summary()
-            << std::endl;
-      if (full && solver->name() == "penalty")
+        log << "  " << solver_label << ": " << solution.summary() << std::endl;
+      if (!solver->exact())
         log << "  maximum penetration " << std::setprecision(6)
             << solution.max_penetration << std::endl;
 
@@ -686,7 +473,7 @@ namespace igabde
 
       // The penalty answer penetrates by design (about p / k_n): it is
       // reported, not checked against the exact conditions.
-      if (solver->name() == "penalty")
+      if (!solver->exact())
         result.conditions_passed = true;
       else
         {
@@ -706,14 +493,15 @@ namespace igabde
             }
         }
 
-      p                 = solution.p;
-      alpha             = solution.alpha;
+      x.p               = solution.p;
+      x.alpha           = solution.alpha.size() > 0 ?
+                            solution.alpha :
+                            Eigen::VectorXd::Zero(problem.n_alpha());
+      x.w               = solution.w;
       u_rel             = solution.u;
       status            = solution.status;
       previous_external = U;
       has_previous      = true;
-      if (full)
-        w = solution.w;
 
       // Contact forces back to the fields.
       {
@@ -723,32 +511,19 @@ namespace igabde
           loads.emplace_back(body->n_dofs());
         for (unsigned int i = 0; i < pair_list.size(); ++i)
           {
-            const Tensor<1, dim> f = global_force(i, p);
+            const Tensor<1, dim> f = global_force(i, x.p);
             result.contact_force += f;
             pair_list[i].op1.distribute(f, loads[0]);
             if (!obstacle)
               pair_list[i].op2.distribute(-f, loads[1]);
           }
-        // The bodies' response: solved already on the full path, one solve
-        // per body on the condensed one.
-        unsigned int offset = 0;
-        for (unsigned int b = 0; b < bodies.size(); ++b)
+        // The bodies' response (the path: solved already on the full
+        // path, one solve per body on the condensed one).
+        contact_path->add_response(loads, x, u);
+        for (unsigned int a = 0; a < contact.alpha_modes.size(); ++a)
           {
-            if (full)
-              for (unsigned int i = 0; i < bodies[b]->n_dofs(); ++i)
-                u[b][i] += w[offset + i];
-            else
-              {
-                std::vector<Vector<double>> column(1, loads[b]);
-                bodies[b]->solve(column);
-                u[b] += column[0];
-              }
-            offset += bodies[b]->n_dofs();
-          }
-        for (unsigned int a = 0; a < condensed.alpha_modes.size(); ++a)
-          {
-            const auto [b, k] = condensed.alpha_modes[a];
-            u[b].add(alpha(a), bodies[b]->free_rigid_modes()[k]);
+            const auto [b, k] = contact.alpha_modes[a];
+            u[b].add(x.alpha(a), bodies[b]->free_rigid_modes()[k]);
           }
         log << "  total contact force on Body 1: " << std::setprecision(6)
             << result.contact_force << std::endl;
@@ -772,10 +547,10 @@ namespace igabde
           s.area     = pair_list[i].area;
           for (unsigned int k = 0; k < m; ++k)
             {
-              s.force_local.push_back(p(m * i + k));
+              s.force_local.push_back(x.p(m * i + k));
               s.displacement_local.push_back(u_rel(m * i + k));
             }
-          s.force = global_force(i, p);
+          s.force = global_force(i, x.p);
           for (unsigned int k = 1; k < m; ++k)
             s.slip += u_rel(m * i + k) * pair_list[i].frame[k];
           s.status = status[i];
@@ -793,19 +568,19 @@ namespace igabde
       ContactSummary s;
       for (const auto &pair : pair_list)
         s.initial_gaps = s.initial_gaps || pair.gap > 0.;
-      s.n_pairs    = pair_list.size();
-      s.n_unknowns = condensed.problem.n_rows() + condensed.problem.n_alpha();
-      s.friction   = (m > 1);
-      s.rigid_obstacle              = static_cast<bool>(obstacle);
-      s.floating_rigid_modes        = condensed.alpha_modes.size();
-      s.pairs_left_out              = condensed.n_dropped;
+      s.n_pairs        = pair_list.size();
+      s.n_unknowns     = contact.problem.n_rows() + contact.problem.n_alpha();
+      s.friction       = (m > 1);
+      s.rigid_obstacle = static_cast<bool>(obstacle);
+      s.floating_rigid_modes        = contact.alpha_modes.size();
+      s.pairs_left_out              = contact.n_dropped;
       s.algorithm                   = settings.solver.algorithm;
       s.path                        = resolved_path;
       s.path_reason                 = path_why;
       s.estimated_condensed_seconds = estimated_condensed_seconds;
       s.estimated_full_seconds      = estimated_full_seconds;
       s.cost_inputs                 = path_cost_inputs();
-      s.coupled_nonzeros            = coupled ? coupled->n_nonzeros() : 0.;
+      s.coupled_nonzeros = contact_path ? contact_path->n_nonzeros() : 0.;
       return s;
     }
 
@@ -820,7 +595,7 @@ namespace igabde
         return load;
       for (unsigned int i = 0; i < pair_list.size(); ++i)
         {
-          const Tensor<1, dim> f = global_force(i, p);
+          const Tensor<1, dim> f = global_force(i, x.p);
           if (b == 0)
             pair_list[i].op1.distribute(f, load);
           else

@@ -43,7 +43,8 @@ namespace igabde
       PathCostEstimate e;
       e.condensed_seconds = condensation + bnewton;
       e.full_seconds      = constants.sparse * N * factor;
-      e.path = (e.full_seconds < e.condensed_seconds ? "full" : "condensed");
+      e.path =
+        (e.full_seconds < e.condensed_seconds ? Path::full : Path::condensed);
       std::ostringstream s;
       s << std::setprecision(3) << "auto: estimated condensed "
         << e.condensed_seconds << " s (condensation " << condensation
@@ -53,7 +54,8 @@ namespace igabde
       double entries = 0.;
       for (const double L : inputs.factor_entries)
         entries += L;
-      s << entries << " factor entries): " << e.path << " is cheaper";
+      s << entries << " factor entries): " << to_string(e.path)
+        << " is cheaper";
       e.reason = s.str();
       return e;
     }

@@ -302,7 +302,7 @@ namespace igabde
 
     template <int dim>
     const Eigen::VectorXd &
-    CoupledSystem<dim>::pair_stiffness() const
+    CoupledSystem<dim>::element_pair_stiffness() const
     {
       return stiffness;
     }
@@ -348,8 +348,8 @@ namespace igabde
 
     template <int dim>
     Eigen::VectorXd
-    CoupledSystem<dim>::equilibrium_residual(const Eigen::VectorXd &w,
-                                             const Eigen::VectorXd &p) const
+    CoupledSystem<dim>::displacement_equations(const Eigen::VectorXd &w,
+                                               const Eigen::VectorXd &p) const
     {
       AssertDimension(w.size(), n_u);
       AssertDimension(p.size(), d * n_pairs);
@@ -377,8 +377,9 @@ namespace igabde
 
     template <int dim>
     double
-    CoupledSystem<dim>::equilibrium_scale(const Eigen::VectorXd &w,
-                                          const Eigen::VectorXd &p) const
+    CoupledSystem<dim>::displacement_equations_scale(
+      const Eigen::VectorXd &w,
+      const Eigen::VectorXd &p) const
     {
       Eigen::VectorXd r = Eigen::VectorXd::Zero(n_u);
       for (unsigned int b = 0; b < bodies.size(); ++b)
@@ -697,6 +698,33 @@ namespace igabde
 
 
 
+    template <int dim>
+    contact::CoupledFactory<dim>
+    coupled_factory(const std::string &solver,
+                    const unsigned int krylov_max_iterations)
+    {
+      return [solver, krylov_max_iterations](
+               const std::vector<const discretization::Body<dim> *> &bodies,
+               const std::vector<contact::ContactPair<dim>>         &pairs,
+               const unsigned int     n_components,
+               const Eigen::MatrixXd &G,
+               const bool             obstacle) {
+        return std::make_unique<CoupledSystem<dim>>(bodies,
+                                                    pairs,
+                                                    n_components,
+                                                    G,
+                                                    obstacle,
+                                                    solver,
+                                                    krylov_max_iterations);
+      };
+    }
+
+
+
+    template contact::CoupledFactory<2>
+    coupled_factory<2>(const std::string &, const unsigned int);
+    template contact::CoupledFactory<3>
+    coupled_factory<3>(const std::string &, const unsigned int);
     template class CoupledSystem<2>;
     template class CoupledSystem<3>;
   } // namespace coupled

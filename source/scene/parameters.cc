@@ -16,6 +16,28 @@ namespace igabde
   {
     namespace
     {
+      /**
+       * The choice among @p choices whose name (contact::to_string()) is
+       * @p name: the one place where a selection's text becomes its enum
+       * (the Selection pattern has refused any other text already).
+       */
+      template <typename Choice>
+      Choice
+      parse_choice(const std::string &name, const std::vector<Choice> &choices)
+      {
+        for (const Choice choice : choices)
+          if (contact::to_string(choice) == name)
+            return choice;
+        AssertThrow(false,
+                    base::ExcInput("'" + name + "' is not one of the choices"));
+        return choices.front();
+      }
+    } // namespace
+
+
+
+    namespace
+    {
       /// Splits "entry @ history" into the entry and the history name
       /// (empty when there is no '@').
       std::pair<std::string, std::string>
@@ -678,15 +700,22 @@ namespace igabde
     {
       prm.enter_subsection("Contact");
       {
-        enabled                   = prm.get_bool("Enabled");
-        friction_coefficient      = prm.get_double("Friction coefficient");
-        algorithm                 = prm.get("Algorithm");
+        enabled              = prm.get_bool("Enabled");
+        friction_coefficient = prm.get_double("Friction coefficient");
+        algorithm            = parse_choice<contact::Algorithm>(
+          prm.get("Algorithm"),
+          {contact::Algorithm::bde,
+                      contact::Algorithm::penalty,
+                      contact::Algorithm::augmented_lagrange});
         penalty_factor            = prm.get_double("Penalty factor");
         tangential_penalty_factor = prm.get_double("Tangential penalty factor");
         full_system_solver        = prm.get("Full system solver");
         krylov_max_iterations     = prm.get_integer("Krylov max iterations");
         penalty_line_search       = prm.get_bool("Penalty line search");
-        path                      = prm.get("Path");
+        path                      = parse_choice<contact::Path>(prm.get("Path"),
+                                           {contact::Path::condensed,
+                                                                 contact::Path::full,
+                                                                 contact::Path::automatic});
         condensation              = prm.get("Condensation");
         slave_face                = prm.get_integer("Slave face");
         master_face               = prm.get_integer("Master face");
@@ -1027,9 +1056,10 @@ namespace igabde
                   base::ExcInput(f + "Contact/Enabled is true but Body 2/Type "
                                      "is 'none'; set Body 2/Type to "
                                      "'deformable' or 'rigid plane'."));
-      AssertThrow(contact.algorithm == "bde" || contact.path != "condensed",
-                  base::ExcInput(f +
-                                 "Contact/Algorithm = " + contact.algorithm +
+      AssertThrow(contact.algorithm == contact::Algorithm::bde ||
+                    contact.path != contact::Path::condensed,
+                  base::ExcInput(f + "Contact/Algorithm = " +
+                                 contact::to_string(contact.algorithm) +
                                  " solves the full system; set Contact/Path "
                                  "to 'full' or 'auto' (or use Algorithm = "
                                  "bde for the condensed path)."));
@@ -1039,14 +1069,6 @@ namespace igabde
                                      "Tangential penalty factor must be "
                                      "positive (FKN = 0.01 to 10 is the "
                                      "usual range)."));
-      {
-        const auto available = contact::available_contact_solvers();
-        AssertThrow(std::find(available.begin(),
-                              available.end(),
-                              contact.algorithm) != available.end(),
-                    base::ExcInput(f + "Contact/Algorithm = " +
-                                   contact.algorithm + " is not available."));
-      }
       for (const auto *body : {&body1, &body2})
         for (const auto &traction : body->tractions)
           AssertThrow(traction.kind != TractionParameters::Kind::exact ||

@@ -373,15 +373,15 @@ namespace igabde
     Simulator<dim>::factorize_bodies(const contact::ContactStage<dim> *stage)
     {
       TimerOutput::Scope t(timer, "factorization");
-      const bool         schur =
-        (stage != nullptr && parameters.contact.condensation == "schur" &&
-         parameters.discretization.linear_solver == "direct");
       for (unsigned int b = 0; b < bodies.size(); ++b)
         {
           Timer clock;
+          // What the contact path needs of the body (a Schur interface on
+          // the contact face, or nothing).
           bodies[b]->factorize(
-            schur ? stage->contact_operators(b) :
-                    std::vector<discretization::PointOperator<dim>>());
+            stage != nullptr ?
+              stage->factorization_interface(b) :
+              std::vector<discretization::PointOperator<dim>>());
           if (bodies[b]->factor_entries() > 0. && summary.contains("bodies") &&
               b < summary["bodies"].size())
             summary["bodies"][b]["factor_entries"] =
@@ -419,13 +419,16 @@ namespace igabde
       if (parameters.contact.enabled)
         {
           contact::ContactSettings cs;
-          const auto              &c          = parameters.contact;
-          cs.friction_coefficient             = c.friction_coefficient;
-          cs.slave_face                       = c.slave_face;
-          cs.master_face                      = c.master_face;
-          cs.pairing                          = c.pairing;
-          cs.solver.algorithm                 = c.algorithm;
-          cs.solver.path                      = c.path;
+          const auto              &c = parameters.contact;
+          cs.friction_coefficient    = c.friction_coefficient;
+          cs.slave_face              = c.slave_face;
+          cs.master_face             = c.master_face;
+          cs.pairing                 = c.pairing;
+          cs.solver.algorithm        = c.algorithm;
+          cs.solver.path             = c.path;
+          cs.schur_condensation =
+            c.condensation == "schur" &&
+            parameters.discretization.linear_solver == "direct";
           cs.solver.penalty.normal_factor     = c.penalty_factor;
           cs.solver.penalty.tangential_factor = c.tangential_penalty_factor;
           cs.solver.penalty.line_search       = c.penalty_line_search;
@@ -457,41 +460,24 @@ namespace igabde
                                        where + "Plane point"),
                 normal);
             }
-          contact_stage =
-            std::make_unique<contact::ContactStage<dim>>(cs,
-                                                         bodies,
-                                                         std::move(obstacle),
-                                                         contact_log());
+          contact_stage = std::make_unique<contact::ContactStage<dim>>(
+            cs,
+            bodies,
+            std::move(obstacle),
+            contact_log(),
+            coupled::coupled_factory<dim>(c.full_system_solver,
+                                          c.krylov_max_iterations));
           contact_stage->build_pairs(timer);
-          const bool full = contact_stage->path() == "full";
-          factorize_bodies(full ? nullptr : contact_stage.get());
+          factorize_bodies(contact_stage.get());
           {
-            std::vector<const discretization::Body<dim> *> deformable;
-            for (const auto &body : bodies)
-              deformable.push_back(body.get());
-            const std::string  solver         = c.full_system_solver;
-            const unsigned int max_iterations = c.krylov_max_iterations;
-            contact_stage->set_coupled_factory(
-              [deformable, solver, max_iterations](
-                const std::vector<contact::ContactPair<dim>> &pairs,
-                const unsigned int                            n_components,
-                const Eigen::MatrixXd                        &G,
-                const bool                                    obstacle) {
-                return std::make_shared<coupled::CoupledSystem<dim>>(
-                  deformable,
-                  pairs,
-                  n_components,
-                  G,
-                  obstacle,
-                  solver,
-                  max_iterations);
-              });
             Timer clock;
             contact_stage->prepare(timer);
             if (parameters.output.progress)
               pcout << "  [progress] "
-                    << (full ? "coupled system" : "condensation") << ", "
-                    << std::setprecision(3) << clock.wall_time() << " s"
+                    << (contact_stage->path() == contact::Path::full ?
+                          "coupled system" :
+                          "condensation")
+                    << ", " << std::setprecision(3) << clock.wall_time() << " s"
                     << std::setprecision(6) << std::endl;
           }
           const contact::ContactSummary s     = contact_stage->summary();
@@ -507,8 +493,8 @@ namespace igabde
           summary["effects"]                  = effects;
           summary["n_contact_pairs"]          = s.n_pairs;
           summary["n_contact_unknowns"]       = s.n_unknowns;
-          summary["contact_algorithm"]        = s.algorithm;
-          summary["contact_path"]             = s.path;
+          summary["contact_algorithm"]        = contact::to_string(s.algorithm);
+          summary["contact_path"]             = contact::to_string(s.path);
           summary["contact_path_reason"]      = s.path_reason;
           if (s.estimated_condensed_seconds > 0. ||
               s.estimated_full_seconds > 0.)
@@ -520,11 +506,12 @@ namespace igabde
             {"face_unknowns", s.cost_inputs.face_unknowns},
             {"factor_entries", s.cost_inputs.factor_entries},
             {"newton_iterations", s.cost_inputs.newton_iterations}};
-          if (c.full_system_solver != "mumps" && s.path == "full")
+          const bool full = (s.path == contact::Path::full);
+          if (c.full_system_solver != "mumps" && full)
             summary["full_system_solver"] = c.full_system_solver;
-          if (s.path == "full")
+          if (full)
             summary["coupled_matrix_nonzeros"] = s.coupled_nonzeros;
-          if (s.algorithm != "bde")
+          if (s.algorithm != contact::Algorithm::bde)
             {
               summary["penalty_factor_fkn"] = c.penalty_factor;
               summary["tangential_penalty_factor_fkt"] =
@@ -608,9 +595,10 @@ namespace igabde
               record["n_open"]            = last.n_open;
               record["n_stick"]           = last.n_stick;
               record["n_slip"]            = last.n_slip;
-              if (parameters.contact.algorithm != "bde")
+              if (parameters.contact.algorithm != contact::Algorithm::bde)
                 record["max_penetration"] = last.max_penetration;
-              if (parameters.contact.algorithm == "augmented-lagrange")
+              if (parameters.contact.algorithm ==
+                  contact::Algorithm::augmented_lagrange)
                 record["multiplier_updates"] = last.updates;
               record["residual_history"] = last.residual_history;
               if (!last.linear_iterations.empty())

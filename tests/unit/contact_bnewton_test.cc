@@ -438,7 +438,9 @@ TEST(ContactBNewton, HistoryPrinting)
   settings.log_stream                = &log;
   const BNewtonSolver::Result result = BNewtonSolver(settings).solve(problem);
   EXPECT_TRUE(result.converged);
-  EXPECT_EQ(result.history.size(), result.iterations);
+  // One line per iteration and a last one with the final residual.
+  EXPECT_EQ(result.history.size(), result.iterations + 1);
+  EXPECT_LE(result.history.back().residual, settings.tolerance);
   std::ostringstream out;
   result.print_history(out);
   EXPECT_NE(out.str().find("residual"), std::string::npos);

@@ -82,11 +82,11 @@ namespace
     for (unsigned int b = 0; b < bodies.size(); ++b)
       {
         bodies[b]->factorize(schur ?
-                               stage.contact_operators(b) :
+                               stage.factorization_interface(b) :
                                std::vector<discretization::PointOperator<2>>());
         EXPECT_EQ(bodies[b]->has_schur_complement(), schur);
       }
-    stage.condense(timer);
+    stage.prepare(timer);
     return {stage.condensed_problem().W, stage.flexibility_asymmetry()};
   }
 } // namespace

@@ -39,7 +39,7 @@ TEST(PathCost, CondensedWinsWithFewPairsOnLargeFactors)
   const PathCostEstimate e = estimate_path_costs(in, unit_constants());
   EXPECT_NEAR(e.condensed_seconds, 8e6, 1e-9 * 8e6);
   EXPECT_NEAR(e.full_seconds, 2e7, 1e-9 * 2e7);
-  EXPECT_EQ(e.path, "condensed");
+  EXPECT_EQ(e.path, Path::condensed);
   EXPECT_NE(e.reason.find("condensed is cheaper"), std::string::npos)
     << e.reason;
 }
@@ -60,7 +60,7 @@ TEST(PathCost, FullWinsWithManyPairsOnASmallFactor)
   const PathCostEstimate e = estimate_path_costs(in, unit_constants());
   EXPECT_NEAR(e.condensed_seconds, 17e9 / 3., 1e-9 * 17e9 / 3.);
   EXPECT_NEAR(e.full_seconds, 1e7, 1e-9 * 1e7);
-  EXPECT_EQ(e.path, "full");
+  EXPECT_EQ(e.path, Path::full);
   EXPECT_NE(e.reason.find("full is cheaper"), std::string::npos) << e.reason;
 }
 
@@ -79,5 +79,5 @@ TEST(PathCost, MeasuredConstantsChooseCondensedForB2LagrangeAt8x32x8)
   in.newton_iterations = 8.;
   const PathCostEstimate e =
     estimate_path_costs(in, PathCostConstants::measured());
-  EXPECT_EQ(e.path, "condensed") << e.reason;
+  EXPECT_EQ(e.path, Path::condensed) << e.reason;
 }

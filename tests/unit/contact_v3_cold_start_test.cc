@@ -11,6 +11,7 @@
 #include <igabde/discretization/body.h>
 #include <igabde/discretization/body_description.h>
 
+#include <igabde/contact/bnewton.h>
 #include <igabde/contact/contact_solver.h>
 #include <igabde/contact/contact_stage.h>
 
@@ -89,8 +90,8 @@ TEST(ContactV3, BNewtonFromZeroForcesGivesTheUniformPressure)
         contact::ContactStage<2> stage(cs, bodies, nullptr, log);
         stage.build_pairs(timer);
         for (unsigned int b = 0; b < bodies.size(); ++b)
-          bodies[b]->factorize(stage.contact_operators(b));
-        stage.condense(timer);
+          bodies[b]->factorize(stage.factorization_interface(b));
+        stage.prepare(timer);
 
         // One load step through the stage sets q and b of the condensed
         // problem for load factor 1.
@@ -103,11 +104,11 @@ TEST(ContactV3, BNewtonFromZeroForcesGivesTheUniformPressure)
         const unsigned int             m       = stage.n_components();
 
         // The same problem from p = 0.
-        const auto solver = contact::create_contact_solver(cs.solver);
-        const auto result =
-          solver->solve(problem,
-                        Eigen::VectorXd::Zero(problem.n_rows()),
-                        Eigen::VectorXd());
+        const contact::BNewtonSolver solver(cs.solver.bnewton);
+        const auto                   result =
+          solver.solve(problem,
+                       Eigen::VectorXd::Zero(problem.n_rows()),
+                       Eigen::VectorXd());
         ASSERT_TRUE(result.converged) << result.diagnosis;
         // Not converged by construction: the start is not the answer.
         EXPECT_GT(result.iterations, 1u);

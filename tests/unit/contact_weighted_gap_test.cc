@@ -124,8 +124,8 @@ namespace
     contact::ContactStage<dim> stage(cs, bodies, nullptr, log);
     stage.build_pairs(timer);
     for (unsigned int b = 0; b < bodies.size(); ++b)
-      bodies[b]->factorize(stage.contact_operators(b));
-    stage.condense(timer);
+      bodies[b]->factorize(stage.factorization_interface(b));
+    stage.prepare(timer);
     std::vector<Vector<double>> u;
     for (const auto &body : bodies)
       u.push_back(body->load_solution());

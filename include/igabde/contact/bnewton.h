@@ -3,6 +3,7 @@
 
 #include <igabde/contact/contact_problem.h>
 #include <igabde/contact/contact_solver.h>
+#include <igabde/contact/newton_driver.h>
 
 #include <Eigen/Dense>
 
@@ -52,14 +53,13 @@ namespace igabde
      *    the alpha columns of J vanish; the contact with the smallest
      *    r_n u_n - p_n is then taken in the closed branch (exactly a tie
      *    after touching_alpha()).
-     * Rows with A = 0 and B = identity (open normals, free tangents) are
-     * eliminated, d_i = -H_i; only the remaining rows are factorised:
-     * by Cholesky where the pieces make the reduced matrix a positive
-     * scaling of a block of a symmetric W (closed normals, stick), by LU
-     * otherwise, densely (LAPACK) or sparsely (Eigen) when W is sparse
-     * (Settings::linear_algebra, sparse_fill, use_symmetry).
+     * The Newton solve is the path's (ContactOperator::newton_step(): on
+     * the condensed path the rows with A = 0 and B = identity are
+     * eliminated and the rest factorised by Cholesky or LU, densely or
+     * sparsely; on the full path the coupled system).
      *
      * <h3>Globalisation</h3>
+     * The one driver of the contact layer (NewtonDriver):
      *  - Armijo backtracking on theta = |H|^2/2: step t = beta^m, accepted if
      *    theta(x + t d) <= theta_ref + sigma t grad(theta)^T d, with
      *    theta_ref the max of the last Settings::nonmonotone_memory values
@@ -112,7 +112,10 @@ namespace igabde
       /** @brief Outcome of a solve. */
       using Result = ContactSolverResult;
 
-      /** @brief Construct with @p settings. */
+      /**
+       * @brief Construct with @p settings; throws if a setting is out of
+       * range (the scene reader refuses such values first).
+       */
       explicit BNewtonSolver(const Settings &settings = Settings());
 
       /** @brief The settings in use. */
@@ -120,15 +123,15 @@ namespace igabde
       get_settings() const;
 
       /**
-       * @brief Solve from p = 0 (alpha from touching_alpha() when the
-       * problem has floating bodies).
+       * @brief Solve a condensed problem from p = 0 (alpha from
+       * touching_alpha() when the problem has floating bodies).
        */
       Result
       solve(const ContactProblem &problem) const;
 
       /**
-       * @brief Solve from an initial guess (warm start from a previous load
-       * step).
+       * @brief Solve a condensed problem (its W through a
+       * CondensedOperator) from an initial guess.
        * @param problem The problem.
        * @param p0 Initial contact forces, n_rows() (empty: zero).
        * @param alpha0 Initial floating-body amplitudes, n_alpha() (empty:
@@ -137,13 +140,32 @@ namespace igabde
       Result
       solve(const ContactProblem  &problem,
             const Eigen::VectorXd &p0,
-            const Eigen::VectorXd &alpha0 = {}) const override;
+            const Eigen::VectorXd &alpha0 = {}) const;
+
+      /** @brief Solve on any path (ContactSolver). */
+      Result
+      solve(const ContactData     &data,
+            ContactOperator       &op,
+            const ContactIterate  &start,
+            const Eigen::VectorXd &p_previous = {}) const override;
 
       /** @brief "bde". */
       std::string
       name() const override;
 
     private:
+      /**
+       * @brief The proximal-point phase (Acary et al. 2018, PPA-NSN) from
+       * the best iterate: subproblems with the operator shifted by eps
+       * (W + eps I, u + eps p on the full path) and q - eps p_k, centred
+       * on the current iterate, solved by Newton.
+       */
+      PhaseOutcome
+      proximal_phase(NewtonDriver         &driver,
+                     const ContactData    &data,
+                     const ContactIterate &x,
+                     const double          r_factor) const;
+
       Settings settings;
     };
 

@@ -165,7 +165,7 @@ namespace igabde
      * division.
      */
     double
-    natural_map_error(const ContactProblem  &problem,
+    natural_map_error(const ContactData     &problem,
                       const Eigen::VectorXd &p,
                       const Eigen::VectorXd &u);
 
@@ -176,7 +176,7 @@ namespace igabde
      * division is by the force scale |p| instead (1 if p = 0 too).
      */
     double
-    relative_natural_map_error(const ContactProblem  &problem,
+    relative_natural_map_error(const ContactData     &problem,
                                const Eigen::VectorXd &p,
                                const Eigen::VectorXd &u);
 
@@ -186,7 +186,7 @@ namespace igabde
      * floating bodies.
      */
     double
-    relative_equilibrium_error(const ContactProblem  &problem,
+    relative_equilibrium_error(const ContactData     &problem,
                                const Eigen::VectorXd &p,
                                double                &absolute);
 
@@ -201,6 +201,18 @@ namespace igabde
      */
     double
     balanced_natural_map_error(const ContactProblem  &problem,
+                               const Eigen::VectorXd &p,
+                               const Eigen::VectorXd &u);
+
+    /**
+     * @brief The balanced error with the stiffness scale rho_c given
+     * (@p unit_weights .r_n, the weights at factor 1 of the operator that
+     * relates u to p: 1/W_nn on the condensed path, the pair stiffness of
+     * the underlying elements on the full path).
+     */
+    double
+    balanced_natural_map_error(const ContactData     &problem,
+                               const PairWeights     &unit_weights,
                                const Eigen::VectorXd &p,
                                const Eigen::VectorXd &u);
   } // namespace contact

@@ -1,8 +1,6 @@
 #ifndef igabde_contact_contact_problem_h
 #define igabde_contact_contact_problem_h
 
-#include <igabde/contact/coupled_operator.h>
-
 #include <Eigen/Dense>
 
 #include <memory>
@@ -14,11 +12,15 @@ namespace igabde
   namespace contact
   {
     /**
-     * @brief The condensed ("local", in FCLIB's words) point-pair contact
-     * problem u = W p + q + G alpha, with Coulomb friction per pair.
+     * @brief The data of the contact law that every path shares: per pair
+     * the gap (in q), the friction coefficient and, with floating bodies,
+     * the rigid-mode columns G with the equilibrium rows G^T p = b. How the
+     * pair displacements u depend on the forces is not here: that is the
+     * ContactOperator (the dense flexibility W of the condensed path, or the
+     * coupled system of the full path).
      *
      * Ordering: the unknowns of contact i occupy the rows
-     * [i*n_components, (i+1)*n_components) of p, u, W and q, the normal
+     * [i*n_components, (i+1)*n_components) of p, u and q, the normal
      * component first:
      *  - n_components = 1: frictionless, normal only;
      *  - n_components = 2: 2D friction, [n, t];
@@ -27,27 +29,21 @@ namespace igabde
      * Sign conventions (method.md §3): u_n is the total relative normal
      * displacement, gap included, u_n >= 0 means open; the tangential
      * components of u are the slip increments of the load step; p_n > 0 is
-     * compression; at slip p_t opposes u_t.
+     * compression; at slip p_t opposes u_t. With floating bodies
+     * (method.md "Bodies held only through contact") u also carries
+     * G alpha, and the rows G^T p = b join the equations; G and b are
+     * empty (size 0) when every body is held.
      *
-     * Floating bodies (method.md "Bodies held only through contact"): the
-     * optional G (n_rows() x n_alpha) adds the rigid-mode amplitudes alpha
-     * to the unknowns, u = W p + q + G alpha, together with the equilibrium
-     * rows G^T p = b. Leave G and b empty (size 0) when every body is held.
-     *
-     * Units: W is a flexibility (displacement per force), q and u are
-     * displacements, p and b are forces, alpha has the units of the rigid
-     * modes in G.
+     * Units: q and u are displacements, p and b forces, alpha has the units
+     * of the rigid modes in G.
      */
-    struct ContactProblem
+    struct ContactData
     {
       /** @brief Number of contact pairs. */
       unsigned int n_contacts = 0;
 
       /** @brief Components per pair: 1 (frictionless), 2 (2D) or 3 (3D). */
       unsigned int n_components = 3;
-
-      /** @brief Flexibility matrix, n_rows() x n_rows(), in local frames. */
-      Eigen::MatrixXd W;
 
       /** @brief Relative displacement with zero contact force, n_rows(). */
       Eigen::VectorXd q;
@@ -61,31 +57,10 @@ namespace igabde
       /** @brief Right-hand side of the equilibrium rows G^T p = b. */
       Eigen::VectorXd b;
 
-      /**
-       * @brief The uncondensed system (full path), or null. With it W may
-       * be empty (0 x 0): the full-system solvers never form W, and u is
-       * C w + G alpha + q with w the coupled displacement unknowns.
-       */
-      std::shared_ptr<CoupledOperator> coupled;
-
-      /**
-       * @brief Warm start of the coupled displacement unknowns w (full
-       * path; size coupled->n_dofs(), or empty for zero).
-       */
-      Eigen::VectorXd w0;
-
-      /**
-       * @brief Pair forces at the end of the previous load step (the base
-       * of the incremental friction of the penalty methods; empty for 0).
-       */
-      Eigen::VectorXd p_previous;
-
       /** @brief Optional name (e.g. the file it was read from), for logs. */
       std::string name;
 
-      /**
-       * @brief Number of rows of W, q, p and u: n_contacts * n_components.
-       */
+      /** @brief Number of rows of q, p and u: n_contacts * n_components. */
       unsigned int
       n_rows() const;
 
@@ -99,10 +74,29 @@ namespace igabde
 
       /**
        * @brief Throw (AssertThrow) if sizes, signs or values are
-       * inconsistent: wrong matrix/vector sizes, n_components not in
-       * {1,2,3}, mu negative or not finite, non-finite entries, G and b of
-       * mismatching sizes.
+       * inconsistent: wrong vector sizes, n_components not in {1,2,3}, mu
+       * negative or not finite, non-finite entries, G and b of mismatching
+       * sizes.
        */
+      void
+      check_consistency() const;
+    };
+
+
+
+    /**
+     * @brief The condensed ("local", in FCLIB's words) point-pair contact
+     * problem u = W p + q + G alpha: the law's data and the dense
+     * flexibility W (n_rows() x n_rows(), in local frames, displacement per
+     * force). This is what the condensed path solves, what the FCLIB
+     * readers return, and what CondensedOperator wraps.
+     */
+    struct ContactProblem : public ContactData
+    {
+      /** @brief Flexibility matrix, n_rows() x n_rows(), in local frames. */
+      Eigen::MatrixXd W;
+
+      /** @brief ContactData::check_consistency() and the size of W. */
       void
       check_consistency() const;
 
@@ -156,20 +150,10 @@ namespace igabde
      * @return alpha with min over closing pairs of u_n(p = 0) equal to 0.
      */
     Eigen::VectorXd
-    touching_alpha(const ContactProblem  &problem,
+    touching_alpha(const ContactData     &problem,
                    const Eigen::VectorXd &alpha0    = {},
                    const Eigen::VectorXd &direction = {});
 
-    /**
-     * @brief The tangential pair directions held by supports on both sides
-     * (full path: an empty row of C, and of G with floating bodies): no
-     * displacement moves them and their force enters no body's equations,
-     * so they carry p = 0 and u = 0 (the supports take whatever friction
-     * would carry there). Left to the contact law, a stick piece there is a
-     * zero row of the Newton matrix. All false without problem.coupled.
-     */
-    std::vector<bool>
-    held_pair_directions(const ContactProblem &problem);
 
   } // namespace contact
 } // namespace igabde

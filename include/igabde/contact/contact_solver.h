@@ -2,7 +2,9 @@
 #define igabde_contact_contact_solver_h
 
 #include <igabde/contact/contact_law.h>
+#include <igabde/contact/contact_operator.h>
 #include <igabde/contact/contact_problem.h>
+#include <igabde/contact/path_cost.h>
 
 #include <Eigen/Dense>
 
@@ -96,48 +98,53 @@ namespace igabde
     };
 
     /**
-     * @brief A contact solver: the contact problem of one load step and a
-     * warm start in, the contact forces and the contact state out.
-     *
-     * The problem is the condensed one (ContactProblem: the flexibility W
-     * in the pairs' local frames, q, the rigid-mode columns G and their
-     * loads b, mu per pair). Every implementation decides the pieces of the
-     * contact law with pair_law() and reports its iterations, residual
-     * history and status in ContactSolverResult; the post-solve condition
-     * check (check_contact_conditions()) judges any of them the same way.
-     *
-     * Implementations: BNewtonSolver ("bde"). A new algorithm is one class
-     * deriving from this one plus one line in create_contact_solver().
+     * @brief A contact solver: the law's data of one load step, the path
+     * (ContactOperator) and a warm start in, the contact forces and the
+     * contact state out. Every implementation runs the one Newton driver
+     * (newton_driver.h) with its law: BNewtonSolver the B-differentiable
+     * equations (pair_law()), PenaltySolver and AugmentedLagrangeSolver
+     * the penalty law (penalty_law()), the latter in an outer loop of
+     * multiplier updates. The post-solve condition check
+     * (check_contact_conditions()) judges the exact ones the same way.
+     * A new algorithm is one class deriving from this one plus one line
+     * in create_contact_solver().
      */
     class ContactSolver
     {
     public:
       virtual ~ContactSolver() = default;
 
-      /** @brief The name the factory knows the solver by. */
+      /** @brief The name for logs and summary.json. */
       virtual std::string
       name() const = 0;
 
       /**
-       * @brief Solves @p problem from the forces @p p0 (empty: zero) and
-       * floating-body amplitudes @p alpha0 (empty: the solver's choice).
+       * @brief Whether the answer satisfies the exact contact conditions
+       * (and is checked against them); the penalty answer penetrates by
+       * design.
+       */
+      virtual bool
+      exact() const
+      {
+        return true;
+      }
+
+      /**
+       * @brief Solves the problem @p data on the path @p op from @p start
+       * (p, alpha, w; an empty p counts as zero, an empty alpha as the
+       * solver's choice, an empty w as zero); @p p_previous holds the
+       * pair forces at the end of the previous load step (the base of the
+       * incremental friction of the penalty methods; empty for zero).
        */
       virtual ContactSolverResult
-      solve(const ContactProblem  &problem,
-            const Eigen::VectorXd &p0,
-            const Eigen::VectorXd &alpha0) const = 0;
+      solve(const ContactData     &data,
+            ContactOperator       &op,
+            const ContactIterate  &start,
+            const Eigen::VectorXd &p_previous = {}) const = 0;
     };
 
-    /** @brief How the B-Newton matrix is stored and factorised. */
-    enum class NewtonLinearAlgebra
-    {
-      /// Sparse when W's fill is at most BNewtonSettings::sparse_fill.
-      automatic,
-      /// Dense LAPACK factorisations (Cholesky or LU).
-      dense,
-      /// Eigen sparse factorisations (SimplicialLDLT or SparseLU).
-      sparse
-    };
+    /** @brief How the condensed Newton matrix is stored and factorised. */
+    using NewtonLinearAlgebra = CondensedOperator::LinearAlgebra;
 
     /** @brief Settings of the BDE (damped B-Newton) solver. */
     struct BNewtonSettings
@@ -159,6 +166,9 @@ namespace igabde
 
       /** @brief Factor c multiplying the per-contact r (pair_weights()). */
       double r_factor = 1.;
+
+      /** @brief Line search on the Newton steps (false: full steps). */
+      bool line_search = true;
 
       /** @brief Non-monotone (GLL) memory M; 1 = monotone Armijo. */
       unsigned int nonmonotone_memory = 5;
@@ -203,7 +213,6 @@ namespace igabde
       std::ostream *log_stream = nullptr;
     };
 
-    /** @brief What create_contact_solver() needs. */
     /**
      * @brief Settings of the penalty and augmented-Lagrange solvers.
      */
@@ -222,13 +231,29 @@ namespace igabde
       bool line_search = true;
     };
 
+    /** @brief Contact/Algorithm. */
+    enum class Algorithm
+    {
+      /// The B-differentiable equations (damped B-Newton).
+      bde,
+      /// Node-to-node penalty (ANSYS' default contact).
+      penalty,
+      /// The method of multipliers around the penalty solve.
+      augmented_lagrange
+    };
+
+    /** @brief The name of @p algorithm as the scene writes it. */
+    std::string
+    to_string(const Algorithm algorithm);
+
+    /** @brief What create_contact_solver() needs. */
     struct ContactSolverSettings
     {
-      /// Contact/Algorithm: "bde", "penalty" or "augmented-lagrange".
-      std::string algorithm = "bde";
-      /// Contact/Path of the BDE: "condensed" or "full" (penalty and
-      /// augmented Lagrange always solve the full system).
-      std::string path = "condensed";
+      /// Contact/Algorithm.
+      Algorithm algorithm = Algorithm::bde;
+      /// Contact/Path of the BDE (penalty and augmented Lagrange always
+      /// solve the full system).
+      Path path = Path::condensed;
       /// Settings of the BDE solver (tolerance and iteration limits are
       /// shared by all algorithms).
       BNewtonSettings bnewton;
@@ -236,14 +261,14 @@ namespace igabde
       PenaltySettings penalty;
     };
 
-    /**
-     * @brief The solver @p settings.algorithm names; throws a one-line input
-     * error naming the algorithms available otherwise.
-     */
+    /** @brief The solver @p settings.algorithm names. */
     std::unique_ptr<ContactSolver>
     create_contact_solver(const ContactSolverSettings &settings);
 
-    /** @brief The algorithms create_contact_solver() can make. */
+    /**
+     * @brief The algorithms create_contact_solver() can make, by the names
+     * the scene writes (Contact/Algorithm).
+     */
     std::vector<std::string>
     available_contact_solvers();
   } // namespace contact

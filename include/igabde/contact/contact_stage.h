@@ -5,6 +5,7 @@
 
 #include <igabde/contact/condensation.h>
 #include <igabde/contact/contact_law.h>
+#include <igabde/contact/contact_path.h>
 #include <igabde/contact/contact_problem.h>
 #include <igabde/contact/contact_solver.h>
 #include <igabde/contact/obstacle.h>
@@ -39,6 +40,10 @@ namespace igabde
       unsigned int slave_face = 2, master_face = 3;
       /// Pairing strategy (create_pairing_strategy()).
       std::string pairing = "node-to-surface";
+      /// The condensed path condenses through the bodies' Schur complements
+      /// (Contact/Condensation = schur with the direct linear solver); else
+      /// one solve per pair direction.
+      bool schur_condensation = true;
       /// Solver (create_contact_solver()).
       ContactSolverSettings solver;
       /// Tolerance of the post-solve condition check.
@@ -129,9 +134,11 @@ namespace igabde
       unsigned int floating_rigid_modes = 0;
       unsigned int pairs_left_out       = 0;
       /// Contact/Algorithm.
-      std::string algorithm;
-      /// "condensed" or "full", and why (Contact/Path = auto decides).
-      std::string path, path_reason;
+      Algorithm algorithm = Algorithm::bde;
+      /// The path taken (condensed or full), and why (Contact/Path = auto
+      /// decides).
+      Path        path = Path::condensed;
+      std::string path_reason;
       /// Nonzeros of the coupled Newton matrix (full path).
       double coupled_nonzeros = 0.;
       /// Contact/Path = auto: the estimated seconds of both paths (else
@@ -142,13 +149,16 @@ namespace igabde
     };
 
     /**
-     * @brief The step driver of the condensed contact path between Body 1
-     * and the surface it faces (a face of Body 2, or an obstacle): pairs by
-     * a PairingStrategy, condensation (condense()), one solve by a
-     * ContactSolver per load step, the post-solve condition check, and the
-     * contact forces back to the fields. It sees the bodies only through
-     * discretization::Body, writes no file and knows no scene check: the
-     * postprocessors read pair_states().
+     * @brief The step driver of the contact between Body 1 and the surface
+     * it faces (a face of Body 2, or an obstacle): pairs by a
+     * PairingStrategy, the path (ContactPath: condensed or coupled, chosen
+     * once by build_pairs()), one solve by a ContactSolver per load step,
+     * the post-solve condition check, and the contact forces back to the
+     * fields. It sees the bodies only through discretization::Body, writes
+     * no file and knows no scene check: the postprocessors read
+     * pair_states(). The simulator's part: build_pairs(), then each body
+     * factorised for factorization_interface(), then prepare(), then
+     * solve_step() per load step.
      */
     template <int dim>
     class ContactStage
@@ -156,67 +166,43 @@ namespace igabde
     public:
       /**
        * @brief Keeps references; @p bodies holds Body 1 and, unless
-       * @p obstacle is given, Body 2.
+       * @p obstacle is given, Body 2. @p coupled_factory builds the coupled
+       * system of the full path (coupled::coupled_factory(); without one
+       * the full path is refused).
        */
       ContactStage(
         const ContactSettings                                         &settings,
         const std::vector<std::unique_ptr<discretization::Body<dim>>> &bodies,
         std::unique_ptr<Obstacle<dim>>                                 obstacle,
-        std::ostream                                                  &log);
+        std::ostream                                                  &log,
+        const CoupledFactory<dim> &coupled_factory = CoupledFactory<dim>());
+
+      ~ContactStage();
 
       /**
-       * @brief Builds the pairs and frames (the bodies need not be
-       * factorised yet).
+       * @brief Builds the pairs and frames and chooses the path (the bodies
+       * need not be factorised yet).
        */
       void
       build_pairs(TimerOutput &timer);
 
       /**
-       * @brief The point operators of the pairs on body @p b: the unknowns
-       * on which a Schur complement serves the condensation.
+       * @brief What body @p b must factorise for: the point operators whose
+       * unknowns it keeps as a Schur interface (empty: a plain
+       * factorisation).
        */
       std::vector<discretization::PointOperator<dim>>
-      contact_operators(const unsigned int b) const;
+      factorization_interface(const unsigned int b) const;
 
       /**
-       * @brief Condenses onto the pairs (the bodies must be factorised) and
-       * reports what was formed.
-       */
-      /**
-       * @brief Prepares the contact solve on the path build_pairs() chose:
-       * condense() or couple().
+       * @brief Forms the contact problem on the path build_pairs() chose
+       * (the bodies must be factorised) and reports what was formed.
        */
       void
       prepare(TimerOutput &timer);
 
-      void
-      condense(TimerOutput &timer);
-
-      /**
-       * @brief The full path: leaves out the pairs held on both sides,
-       * closes floating bodies with rigid-mode columns and builds the
-       * coupled system through the factory set by set_coupled_factory().
-       */
-      void
-      couple(TimerOutput &timer);
-
-      /**
-       * @brief Builds the coupled system of the full path from the pairs,
-       * the components per pair, the rigid-mode columns G and whether Body
-       * 1 faces an obstacle. The concrete system lives outside the contact
-       * layer (coupled/), so the simulator provides it.
-       */
-      using CoupledFactory = std::function<
-        std::shared_ptr<CoupledOperator>(const std::vector<ContactPair<dim>> &,
-                                         const unsigned int,
-                                         const Eigen::MatrixXd &,
-                                         const bool)>;
-
-      void
-      set_coupled_factory(const CoupledFactory &factory);
-
-      /// "condensed" or "full" (decided by build_pairs()).
-      const std::string &
+      /// The path taken (condensed or full; known after build_pairs()).
+      Path
       path() const;
 
       /**
@@ -252,15 +238,14 @@ namespace igabde
 
       /**
        * @brief The state a load step starts from (forces, rigid-mode
-       * amplitudes, the friction history), to retry a step.
+       * amplitudes, the bodies' contact displacement on the full path,
+       * the friction history), to retry a step.
        */
       struct State
       {
-        Eigen::VectorXd            p;
-        Eigen::VectorXd            alpha;
+        ContactIterate             x;
         Eigen::VectorXd            u_rel;
         Eigen::VectorXd            previous_external;
-        Eigen::VectorXd            w;
         std::vector<ContactStatus> status;
         bool                       has_previous = false;
       };
@@ -286,6 +271,7 @@ namespace igabde
       const std::vector<ContactPair<dim>> &
       pairs() const;
 
+      /// The law's data and, on the condensed path, W.
       const ContactProblem &
       condensed_problem() const;
 
@@ -303,13 +289,10 @@ namespace igabde
       Eigen::VectorXd
       relative_displacement(const std::vector<Vector<double>> &u) const;
 
-      std::pair<Eigen::VectorXd, Eigen::VectorXd>
+      /// The warm start, or the bilateral start of the path, whichever
+      /// has the smaller natural-map plus equilibrium residual.
+      ContactIterate
       initial_guess() const;
-
-      /// Full path: the warm start, or the bilateral start through the
-      /// coupled system (p, alpha, w), whichever has the smaller residual.
-      std::tuple<Eigen::VectorXd, Eigen::VectorXd, Eigen::VectorXd>
-      initial_guess_full() const;
 
       /// Pairs expected closed: touching at the start, later those closed
       /// at the end of the previous step.
@@ -322,24 +305,27 @@ namespace igabde
       const ContactSettings                                          settings;
       const std::vector<std::unique_ptr<discretization::Body<dim>>> &bodies;
       const std::unique_ptr<Obstacle<dim>>                           obstacle;
+      const CoupledFactory<dim>                   coupled_factory;
       std::unique_ptr<ContactSurface<dim>>        master_face;
       const std::unique_ptr<PairingStrategy<dim>> pairing;
       std::unique_ptr<ContactSolver>              solver;
+      std::unique_ptr<ContactPath<dim>>           contact_path;
       std::ostream                               &log;
 
       unsigned int                  m = 1;
       std::vector<ContactPair<dim>> pair_list;
-      CondensedContact<dim>         condensed;
-      /// The path taken, and why.
-      std::string resolved_path = "condensed", path_why;
+      CondensedContact<dim>         contact;
+      /// The path taken, and why; the names of its phases.
+      Path        resolved_path = Path::condensed;
+      std::string path_why;
+      std::string prepare_section, solver_section, solver_label;
       /// Contact/Path = auto: the cost model's estimates (seconds).
       double estimated_condensed_seconds = 0., estimated_full_seconds = 0.;
-      /// Full path: the coupled system and its factory.
-      CoupledFactory                   coupled_factory;
-      std::shared_ptr<CoupledOperator> coupled;
 
-      /// w: the contact part of the displacement on the full path.
-      Eigen::VectorXd            p, u_rel, alpha, previous_external, w;
+      /// The last solve's unknowns (w: the contact part of the
+      /// displacement on the full path).
+      ContactIterate             x;
+      Eigen::VectorXd            u_rel, previous_external;
       std::vector<ContactStatus> status;
       bool                       has_previous = false;
     };

@@ -1,6 +1,8 @@
 #ifndef igabde_contact_coupled_operator_h
 #define igabde_contact_coupled_operator_h
 
+#include <igabde/contact/contact_operator.h>
+
 #include <Eigen/Dense>
 
 #include <string>
@@ -11,43 +13,88 @@ namespace igabde
   namespace contact
   {
     /**
-     * @brief The uncondensed contact system, as the full-system contact
-     * solvers see it: the displacement unknowns w of both bodies (the
-     * contact correction of their displacements), the pair forces p and the
-     * rigid-mode amplitudes alpha of floating bodies, coupled by the pair
-     * operator C (relative displacement of every pair in its local frame,
-     * normal first) and the rigid-mode columns G of the ContactProblem:
+     * @brief The full path: the uncondensed contact system. The unknowns
+     * are the displacement w of both bodies (the contact correction of
+     * their displacements), the pair forces p and the rigid-mode
+     * amplitudes alpha of floating bodies, coupled by the pair operator C
+     * (relative displacement of every pair in its local frame, normal
+     * first) and the rigid-mode columns G:
      * @code
      *   K w - C^T p             = 0     (held unknowns: w_i = 0)
      *   u = C w + G alpha + q           (pair relative displacements)
      *   G^T p                   = b
      * @endcode
-     * Each Newton iteration of a full-system solver linearises the per-pair
-     * law as A_i du_i + B_i dp_i = r_i (contact_law.h) and solves
+     * Each Newton iteration solves
      * @code
      *   [ K     -C^T   0   ] [dw    ]   [r_w    ]
      *   [ A C    B     A G ] [dp    ] = [r_p    ]
      *   [ 0      G^T   0   ] [dalpha]   [r_alpha]
      * @endcode
      * with a sparse direct solver, or with preconditioned GMRES to a
-     * tolerance the Newton chooses per iteration. This interface keeps the
-     * contact layer free of the body classes and of the linear-algebra library
-     * that holds K; the implementation (coupled/coupled_system.h) assembles the
-     * block matrix. Vectors are Eigen vectors of the sizes n_dofs(), n_rows()
-     * (the problem's) and n_alpha().
+     * tolerance the Newton chooses per iteration. This class turns the
+     * primitives below into the ContactOperator interface; the
+     * implementation (coupled/coupled_system.h) holds K and the block
+     * matrix, which keeps the contact layer free of the body classes and
+     * of the linear-algebra library. This is the seam where distributed
+     * matrices enter: an implementation over MPI-distributed K and w
+     * implements the same primitives.
      */
-    class CoupledOperator
+    class CoupledOperator : public ContactOperator
     {
     public:
-      virtual ~CoupledOperator() = default;
+      std::string
+      path_name() const override;
 
-      /** @brief Number of displacement unknowns w (all bodies). */
-      virtual unsigned int
-      n_dofs() const = 0;
+      Eigen::VectorXd
+      displacement(const Eigen::VectorXd &p,
+                   const Eigen::VectorXd &w) const override;
 
-      /** @brief Rows of C: pairs times components per pair. */
-      virtual unsigned int
-      n_rows() const = 0;
+      void
+      displacement_adjoint(const Eigen::VectorXd &y,
+                           Eigen::VectorXd       &y_p,
+                           Eigen::VectorXd       &y_w) const override;
+
+      Eigen::VectorXd
+      equilibrium_residual(const Eigen::VectorXd &p,
+                           const Eigen::VectorXd &w) const override;
+
+      void
+      equilibrium_adjoint(const Eigen::VectorXd &h,
+                          Eigen::VectorXd       &h_p,
+                          Eigen::VectorXd       &h_w) const override;
+
+      double
+      equilibrium_scale(const Eigen::VectorXd &p,
+                        const Eigen::VectorXd &w) const override;
+
+      PairWeights
+      weights(const ContactData &data, const double factor) const override;
+
+      Eigen::VectorXd
+      pair_stiffness() const override;
+
+      double
+      flexibility_scale() const override;
+
+      void
+      set_proximal_shift(const double eps) override;
+
+      bool
+      newton_step(const ContactData    &data,
+                  const NewtonBlocks   &blocks,
+                  const ContactIterate &F,
+                  ContactIterate       &dx,
+                  StepReport           &report,
+                  const double          lm_relative,
+                  const bool            try_lu,
+                  const double          linear_tolerance) override;
+
+      bool
+      bilateral_start(const ContactData       &data,
+                      const std::vector<bool> &closed,
+                      ContactIterate          &x) override;
+
+      // --- The primitives an implementation provides.
 
       /** @brief C w: the pairs' relative displacements caused by w. */
       virtual Eigen::VectorXd
@@ -59,19 +106,17 @@ namespace igabde
        * to the pair forces p.
        */
       virtual Eigen::VectorXd
-      equilibrium_residual(const Eigen::VectorXd &w,
-                           const Eigen::VectorXd &p) const = 0;
+      displacement_equations(const Eigen::VectorXd &w,
+                             const Eigen::VectorXd &p) const = 0;
 
       /**
-       * @brief The size of the terms of equilibrium_residual():
+       * @brief The size of the terms of displacement_equations():
        * || |K| |w| + |C|^T |p| || (absolute values entry by entry, the
-       * Oettli-Prager denominator). The residual divided by it is the
-       * componentwise backward error of the displacement equations, which
-       * rounding keeps near the machine epsilon whatever the scaling.
+       * Oettli-Prager denominator).
        */
       virtual double
-      equilibrium_scale(const Eigen::VectorXd &w,
-                        const Eigen::VectorXd &p) const = 0;
+      displacement_equations_scale(const Eigen::VectorXd &w,
+                                   const Eigen::VectorXd &p) const = 0;
 
       /**
        * @brief Assembles and factorises the Newton matrix for the per-pair
@@ -85,11 +130,9 @@ namespace igabde
       /**
        * @brief Solves the Newton system factorised last for the right-hand
        * sides @p r_w, @p r_p, @p r_alpha; returns false (with a reason in
-       * @p why) when the linear solver fails (singular matrix, no
-       * convergence). An iterative solver stops when the residual of the
-       * Newton system is at most @p relative_tolerance times the norm of
-       * the right-hand side (all rows in force units); a direct solver
-       * ignores it.
+       * @p why) when the linear solver fails. An iterative solver stops
+       * when the residual is at most @p relative_tolerance times the norm
+       * of the right-hand side; a direct solver ignores it.
        */
       virtual bool
       solve(const Eigen::VectorXd &r_w,
@@ -101,22 +144,11 @@ namespace igabde
             std::string           &why,
             const double           relative_tolerance = 1e-12) const = 0;
 
-      /**
-       * @brief Iterations of the last solve() of an iterative solver (0 for
-       * a direct one).
-       */
+      /** @brief Iterations of the last solve() (0 for a direct one). */
       virtual unsigned int
       linear_iterations() const
       {
         return 0;
-      }
-
-      /** @brief Whether solve() is iterative (its accuracy is chosen per
-       * call). */
-      virtual bool
-      iterative() const
-      {
-        return false;
       }
 
       /**
@@ -125,24 +157,18 @@ namespace igabde
        * two bodies (Body 1's against a rigid obstacle), A_i the pair's
        * tributary area (length in 2D, unit thickness) and h_i the mean
        * element size (body measure / number of elements)^(1/dim) of the
-       * two bodies (the larger). It scales the penalty stiffness and the
-       * weights r of the B-differentiable equations on the full path.
+       * two bodies (the larger).
        */
       virtual const Eigen::VectorXd &
-      pair_stiffness() const = 0;
+      element_pair_stiffness() const = 0;
 
       /** @brief Number of nonzero entries of the last Newton matrix. */
       virtual double
       n_nonzeros() const = 0;
 
-      /**
-       * @brief Whether row @p row of C (pair row / d, component row % d)
-       * is empty: that direction of the pair is held by supports on both
-       * sides, so no displacement moves it and its force enters no body's
-       * equations (the supports take it).
-       */
-      virtual bool
-      pair_row_is_held(const unsigned int row) const = 0;
+    private:
+      /// The proximal shift eps.
+      double eps = 0.;
     };
   } // namespace contact
 } // namespace igabde

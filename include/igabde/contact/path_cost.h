@@ -52,12 +52,27 @@ namespace igabde
     /**
      * @brief The estimated seconds of both paths and the choice.
      */
+    /** @brief Contact/Path. */
+    enum class Path
+    {
+      /// The dense condensed problem from the Schur complements.
+      condensed,
+      /// The coupled system of displacements, forces and rigid modes.
+      full,
+      /// The path the cost model (estimate_path_costs()) estimates cheaper.
+      automatic
+    };
+
+    /** @brief The name of @p path as the scene writes it. */
+    std::string
+    to_string(const Path path);
+
     struct PathCostEstimate
     {
       /// Estimated seconds of the parts in which the paths differ.
       double condensed_seconds = 0., full_seconds = 0.;
-      /// "condensed" or "full".
-      std::string path;
+      /// Path::condensed or Path::full.
+      Path path = Path::condensed;
       /// One line: both estimates and the terms that decide.
       std::string reason;
     };

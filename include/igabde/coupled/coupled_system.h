@@ -3,6 +3,7 @@
 
 #include <igabde/discretization/body.h>
 
+#include <igabde/contact/contact_path.h>
 #include <igabde/contact/coupled_operator.h>
 #include <igabde/contact/pairing.h>
 
@@ -76,12 +77,12 @@ namespace igabde
       apply_C(const Eigen::VectorXd &w) const override;
 
       Eigen::VectorXd
-      equilibrium_residual(const Eigen::VectorXd &w,
-                           const Eigen::VectorXd &p) const override;
+      displacement_equations(const Eigen::VectorXd &w,
+                             const Eigen::VectorXd &p) const override;
 
       double
-      equilibrium_scale(const Eigen::VectorXd &w,
-                        const Eigen::VectorXd &p) const override;
+      displacement_equations_scale(const Eigen::VectorXd &w,
+                                   const Eigen::VectorXd &p) const override;
 
       /**
        * Direct solvers factorise the assembled matrix. gmres-amg builds
@@ -121,7 +122,7 @@ namespace igabde
       iterative() const override;
 
       const Eigen::VectorXd &
-      pair_stiffness() const override;
+      element_pair_stiffness() const override;
 
       bool
       pair_row_is_held(const unsigned int row) const override;
@@ -185,6 +186,17 @@ namespace igabde
       apply_preconditioner(TrilinosWrappers::MPI::Vector       &dst,
                            const TrilinosWrappers::MPI::Vector &src) const;
     };
+
+    /**
+     * @brief The factory of the full contact path's coupled system that
+     * the contact stage calls once the pairs are formed: CoupledSystem
+     * with the linear solver @p solver ("mumps", "klu" or "gmres-amg") and
+     * the GMRES iteration limit @p krylov_max_iterations.
+     */
+    template <int dim>
+    contact::CoupledFactory<dim>
+    coupled_factory(const std::string &solver,
+                    const unsigned int krylov_max_iterations);
   } // namespace coupled
 } // namespace igabde
 

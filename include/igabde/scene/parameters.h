@@ -3,6 +3,8 @@
 
 #include <igabde/discretization/settings.h>
 
+#include <igabde/contact/contact_solver.h>
+
 #include <deal.II/base/parameter_handler.h>
 
 #include <array>
@@ -200,10 +202,10 @@ namespace igabde
       /// Coulomb friction coefficient mu (>= 0); 0 forms no tangential
       /// unknowns.
       double friction_coefficient = 0.;
-      /// "bde", "penalty" or "augmented-lagrange".
-      std::string algorithm = "bde";
-      /// "condensed", "full" or "auto".
-      std::string path = "auto";
+      /// Contact/Algorithm: bde, penalty or augmented-lagrange.
+      contact::Algorithm algorithm = contact::Algorithm::bde;
+      /// Contact/Path: condensed, full or auto.
+      contact::Path path = contact::Path::automatic;
       /// FKN: normal penalty stiffness factor (penalty methods).
       double penalty_factor = 1.;
       /// FKT: stick stiffness factor, k_t = FKT k_n.

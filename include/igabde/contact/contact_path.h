@@ -1,0 +1,203 @@
+#ifndef igabde_contact_contact_path_h
+#define igabde_contact_contact_path_h
+
+#include <igabde/discretization/body.h>
+
+#include <igabde/contact/condensation.h>
+#include <igabde/contact/contact_operator.h>
+#include <igabde/contact/coupled_operator.h>
+#include <igabde/contact/pairing.h>
+
+#include <deal.II/lac/vector.h>
+
+#include <functional>
+#include <memory>
+#include <ostream>
+#include <string>
+#include <vector>
+
+namespace igabde
+{
+  namespace contact
+  {
+    using namespace dealii;
+
+    /**
+     * @brief Builds the coupled system of the full path from the bodies, the
+     * pairs, the components per pair, the rigid-mode columns G and whether
+     * Body 1 faces an obstacle. The concrete system lives outside the
+     * contact layer (coupled/coupled_system.h, coupled::coupled_factory()).
+     */
+    template <int dim>
+    using CoupledFactory = std::function<std::unique_ptr<CoupledOperator>(
+      const std::vector<const discretization::Body<dim> *> &,
+      const std::vector<ContactPair<dim>> &,
+      const unsigned int,
+      const Eigen::MatrixXd &,
+      const bool)>;
+
+    /**
+     * @brief A contact path between the bodies and the contact solver:
+     * what each body must factorise for, how the contact problem is formed
+     * once the bodies are factorised (the ContactOperator and the law's
+     * data), and how the contact forces become displacement fields.
+     * CondensedPath condenses onto the pairs (dense W from the Schur
+     * complements), CoupledPath keeps the coupled system.
+     */
+    template <int dim>
+    class ContactPath
+    {
+    public:
+      virtual ~ContactPath() = default;
+
+      /**
+       * @brief The point operators whose unknowns body @p b must keep as
+       * a Schur interface when it factorises (empty: a plain
+       * factorisation).
+       */
+      virtual std::vector<discretization::PointOperator<dim>>
+      factorization_interface(
+        const unsigned int                   b,
+        const std::vector<ContactPair<dim>> &pairs) const = 0;
+
+      /**
+       * @brief Forms the contact problem from the factorised bodies:
+       * leaves out the pairs that carry no information, fills @p contact
+       * (the pairs kept, the rigid-mode columns and loads, the law's data,
+       * and on the condensed path W) and builds the operator.
+       */
+      virtual void
+      prepare(const std::vector<ContactPair<dim>> &pairs,
+              CondensedContact<dim>               &contact) = 0;
+
+      /** @brief The operator built by prepare(). */
+      virtual ContactOperator &
+      op() = 0;
+
+      /**
+       * @brief Adds the bodies' response to the contact forces to @p u:
+       * @p loads are the forces as load vectors of each body, @p x the
+       * solve's unknowns (w on the full path).
+       */
+      virtual void
+      add_response(const std::vector<Vector<double>> &loads,
+                   const ContactIterate              &x,
+                   std::vector<Vector<double>>       &u) const = 0;
+
+      /** @brief One line for the log on what prepare() formed. */
+      virtual std::string
+      description(const CondensedContact<dim> &contact) const = 0;
+
+      /** @brief Nonzeros of a sparse Newton matrix (0 if none). */
+      virtual double
+      n_nonzeros() const
+      {
+        return 0.;
+      }
+    };
+
+
+
+    /** @brief The condensed path (condense(), CondensedOperator). */
+    template <int dim>
+    class CondensedPath : public ContactPath<dim>
+    {
+    public:
+      /**
+       * @param schur Whether the bodies factorise with a Schur interface
+       * on the pairs' unknowns (Contact/Condensation = schur with the
+       * direct solver); else one solve per pair direction.
+       */
+      CondensedPath(
+        const std::vector<const discretization::Body<dim> *> &bodies,
+        const unsigned int                                    n_components,
+        const double                                          friction,
+        const bool                                            schur,
+        const std::string                                    &context,
+        std::ostream                                         &log,
+        const bool                                            progress);
+
+      std::vector<discretization::PointOperator<dim>>
+      factorization_interface(
+        const unsigned int                   b,
+        const std::vector<ContactPair<dim>> &pairs) const override;
+
+      void
+      prepare(const std::vector<ContactPair<dim>> &pairs,
+              CondensedContact<dim>               &contact) override;
+
+      ContactOperator &
+      op() override;
+
+      void
+      add_response(const std::vector<Vector<double>> &loads,
+                   const ContactIterate              &x,
+                   std::vector<Vector<double>>       &u) const override;
+
+      std::string
+      description(const CondensedContact<dim> &contact) const override;
+
+    private:
+      const std::vector<const discretization::Body<dim> *> bodies;
+      const unsigned int                                   m;
+      const double                                         friction;
+      const bool                                           schur;
+      const std::string                                    context;
+      std::ostream                                        &log;
+      const bool                                           progress;
+      std::unique_ptr<CondensedOperator>                   condensed;
+    };
+
+
+
+    /** @brief The full path (the coupled system of a CoupledFactory). */
+    template <int dim>
+    class CoupledPath : public ContactPath<dim>
+    {
+    public:
+      CoupledPath(const std::vector<const discretization::Body<dim> *> &bodies,
+                  const unsigned int         n_components,
+                  const double               friction,
+                  const bool                 obstacle,
+                  const CoupledFactory<dim> &factory,
+                  const std::string         &context,
+                  std::ostream              &log);
+
+      std::vector<discretization::PointOperator<dim>>
+      factorization_interface(
+        const unsigned int                   b,
+        const std::vector<ContactPair<dim>> &pairs) const override;
+
+      void
+      prepare(const std::vector<ContactPair<dim>> &pairs,
+              CondensedContact<dim>               &contact) override;
+
+      ContactOperator &
+      op() override;
+
+      void
+      add_response(const std::vector<Vector<double>> &loads,
+                   const ContactIterate              &x,
+                   std::vector<Vector<double>>       &u) const override;
+
+      std::string
+      description(const CondensedContact<dim> &contact) const override;
+
+      /** @brief Nonzeros of the coupled Newton matrix. */
+      double
+      n_nonzeros() const override;
+
+    private:
+      const std::vector<const discretization::Body<dim> *> bodies;
+      const unsigned int                                   m;
+      const double                                         friction;
+      const bool                                           obstacle;
+      const CoupledFactory<dim>                            factory;
+      const std::string                                    context;
+      std::ostream                                        &log;
+      std::unique_ptr<CoupledOperator>                     coupled;
+    };
+  } // namespace contact
+} // namespace igabde
+
+#endif

@@ -1,0 +1,347 @@
+#ifndef igabde_contact_newton_driver_h
+#define igabde_contact_newton_driver_h
+
+#include <igabde/contact/contact_law.h>
+#include <igabde/contact/contact_operator.h>
+#include <igabde/contact/contact_solver.h>
+
+#include <Eigen/Dense>
+
+#include <chrono>
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+namespace igabde
+{
+  namespace contact
+  {
+    /**
+     * @brief The per-pair law that the Newton driver linearises: the
+     * residual H_i(p_i, u_i) of pair i, its piece (status and the blocks
+     * A = dH/du, B = dH/dp), the law's error measures and how a kink that
+     * would leave the Newton matrix singular is resolved.
+     */
+    class PairLawModel
+    {
+    public:
+      virtual ~PairLawModel() = default;
+
+      /** @brief H of pair @p c at (p, u), and its piece if @p piece. */
+      virtual void
+      evaluate(const ContactData &data,
+               const unsigned int c,
+               const double      *p,
+               const double      *u,
+               double            *H,
+               PairPiece         *piece) const = 0;
+
+      /**
+       * @brief Moves pieces off a kink where the Newton matrix would be
+       * singular (nothing by default).
+       */
+      virtual void
+      tie_rule(const ContactData     &data,
+               const Eigen::VectorXd &p,
+               const Eigen::VectorXd &u,
+               NewtonBlocks          &pieces) const
+      {
+        (void)data;
+        (void)p;
+        (void)u;
+        (void)pieces;
+      }
+
+      /**
+       * @brief The law's error at (p, u) with residual H: @p err the
+       * measure reported (the FCLIB error for the exact law), @p balanced
+       * the scale-invariant one the stopping test requires.
+       */
+      virtual void
+      errors(const ContactData     &data,
+             const Eigen::VectorXd &p,
+             const Eigen::VectorXd &u,
+             const Eigen::VectorXd &H,
+             double                &err,
+             double                &balanced) const = 0;
+
+      /**
+       * @brief The rounding-floor clause of the stopping test: once the
+       * Newton iterations stop converging quadratically, the balanced
+       * error alone is accepted below this factor times the tolerance.
+       */
+      virtual double
+      floor_factor() const
+      {
+        return 1e-3;
+      }
+
+      /**
+       * @brief Whether a failed line search takes the full step instead of
+       * ending the phase (penalty: full Newton steps as ANSYS takes them).
+       */
+      virtual bool
+      full_step_on_failure() const
+      {
+        return false;
+      }
+    };
+
+
+
+    /**
+     * @brief The B-differentiable equations of the seed (pair_law()) with
+     * weights r and a friction radius, and the floating-body tie rule:
+     * with floating bodies and no pair closed, the alpha columns of the
+     * Newton matrix vanish; the pair with the smallest r_n u_n - p_n is
+     * then taken in the closed branch (exactly a tie after
+     * touching_alpha()).
+     */
+    class BdeLaw : public PairLawModel
+    {
+    public:
+      BdeLaw(const PairWeights   &weights,
+             const PairWeights   &unit_weights,
+             const FrictionRadius radius);
+
+      void
+      evaluate(const ContactData &data,
+               const unsigned int c,
+               const double      *p,
+               const double      *u,
+               double            *H,
+               PairPiece         *piece) const override;
+
+      void
+      tie_rule(const ContactData     &data,
+               const Eigen::VectorXd &p,
+               const Eigen::VectorXd &u,
+               NewtonBlocks          &pieces) const override;
+
+      void
+      errors(const ContactData     &data,
+             const Eigen::VectorXd &p,
+             const Eigen::VectorXd &u,
+             const Eigen::VectorXd &H,
+             double                &err,
+             double                &balanced) const override;
+
+    private:
+      const PairWeights    w, unit;
+      const FrictionRadius radius;
+    };
+
+
+
+    /**
+     * @brief Penalty with Coulomb return mapping (penalty_law()): H = p -
+     * P(u) with P the penalty force, k_n and k_t per pair, base forces
+     * lambda (the multipliers of the augmented Lagrangian, the previous
+     * step's tangential force of the pure penalty). Its error is |H|
+     * relative to the force scale; the answer penetrates by about p / k_n
+     * and is not measured against the exact conditions.
+     */
+    class PenaltyLaw : public PairLawModel
+    {
+    public:
+      PenaltyLaw(const Eigen::VectorXd &k_n,
+                 const Eigen::VectorXd &k_t,
+                 const Eigen::VectorXd &lambda);
+
+      void
+      evaluate(const ContactData &data,
+               const unsigned int c,
+               const double      *p,
+               const double      *u,
+               double            *H,
+               PairPiece         *piece) const override;
+
+      void
+      tie_rule(const ContactData     &data,
+               const Eigen::VectorXd &p,
+               const Eigen::VectorXd &u,
+               NewtonBlocks          &pieces) const override;
+
+      void
+      errors(const ContactData     &data,
+             const Eigen::VectorXd &p,
+             const Eigen::VectorXd &u,
+             const Eigen::VectorXd &H,
+             double                &err,
+             double                &balanced) const override;
+
+      double
+      floor_factor() const override;
+
+      bool
+      full_step_on_failure() const override;
+
+    private:
+      const Eigen::VectorXd k_n, k_t, lambda;
+    };
+
+
+
+    /** @brief How a Newton phase ended. */
+    struct PhaseOutcome
+    {
+      bool        converged = false;
+      std::string reason;
+    };
+
+
+
+    /**
+     * @brief The one damped semismooth (B-)Newton driver of the contact
+     * layer, over any ContactOperator (the path) and any PairLawModel (the
+     * law). Unknowns x = (p, alpha, w), residual F = (H, G^T p - b, E) with
+     * E the operator's displacement equations, merit theta = |F|^2 / 2.
+     *
+     *  - Direction: the operator's Newton step for the law's pieces; if it
+     *    fails, or is not a descent direction (grad^T d > -1e-8 |grad||d|),
+     *    the steepest descent -J^T F.
+     *  - Line search: Armijo backtracking t = beta^m on theta, accepted if
+     *    theta(x + t d) <= theta_ref + sigma t grad^T d, theta_ref the max
+     *    of the last BNewtonSettings::nonmonotone_memory values
+     *    (Grippo-Lampariello-Lucidi; 1 is monotone); when t < min_step
+     *    the best trial point is taken if it decreases theta, else the
+     *    steepest descent is tried; if that fails too the phase ends
+     *    ("line-search failure"), unless the stopping test holds at the
+     *    rounding floor.
+     *  - Stopping test (stopping_test()): the law's balanced error and its
+     *    reported error below the tolerance (or, once Newton stops
+     *    converging quadratically, the balanced error below the law's
+     *    floor_factor() times it), the equilibrium of floating bodies and
+     *    the componentwise backward error of the displacement equations
+     *    below the tolerance.
+     *  - Failure diagnosis: iteration limit, stall (no 0.1 % decrease of
+     *    the best theta in BNewtonSettings::stall_iterations iterations),
+     *    line-search failure, non-finite values, time limit; with the
+     *    pairs involved (cycling between active sets, non-finite values,
+     *    or the largest residuals).
+     *
+     * The proximal phase and the radius switch of the BDE are phases built
+     * on newton() (BNewtonSolver); the augmented Lagrangian is an outer
+     * loop around it.
+     */
+    class NewtonDriver
+    {
+    public:
+      /**
+       * @param original The problem whose iterates count as answers.
+       * @param op The path (its proximal shift may be changed by phases).
+       * @param settings Tolerances, limits, line search, log.
+       * @param result Receives the history and iteration count.
+       */
+      NewtonDriver(const ContactData     &original,
+                   ContactOperator       &op,
+                   const BNewtonSettings &settings,
+                   ContactSolverResult   &result);
+
+      /**
+       * @brief One Newton phase on @p data (the original, or a proximal
+       * subproblem) from @p x, to @p tolerance, at most @p budget
+       * iterations; @p on_original: iterates are candidates for the
+       * answer.
+       */
+      PhaseOutcome
+      newton(const ContactData  &data,
+             const PairLawModel &law,
+             ContactIterate     &x,
+             const double        tolerance,
+             const std::string  &phase,
+             const bool          on_original,
+             const unsigned int  budget);
+
+      /**
+       * @brief The stopping test at x (see the class documentation); the
+       * error measures go to @p err, @p balanced, @p eq (floating-body
+       * equilibrium) and @p disp (displacement equations).
+       */
+      bool
+      stopping_test(const ContactData    &data,
+                    const PairLawModel   &law,
+                    const ContactIterate &x,
+                    const double          tolerance,
+                    const bool            at_rounding_floor,
+                    double               &err,
+                    double               &balanced,
+                    double               &eq,
+                    double               &disp) const;
+
+      /**
+       * @brief u, the law's residual F and (if @p pieces) the pieces at
+       * @p x, with the directions held by supports on both sides taken
+       * out of the law (p = 0 there); returns theta = |F|^2 / 2.
+       */
+      double
+      evaluate(const ContactData    &data,
+               const PairLawModel   &law,
+               const ContactIterate &x,
+               Eigen::VectorXd      &u,
+               ContactIterate       &F,
+               NewtonBlocks         *pieces) const;
+
+      /**
+       * @brief As evaluate(), from @p u = M(p, w) + G alpha + q and
+       * F.w = E(p, w) given (zeroed in the held directions on return).
+       */
+      double
+      residual(const ContactData    &data,
+               const PairLawModel   &law,
+               const ContactIterate &x,
+               Eigen::VectorXd      &u,
+               ContactIterate       &F,
+               NewtonBlocks         *pieces) const;
+
+      /** @brief Whether the iteration budget is used up. */
+      bool
+      out_of_iterations() const;
+
+      /** @brief Whether the wall-time limit is passed. */
+      bool
+      out_of_time() const;
+
+      /** @brief Offers @p x as the answer if its error is the smallest. */
+      void
+      offer_best(const ContactIterate &x, const double err, const double eq);
+
+      /** @brief The stream of the iteration log. */
+      std::ostream &
+      log() const;
+
+      const ContactData                    &original;
+      ContactOperator                      &op;
+      const BNewtonSettings                &settings;
+      ContactSolverResult                  &result;
+      std::chrono::steady_clock::time_point start;
+      /// Directions held by supports on both sides (pair rows).
+      std::vector<bool> held;
+      bool              have_best  = false;
+      double            best_score = 0.;
+      /// Iterations whose Newton matrix was singular (Levenberg-Marquardt
+      /// or steepest-descent steps).
+      unsigned int   singular_iterations = 0;
+      ContactIterate best_x, converged_x;
+    };
+
+
+
+    /**
+     * @brief The tangential pair directions held by supports on both sides
+     * (an empty row of the operator, and of G with floating bodies): no
+     * displacement moves them and their force enters no body's equations,
+     * so they carry p = 0 and u = 0 (the supports take whatever friction
+     * would carry there). Left to the contact law, a stick piece there is a
+     * zero row of the Newton matrix. The rule for every path and solver.
+     */
+    std::vector<bool>
+    held_pair_directions(const ContactData &data, const ContactOperator &op);
+
+    /** @brief Status counts of @p status into the result. */
+    void
+    count_status(ContactSolverResult &result);
+  } // namespace contact
+} // namespace igabde
+
+#endif

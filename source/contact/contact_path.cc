@@ -1,0 +1,244 @@
+#include <igabde/base/utilities.h>
+
+#include <igabde/contact/contact_path.h>
+
+#include <algorithm>
+#include <sstream>
+
+namespace igabde
+{
+  namespace contact
+  {
+    template <int dim>
+    CondensedPath<dim>::CondensedPath(
+      const std::vector<const discretization::Body<dim> *> &bodies,
+      const unsigned int                                    n_components,
+      const double                                          friction,
+      const bool                                            schur,
+      const std::string                                    &context,
+      std::ostream                                         &log,
+      const bool                                            progress)
+      : bodies(bodies)
+      , m(n_components)
+      , friction(friction)
+      , schur(schur)
+      , context(context)
+      , log(log)
+      , progress(progress)
+    {}
+
+
+
+    template <int dim>
+    std::vector<discretization::PointOperator<dim>>
+    CondensedPath<dim>::factorization_interface(
+      const unsigned int                   b,
+      const std::vector<ContactPair<dim>> &pairs) const
+    {
+      std::vector<discretization::PointOperator<dim>> ops;
+      if (schur)
+        for (const auto &pair : pairs)
+          ops.push_back(b == 0 ? pair.op1 : pair.op2);
+      return ops;
+    }
+
+
+
+    template <int dim>
+    void
+    CondensedPath<dim>::prepare(const std::vector<ContactPair<dim>> &pairs,
+                                CondensedContact<dim>               &contact)
+    {
+      contact =
+        condense<dim>(pairs, bodies, m, friction, context, log, progress);
+      condensed = std::make_unique<CondensedOperator>(contact.problem.W);
+    }
+
+
+
+    template <int dim>
+    ContactOperator &
+    CondensedPath<dim>::op()
+    {
+      return *condensed;
+    }
+
+
+
+    template <int dim>
+    void
+    CondensedPath<dim>::add_response(const std::vector<Vector<double>> &loads,
+                                     const ContactIterate &,
+                                     std::vector<Vector<double>> &u) const
+    {
+      // One solve per body on its factorisation.
+      for (unsigned int b = 0; b < bodies.size(); ++b)
+        {
+          std::vector<Vector<double>> column(1, loads[b]);
+          bodies[b]->solve(column);
+          u[b] += column[0];
+        }
+    }
+
+
+
+    template <int dim>
+    std::string
+    CondensedPath<dim>::description(const CondensedContact<dim> &) const
+    {
+      return "";
+    }
+
+
+
+    template <int dim>
+    CoupledPath<dim>::CoupledPath(
+      const std::vector<const discretization::Body<dim> *> &bodies,
+      const unsigned int                                    n_components,
+      const double                                          friction,
+      const bool                                            obstacle,
+      const CoupledFactory<dim>                            &factory,
+      const std::string                                    &context,
+      std::ostream                                         &log)
+      : bodies(bodies)
+      , m(n_components)
+      , friction(friction)
+      , obstacle(obstacle)
+      , factory(factory)
+      , context(context)
+      , log(log)
+    {
+      AssertThrow(factory,
+                  ExcMessage("the full contact path needs a coupled-system "
+                             "factory (coupled::coupled_factory())"));
+    }
+
+
+
+    template <int dim>
+    std::vector<discretization::PointOperator<dim>>
+    CoupledPath<dim>::factorization_interface(
+      const unsigned int,
+      const std::vector<ContactPair<dim>> &) const
+    {
+      // The coupled system is factorised as a whole; the bodies only
+      // solve their load cases.
+      return {};
+    }
+
+
+
+    template <int dim>
+    void
+    CoupledPath<dim>::prepare(const std::vector<ContactPair<dim>> &pair_list,
+                              CondensedContact<dim>               &contact)
+    {
+      RigidModeColumns modes =
+        rigid_mode_columns<dim>(pair_list, bodies, m, log);
+
+      // Pairs whose points move with held unknowns only (and with no rigid
+      // mode) carry no information; leave them out as condense() does.
+      std::vector<unsigned int> keep;
+      const double              max_g =
+        modes.G.size() > 0 ? modes.G.cwiseAbs().maxCoeff() : 0.;
+      const unsigned int n_sides = obstacle ? 1u : 2u;
+      for (unsigned int i = 0; i < pair_list.size(); ++i)
+        {
+          bool moves = false;
+          for (unsigned int side = 0; side < n_sides; ++side)
+            {
+              const auto &op = side == 0 ? pair_list[i].op1 : pair_list[i].op2;
+              for (unsigned int k = 0; k < op.weights.size(); ++k)
+                for (unsigned int c = 0; c < dim; ++c)
+                  moves = moves || (op.weights[k] != 0. &&
+                                    !bodies[side]->is_held(op.dofs[k][c]));
+            }
+          const double g_row =
+            modes.G.cols() > 0 ? modes.G.row(m * i).cwiseAbs().maxCoeff() : 0.;
+          if (moves || g_row > 1e-12 * max_g)
+            keep.push_back(i);
+        }
+      contact           = CondensedContact<dim>();
+      contact.n_dropped = pair_list.size() - keep.size();
+      AssertThrow(!keep.empty(),
+                  base::ExcInput(context +
+                                 ": every contact pair is held by supports on "
+                                 "both sides; nothing can touch."));
+      ContactProblem &problem = contact.problem;
+      problem.G.resize(m * keep.size(), modes.G.cols());
+      for (unsigned int i = 0; i < keep.size(); ++i)
+        {
+          contact.pairs.push_back(pair_list[keep[i]]);
+          problem.G.middleRows(m * i, m) = modes.G.middleRows(m * keep[i], m);
+        }
+      contact.alpha_modes              = modes.alpha_modes;
+      contact.rigid_mode_loads         = modes.loads;
+      contact.rigid_mode_history_loads = modes.history_loads;
+      problem.n_contacts               = contact.pairs.size();
+      problem.n_components             = m;
+      problem.q = Eigen::VectorXd::Zero(m * contact.pairs.size());
+      problem.mu.assign(contact.pairs.size(), friction);
+      problem.name = context;
+      problem.b    = Eigen::VectorXd::Zero(modes.alpha_modes.size());
+      coupled      = factory(bodies, contact.pairs, m, problem.G, obstacle);
+      static_cast<const ContactData &>(problem).check_consistency();
+    }
+
+
+
+    template <int dim>
+    ContactOperator &
+    CoupledPath<dim>::op()
+    {
+      return *coupled;
+    }
+
+
+
+    template <int dim>
+    void
+    CoupledPath<dim>::add_response(const std::vector<Vector<double>> &,
+                                   const ContactIterate        &x,
+                                   std::vector<Vector<double>> &u) const
+    {
+      // Solved already: w holds the bodies' contact displacement.
+      unsigned int offset = 0;
+      for (unsigned int b = 0; b < bodies.size(); ++b)
+        {
+          for (unsigned int i = 0; i < bodies[b]->n_dofs(); ++i)
+            u[b][i] += x.w[offset + i];
+          offset += bodies[b]->n_dofs();
+        }
+    }
+
+
+
+    template <int dim>
+    std::string
+    CoupledPath<dim>::description(const CondensedContact<dim> &contact) const
+    {
+      std::ostringstream s;
+      s << "coupled system of " << coupled->n_dofs() << " displacement and "
+        << contact.problem.n_rows() + contact.problem.n_alpha()
+        << " contact unknowns, " << coupled->n_nonzeros()
+        << " nonzeros in its Newton matrix";
+      return s.str();
+    }
+
+
+
+    template <int dim>
+    double
+    CoupledPath<dim>::n_nonzeros() const
+    {
+      return coupled ? coupled->n_nonzeros() : 0.;
+    }
+
+
+
+    template class CondensedPath<2>;
+    template class CondensedPath<3>;
+    template class CoupledPath<2>;
+    template class CoupledPath<3>;
+  } // namespace contact
+} // namespace igabde
