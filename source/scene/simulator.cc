@@ -13,11 +13,9 @@
 
 #include <deal.II/base/mpi.h>
 
-#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <iomanip>
-#include <sstream>
 
 namespace igabde
 {
