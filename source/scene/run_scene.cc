@@ -9,11 +9,78 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <sstream>
 
 namespace igabde
 {
   namespace scene
   {
+    namespace
+    {
+      /**
+       * A scene that cannot be read leaves no older run's "ok" in the output
+       * folder it names (--set Output/Directory or its Output section):
+       * when that folder exists, its summary.json gets status "failed" and
+       * @p message. Nothing is created.
+       */
+      void
+      mark_failed_read(
+        ParameterHandler                                       &prm,
+        const std::string                                      &scene_file,
+        const std::vector<std::pair<std::string, std::string>> &overrides,
+        const std::string                                      &message)
+      {
+        // The values read so far, whichever subsection the reader stopped
+        // in.
+        std::string        directory, name, line;
+        std::ostringstream listing;
+        prm.print_parameters(listing, ParameterHandler::ShortPRM);
+        std::istringstream       in(listing.str());
+        std::vector<std::string> sections;
+        while (std::getline(in, line))
+          {
+            line = base::trim(line);
+            if (line.rfind("subsection ", 0) == 0)
+              sections.push_back(base::trim(line.substr(11)));
+            else if (line == "end" && !sections.empty())
+              sections.pop_back();
+            else if (line.rfind("set ", 0) == 0 &&
+                     line.find('=') != std::string::npos)
+              {
+                const std::string key =
+                  base::trim(line.substr(4, line.find('=') - 4));
+                const std::string value =
+                  base::trim(line.substr(line.find('=') + 1));
+                if (sections.empty() && key == "Scene name")
+                  name = value;
+                else if (sections == std::vector<std::string>{"Output"} &&
+                         key == "Directory")
+                  directory = value;
+              }
+          }
+        for (const auto &[path, value] : overrides)
+          if (path == "Output/Directory")
+            directory = base::trim(value);
+        std::error_code ec;
+        if (directory.empty() || !std::filesystem::is_directory(directory, ec))
+          return;
+        if (name.empty())
+          name = std::filesystem::path(scene_file).stem();
+        const nlohmann::json summary = {{"scene", name},
+                                        {"status", "failed"},
+                                        {"error", message}};
+        try
+          {
+            base::write_file_atomically(directory + "/summary.json",
+                                        summary.dump(2) + "\n");
+          }
+        catch (...)
+          {}
+      }
+    } // namespace
+
+
+
     nlohmann::json
     run_scene_in_process(
       const std::string                                      &scene_file,
@@ -63,8 +130,9 @@ namespace igabde
         }
       catch (const ExceptionBase &e)
         {
-          std::cerr << "igabde: error: " << base::exception_message(e)
-                    << std::endl;
+          const std::string message = base::exception_message(e);
+          std::cerr << "igabde: error: " << message << std::endl;
+          mark_failed_read(prm, scene_file, overrides, message);
           return 2;
         }
 

@@ -309,3 +309,54 @@ TEST(CliBadInput, LoadHistoryWithoutAName)
                                "no name",
                                "load-histories-block.prm");
 }
+
+
+
+TEST(CliBadInput, UnreadableSceneMarksItsOutputFolderFailed)
+{
+  // A finished run leaves status "ok"; a scene that cannot be read into the
+  // same folder (named by --set or by the scene's Output section) must not
+  // leave it there.
+  const cli::ScratchFolder folder("bad-input-stale-ok");
+  const std::string        scene =
+    cli::join(std::string(IGABDE_SOURCE_DIR), "prm/v3-contact-patch-2d.prm");
+  const std::string summary = cli::join(folder.path, "out/summary.json");
+  const auto        ok      = cli::run_igabde(
+    "'" + scene +
+      "' --quiet --set 'Output/Directory=out' --set 'Output/Write vtu=false'",
+    folder);
+  ASSERT_EQ(ok.status, 0) << ok.output;
+  ASSERT_NE(cli::read_file(summary).find("\"status\": \"ok\""),
+            std::string::npos);
+
+  const auto bad = cli::run_igabde("'" + scene +
+                                     "' --set 'Output/Directory=out' "
+                                     "--set 'Contact/r scale=0'",
+                                   folder);
+  EXPECT_EQ(bad.status, 2) << bad.output;
+  std::string text = cli::read_file(summary);
+  EXPECT_NE(text.find("\"status\": \"failed\""), std::string::npos) << text;
+  EXPECT_EQ(text.find("\"ok\""), std::string::npos) << text;
+  EXPECT_NE(text.find("Contact/r scale = 0 must be > 0"), std::string::npos)
+    << text;
+
+  // The folder named by the scene itself, and a malformed value.
+  std::ofstream(cli::join(folder.path, "own.prm"))
+    << "include " << scene << "\n"
+    << "subsection Output\n  set Directory = out\nend\n"
+    << "subsection Body 1\n  set Young's modulus = abc\nend\n";
+  std::ofstream(summary) << "{\n  \"status\": \"ok\"\n}\n";
+  const auto own = cli::run_igabde("own.prm", folder);
+  EXPECT_EQ(own.status, 2) << own.output;
+  text = cli::read_file(summary);
+  EXPECT_NE(text.find("\"status\": \"failed\""), std::string::npos) << text;
+  EXPECT_NE(text.find("Young's modulus"), std::string::npos) << text;
+
+  // A folder that does not exist is not created.
+  const auto elsewhere = cli::run_igabde("'" + scene +
+                                           "' --set 'Output/Directory=new' "
+                                           "--set 'Contact/r scale=0'",
+                                         folder);
+  EXPECT_EQ(elsewhere.status, 2) << elsewhere.output;
+  EXPECT_FALSE(std::filesystem::exists(cli::join(folder.path, "new")));
+}
