@@ -840,6 +840,10 @@ namespace igabde
               base::split_entry(item,
                                 "Load path/Histories",
                                 "'name: f1, f2, ...'");
+            AssertThrow(!name.empty(),
+                        base::ExcInput("Load path/Histories: '" + item +
+                                       "' has no name; write 'name: f1, f2, "
+                                       "...'."));
             AssertThrow(name.find_first_of(" \t,;:@") == std::string::npos &&
                           name != "load" && name != "displacement",
                         base::ExcInput("Load path/Histories: '" + name +
@@ -1063,6 +1067,18 @@ namespace igabde
                                  " solves the full system; set Contact/Path "
                                  "to 'full' or 'auto' (or use Algorithm = "
                                  "bde for the condensed path)."));
+      // What the contact solver would refuse only when it is built.
+      AssertThrow(contact.tolerance > 0.,
+                  base::ExcInput(
+                    f + "Contact/Tolerance = " + number(contact.tolerance) +
+                    " must be > 0 (the natural-map residual "
+                    "relative to ||q|| at which a solve stops; "
+                    "e.g. 1e-10)."));
+      AssertThrow(contact.r_scale > 0.,
+                  base::ExcInput(
+                    f + "Contact/r scale = " + number(contact.r_scale) +
+                    " must be > 0 (a factor on the per-pair "
+                    "r; 1 is the default)."));
       AssertThrow(contact.penalty_factor > 0. &&
                     contact.tangential_penalty_factor > 0.,
                   base::ExcInput(f + "Contact/Penalty factor and Contact/"
@@ -1106,6 +1122,43 @@ namespace igabde
           if (body2.type == "deformable")
             check_face(body2, "Body 2", "Master face", contact.master_face);
         }
+      if (body2.type == "rigid plane")
+        {
+          const std::string where = f + "Body 2/";
+          read_vector(body2.plane_point, dimension, where + "Plane point");
+          const std::vector<double> normal =
+            read_vector(body2.plane_normal, dimension, where + "Plane normal");
+          AssertThrow(std::any_of(normal.begin(),
+                                  normal.end(),
+                                  [](const double x) {
+                                    return x != 0.;
+                                  }),
+                      base::ExcInput(where + "Plane normal = '" +
+                                     body2.plane_normal +
+                                     "' must not be zero; give the normal "
+                                     "pointing towards Body 1, e.g. '0, 1'."));
+        }
+      // A body with no Supports at all is held by nothing but contact.
+      for (const auto *body : {&body1, &body2})
+        {
+          const std::string name = (body == &body1 ? "Body 1" : "Body 2");
+          AssertThrow(body->type != "deformable" || !body->supports.empty() ||
+                        contact.enabled,
+                      base::ExcInput(
+                        f + name +
+                        "/Supports is empty and the scene has no contact "
+                        "(Contact/Enabled = false): nothing holds " +
+                        name +
+                        " against rigid motion; add Supports, e.g. "
+                        "'0: x; 2: y'."));
+        }
+      AssertThrow(!contact.enabled || body2.type != "deformable" ||
+                    !body1.supports.empty() || !body2.supports.empty(),
+                  base::ExcInput(
+                    f + "Body 1/Supports and Body 2/Supports are both empty: "
+                        "contact only acts between the two bodies, so "
+                        "nothing holds them against rigid motion; add "
+                        "Supports to Body 2, e.g. '2: x y'."));
       if (checks.hertz_line_load > 0.)
         {
           AssertThrow(dimension == 2,

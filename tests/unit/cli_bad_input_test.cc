@@ -25,15 +25,17 @@ namespace
     const std::string &name,
     const std::string &setting,
     const std::string &parameter,
-    const std::string &scene_name = "v3-contact-patch-2d.prm")
+    const std::string &scene_name      = "v3-contact-patch-2d.prm",
+    const std::string &extra_arguments = "")
   {
     SCOPED_TRACE(setting);
     const cli::ScratchFolder folder("bad-input-" + name);
     const std::string        scene =
       cli::join(cli::join(std::string(IGABDE_SOURCE_DIR), "prm"), scene_name);
-    const auto result = cli::run_igabde("'" + scene + "' --set \"" + setting +
-                                          "\" --set 'Output/Directory=out'",
-                                        folder);
+    const auto result =
+      cli::run_igabde("'" + scene + "' --set \"" + setting +
+                        "\" --set 'Output/Directory=out' " + extra_arguments,
+                      folder);
     EXPECT_EQ(result.status, 2) << result.output;
     // One line, the error itself.
     EXPECT_EQ(result.output.find('\n'), result.output.size() - 1)
@@ -244,4 +246,117 @@ TEST(CliBadInput, UnwritableOutputDirectory)
                                "created"),
             std::string::npos)
     << result.output;
+}
+
+
+
+TEST(CliBadInput, ContactToleranceAndRScaleNotPositive)
+{
+  // Refused by the contact solver's constructor before (exit status 1, a
+  // failed summary.json naming no parameter).
+  expect_refused_at_parse_time("tolerance0",
+                               "Contact/Tolerance=0",
+                               "Contact/Tolerance = 0 must be > 0");
+  expect_refused_at_parse_time("rscale0",
+                               "Contact/r scale=0",
+                               "Contact/r scale = 0 must be > 0");
+}
+
+
+
+TEST(CliBadInput, ZeroPlaneNormal)
+{
+  expect_refused_at_parse_time("plane-normal",
+                               "Body 2/Plane normal=0, 0",
+                               "Body 2/Plane normal = '0, 0' must not be "
+                               "zero",
+                               "v5-hertz-2d.prm");
+  expect_refused_at_parse_time("plane-normal-components",
+                               "Body 2/Plane normal=1",
+                               "Body 2/Plane normal: '1' must have 2 "
+                               "comma-separated components",
+                               "v5-hertz-2d.prm");
+}
+
+
+
+TEST(CliBadInput, BodyWithoutAnySupport)
+{
+  // Found after assembly before ("body1 is not held against translation x
+  // and the scene has no contact").
+  expect_refused_at_parse_time("no-support",
+                               "Body 1/Supports=",
+                               "Body 1/Supports is empty and the scene has "
+                               "no contact",
+                               "v1-plate-with-hole.prm");
+  // Two bodies in contact with each other and nothing else: the contact
+  // solver failed to converge, with a long diagnosis, before.
+  expect_refused_at_parse_time("no-support-pair",
+                               "Body 1/Supports=",
+                               "Body 1/Supports and Body 2/Supports are both "
+                               "empty",
+                               "v3-contact-patch-2d.prm",
+                               "--set 'Body 2/Supports='");
+}
+
+
+
+TEST(CliBadInput, LoadHistoryWithoutAName)
+{
+  expect_refused_at_parse_time("history-name",
+                               "Load path/Histories=: 1, 1, 1, 1, 1",
+                               "Load path/Histories: ': 1, 1, 1, 1, 1' has "
+                               "no name",
+                               "load-histories-block.prm");
+}
+
+
+
+TEST(CliBadInput, UnreadableSceneMarksItsOutputFolderFailed)
+{
+  // A finished run leaves status "ok"; a scene that cannot be read into the
+  // same folder (named by --set or by the scene's Output section) must not
+  // leave it there.
+  const cli::ScratchFolder folder("bad-input-stale-ok");
+  const std::string        scene =
+    cli::join(std::string(IGABDE_SOURCE_DIR), "prm/v3-contact-patch-2d.prm");
+  const std::string summary = cli::join(folder.path, "out/summary.json");
+  const auto        ok      = cli::run_igabde(
+    "'" + scene +
+      "' --quiet --set 'Output/Directory=out' --set 'Output/Write vtu=false'",
+    folder);
+  ASSERT_EQ(ok.status, 0) << ok.output;
+  ASSERT_NE(cli::read_file(summary).find("\"status\": \"ok\""),
+            std::string::npos);
+
+  const auto bad = cli::run_igabde("'" + scene +
+                                     "' --set 'Output/Directory=out' "
+                                     "--set 'Contact/r scale=0'",
+                                   folder);
+  EXPECT_EQ(bad.status, 2) << bad.output;
+  std::string text = cli::read_file(summary);
+  EXPECT_NE(text.find("\"status\": \"failed\""), std::string::npos) << text;
+  EXPECT_EQ(text.find("\"ok\""), std::string::npos) << text;
+  EXPECT_NE(text.find("Contact/r scale = 0 must be > 0"), std::string::npos)
+    << text;
+
+  // The folder named by the scene itself, and a malformed value.
+  std::ofstream(cli::join(folder.path, "own.prm"))
+    << "include " << scene << "\n"
+    << "subsection Output\n  set Directory = out\nend\n"
+    << "subsection Body 1\n  set Young's modulus = abc\nend\n";
+  std::ofstream(summary) << "{\n  \"status\": \"ok\"\n}\n";
+  const auto own = cli::run_igabde("own.prm", folder);
+  EXPECT_EQ(own.status, 2) << own.output;
+  text = cli::read_file(summary);
+  EXPECT_NE(text.find("\"status\": \"failed\""), std::string::npos) << text;
+  EXPECT_NE(text.find("Young's modulus"), std::string::npos) << text;
+
+  // A folder that does not exist is not created.
+  const auto elsewhere = cli::run_igabde("'" + scene +
+                                           "' --set 'Output/Directory=new' "
+                                           "--set 'Contact/r scale=0'",
+                                         folder);
+  EXPECT_EQ(elsewhere.status, 2) << elsewhere.output;
+  EXPECT_FALSE(std::filesystem::exists(cli::join(folder.path, "new")));
 }

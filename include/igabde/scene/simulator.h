@@ -4,6 +4,7 @@
 #include <igabde/discretization/body.h>
 
 #include <igabde/scene/parameters.h>
+#include <igabde/scene/run_record.h>
 #include <igabde/scene/scene_reader.h>
 
 #include <deal.II/base/conditional_ostream.h>
@@ -58,7 +59,7 @@ namespace igabde
       run();
 
       /// The summary as written to summary.json.
-      const nlohmann::json &
+      nlohmann::json
       get_summary() const;
 
       /**
@@ -69,10 +70,7 @@ namespace igabde
       write_failed_summary(const std::string &message);
 
     private:
-      discretization::BodyDescription<dim>
-      make_description(const BodyParameters &body,
-                       const std::string    &name) const;
-
+      /// Builds and assembles the bodies (and the exact solution).
       void
       setup_bodies();
 
@@ -81,31 +79,21 @@ namespace igabde
       void
       factorize_bodies(const contact::ContactStage<dim> *stage);
 
+      /// With contact: the contact stage (pairs, condensation or coupled
+      /// system) and its facts in the summary; the factorisation either way.
+      void
+      setup_contact();
+
       void
       solve_load_steps();
 
-      void
-      output_step(const unsigned int                 step,
-                  const std::vector<Vector<double>> &solutions);
-
-      void
-      postprocess_final(const std::vector<Vector<double>> &solutions);
-
+      /// Writes summary.json and steps.csv from run_summary, and timing.txt.
       void
       write_summary(const std::string &status, const std::string &error);
-
-      void
-      write_step_table() const;
 
       /// The stream the contact layer logs to (a discarding one off rank 0).
       std::ostream &
       contact_log();
-
-      /// Contact resultants and support reactions of the finished step.
-      void
-      record_forces(const std::vector<Vector<double>> &u,
-                    const std::vector<double>         &factors,
-                    nlohmann::json                    &record) const;
 
       const AllParameters parameters;
       const std::string   scene_file;
@@ -119,13 +107,16 @@ namespace igabde
       /// to the log.
       std::ostringstream timing_table;
       TimerOutput        timer;
-      nlohmann::json     summary;
+      /// What summary.json and steps.csv are written from.
+      RunSummary run_summary;
+      /// The set-up facts of run_summary (RunSummary::setup), as the bodies
+      /// and the contact stage fill them in.
+      nlohmann::json &summary;
 
       std::optional<discretization::ExactSolution<dim>>        exact;
       std::vector<std::unique_ptr<discretization::Body<dim>>>  bodies;
       std::unique_ptr<contact::ContactStage<dim>>              contact_stage;
       std::vector<std::vector<std::pair<double, std::string>>> pvd_records;
-      nlohmann::json                                           step_records;
       /// Where the run is, for the reason an interrupted run gives.
       std::string run_phase;
     };

@@ -1,0 +1,135 @@
+#ifndef igabde_scene_run_record_h
+#define igabde_scene_run_record_h
+
+#include <deal.II/base/timer.h>
+
+#include <map>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace igabde
+{
+  namespace scene
+  {
+    /**
+     * @brief The forces of one body (or of the rigid obstacle) at the end of
+     * a load step.
+     */
+    struct BodyForceRecord
+    {
+      /// body1, body2 or obstacle.
+      std::string name;
+      /// Resultant of the contact forces on the body.
+      std::vector<double> contact_force;
+      /// Resultant of the support reactions (none for the obstacle).
+      std::optional<std::vector<double>> support_reaction;
+    };
+
+    /**
+     * @brief What one load step left: an entry of summary.json's
+     * "load_steps" and a row of steps.csv.
+     */
+    struct StepRecord
+    {
+      /// 1-based step number.
+      unsigned int step                = 0;
+      double       load_factor         = 0.;
+      double       displacement_factor = 0.;
+      /// Factor of every named load history (Load path/Histories), in the
+      /// order declared.
+      std::vector<std::pair<std::string, double>> history_factors;
+
+      /// Whether the step went through the contact solver; the figures
+      /// below up to condition_check_max_violation exist only then.
+      bool         contact           = false;
+      unsigned int newton_iterations = 0;
+      unsigned int contact_solves    = 0;
+      unsigned int step_cuts         = 0;
+      double       residual          = 0.;
+      unsigned int n_open = 0, n_stick = 0, n_slip = 0;
+      /// Penalty methods only.
+      std::optional<double> max_penetration;
+      /// Augmented Lagrange only.
+      std::optional<unsigned int> multiplier_updates;
+      std::vector<double>         residual_history;
+      /// Iterative full-system solvers only (empty otherwise).
+      std::vector<unsigned int> krylov_iterations;
+      /// A step whose contact solve failed: why (and no forces).
+      bool        failed = false;
+      std::string diagnosis;
+      /// Finished contact steps.
+      std::optional<double> condition_check_max_violation;
+
+      /// Forces of a finished step, per body (empty for a failed one).
+      std::vector<BodyForceRecord> bodies;
+      /// Contact force on Body 1 (contact scenes, finished steps).
+      std::optional<std::vector<double>> total_contact_force;
+    };
+
+    /// The load step as summary.json writes it.
+    nlohmann::json
+    to_json(const StepRecord &record);
+
+    /**
+     * @brief The run as summary.json writes it.
+     */
+    struct RunSummary
+    {
+      std::string scene;
+      /// running, ok, failed (or interrupted, rendered for the handler).
+      std::string  status = "running";
+      std::string  error;
+      int          dim = 2;
+      std::string  discretization;
+      unsigned int degree      = 0;
+      unsigned int refinements = 0;
+      std::string  memory_allocator;
+      /// The size guard's estimate (SizeEstimate::to_json()).
+      std::optional<nlohmann::json>     size_estimate;
+      std::optional<unsigned long long> n_dofs;
+      std::optional<unsigned int>       n_elements;
+      /**
+       * The facts the set-up of the bodies and of the contact stage reports
+       * ("bodies", "effects", the contact path and its costs, ...), as the
+       * keys of summary.json they are written to.
+       */
+      nlohmann::json setup = nlohmann::json::object();
+      /// The finished load steps and a failed one.
+      std::vector<StepRecord> load_steps;
+      /// The contact force on Body 1 at the last finished step.
+      std::optional<std::vector<double>> total_contact_force;
+      /// Accuracy checks of the last step (postprocess).
+      std::optional<nlohmann::json> checks;
+      std::vector<std::string>      warnings;
+      /// Probe displacements and stresses of the last step.
+      std::optional<nlohmann::json> points;
+      std::optional<nlohmann::json> point_stresses;
+      /// Seconds per timer phase and "total".
+      std::optional<std::map<std::string, double>> timing;
+    };
+
+    /// The run as summary.json writes it.
+    nlohmann::json
+    to_json(const RunSummary &summary);
+
+    /// Seconds per phase of @p timer, and their sum as "total".
+    std::map<std::string, double>
+    timing_seconds(const dealii::TimerOutput &timer);
+
+    /**
+     * @brief steps.csv: one row per load step of @p records, full precision.
+     * @p histories names the load histories (a column each); @p contact adds
+     * the contact columns and the force of @p dim components.
+     */
+    std::string
+    step_table(const std::vector<StepRecord>  &records,
+               const std::vector<std::string> &histories,
+               const bool                      contact,
+               const unsigned int              dim);
+  } // namespace scene
+} // namespace igabde
+
+#endif

@@ -1,0 +1,100 @@
+#ifndef igabde_scene_step_results_h
+#define igabde_scene_step_results_h
+
+#include <igabde/discretization/body.h>
+
+#include <igabde/contact/contact_stage.h>
+
+#include <igabde/scene/load_controller.h>
+#include <igabde/scene/parameters.h>
+#include <igabde/scene/run_record.h>
+
+#include <deal.II/base/conditional_ostream.h>
+
+#include <deal.II/lac/vector.h>
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace igabde
+{
+  namespace scene
+  {
+    /**
+     * @brief The contact solver's figures of a load step (@p outcome of the
+     * LoadController; @p algorithm is Contact/Algorithm) into @p record.
+     */
+    template <int dim>
+    void
+    record_contact_outcome(const typename LoadController<dim>::Outcome &outcome,
+                           const contact::Algorithm algorithm,
+                           StepRecord              &record);
+
+    /**
+     * @brief Refuses a displacement of load step @p step that is not finite:
+     * overflow or underflow (a load factor of 1e308, E = 1e-308) gives
+     * inf/NaN without any solver noticing, and is never reported.
+     */
+    template <int dim>
+    void
+    check_finite_displacements(
+      const std::vector<std::unique_ptr<discretization::Body<dim>>> &bodies,
+      const std::vector<Vector<double>>                             &u,
+      const unsigned int                                             step);
+
+    /**
+     * @brief The contact resultant and support reaction of every body (and
+     * the obstacle's contact force) at the end of a step with displacements
+     * @p u and load factors @p factors, into @p record; @p stage is nullptr
+     * without contact.
+     */
+    template <int dim>
+    void
+    record_forces(
+      const std::vector<std::unique_ptr<discretization::Body<dim>>> &bodies,
+      const contact::ContactStage<dim>                              *stage,
+      const std::vector<Vector<double>>                             &u,
+      const std::vector<double>                                     &factors,
+      StepRecord                                                    &record);
+
+    /**
+     * @brief The files of load step @p step in @p directory: the pair table
+     * contact-NNNN.csv of @p pairs (nullptr without contact) and, with
+     * @p write_vtu, the pairs' and the bodies' VTU files and each body's PVD
+     * series (@p pvd_records, one per body, grows by this step).
+     */
+    template <int dim>
+    void
+    write_step_output(
+      const std::string                                             &directory,
+      const bool                                                     write_vtu,
+      const unsigned int                                             step,
+      const std::vector<std::unique_ptr<discretization::Body<dim>>> &bodies,
+      const std::vector<Vector<double>>                             &u,
+      const std::vector<contact::PairState<dim>>                    *pairs,
+      std::vector<std::vector<std::pair<double, std::string>>> &pvd_records);
+
+    /**
+     * @brief The results of the last load step: error norms against the
+     * exact solution, the contact checks the scene asks for (uniform
+     * pressure, Hertz) on @p pairs (nullptr without contact), then the
+     * displacement and stress at every probe point. Each goes to @p summary
+     * (checks, warnings, points, point_stresses) and a line to @p log.
+     */
+    template <int dim>
+    void
+    evaluate_final_results(
+      const AllParameters                                           &parameters,
+      const std::string                                             &scene_file,
+      const std::vector<std::unique_ptr<discretization::Body<dim>>> &bodies,
+      const std::optional<discretization::ExactSolution<dim>>       &exact,
+      const std::vector<contact::PairState<dim>>                    *pairs,
+      const std::vector<Vector<double>>                             &u,
+      ConditionalOStream                                            &log,
+      RunSummary                                                    &summary);
+  } // namespace scene
+} // namespace igabde
+
+#endif

@@ -1,0 +1,206 @@
+#include <igabde/base/utilities.h>
+
+#include <igabde/postprocess/exact_solutions.h>
+#include <igabde/scene/body_factory.h>
+#include <igabde/scene/geometry.h>
+
+namespace igabde
+{
+  namespace scene
+  {
+    namespace
+    {
+      elasticity::PlaneModel
+      plane_model(const AllParameters &parameters)
+      {
+        return parameters.plane_model == "plane stress" ?
+                 elasticity::PlaneModel::plane_stress :
+                 elasticity::PlaneModel::plane_strain;
+      }
+    } // namespace
+
+
+
+    template <int dim>
+    std::optional<discretization::ExactSolution<dim>>
+    make_exact_solution(const AllParameters &parameters,
+                        const std::string   &scene_file)
+    {
+      elasticity::IsotropicMaterial<dim> material;
+      material.youngs_modulus = parameters.body1.youngs_modulus;
+      material.poisson_ratio  = parameters.body1.poisson_ratio;
+      material.plane_model    = plane_model(parameters);
+      const auto &e           = parameters.exact;
+      if (e.type == "kirsch")
+        {
+          AssertThrow(dim == 2,
+                      base::ExcInput(scene_file +
+                                     ": Exact solution/Type = kirsch is a "
+                                     "2D solution; set Dimension = 2."));
+          if constexpr (dim == 2)
+            return postprocess::kirsch_solution(e.remote_tension,
+                                                e.hole_radius,
+                                                material);
+        }
+      else if (e.type == "lame")
+        return postprocess::lame_solution<dim>(e.inner_radius,
+                                               e.outer_radius,
+                                               e.pressure,
+                                               material);
+      return std::nullopt;
+    }
+
+
+
+    template <int dim>
+    discretization::BodyDescription<dim>
+    make_body_description(
+      const AllParameters                                     &parameters,
+      const BodyParameters                                    &body,
+      const std::string                                       &name,
+      const std::string                                       &scene_file,
+      const std::optional<discretization::ExactSolution<dim>> &exact)
+    {
+      const std::string where = scene_file + ": " + name + "/";
+      discretization::BodyDescription<dim> d;
+      d.name                    = (name == "Body 1" ? "body1" : "body2");
+      d.material.youngs_modulus = body.youngs_modulus;
+      d.material.poisson_ratio  = body.poisson_ratio;
+      d.material.plane_model    = plane_model(parameters);
+      d.material.validate(scene_file + ": " + name);
+
+      d.geometry =
+        make_geometry<dim>(body, where, parameters.discretization.degree);
+
+      // The body grammar was read and checked with the parameters
+      // (BodyParameters::parse_parameters); here it only becomes
+      // dim-dimensional.
+      const auto tensor = [](const std::vector<double> &v) {
+        Tensor<1, dim> t;
+        for (unsigned int i = 0; i < dim; ++i)
+          t[i] = v[i];
+        return t;
+      };
+      for (const SupportParameters &support : body.supports)
+        {
+          discretization::DirichletCondition<dim> bc;
+          bc.boundary_id = static_cast<types::boundary_id>(support.face);
+          for (unsigned int c = 0; c < dim; ++c)
+            {
+              bc.components[c] = support.components[c];
+              bc.value[c]      = support.values[c];
+            }
+          bc.history = parameters.load_path.history_index(support.history, 1);
+          d.dirichlet.push_back(bc);
+        }
+      for (const TractionParameters &traction : body.tractions)
+        {
+          discretization::NeumannCondition<dim> bc;
+          bc.boundary_id = static_cast<types::boundary_id>(traction.face);
+          bc.history = parameters.load_path.history_index(traction.history, 0);
+          switch (traction.kind)
+            {
+              case TractionParameters::Kind::pressure:
+                {
+                  const double p = traction.values[0];
+                  bc.traction    = [p](const Point<dim> &,
+                                    const Tensor<1, dim> &n) {
+                    return -p * n;
+                  };
+                  break;
+                }
+              case TractionParameters::Kind::vector:
+                {
+                  const Tensor<1, dim> t = tensor(traction.values);
+                  bc.traction            = [t](const Point<dim> &,
+                                    const Tensor<1, dim> &) {
+                    return t;
+                  };
+                  break;
+                }
+              case TractionParameters::Kind::exact:
+                {
+                  Assert(exact.has_value(), ExcInternalError());
+                  const auto stress = exact->stress;
+                  bc.traction       = [stress](const Point<dim>     &x,
+                                         const Tensor<1, dim> &n) {
+                    return stress(x) * n;
+                  };
+                  break;
+                }
+            }
+          d.tractions.push_back(bc);
+        }
+      for (const PointLoadParameters &load : body.point_loads)
+        {
+          discretization::PointLoad<dim> point_load;
+          point_load.location = Point<dim>(tensor(load.location));
+          point_load.force    = tensor(load.force);
+          point_load.history =
+            parameters.load_path.history_index(load.history, 0);
+          d.point_loads.push_back(point_load);
+        }
+      d.body_force = tensor(body.body_force);
+      return d;
+    }
+
+
+
+    template <int dim>
+    std::vector<std::unique_ptr<discretization::Body<dim>>>
+    create_bodies(
+      const AllParameters                                     &parameters,
+      const std::string                                       &scene_file,
+      const std::optional<discretization::ExactSolution<dim>> &exact)
+    {
+      const discretization::DiscretizationSettings &settings =
+        parameters.discretization;
+      std::vector<std::unique_ptr<discretization::Body<dim>>> bodies;
+      bodies.push_back(discretization::create_body<dim>(
+        make_body_description<dim>(parameters,
+                                   parameters.body1,
+                                   "Body 1",
+                                   scene_file,
+                                   exact),
+        settings));
+      if (parameters.body2.type == "deformable")
+        bodies.push_back(discretization::create_body<dim>(
+          make_body_description<dim>(parameters,
+                                     parameters.body2,
+                                     "Body 2",
+                                     scene_file,
+                                     exact),
+          settings));
+      return bodies;
+    }
+
+
+
+    template std::optional<discretization::ExactSolution<2>>
+    make_exact_solution<2>(const AllParameters &, const std::string &);
+    template std::optional<discretization::ExactSolution<3>>
+    make_exact_solution<3>(const AllParameters &, const std::string &);
+    template discretization::BodyDescription<2>
+    make_body_description<2>(
+      const AllParameters &,
+      const BodyParameters &,
+      const std::string &,
+      const std::string &,
+      const std::optional<discretization::ExactSolution<2>> &);
+    template discretization::BodyDescription<3>
+    make_body_description<3>(
+      const AllParameters &,
+      const BodyParameters &,
+      const std::string &,
+      const std::string &,
+      const std::optional<discretization::ExactSolution<3>> &);
+    template std::vector<std::unique_ptr<discretization::Body<2>>>
+    create_bodies<2>(const AllParameters &,
+                     const std::string &,
+                     const std::optional<discretization::ExactSolution<2>> &);
+    template std::vector<std::unique_ptr<discretization::Body<3>>>
+    create_bodies<3>(const AllParameters &,
+                     const std::string &,
+                     const std::optional<discretization::ExactSolution<3>> &);
+  } // namespace scene
+} // namespace igabde

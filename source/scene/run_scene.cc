@@ -1,0 +1,196 @@
+#include <igabde/base/files.h>
+#include <igabde/base/utilities.h>
+
+#include <igabde/scene/interrupt.h>
+#include <igabde/scene/simulator.h>
+#include <igabde/scene/size_estimate.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+
+namespace igabde
+{
+  namespace scene
+  {
+    namespace
+    {
+      /**
+       * A scene that cannot be read leaves no older run's "ok" in the output
+       * folder it names (--set Output/Directory or its Output section):
+       * when that folder exists, its summary.json gets status "failed" and
+       * @p message. Nothing is created.
+       */
+      void
+      mark_failed_read(
+        ParameterHandler                                       &prm,
+        const std::string                                      &scene_file,
+        const std::vector<std::pair<std::string, std::string>> &overrides,
+        const std::string                                      &message)
+      {
+        // The values read so far, whichever subsection the reader stopped
+        // in.
+        std::string        directory, name, line;
+        std::ostringstream listing;
+        prm.print_parameters(listing, ParameterHandler::ShortPRM);
+        std::istringstream       in(listing.str());
+        std::vector<std::string> sections;
+        while (std::getline(in, line))
+          {
+            line = base::trim(line);
+            if (line.rfind("subsection ", 0) == 0)
+              sections.push_back(base::trim(line.substr(11)));
+            else if (line == "end" && !sections.empty())
+              sections.pop_back();
+            else if (line.rfind("set ", 0) == 0 &&
+                     line.find('=') != std::string::npos)
+              {
+                const std::string key =
+                  base::trim(line.substr(4, line.find('=') - 4));
+                const std::string value =
+                  base::trim(line.substr(line.find('=') + 1));
+                if (sections.empty() && key == "Scene name")
+                  name = value;
+                else if (sections == std::vector<std::string>{"Output"} &&
+                         key == "Directory")
+                  directory = value;
+              }
+          }
+        for (const auto &[path, value] : overrides)
+          if (path == "Output/Directory")
+            directory = base::trim(value);
+        std::error_code ec;
+        if (directory.empty() || !std::filesystem::is_directory(directory, ec))
+          return;
+        if (name.empty())
+          name = std::filesystem::path(scene_file).stem();
+        const nlohmann::json summary = {{"scene", name},
+                                        {"status", "failed"},
+                                        {"error", message}};
+        try
+          {
+            base::write_file_atomically(directory + "/summary.json",
+                                        summary.dump(2) + "\n");
+          }
+        catch (...)
+          {}
+      }
+    } // namespace
+
+
+
+    nlohmann::json
+    run_scene_in_process(
+      const std::string                                      &scene_file,
+      const std::vector<std::pair<std::string, std::string>> &overrides,
+      std::ostream                                           &log)
+    {
+      ParameterHandler    prm;
+      const AllParameters parameters = parse_scene(prm, scene_file, overrides);
+      std::filesystem::create_directories(parameters.output.directory);
+      auto run = [&](auto &simulator) {
+        simulator.run();
+        return simulator.get_summary();
+      };
+      if (parameters.dimension == 2)
+        {
+          Simulator<2> simulator(parameters,
+                                 scene_file,
+                                 parameters.output.directory,
+                                 log);
+          return run(simulator);
+        }
+      Simulator<3> simulator(parameters,
+                             scene_file,
+                             parameters.output.directory,
+                             log);
+      return run(simulator);
+    }
+
+
+
+    int
+    run_scene(const std::string &scene_file,
+              const std::vector<std::pair<std::string, std::string>> &overrides,
+              const bool                                              force)
+    {
+      ParameterHandler prm;
+      AllParameters    parameters;
+      try
+        {
+          parameters = parse_scene(prm, scene_file, overrides);
+          // Before anything is built: a scene that cannot fit the memory
+          // stops at once (the geometry is checked on the way).
+          if (force)
+            estimate_size(parameters, scene_file);
+          else
+            check_size(parameters, scene_file, available_memory_bytes());
+        }
+      catch (const ExceptionBase &e)
+        {
+          const std::string message = base::exception_message(e);
+          std::cerr << "igabde: error: " << message << std::endl;
+          mark_failed_read(prm, scene_file, overrides, message);
+          return 2;
+        }
+
+      const std::string dir = parameters.output.directory;
+      std::error_code   ec;
+      std::filesystem::create_directories(dir, ec);
+      if (ec)
+        {
+          std::cerr << "igabde: error: " << scene_file
+                    << ": Output/Directory = '" << dir
+                    << "' cannot be created (" << ec.message()
+                    << "); choose a writable folder." << std::endl;
+          return 2;
+        }
+      {
+        std::ofstream echo(dir + "/parameters.prm");
+        prm.print_parameters(echo, ParameterHandler::PRM);
+        std::ofstream echo_json(dir + "/parameters.json");
+        prm.print_parameters(echo_json, ParameterHandler::JSON);
+      }
+
+      std::ofstream   log_file(dir + "/log.txt");
+      base::TeeBuffer tee(std::cout.rdbuf(), log_file.rdbuf());
+      std::ostream    log(&tee);
+      log << std::setprecision(6);
+
+      auto run = [&](auto &simulator) -> int {
+        try
+          {
+            simulator.run();
+            return 0;
+          }
+        catch (const ExceptionBase &e)
+          {
+            const std::string message = base::exception_message(e);
+            log_file << "igabde: error: " << message << std::endl;
+            std::cerr << "igabde: error: " << message << std::endl;
+            simulator.write_failed_summary(message);
+          }
+        catch (const std::exception &e)
+          {
+            log_file << "igabde: error: " << e.what() << std::endl;
+            std::cerr << "igabde: error: " << e.what() << std::endl;
+            simulator.write_failed_summary(e.what());
+          }
+        return 1;
+      };
+
+      // SIGINT/SIGTERM: the finished steps stay, summary.json says
+      // 'interrupted' and why.
+      const InterruptHandler interrupts;
+      if (parameters.dimension == 2)
+        {
+          Simulator<2> simulator(parameters, scene_file, dir, log);
+          return run(simulator);
+        }
+      Simulator<3> simulator(parameters, scene_file, dir, log);
+      return run(simulator);
+    }
+  } // namespace scene
+} // namespace igabde

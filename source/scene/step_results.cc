@@ -1,0 +1,384 @@
+#include <igabde/base/utilities.h>
+
+#include <igabde/elasticity/stress_measures.h>
+
+#include <igabde/postprocess/contact_checks.h>
+#include <igabde/postprocess/contact_output.h>
+#include <igabde/scene/step_results.h>
+
+#include <deal.II/base/data_out_base.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+
+namespace igabde
+{
+  namespace scene
+  {
+    template <int dim>
+    void
+    record_contact_outcome(const typename LoadController<dim>::Outcome &outcome,
+                           const contact::Algorithm algorithm,
+                           StepRecord              &record)
+    {
+      const auto &last         = outcome.last;
+      record.contact           = true;
+      record.newton_iterations = outcome.iterations;
+      record.contact_solves    = outcome.contact_solves;
+      record.step_cuts         = outcome.cuts;
+      record.residual          = last.residual;
+      record.n_open            = last.n_open;
+      record.n_stick           = last.n_stick;
+      record.n_slip            = last.n_slip;
+      if (algorithm != contact::Algorithm::bde)
+        record.max_penetration = last.max_penetration;
+      if (algorithm == contact::Algorithm::augmented_lagrange)
+        record.multiplier_updates = last.updates;
+      record.residual_history  = last.residual_history;
+      record.krylov_iterations = last.linear_iterations;
+      if (outcome.success)
+        record.condition_check_max_violation =
+          last.condition_check_max_violation;
+      else
+        {
+          // The failed step's figures stay next to the finished steps.
+          record.failed    = true;
+          record.diagnosis = last.diagnosis;
+        }
+    }
+
+
+
+    template <int dim>
+    void
+    check_finite_displacements(
+      const std::vector<std::unique_ptr<discretization::Body<dim>>> &bodies,
+      const std::vector<Vector<double>>                             &u,
+      const unsigned int                                             step)
+    {
+      for (unsigned int b = 0; b < bodies.size(); ++b)
+        AssertThrow(std::all_of(u[b].begin(),
+                                u[b].end(),
+                                [](const double v) {
+                                  return std::isfinite(v);
+                                }),
+                    ExcMessage("load step " + std::to_string(step) +
+                               ": the displacement of " + bodies[b]->name() +
+                               " is not finite (overflow: check the load and "
+                               "displacement factors, the loads and Young's "
+                               "modulus of the scene)."));
+    }
+
+
+
+    template <int dim>
+    void
+    record_forces(
+      const std::vector<std::unique_ptr<discretization::Body<dim>>> &bodies,
+      const contact::ContactStage<dim>                              *stage,
+      const std::vector<Vector<double>>                             &u,
+      const std::vector<double>                                     &factors,
+      StepRecord                                                    &record)
+    {
+      const auto to_vector = [](const Tensor<1, dim> &t) {
+        std::vector<double> v(dim);
+        for (unsigned int c = 0; c < dim; ++c)
+          v[c] = t[c];
+        return v;
+      };
+      Tensor<1, dim> on_body1;
+      for (unsigned int b = 0; b < bodies.size(); ++b)
+        {
+          Vector<double> applied = bodies[b]->external_load_vector(factors);
+          Tensor<1, dim> contact_force;
+          if (stage != nullptr)
+            {
+              const Vector<double> f = stage->contact_load(b);
+              applied += f;
+              for (unsigned int i = 0; i < f.size(); ++i)
+                contact_force[bodies[b]->dof_component(i)] += f[i];
+            }
+          if (b == 0)
+            on_body1 = contact_force;
+          record.bodies.push_back(
+            {bodies[b]->name(),
+             to_vector(contact_force),
+             to_vector(bodies[b]->support_reaction(u[b], applied))});
+        }
+      if (stage != nullptr)
+        {
+          record.total_contact_force = to_vector(on_body1);
+          if (bodies.size() == 1)
+            record.bodies.push_back(
+              {"obstacle", to_vector(-on_body1), std::nullopt});
+        }
+    }
+
+
+
+    template <int dim>
+    void
+    write_step_output(
+      const std::string                                             &directory,
+      const bool                                                     write_vtu,
+      const unsigned int                                             step,
+      const std::vector<std::unique_ptr<discretization::Body<dim>>> &bodies,
+      const std::vector<Vector<double>>                             &u,
+      const std::vector<contact::PairState<dim>>                    *pairs,
+      std::vector<std::vector<std::pair<double, std::string>>> &pvd_records)
+    {
+      std::ostringstream number;
+      number << std::setw(4) << std::setfill('0') << step;
+      // The pair table every step; fields only with Write vtu.
+      if (pairs != nullptr)
+        {
+          postprocess::write_pair_csv<dim>(*pairs,
+                                           directory + "/contact-" +
+                                             number.str() + ".csv");
+          if (write_vtu)
+            postprocess::write_pair_vtu<dim>(*pairs,
+                                             directory + "/contact-" +
+                                               number.str() + ".vtu");
+        }
+      if (!write_vtu)
+        return;
+      for (unsigned int b = 0; b < bodies.size(); ++b)
+        {
+          const std::string name =
+            "solution-" + bodies[b]->name() + "-" + number.str() + ".vtu";
+          bodies[b]->write_vtu(u[b], directory + "/" + name);
+          pvd_records[b].emplace_back(double(step), name);
+          std::ofstream pvd(directory + "/solution-" + bodies[b]->name() +
+                            ".pvd");
+          DataOutBase::write_pvd_record(pvd, pvd_records[b]);
+        }
+    }
+
+
+
+    template <int dim>
+    void
+    evaluate_final_results(
+      const AllParameters                                           &parameters,
+      const std::string                                             &scene_file,
+      const std::vector<std::unique_ptr<discretization::Body<dim>>> &bodies,
+      const std::optional<discretization::ExactSolution<dim>>       &exact,
+      const std::vector<contact::PairState<dim>>                    *pairs,
+      const std::vector<Vector<double>>                             &u,
+      ConditionalOStream                                            &pcout,
+      RunSummary                                                    &summary)
+    {
+      nlohmann::json checks = nlohmann::json::object();
+      if (exact)
+        {
+          const auto norms = bodies[0]->compute_errors(u[0], *exact);
+          AssertThrow(std::isfinite(norms.l2_relative) &&
+                        std::isfinite(norms.energy_relative),
+                      ExcMessage("the error norms are not finite (overflow "
+                                 "in the exact solution or the field: check "
+                                 "the loads and Young's modulus of the "
+                                 "scene)."));
+          checks["l2_error"]     = norms.l2_relative;
+          checks["energy_error"] = norms.energy_relative;
+          pcout << "  relative L2 error " << std::setprecision(4)
+                << std::scientific << norms.l2_relative
+                << ", relative energy error " << norms.energy_relative
+                << std::defaultfloat << std::setprecision(6) << std::endl;
+        }
+
+      std::vector<std::string> warnings;
+      if (pairs != nullptr)
+        {
+          if (parameters.checks.uniform_pressure > 0.)
+            {
+              const double worst = postprocess::pressure_uniformity<dim>(
+                *pairs,
+                parameters.checks.uniform_pressure);
+              checks["pressure_uniformity"] = worst;
+              pcout << "  pressure uniformity max |p_i/p - 1| = "
+                    << std::setprecision(3) << std::scientific << worst
+                    << std::defaultfloat << std::setprecision(6) << std::endl;
+            }
+          if (parameters.checks.hertz_line_load > 0.)
+            {
+              if constexpr (dim == 2)
+                {
+                  postprocess::HertzCheck hertz;
+                  hertz.line_load         = parameters.checks.hertz_line_load;
+                  hertz.radius            = parameters.body1.radius;
+                  hertz.effective_modulus = postprocess::effective_modulus<dim>(
+                    bodies[0]->material(),
+                    bodies.size() > 1 ? &bodies[1]->material() : nullptr);
+                  hertz.axis_point =
+                    base::parse_point<dim>(parameters.checks.hertz_axis_point,
+                                           scene_file +
+                                             ": Checks/Hertz axis point");
+                  hertz.axis_direction = base::parse_tensor<dim>(
+                    parameters.checks.hertz_axis_direction,
+                    scene_file + ": Checks/Hertz axis direction");
+                  const auto r                     = hertz.evaluate(*pairs);
+                  checks["hertz_half_width"]       = r.half_width;
+                  checks["hertz_half_width_exact"] = r.half_width_exact;
+                  checks["hertz_half_width_error"] =
+                    std::abs(r.half_width / r.half_width_exact - 1.);
+                  checks["hertz_peak_pressure"]       = r.peak_pressure;
+                  checks["hertz_peak_pressure_exact"] = r.peak_pressure_exact;
+                  checks["pressure_l2_rel_error"]     = r.profile_l2_error;
+                  checks["hertz_loaded_pairs"]        = r.n_loaded;
+                  checks["hertz_edge_pair_spacing"]   = r.edge_pair_spacing;
+                  checks["hertz_half_width_moment"]   = r.half_width_moment;
+                  checks["hertz_half_width_moment_error"] =
+                    std::abs(r.half_width_moment / r.half_width_exact - 1.);
+                  checks["hertz_max_pair_deviation"] = r.max_pair_deviation;
+                  checks["hertz_inner_pairs"]        = r.n_inner_pairs;
+                  pcout << "  Hertz: half-width " << std::setprecision(5)
+                        << r.half_width << " (Johnson " << r.half_width_exact
+                        << "), peak pressure " << r.peak_pressure
+                        << " (Johnson " << r.peak_pressure_exact
+                        << "), profile L2 error " << std::setprecision(3)
+                        << r.profile_l2_error << std::setprecision(6)
+                        << std::endl;
+                  if (!r.warning.empty())
+                    {
+                      pcout << "  warning: " << r.warning << std::endl;
+                      warnings.push_back(r.warning);
+                    }
+                }
+            }
+        }
+      summary.checks   = checks;
+      summary.warnings = warnings;
+
+      nlohmann::json points   = nlohmann::json::object();
+      nlohmann::json stresses = nlohmann::json::object();
+      for (const std::string &item : base::split(parameters.probes, ';'))
+        {
+          const auto [name, location] =
+            base::split_entry(item,
+                              scene_file + ": Probe points",
+                              "'name: x, y[, z]'");
+          const Point<dim> x =
+            base::parse_point<dim>(location, scene_file + ": Probe points");
+          // The first body that holds the point.
+          unsigned int b = bodies.size();
+          for (unsigned int k = 0; k < bodies.size() && b == bodies.size(); ++k)
+            if (bodies[k]->contains(x))
+              b = k;
+          AssertThrow(b < bodies.size(),
+                      base::ExcInput(scene_file + ": Probe points: '" + item +
+                                     "' lies in no body; give a point of "
+                                     "Body 1 or Body 2."));
+          const Tensor<1, dim> d =
+            bodies[b]->point_operator(x).displacement(u[b]);
+          std::vector<double> value(dim);
+          for (unsigned int c = 0; c < dim; ++c)
+            value[c] = d[c];
+          points[name] = value;
+          pcout << "  probe " << name << ": displacement "
+                << std::setprecision(5) << d << std::setprecision(6)
+                << std::endl;
+
+          // Stress recovered at the probe: upper triangle, row by row.
+          const SymmetricTensor<2, dim> sigma = bodies[b]->stress(u[b], x);
+          for (unsigned int i = 0; i < dim; ++i)
+            for (unsigned int j = 0; j < dim; ++j)
+              AssertThrow(std::isfinite(sigma[i][j]),
+                          ExcMessage("probe " + name +
+                                     ": the stress is not finite (overflow: "
+                                     "check the loads and Young's modulus "
+                                     "of the scene)."));
+          std::vector<double> components;
+          for (unsigned int i = 0; i < dim; ++i)
+            for (unsigned int j = i; j < dim; ++j)
+              components.push_back(sigma[i][j]);
+          const auto    &material = bodies[b]->material();
+          nlohmann::json entry    = {
+               {"body", bodies[b]->name()},
+               {"stress", components},
+               {"von_mises", elasticity::von_mises<dim>(sigma, material)}};
+          if (dim == 2)
+            entry["stress_zz"] =
+              elasticity::out_of_plane_stress<dim>(sigma, material);
+          stresses[name] = entry;
+        }
+      summary.points         = points;
+      summary.point_stresses = stresses;
+    }
+
+
+
+    template void
+    record_contact_outcome<2>(const LoadController<2>::Outcome &,
+                              const contact::Algorithm,
+                              StepRecord &);
+    template void
+    check_finite_displacements<2>(
+      const std::vector<std::unique_ptr<discretization::Body<2>>> &,
+      const std::vector<Vector<double>> &,
+      const unsigned int);
+    template void
+    record_forces<2>(
+      const std::vector<std::unique_ptr<discretization::Body<2>>> &,
+      const contact::ContactStage<2> *,
+      const std::vector<Vector<double>> &,
+      const std::vector<double> &,
+      StepRecord &);
+    template void
+    write_step_output<2>(
+      const std::string &,
+      const bool,
+      const unsigned int,
+      const std::vector<std::unique_ptr<discretization::Body<2>>> &,
+      const std::vector<Vector<double>> &,
+      const std::vector<contact::PairState<2>> *,
+      std::vector<std::vector<std::pair<double, std::string>>> &);
+    template void
+    record_contact_outcome<3>(const LoadController<3>::Outcome &,
+                              const contact::Algorithm,
+                              StepRecord &);
+    template void
+    check_finite_displacements<3>(
+      const std::vector<std::unique_ptr<discretization::Body<3>>> &,
+      const std::vector<Vector<double>> &,
+      const unsigned int);
+    template void
+    record_forces<3>(
+      const std::vector<std::unique_ptr<discretization::Body<3>>> &,
+      const contact::ContactStage<3> *,
+      const std::vector<Vector<double>> &,
+      const std::vector<double> &,
+      StepRecord &);
+    template void
+    write_step_output<3>(
+      const std::string &,
+      const bool,
+      const unsigned int,
+      const std::vector<std::unique_ptr<discretization::Body<3>>> &,
+      const std::vector<Vector<double>> &,
+      const std::vector<contact::PairState<3>> *,
+      std::vector<std::vector<std::pair<double, std::string>>> &);
+    template void
+    evaluate_final_results<2>(
+      const AllParameters &,
+      const std::string &,
+      const std::vector<std::unique_ptr<discretization::Body<2>>> &,
+      const std::optional<discretization::ExactSolution<2>> &,
+      const std::vector<contact::PairState<2>> *,
+      const std::vector<Vector<double>> &,
+      ConditionalOStream &,
+      RunSummary &);
+    template void
+    evaluate_final_results<3>(
+      const AllParameters &,
+      const std::string &,
+      const std::vector<std::unique_ptr<discretization::Body<3>>> &,
+      const std::optional<discretization::ExactSolution<3>> &,
+      const std::vector<contact::PairState<3>> *,
+      const std::vector<Vector<double>> &,
+      ConditionalOStream &,
+      RunSummary &);
+  } // namespace scene
+} // namespace igabde
