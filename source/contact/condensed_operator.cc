@@ -2,6 +2,8 @@
 
 #include <deal.II/base/exceptions.h>
 
+#include <deal.II/lac/lapack_templates.h>
+
 #include <Eigen/Sparse>
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseLU>
@@ -10,55 +12,6 @@
 #include <cmath>
 #include <limits>
 #include <string>
-
-// LAPACK (OpenBLAS through Debian's alternatives, linked by deal.II): the
-// dense Newton matrices are factorised here rather than by Eigen, whose
-// kernels are several times slower at the sizes of interest (2 000 pairs).
-extern "C" {
-void
-dgetrf_(const int *, const int *, double *, const int *, int *, int *);
-void
-dgetrs_(const char *,
-        const int *,
-        const int *,
-        const double *,
-        const int *,
-        const int *,
-        double *,
-        const int *,
-        int *);
-void
-dgecon_(const char *,
-        const int *,
-        const double *,
-        const int *,
-        const double *,
-        double *,
-        double *,
-        int *,
-        int *);
-void
-dpotrf_(const char *, const int *, double *, const int *, int *);
-void
-dpotrs_(const char *,
-        const int *,
-        const int *,
-        const double *,
-        const int *,
-        double *,
-        const int *,
-        int *);
-void
-dpocon_(const char *,
-        const int *,
-        const double *,
-        const int *,
-        const double *,
-        double *,
-        double *,
-        int *,
-        int *);
-}
 
 namespace igabde
 {
@@ -71,6 +24,69 @@ namespace igabde
       using SparseMatrix   = Eigen::SparseMatrix<double>;
       using RowMajorSparse = Eigen::SparseMatrix<double, Eigen::RowMajor>;
       using Branch         = PairPiece;
+
+      using dealii::types::blas_int;
+
+      // The reciprocal condition number in the 1-norm of the matrix whose
+      // LU factors (without the row permutation, which leaves the 1-norm
+      // alone) @p LU holds, with |A|_1 = @p anorm: LAPACK's dgecon
+      // (deal.II 9.4 wraps no gecon), that is Higham's estimate of
+      // |A^-1|_1 (dlacn2: Hager's method with at most five sweeps and the
+      // alternating-sign test vector), by triangular solves.
+      double
+      lu_rcond(const Mat &LU, const double anorm)
+      {
+        const Eigen::Index n = LU.rows();
+        if (n == 0 || anorm == 0.)
+          return 0.;
+        const auto solve = [&](Vec &x) {
+          LU.triangularView<Eigen::UnitLower>().solveInPlace(x);
+          LU.triangularView<Eigen::Upper>().solveInPlace(x);
+        };
+        const auto solve_transposed = [&](Vec &x) {
+          LU.transpose().triangularView<Eigen::Lower>().solveInPlace(x);
+          LU.transpose().triangularView<Eigen::UnitUpper>().solveInPlace(x);
+        };
+        const auto sign = [](const double v) {
+          return v >= 0. ? 1. : -1.;
+        };
+        Vec x = Vec::Constant(n, 1. / n);
+        solve(x);
+        double est = x.lpNorm<1>();
+        if (n > 1)
+          {
+            Vec isgn = x.unaryExpr(sign);
+            x        = isgn;
+            solve_transposed(x);
+            Eigen::Index j;
+            x.cwiseAbs().maxCoeff(&j);
+            for (unsigned int iter = 2;; ++iter)
+              {
+                x.setZero();
+                x[j] = 1.;
+                solve(x);
+                const double old = est;
+                est              = x.lpNorm<1>();
+                const Vec s      = x.unaryExpr(sign);
+                if (s == isgn || est <= old)
+                  break;
+                isgn = s;
+                x    = s;
+                solve_transposed(x);
+                const Eigen::Index last = j;
+                x.cwiseAbs().maxCoeff(&j);
+                if (x[last] == std::abs(x[j]) || iter >= 5)
+                  break;
+              }
+            for (Eigen::Index i = 0; i < n; ++i)
+              x[i] = (i % 2 == 0 ? 1. : -1.) * (1. + double(i) / (n - 1));
+            solve(x);
+            est = std::max(est, 2. * x.lpNorm<1>() / (3. * n));
+          }
+        return est > 0. && std::isfinite(est) ? (1. / est) / anorm : 0.;
+      }
+
+
 
       // What the Newton matrix reads of the problem: W (shifted in the
       // proximal phase) and G.
@@ -367,9 +383,9 @@ namespace igabde
         bool
         dense_cholesky(const Vec &rhs, Vec &dN) const
         {
-          const int nN = others.size();
-          const Vec s  = row_scaling();
-          Mat       S(nN, nN);
+          const blas_int nN = others.size();
+          const Vec      s  = row_scaling();
+          Mat            S(nN, nN);
           for (int b = 0; b < nN; ++b)
             {
               const double *col =
@@ -387,27 +403,27 @@ namespace igabde
                 sum += std::abs(S(r, b));
               anorm = std::max(anorm, sum);
             }
-          int info = 0;
-          dpotrf_("L", &nN, S.data(), &nN, &info);
+          blas_int info = 0;
+          dealii::potrf("L", &nN, S.data(), &nN, &info);
           if (info != 0)
             return false;
-          double              rcond = 0.;
-          std::vector<double> work(3 * nN);
-          std::vector<int>    iwork(nN);
-          dpocon_("L",
-                  &nN,
-                  S.data(),
-                  &nN,
-                  &anorm,
-                  &rcond,
-                  work.data(),
-                  iwork.data(),
-                  &info);
+          double                rcond = 0.;
+          std::vector<double>   work(3 * nN);
+          std::vector<blas_int> iwork(nN);
+          dealii::pocon("L",
+                        &nN,
+                        S.data(),
+                        &nN,
+                        &anorm,
+                        &rcond,
+                        work.data(),
+                        iwork.data(),
+                        &info);
           if (info != 0 || !(rcond > min_rcond))
             return false;
-          dN             = rhs.cwiseQuotient(s);
-          const int nrhs = 1;
-          dpotrs_("L", &nN, &nrhs, S.data(), &nN, dN.data(), &nN, &info);
+          dN                  = rhs.cwiseQuotient(s);
+          const blas_int nrhs = 1;
+          dealii::potrs("L", &nN, &nrhs, S.data(), &nN, dN.data(), &nN, &info);
           dN = dN.cwiseProduct(s);
           return info == 0 && dN.allFinite();
         }
@@ -415,41 +431,30 @@ namespace igabde
         bool
         dense_lu(const Vec &rhs, Vec &dN) const
         {
-          const int nN    = others.size();
-          Mat       K     = dense_matrix();
-          double    anorm = 0.;
+          const blas_int nN    = others.size();
+          Mat            K     = dense_matrix();
+          double         anorm = 0.;
           for (int b = 0; b < nN; ++b)
             anorm = std::max(anorm, K.col(b).cwiseAbs().sum());
-          std::vector<int> pivots(nN);
-          int              info = 0;
-          dgetrf_(&nN, &nN, K.data(), &nN, pivots.data(), &info);
+          std::vector<blas_int> pivots(nN);
+          blas_int              info = 0;
+          dealii::getrf(&nN, &nN, K.data(), &nN, pivots.data(), &info);
           if (info != 0)
             return false;
-          double              rcond = 0.;
-          std::vector<double> work(4 * nN);
-          std::vector<int>    iwork(nN);
-          dgecon_("1",
-                  &nN,
-                  K.data(),
-                  &nN,
-                  &anorm,
-                  &rcond,
-                  work.data(),
-                  iwork.data(),
-                  &info);
-          if (info != 0 || !(rcond > min_rcond))
+          const double rcond = lu_rcond(K, anorm);
+          if (!(rcond > min_rcond))
             return false;
-          dN             = rhs;
-          const int nrhs = 1;
-          dgetrs_("N",
-                  &nN,
-                  &nrhs,
-                  K.data(),
-                  &nN,
-                  pivots.data(),
-                  dN.data(),
-                  &nN,
-                  &info);
+          dN                  = rhs;
+          const blas_int nrhs = 1;
+          dealii::getrs("N",
+                        &nN,
+                        &nrhs,
+                        K.data(),
+                        &nN,
+                        pivots.data(),
+                        dN.data(),
+                        &nN,
+                        &info);
           return info == 0 && dN.allFinite();
         }
 
