@@ -344,11 +344,11 @@ namespace igabde
       const ContactIterate xr = outcome.converged ? driver.converged_x :
                                 driver.have_best  ? driver.best_x :
                                                     x;
-      result.p                = xr.p;
-      result.alpha            = na > 0 ? xr.alpha : Vec();
-      result.w                = xr.w;
-      const BdeLaw final_law =
+      const BdeLaw         final_law =
         bde_law(op, data, settings.r_factor, settings.radius);
+      // The answer, its measures and the status of every pair with the
+      // phase-1 radius.
+      driver.finish(data, final_law, xr);
       double     disp;
       const bool strict = driver.stopping_test(data,
                                                final_law,
@@ -379,22 +379,6 @@ namespace igabde
           " iterations (Levenberg-Marquardt steps): redundant pairs, or a "
           "body held only through contact";
 
-      // Final per-contact status at (p, u), with the phase-1 radius.
-      {
-        Vec            u;
-        ContactIterate F;
-        NewtonBlocks   pieces;
-        driver.evaluate(data, final_law, xr, u, F, &pieces);
-        result.u = u;
-        result.status.clear();
-        for (const PairPiece &piece : pieces)
-          result.status.push_back(piece.status);
-        count_status(result);
-        result.max_penetration = 0.;
-        for (unsigned int c = 0; c < data.n_contacts; ++c)
-          result.max_penetration =
-            std::max(result.max_penetration, -u[c * data.n_components]);
-      }
       if (settings.log)
         driver.log() << result.summary() << '\n';
       return result;

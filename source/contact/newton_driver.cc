@@ -412,6 +412,35 @@ namespace igabde
 
 
 
+    void
+    NewtonDriver::finish(const ContactData    &data,
+                         const PairLawModel   &law,
+                         const ContactIterate &x) const
+    {
+      result.p     = x.p;
+      result.alpha = data.n_alpha() > 0 ? x.alpha : Vec();
+      result.w     = x.w;
+      ContactIterate F;
+      NewtonBlocks   pieces;
+      evaluate(data, law, x, result.u, F, &pieces);
+      result.status.clear();
+      for (const PairPiece &piece : pieces)
+        result.status.push_back(piece.status);
+      count_status(result);
+      result.residual = relative_natural_map_error(data, x.p, result.u);
+      result.balanced_residual =
+        balanced_natural_map_error(data, op.weights(data, 1.), x.p, result.u);
+      double absolute;
+      result.equilibrium_residual =
+        relative_equilibrium_error(data, x.p, absolute);
+      result.max_penetration = 0.;
+      for (unsigned int c = 0; c < data.n_contacts; ++c)
+        result.max_penetration =
+          std::max(result.max_penetration, -result.u[c * data.n_components]);
+    }
+
+
+
     bool
     NewtonDriver::out_of_time() const
     {

@@ -71,41 +71,6 @@ namespace igabde
 
 
 
-      // Fills the result's answer and its error measures (the exact
-      // conditions' measures, to report) at x.
-      void
-      finish(const NewtonDriver   &driver,
-             const ContactData    &data,
-             const ContactIterate &x,
-             const PairLawModel   &law,
-             ContactSolverResult  &result)
-      {
-        result.p     = x.p;
-        result.w     = x.w;
-        result.alpha = x.alpha;
-        Vec            u;
-        ContactIterate F;
-        NewtonBlocks   pieces;
-        driver.evaluate(data, law, x, u, F, &pieces);
-        result.u = u;
-        result.status.clear();
-        for (const PairPiece &piece : pieces)
-          result.status.push_back(piece.status);
-        count_status(result);
-        result.residual = relative_natural_map_error(data, result.p, result.u);
-        result.balanced_residual =
-          balanced_natural_map_error(data,
-                                     driver.op.weights(data, 1.),
-                                     result.p,
-                                     result.u);
-        double absolute;
-        result.equilibrium_residual =
-          relative_equilibrium_error(data, result.p, absolute);
-        result.max_penetration = 0.;
-        for (unsigned int c = 0; c < data.n_contacts; ++c)
-          result.max_penetration =
-            std::max(result.max_penetration, -result.u[c * data.n_components]);
-      }
     } // namespace
 
 
@@ -171,7 +136,7 @@ namespace igabde
         s << "no convergence of the penalty Newton: " << outcome.reason
           << " (a smaller penalty factor converges more easily)";
       result.diagnosis = s.str();
-      finish(driver, data, x, law, result);
+      driver.finish(data, law, x);
       if (settings.bnewton.log)
         result.print_history(driver.log());
       return result;
@@ -280,7 +245,7 @@ namespace igabde
           previous_error = err;
         }
       const PenaltyLaw final_law(k_n, k_t, lambda);
-      finish(driver, data, x, final_law, result);
+      driver.finish(data, final_law, x);
       if (settings.bnewton.log)
         result.print_history(driver.log());
       return result;

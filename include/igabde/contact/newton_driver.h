@@ -294,6 +294,17 @@ namespace igabde
                ContactIterate       &F,
                NewtonBlocks         *pieces) const;
 
+      /**
+       * @brief The answer @p x into the result: p, alpha, w, u, the status
+       * of every pair under @p law, and the exact conditions' measures
+       * (FCLIB natural map, balanced, equilibrium) and the largest
+       * penetration.
+       */
+      void
+      finish(const ContactData    &data,
+             const PairLawModel   &law,
+             const ContactIterate &x) const;
+
       /** @brief Whether the iteration budget is used up. */
       bool
       out_of_iterations() const;
