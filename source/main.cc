@@ -69,6 +69,11 @@ main(int argc, char **argv)
   // reported in one line instead.
   deal_II_exceptions::disable_abort_on_exception();
   deal_II_exceptions::suppress_stacktrace_in_exceptions();
+  // Under mpirun every rank reads the same command line and refuses it
+  // alike: rank 0 says why, once, and every rank ends with status 2.
+  std::ostream  silent(nullptr);
+  std::ostream &err =
+    Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0 ? std::cerr : silent;
 
   std::string                                      scene_file;
   std::vector<std::pair<std::string, std::string>> overrides;
@@ -88,9 +93,9 @@ main(int argc, char **argv)
             format = argv[++i];
           if (format != "prm" && format != "json")
             {
-              std::cerr << "igabde: error: --print-parameters takes 'prm' or "
-                           "'json', got '"
-                        << format << "'." << std::endl;
+              err << "igabde: error: --print-parameters takes 'prm' or "
+                     "'json', got '"
+                  << format << "'." << std::endl;
               return 2;
             }
           ParameterHandler prm;
@@ -108,18 +113,18 @@ main(int argc, char **argv)
         {
           if (i + 1 >= argc)
             {
-              std::cerr << "igabde: error: --set needs "
-                           "\"Section/Name=value\"."
-                        << std::endl;
+              err << "igabde: error: --set needs "
+                     "\"Section/Name=value\"."
+                  << std::endl;
               return 2;
             }
           const std::string assignment = argv[++i];
           const auto        eq         = assignment.find('=');
           if (eq == std::string::npos)
             {
-              std::cerr << "igabde: error: --set '" << assignment
-                        << "' is not of the form \"Section/Name=value\"."
-                        << std::endl;
+              err << "igabde: error: --set '" << assignment
+                  << "' is not of the form \"Section/Name=value\"."
+                  << std::endl;
               return 2;
             }
           overrides.emplace_back(igabde::base::trim(assignment.substr(0, eq)),
@@ -127,23 +132,22 @@ main(int argc, char **argv)
         }
       else if (!arg.empty() && arg[0] == '-')
         {
-          std::cerr << "igabde: error: unknown option '" << arg
-                    << "'; see igabde --help." << std::endl;
+          err << "igabde: error: unknown option '" << arg
+              << "'; see igabde --help." << std::endl;
           return 2;
         }
       else if (scene_file.empty())
         scene_file = arg;
       else
         {
-          std::cerr << "igabde: error: more than one scene file ('"
-                    << scene_file << "', '" << arg
-                    << "'); run one scene at a time." << std::endl;
+          err << "igabde: error: more than one scene file ('" << scene_file
+              << "', '" << arg << "'); run one scene at a time." << std::endl;
           return 2;
         }
     }
   if (scene_file.empty())
     {
-      print_usage(std::cerr);
+      print_usage(err);
       return 2;
     }
   return igabde::scene::run_scene(scene_file, overrides, force);

@@ -5,6 +5,8 @@
 #include <igabde/scene/simulator.h>
 #include <igabde/scene/size_estimate.h>
 
+#include <deal.II/base/mpi.h>
+
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -116,6 +118,17 @@ namespace igabde
               const std::vector<std::pair<std::string, std::string>> &overrides,
               const bool                                              force)
     {
+      // Under mpirun every rank runs this: rank 0 writes the files and
+      // reports input errors (every rank finds the same and ends with
+      // status 2); an error during the run is reported by the rank that
+      // meets it, and ends all ranks.
+      const unsigned int rank =
+        Utilities::MPI::this_mpi_process(MPI_COMM_WORLD);
+      const unsigned int n_ranks =
+        Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD);
+      const bool       root = (rank == 0);
+      std::ostream     silent(nullptr);
+      std::ostream    &err = root ? std::cerr : silent;
       ParameterHandler prm;
       AllParameters    parameters;
       try
@@ -131,34 +144,55 @@ namespace igabde
       catch (const ExceptionBase &e)
         {
           const std::string message = base::exception_message(e);
-          std::cerr << "igabde: error: " << message << std::endl;
-          mark_failed_read(prm, scene_file, overrides, message);
+          err << "igabde: error: " << message << std::endl;
+          if (root)
+            mark_failed_read(prm, scene_file, overrides, message);
           return 2;
         }
 
       const std::string dir = parameters.output.directory;
       std::error_code   ec;
-      std::filesystem::create_directories(dir, ec);
-      if (ec)
+      if (root)
+        std::filesystem::create_directories(dir, ec);
+      if (Utilities::MPI::max(ec ? 1u : 0u, MPI_COMM_WORLD) > 0)
         {
-          std::cerr << "igabde: error: " << scene_file
-                    << ": Output/Directory = '" << dir
-                    << "' cannot be created (" << ec.message()
-                    << "); choose a writable folder." << std::endl;
+          err << "igabde: error: " << scene_file << ": Output/Directory = '"
+              << dir << "' cannot be created (" << ec.message()
+              << "); choose a writable folder." << std::endl;
           return 2;
         }
-      {
-        std::ofstream echo(dir + "/parameters.prm");
-        prm.print_parameters(echo, ParameterHandler::PRM);
-        std::ofstream echo_json(dir + "/parameters.json");
-        prm.print_parameters(echo_json, ParameterHandler::JSON);
-      }
+      if (root)
+        {
+          std::ofstream echo(dir + "/parameters.prm");
+          prm.print_parameters(echo, ParameterHandler::PRM);
+          std::ofstream echo_json(dir + "/parameters.json");
+          prm.print_parameters(echo_json, ParameterHandler::JSON);
+        }
 
-      std::ofstream   log_file(dir + "/log.txt");
+      std::ofstream log_file;
+      if (root)
+        log_file.open(dir + "/log.txt");
       base::TeeBuffer tee(std::cout.rdbuf(), log_file.rdbuf());
       std::ostream    log(&tee);
       log << std::setprecision(6);
 
+      // The failing rank's message; with several ranks, the others are
+      // ended at once (they may wait for it in a collective call).
+      const auto fail = [&](auto &simulator, const std::string &message) {
+        const std::string line =
+          "igabde: error: " +
+          (n_ranks > 1 ? "[rank " + std::to_string(rank) + " of " +
+                           std::to_string(n_ranks) + "] " :
+                         std::string()) +
+          message;
+        if (root)
+          log_file << line << std::endl;
+        std::cerr << line << std::endl;
+        simulator.write_failed_summary(message);
+        if (n_ranks > 1)
+          MPI_Abort(MPI_COMM_WORLD, 1);
+        return 1;
+      };
       auto run = [&](auto &simulator) -> int {
         try
           {
@@ -167,18 +201,12 @@ namespace igabde
           }
         catch (const ExceptionBase &e)
           {
-            const std::string message = base::exception_message(e);
-            log_file << "igabde: error: " << message << std::endl;
-            std::cerr << "igabde: error: " << message << std::endl;
-            simulator.write_failed_summary(message);
+            return fail(simulator, base::exception_message(e));
           }
         catch (const std::exception &e)
           {
-            log_file << "igabde: error: " << e.what() << std::endl;
-            std::cerr << "igabde: error: " << e.what() << std::endl;
-            simulator.write_failed_summary(e.what());
+            return fail(simulator, e.what());
           }
-        return 1;
       };
 
       // SIGINT/SIGTERM: the finished steps stay, summary.json says
