@@ -819,35 +819,49 @@ namespace igabde
     std::vector<std::string>
     available_pairing_strategies()
     {
-      return {"node-to-surface",
-              "node-to-node",
-              "weighted-gap",
-              "weighted-gap-standard"};
+      return {to_string(Pairing::node_to_surface),
+              to_string(Pairing::node_to_node),
+              to_string(Pairing::weighted_gap),
+              to_string(Pairing::weighted_gap_standard)};
+    }
+
+
+
+    std::string
+    to_string(const Pairing pairing)
+    {
+      switch (pairing)
+        {
+          case Pairing::node_to_surface:
+            return "node-to-surface";
+          case Pairing::node_to_node:
+            return "node-to-node";
+          case Pairing::weighted_gap:
+            return "weighted-gap";
+          case Pairing::weighted_gap_standard:
+            return "weighted-gap-standard";
+        }
+      return "";
     }
 
 
 
     template <int dim>
     std::unique_ptr<PairingStrategy<dim>>
-    create_pairing_strategy(const std::string &name)
+    create_pairing_strategy(const Pairing pairing)
     {
       // One line per strategy.
-      if (name == "node-to-surface")
-        return std::make_unique<NodeToSurfacePairing<dim>>();
-      if (name == "node-to-node")
-        return std::make_unique<NodeToNodePairing<dim>>();
-      if (name == "weighted-gap")
-        return std::make_unique<WeightedGapPairing<dim>>(true);
-      if (name == "weighted-gap-standard")
-        return std::make_unique<WeightedGapPairing<dim>>(false);
-
-      std::string names;
-      for (const auto &n : available_pairing_strategies())
-        names += (names.empty() ? "" : ", ") + n;
-      AssertThrow(false,
-                  base::ExcInput("Contact/Pairing = " + name +
-                                 " is not available; use one of: " + names +
-                                 "."));
+      switch (pairing)
+        {
+          case Pairing::node_to_surface:
+            return std::make_unique<NodeToSurfacePairing<dim>>();
+          case Pairing::node_to_node:
+            return std::make_unique<NodeToNodePairing<dim>>();
+          case Pairing::weighted_gap:
+            return std::make_unique<WeightedGapPairing<dim>>(true);
+          case Pairing::weighted_gap_standard:
+            return std::make_unique<WeightedGapPairing<dim>>(false);
+        }
       return nullptr;
     }
 
@@ -866,8 +880,8 @@ namespace igabde
     template class NodeToSurfacePairing<2>;
     template class NodeToSurfacePairing<3>;
     template std::unique_ptr<PairingStrategy<2>>
-    create_pairing_strategy<2>(const std::string &);
+    create_pairing_strategy<2>(const Pairing);
     template std::unique_ptr<PairingStrategy<3>>
-    create_pairing_strategy<3>(const std::string &);
+    create_pairing_strategy<3>(const Pairing);
   } // namespace contact
 } // namespace igabde

@@ -720,12 +720,17 @@ namespace igabde
         slave_face                = prm.get_integer("Slave face");
         master_face               = prm.get_integer("Master face");
         pair_placement            = prm.get("Pair placement");
-        pairing                   = prm.get("Pairing");
-        tolerance                 = prm.get_double("Tolerance");
-        max_iterations            = prm.get_integer("Max iterations");
-        r_scale                   = prm.get_double("r scale");
-        verbose                   = prm.get_bool("Verbose");
-        max_step_cuts             = prm.get_integer("Max step cuts");
+        pairing                   = parse_choice<contact::Pairing>(
+          prm.get("Pairing"),
+          {contact::Pairing::node_to_surface,
+                             contact::Pairing::node_to_node,
+                             contact::Pairing::weighted_gap,
+                             contact::Pairing::weighted_gap_standard});
+        tolerance      = prm.get_double("Tolerance");
+        max_iterations = prm.get_integer("Max iterations");
+        r_scale        = prm.get_double("r scale");
+        verbose        = prm.get_bool("Verbose");
+        max_step_cuts  = prm.get_integer("Max step cuts");
       }
       prm.leave_subsection();
     }
@@ -1093,12 +1098,14 @@ namespace igabde
                                      (body == &body1 ? "Body 1" : "Body 2") +
                                      "/Tractions: 'exact' needs Exact "
                                      "solution/Type other than none."));
-      AssertThrow(contact.pairing.rfind("weighted-gap", 0) != 0 ||
+      AssertThrow((contact.pairing != contact::Pairing::weighted_gap &&
+                   contact.pairing !=
+                     contact::Pairing::weighted_gap_standard) ||
                     contact.pair_placement == "greville",
                   base::ExcInput(
                     f + "Contact/Pair placement = " + contact.pair_placement +
                     " places point pairs, but Contact/Pairing = " +
-                    contact.pairing +
+                    contact::to_string(contact.pairing) +
                     " has one pair per basis function of the slave face; "
                     "remove Contact/Pair placement or use Pairing = "
                     "node-to-surface."));

@@ -85,11 +85,11 @@ namespace
 
   template <int dim>
   PatchResult
-  patch_test(const std::string &type,
-             const std::string &pairing,
-             const unsigned int n_slave,
-             const unsigned int n_master,
-             const double       mu)
+  patch_test(const std::string     &type,
+             const contact::Pairing pairing,
+             const unsigned int     n_slave,
+             const unsigned int     n_master,
+             const double           mu)
   {
     auto upper = v3_block<dim>("upper", 0., n_slave);
     discretization::NeumannCondition<dim> pressure;
@@ -164,17 +164,23 @@ namespace
                  << n_master << " mu=" << mu;
             SCOPED_TRACE(name.str());
             const auto closest =
-              patch_test<dim>(type, "node-to-surface", n_slave, n_master, mu);
+              patch_test<dim>(type,
+                              contact::Pairing::node_to_surface,
+                              n_slave,
+                              n_master,
+                              mu);
             // Both weightings of the gap (the dual basis psi_j, the
             // default, and N_j itself) sum to one over the face.
-            for (const std::string pairing :
-                 {"weighted-gap", "weighted-gap-standard"})
+            for (const contact::Pairing pairing :
+                 {contact::Pairing::weighted_gap,
+                  contact::Pairing::weighted_gap_standard})
               {
-                SCOPED_TRACE(pairing);
+                SCOPED_TRACE(contact::to_string(pairing));
                 const auto weighted =
                   patch_test<dim>(type, pairing, n_slave, n_master, mu);
-                std::cout << "[ patch    ] " << name.str() << ": " << pairing
-                          << " " << weighted.n_pairs << " pairs, max |p/A - 1| "
+                std::cout << "[ patch    ] " << name.str() << ": "
+                          << contact::to_string(pairing) << " "
+                          << weighted.n_pairs << " pairs, max |p/A - 1| "
                           << std::scientific << std::setprecision(2)
                           << weighted.normal_error << ", max |p_t|/A "
                           << weighted.tangential_error << std::defaultfloat

@@ -39,7 +39,7 @@ namespace igabde
       /// Patch faces of Body 1 (slave) and Body 2 (master).
       unsigned int slave_face = 2, master_face = 3;
       /// Pairing strategy (create_pairing_strategy()).
-      std::string pairing = "node-to-surface";
+      Pairing pairing = Pairing::node_to_surface;
       /// The condensed path condenses through the bodies' Schur complements
       /// (Contact/Condensation = schur with the direct linear solver); else
       /// one solve per pair direction.

@@ -211,16 +211,29 @@ namespace igabde
       const bool dual;
     };
 
-    /**
-     * @brief The strategy @p name names ("node-to-node",
-     * "node-to-surface", "weighted-gap", "weighted-gap-standard"); an input
-     * error listing them otherwise.
-     */
+    /** @brief Contact/Pairing. */
+    enum class Pairing
+    {
+      /// Point pairs: the coincident or closest point of the master face.
+      node_to_surface,
+      /// Point pairs on matching meshes only.
+      node_to_node,
+      /// One pair per basis function of the slave face, dual weights.
+      weighted_gap,
+      /// One pair per basis function, the basis functions as weights.
+      weighted_gap_standard
+    };
+
+    /** @brief The name of @p pairing as the scene writes it. */
+    std::string
+    to_string(const Pairing pairing);
+
+    /** @brief The strategy of @p pairing. */
     template <int dim>
     std::unique_ptr<PairingStrategy<dim>>
-    create_pairing_strategy(const std::string &name);
+    create_pairing_strategy(const Pairing pairing);
 
-    /// The names create_pairing_strategy() knows.
+    /// The names of the strategies create_pairing_strategy() knows.
     std::vector<std::string>
     available_pairing_strategies();
 

@@ -4,6 +4,7 @@
 #include <igabde/discretization/settings.h>
 
 #include <igabde/contact/contact_solver.h>
+#include <igabde/contact/pairing.h>
 
 #include <deal.II/base/parameter_handler.h>
 
@@ -227,7 +228,7 @@ namespace igabde
       std::string pair_placement = "greville";
       /// Pairing strategy: "node-to-surface", "node-to-node",
       /// "weighted-gap" or "weighted-gap-standard".
-      std::string pairing = "node-to-surface";
+      contact::Pairing pairing = contact::Pairing::node_to_surface;
       /// Natural-map residual tolerance relative to ||q||.
       double tolerance = 1e-10;
       /// B-Newton iteration limit per load step.
