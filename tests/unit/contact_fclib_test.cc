@@ -1,11 +1,14 @@
-// FCLIB problems: reading (local/global HDF5, Siconos .dat), bad files, and
-// solving the elastic problems to a relative natural-map error <= 1e-8.
-// Skipped (never passed) when the FCLIB data folder is missing.
+// FCLIB problems: reading (local/global HDF5, Siconos .dat), bad files,
+// writing local problems back (libfclib), and solving the elastic problems
+// to a relative natural-map error <= 1e-8. Skipped (never passed) when the
+// FCLIB data folder is missing, except the tests on hand-made problems.
 
 #include <igabde/contact/bnewton.h>
 #include <igabde/contact/condition_check.h>
 #include <igabde/contact/contact_problem.h>
 #include <igabde/contact/fclib_reader.h>
+
+#include <igabde/postprocess/fclib_writer.h>
 
 #include <gtest/gtest.h>
 
@@ -17,6 +20,7 @@
 #include <vector>
 
 using namespace igabde::contact;
+using igabde::postprocess::write_fclib_local;
 
 namespace
 {
@@ -218,4 +222,165 @@ TEST(ContactFclib, SingularRigidHeapsReachTheFclibTolerance)
         check_contact_conditions(problem, result.p, result.u, 1e-6);
       EXPECT_TRUE(report.passed()) << report.describe();
     }
+}
+
+
+
+namespace
+{
+  // Three 3D pairs: closed and sticking, closed and slipping, open; W
+  // with exact zeros (dropped when written) and normal-normal coupling.
+  ContactProblem
+  three_pair_problem()
+  {
+    ContactProblem problem;
+    problem.name         = "three_pairs";
+    problem.n_contacts   = 3;
+    problem.n_components = 3;
+    problem.W.setZero(9, 9);
+    for (int c = 0; c < 3; ++c)
+      {
+        Eigen::Matrix3d block;
+        block << 2. + c, 0.2, 0.1, 0.2, 1.5, 0., 0.1, 0., 1.5 + 0.25 * c;
+        problem.W.block<3, 3>(3 * c, 3 * c) = block;
+      }
+    problem.W(0, 3) = problem.W(3, 0) = 0.3;
+    problem.W(3, 6) = problem.W(6, 3) = -0.2;
+    problem.W(1, 4) = problem.W(4, 1) = 0.05;
+    problem.q.resize(9);
+    problem.q << -1., 0.03, -0.01, -0.5, 0.4, 0.2, 0.4, 0.1, 0.;
+    problem.mu = {0.3, 0.2, 0.5};
+    return problem;
+  }
+
+  // The temporary file @p name, removed when the test ends.
+  struct ScratchFile
+  {
+    explicit ScratchFile(const std::string &name)
+      : path((std::filesystem::temp_directory_path() / name).string())
+    {}
+    ~ScratchFile()
+    {
+      std::filesystem::remove(path);
+    }
+    const std::string path;
+  };
+
+  // Writes @p problem (with @p result if given), reads it back and checks
+  // that it is the same problem with the same answer.
+  void
+  check_round_trip(const ContactProblem      &problem,
+                   const ContactSolverResult *result,
+                   const std::string         &path)
+  {
+    write_fclib_local(problem, result, path);
+    EXPECT_EQ(classify_fclib_file(path), FclibFileKind::hdf5_local);
+    const ContactProblem back = read_fclib_local(path);
+    EXPECT_EQ(back.n_contacts, problem.n_contacts);
+    EXPECT_EQ(back.n_components, problem.n_components);
+    ASSERT_EQ(back.W.rows(), problem.W.rows());
+    EXPECT_LE((back.W - problem.W).norm(), 1e-15 * problem.W.norm());
+    EXPECT_LE((back.q - problem.q).norm(), 1e-15 * problem.q.norm());
+    EXPECT_EQ(back.mu, problem.mu);
+    EXPECT_EQ(back.G.size(), 0);
+
+    const BNewtonSolver       solver;
+    const ContactSolverResult original = solver.solve(problem);
+    const ContactSolverResult again    = solver.solve(back);
+    EXPECT_TRUE(again.converged) << again.summary();
+    EXPECT_EQ(again.converged, original.converged);
+    EXPECT_LE((again.p - original.p).norm(), 1e-10 * original.p.norm());
+
+    const FclibSolution stored = read_fclib_solution(path);
+    EXPECT_EQ(stored.available, result != nullptr && result->converged);
+    if (stored.available)
+      {
+        EXPECT_EQ(stored.r, result->p);
+        EXPECT_EQ(stored.u, result->u);
+      }
+  }
+} // namespace
+
+
+
+TEST(ContactFclib, WrittenLocalProblemsReadBackTheSame)
+{
+  const ScratchFile         file("igabde_three_pairs.hdf5");
+  const ContactProblem      problem = three_pair_problem();
+  const ContactSolverResult result  = BNewtonSolver().solve(problem);
+  ASSERT_TRUE(result.converged) << result.summary();
+  EXPECT_GT(result.p[0], 0.); // pair 0 closed
+  EXPECT_EQ(result.p[6], 0.); // pair 2 open
+  check_round_trip(problem, &result, file.path);
+  // Written again over the file: replaced, without the solution.
+  check_round_trip(problem, nullptr, file.path);
+
+  // An unconverged result is stored as the initial guess.
+  BNewtonSolver::Settings settings;
+  settings.max_iterations              = 1;
+  const ContactSolverResult first_step = BNewtonSolver(settings).solve(problem);
+  ASSERT_FALSE(first_step.converged);
+  write_fclib_local(problem, &first_step, file.path);
+  EXPECT_FALSE(read_fclib_solution(file.path).available);
+  int             n_guesses = 0;
+  fclib_solution *guesses   = fclib_read_guesses(file.path.c_str(), &n_guesses);
+  ASSERT_NE(guesses, nullptr);
+  ASSERT_EQ(n_guesses, 1);
+  EXPECT_EQ(Eigen::Map<const Eigen::VectorXd>(guesses[0].r, 9), first_step.p);
+  EXPECT_EQ(Eigen::Map<const Eigen::VectorXd>(guesses[0].u, 9), first_step.u);
+  fclib_delete_solutions(guesses, n_guesses);
+
+  // Corpus problems: a local one and a condensed global one.
+  if (std::filesystem::is_directory(fclib_dir()))
+    for (const std::string name : {"hdf5_local/local_problem_test.hdf5",
+                                   "hdf5_global/Box_Stacks-i0035-31-0.hdf5"})
+      {
+        SCOPED_TRACE(name);
+        check_round_trip(read_fclib_problem(fclib_file(name)),
+                         nullptr,
+                         file.path);
+      }
+}
+
+
+
+TEST(ContactFclib, WriterRefusesWhatFclibCannotHold)
+{
+  const ScratchFile file("igabde_refused.hdf5");
+  const auto        expect_refusal = [&](const ContactProblem &problem,
+                                  const std::string    &path,
+                                  const std::string    &reason) {
+    try
+      {
+        write_fclib_local(problem, nullptr, path);
+        ADD_FAILURE() << "no exception (" << reason << ")";
+      }
+    catch (const std::exception &e)
+      {
+        EXPECT_NE(std::string(e.what()).find(path), std::string::npos)
+          << e.what();
+        EXPECT_NE(std::string(e.what()).find(reason), std::string::npos)
+          << e.what();
+      }
+    EXPECT_FALSE(std::filesystem::exists(path));
+  };
+  // Floating bodies: u = W p + q + G alpha, G^T p = b.
+  ContactProblem floating = three_pair_problem();
+  floating.G              = Eigen::MatrixXd::Zero(9, 1);
+  floating.G(0, 0) = floating.G(3, 0) = floating.G(6, 0) = 1.;
+  floating.b = Eigen::VectorXd::Ones(1);
+  expect_refusal(floating, file.path, "floating");
+  // Frictionless: FCLIB's spacedim is 2 or 3.
+  ContactProblem frictionless;
+  frictionless.n_contacts   = 2;
+  frictionless.n_components = 1;
+  frictionless.W            = Eigen::Matrix2d::Identity();
+  frictionless.q            = Eigen::Vector2d(-1., 1.);
+  expect_refusal(frictionless, file.path, "frictionless");
+  // A folder that does not exist: an error, not libfclib's exit.
+  expect_refusal(three_pair_problem(),
+                 (std::filesystem::temp_directory_path() /
+                  "igabde-no-such-folder" / "problem.hdf5")
+                   .string(),
+                 "create");
 }
