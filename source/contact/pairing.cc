@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <array>
+#include <boost/math/tools/toms748_solve.hpp>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -39,11 +40,8 @@ namespace igabde
           Tensor<1, dim> a = e - (e * n) * n;
           a /= a.norm();
           T[1] = a;
-          Tensor<1, dim> b;
-          b[0] = n[1] * a[2] - n[2] * a[1];
-          b[1] = n[2] * a[0] - n[0] * a[2];
-          b[2] = n[0] * a[1] - n[1] * a[0];
-          T[2] = b;
+          if constexpr (dim == 3)
+            T[2] = cross_product_3d(n, a);
         }
       return T;
     }
@@ -532,38 +530,27 @@ namespace igabde
                     const double tol = 1e-12 * (mb.back() - mb.front());
                     for (unsigned int i = 1; i + 1 < mb.size(); ++i)
                       {
-                        // Illinois (regula falsi) on master_eta(t)[c] = mb[i].
-                        double a = lo[k], b = hi[k];
-                        double fa = at_lo[c] - mb[i], fb = at_hi[c] - mb[i];
+                        // The crossing t of master_eta(t)[c] = mb[i], by
+                        // TOMS 748 (Alefeld, Potra and Shi) on the bracket.
+                        const double fa = at_lo[c] - mb[i],
+                                     fb = at_hi[c] - mb[i];
                         if (!((fa > tol && fb < -tol) ||
                               (fa < -tol && fb > tol)))
                           continue;
-                        double t    = a;
-                        int    side = 0;
-                        for (unsigned int it = 0; it < 200; ++it)
-                          {
-                            t               = (fa * b - fb * a) / (fa - fb);
-                            const double ft = master_eta(t)[c] - mb[i];
-                            if (std::abs(ft) <=
-                                1e-14 * (mb.back() - mb.front()))
-                              break;
-                            if (ft * fb > 0.)
-                              {
-                                b  = t;
-                                fb = ft;
-                                if (side == -1)
-                                  fa *= 0.5;
-                                side = -1;
-                              }
-                            else
-                              {
-                                a  = t;
-                                fa = ft;
-                                if (side == 1)
-                                  fb *= 0.5;
-                                side = 1;
-                              }
-                          }
+                        std::uintmax_t max_iterations = 200;
+                        const auto bracket = boost::math::tools::toms748_solve(
+                          [&](const double t) {
+                            return master_eta(t)[c] - mb[i];
+                          },
+                          lo[k],
+                          hi[k],
+                          fa,
+                          fb,
+                          [&](const double x, const double y) {
+                            return std::abs(y - x) <= 1e-14 * (hi[k] - lo[k]);
+                          },
+                          max_iterations);
+                        const double t = 0.5 * (bracket.first + bracket.second);
                         cuts[k].push_back(t);
                       }
                   }

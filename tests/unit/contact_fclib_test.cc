@@ -10,6 +10,10 @@
 
 #include <igabde/postprocess/fclib_writer.h>
 
+extern "C" {
+#include <fclib.h>
+}
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
