@@ -1,9 +1,9 @@
+#include <igabde/linear_algebra/sparse_cholesky.h>
+
 #include <igabde/discretization/body.h>
 #include <igabde/discretization/body_description.h>
 #include <igabde/discretization/iga_body.h>
 #include <igabde/discretization/lagrange_body.h>
-
-#include <igabde/elasticity/sparse_cholesky.h>
 
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/multithread_info.h>
@@ -58,7 +58,7 @@ namespace igabde
     {
       /// Direct path (Linear solver = direct): MUMPS LDL^T, with the Schur
       /// complement onto the contact face when asked.
-      std::unique_ptr<elasticity::SparseCholesky> cholesky;
+      std::unique_ptr<linear_algebra::SparseCholesky> cholesky;
       /// K with the constrained rows and columns replaced by a scaled
       /// identity (umfpack and cg-amg).
       SparseMatrix<double> constrained_matrix;
@@ -643,11 +643,11 @@ namespace igabde
           for (types::global_dof_index i = 0; i < n_unknowns; ++i)
             eliminated[i] = solve_constraints.is_constrained(i);
           linear_solver->cholesky =
-            std::make_unique<elasticity::SparseCholesky>();
+            std::make_unique<linear_algebra::SparseCholesky>();
           // Nested dissection in 3D (half the flops of minimum degree on
           // B2), minimum degree in 2D (V5 with 3 refinements, 133 640
           // unknowns: 1.8-2.0 s against 2.4-2.9 s; doc/performance.md).
-          using Order = elasticity::SparseCholesky::PivotOrder;
+          using Order = linear_algebra::SparseCholesky::PivotOrder;
           linear_solver->cholesky->initialize(system_matrix,
                                               eliminated,
                                               interface_dofs,

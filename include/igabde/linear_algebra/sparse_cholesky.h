@@ -1,5 +1,5 @@
-#ifndef igabde_elasticity_sparse_cholesky_h
-#define igabde_elasticity_sparse_cholesky_h
+#ifndef igabde_linear_algebra_sparse_cholesky_h
+#define igabde_linear_algebra_sparse_cholesky_h
 
 #include <deal.II/base/types.h>
 
@@ -12,7 +12,7 @@
 
 namespace igabde
 {
-  namespace elasticity
+  namespace linear_algebra
   {
     using namespace dealii;
 
@@ -115,7 +115,7 @@ namespace igabde
       struct Data;
       std::unique_ptr<Data> data;
     };
-  } // namespace elasticity
+  } // namespace linear_algebra
 } // namespace igabde
 
 #endif

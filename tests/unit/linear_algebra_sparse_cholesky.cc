@@ -2,7 +2,7 @@
 // linear algebra on a small SPD matrix: a 1D Laplacian chain with a
 // coupling to its second neighbour, some unknowns eliminated.
 
-#include <igabde/elasticity/sparse_cholesky.h>
+#include <igabde/linear_algebra/sparse_cholesky.h>
 
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 #include <deal.II/lac/sparsity_pattern.h>
@@ -57,7 +57,7 @@ TEST(SparseCholesky, SchurComplementAndSolveMatchDenseAlgebra)
       free.push_back(i);
   const std::vector<types::global_dof_index> interface = {30, 3, 31, 12, 38};
 
-  igabde::elasticity::SparseCholesky cholesky;
+  igabde::linear_algebra::SparseCholesky cholesky;
   cholesky.initialize(chain.matrix, eliminated, interface);
   ASSERT_EQ(cholesky.n_interface(), interface.size());
 
@@ -79,10 +79,10 @@ TEST(SparseCholesky, SchurComplementAndSolveMatchDenseAlgebra)
     for (unsigned int b = 0; b < interface.size(); ++b)
       EXPECT_NEAR(cholesky.schur_complement()(a, b), S(a, b), 1e-12 * S.norm());
   // The same complement whatever the pivot order.
-  using Order = igabde::elasticity::SparseCholesky::PivotOrder;
+  using Order = igabde::linear_algebra::SparseCholesky::PivotOrder;
   for (const Order order : {Order::minimum_degree, Order::nested_dissection})
     {
-      igabde::elasticity::SparseCholesky ordered;
+      igabde::linear_algebra::SparseCholesky ordered;
       ordered.initialize(chain.matrix, eliminated, interface, order);
       for (unsigned int a = 0; a < interface.size(); ++a)
         for (unsigned int b = 0; b < interface.size(); ++b)
@@ -129,7 +129,7 @@ TEST(SparseCholesky, SchurComplementAndSolveMatchDenseAlgebra)
     }
 
   // Without interface: a plain factorisation gives the same solves.
-  igabde::elasticity::SparseCholesky plain;
+  igabde::linear_algebra::SparseCholesky plain;
   plain.initialize(chain.matrix, eliminated, {});
   std::vector<Vector<double>> rhs2 = original;
   plain.solve(rhs2);

@@ -1,4 +1,4 @@
-#include <igabde/elasticity/sparse_cholesky.h>
+#include <igabde/linear_algebra/sparse_cholesky.h>
 
 #include <deal.II/base/exceptions.h>
 
@@ -14,7 +14,7 @@
 
 namespace igabde
 {
-  namespace elasticity
+  namespace linear_algebra
   {
     namespace
     {
@@ -571,5 +571,5 @@ namespace igabde
     {
       return (data->mumps_alive ? data->id.rinfog[2] : 0.);
     }
-  } // namespace elasticity
+  } // namespace linear_algebra
 } // namespace igabde
