@@ -176,6 +176,30 @@ namespace igabde
 
 
 
+    template <int dim>
+    std::unique_ptr<contact::Obstacle<dim>>
+    create_obstacle(const AllParameters &parameters,
+                    const std::string   &scene_file)
+    {
+      if (parameters.body2.type != "rigid plane")
+        return nullptr;
+      // The scene reader has refused a zero or malformed normal already.
+      const std::string    where = scene_file + ": Body 2/";
+      const Tensor<1, dim> normal =
+        base::parse_tensor<dim>(parameters.body2.plane_normal,
+                                where + "Plane normal");
+      return std::make_unique<contact::RigidPlane<dim>>(
+        base::parse_point<dim>(parameters.body2.plane_point,
+                               where + "Plane point"),
+        normal);
+    }
+
+
+
+    template std::unique_ptr<contact::Obstacle<2>>
+    create_obstacle<2>(const AllParameters &, const std::string &);
+    template std::unique_ptr<contact::Obstacle<3>>
+    create_obstacle<3>(const AllParameters &, const std::string &);
     template std::optional<discretization::ExactSolution<2>>
     make_exact_solution<2>(const AllParameters &, const std::string &);
     template std::optional<discretization::ExactSolution<3>>

@@ -192,26 +192,10 @@ namespace igabde
             cs.factor_entries.push_back(b.factor_entries);
           cs.n_load_steps = steps.size();
 
-          // The obstacle Body 2 stands for, if it is not deformable.
-          std::unique_ptr<contact::Obstacle<dim>> obstacle;
-          if (parameters.body2.type == "rigid plane")
-            {
-              const std::string    where = scene_file + ": Body 2/";
-              const Tensor<1, dim> normal =
-                base::parse_tensor<dim>(parameters.body2.plane_normal,
-                                        where + "Plane normal");
-              AssertThrow(normal.norm() > 0.,
-                          base::ExcInput(where + "Plane normal must not be "
-                                                 "zero."));
-              obstacle = std::make_unique<contact::RigidPlane<dim>>(
-                base::parse_point<dim>(parameters.body2.plane_point,
-                                       where + "Plane point"),
-                normal);
-            }
           contact_stage = std::make_unique<contact::ContactStage<dim>>(
             cs,
             bodies,
-            std::move(obstacle),
+            create_obstacle<dim>(parameters, scene_file),
             contact_log(),
             coupled::coupled_factory<dim>(c.full_system_solver,
                                           c.krylov_max_iterations));

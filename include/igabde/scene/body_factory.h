@@ -4,6 +4,8 @@
 #include <igabde/discretization/body.h>
 #include <igabde/discretization/body_description.h>
 
+#include <igabde/contact/obstacle.h>
+
 #include <igabde/scene/parameters.h>
 
 #include <memory>
@@ -51,6 +53,15 @@ namespace igabde
       const AllParameters                                     &parameters,
       const std::string                                       &scene_file,
       const std::optional<discretization::ExactSolution<dim>> &exact);
+
+    /**
+     * @brief The rigid obstacle Body 2 stands for (Body 2/Type = rigid
+     * plane), or null when Body 2 is deformable or absent.
+     */
+    template <int dim>
+    std::unique_ptr<contact::Obstacle<dim>>
+    create_obstacle(const AllParameters &parameters,
+                    const std::string   &scene_file);
   } // namespace scene
 } // namespace igabde
 
