@@ -100,30 +100,24 @@ main(int argc, char **argv)
               << std::endl;
     }
 
-  // V4: |F_t| <= mu |F_n| always, = once sliding; stick pairs in the stick
-  // phase.
+  // V4: stick pairs in the stick phase; once the block slides, every pair
+  // slips the same way, so the resultant sits on the cone, |F_t| = mu |F_n|.
+  // (That the resultant never leaves the cone follows from the per-pair
+  // law, which the post-solve check holds; it is not restated here.)
   for (const std::string type : {"nurbs", "lagrange"})
     {
       const auto summary =
         run("v4-sliding-block", "v4-" + type, {{"Discretization/Type", type}});
-      const auto  &steps      = summary.at("load_steps");
-      const double mu         = 0.4;
-      bool         bounded    = true;
-      bool         saw_stick  = false;
-      double       last_ratio = 0.;
-      for (unsigned int s = 0; s < steps.size(); ++s)
-        {
-          const auto  &f  = steps.at(s).at("total_contact_force");
-          const double ft = std::abs(f.at(0).get<double>());
-          const double fn = std::abs(f.at(1).get<double>());
-          bounded         = bounded && ft <= mu * fn * (1. + 1e-8);
-          saw_stick =
-            saw_stick || (s > 0 && steps.at(s).at("n_stick").get<double>() > 0);
-          last_ratio = ft / (mu * fn);
-        }
+      const auto  &steps     = summary.at("load_steps");
+      const double mu        = 0.4;
+      bool         saw_stick = false;
+      for (unsigned int s = 1; s < steps.size(); ++s)
+        saw_stick = saw_stick || steps.at(s).at("n_stick").get<double>() > 0;
+      const auto  &f = steps.at(steps.size() - 1).at("total_contact_force");
+      const double last_ratio = std::abs(f.at(0).get<double>()) /
+                                (mu * std::abs(f.at(1).get<double>()));
       deallog << "V4 " << type << ": " << steps.size()
-              << " steps, |F_t| <= mu |F_n| in every step: " << yes(bounded)
-              << ", stick pairs while sticking: " << yes(saw_stick)
+              << " steps, stick pairs while sticking: " << yes(saw_stick)
               << ", sliding |F_t| = mu |F_n| to 1e-8: "
               << yes(std::abs(last_ratio - 1.) <= 1e-8) << std::endl;
     }
@@ -154,25 +148,32 @@ main(int argc, char **argv)
   // V5 Hertz. Half-width: the edge of the contact zone lies between the
   // last loaded and the first open pair, and the estimate is kept in that
   // interval, so a pair-resolved a is known to one pair spacing h there
-  // (checks.hertz_edge_pair_spacing), not to a fixed percentage. The
-  // reference is Johnson's half-space a = 1.4915; the finite half-disc's
-  // converged a is 1.498 (scenes.md V5), so the tolerance is h plus that
-  // modelling offset. Profile: L2 error <= 3 % of Johnson's (the finite
-  // disc's floor is 1.0 %, scenes.md).
+  // (checks.hertz_edge_pair_spacing). The reference is a converged model of
+  // the same finite half-disc by the other discretisation (two uniform
+  // refinements; its own a is known to its spacing h_ref), since the
+  // half-disc is not Johnson's half-space. Profile: L2 distance to
+  // Johnson's p(x) <= 3 % (the finite disc's floor is about 1 %).
   for (const std::string type : {"nurbs", "lagrange"})
     {
-      const auto summary =
+      const std::string other = type == "nurbs" ? "lagrange" : "nurbs";
+      const auto        summary =
         run("v5-hertz-2d", "v5-" + type, {{"Discretization/Type", type}});
-      const auto  &checks  = summary.at("checks");
-      const double a_h     = checks.at("hertz_half_width").get<double>();
-      const double a_exact = checks.at("hertz_half_width_exact").get<double>();
-      const double h       = checks.at("hertz_edge_pair_spacing").get<double>();
-      const double l2      = checks.at("pressure_l2_rel_error").get<double>();
-      const double tolerance = h + std::abs(1.498 - a_exact);
+      const auto   reference = run("v5-hertz-2d",
+                                 "v5-reference-" + other,
+                                 {{"Discretization/Type", other},
+                                    {"Discretization/Refinements", "2"}});
+      const auto  &checks    = summary.at("checks");
+      const double a_h       = checks.at("hertz_half_width").get<double>();
+      const double h  = checks.at("hertz_edge_pair_spacing").get<double>();
+      const double l2 = checks.at("pressure_l2_rel_error").get<double>();
+      const double a_ref =
+        reference.at("checks").at("hertz_half_width").get<double>();
+      const double h_ref =
+        reference.at("checks").at("hertz_edge_pair_spacing").get<double>();
       deallog << "V5 " << type
-              << ": half-width within one edge pair spacing (+ the finite "
-                 "disc's offset) of Johnson's: "
-              << yes(h > 0. && std::abs(a_h - a_exact) <= tolerance)
+              << ": half-width within one edge pair spacing of the refined "
+              << other << " model's: "
+              << yes(h > 0. && h_ref > 0. && std::abs(a_h - a_ref) <= h + h_ref)
               << ", profile L2 error <= 3 %: " << yes(l2 <= 0.03)
               << ", half-width " << std::setprecision(3) << a_h
               << std::setprecision(6) << std::endl;

@@ -39,7 +39,8 @@ WIDTH, HEIGHT = 1200, 700
 
 # status values of the pair VTU (contact::ContactStatus) and their colours
 STATUS = [("open", [0.75, 0.75, 0.75]), ("stick", [0.12, 0.47, 0.71]),
-          ("slip", [0.89, 0.10, 0.11])]
+          ("slip", [0.89, 0.10, 0.11]),
+          ("closed", [0.20, 0.63, 0.17])]
 
 # Per scene: the camera (direction from the focal point to the camera, view
 # up), for the von Mises picture and for the contact picture; which body

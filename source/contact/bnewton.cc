@@ -269,7 +269,7 @@ namespace igabde
           << " contacts, " << data.n_components << " components, " << na
           << " floating modes\n"
           << "   it     phase        |H|    residual    balanced        step"
-             "  open stick  slip   red note\n";
+             "  open stick  slip closed   red note\n";
 
       PhaseOutcome outcome;
       std::string  reasons;

@@ -18,6 +18,8 @@ namespace igabde
             return "stick";
           case ContactStatus::slip:
             return "slip";
+          case ContactStatus::closed:
+            return "closed";
         }
       return "unknown";
     }
@@ -108,8 +110,7 @@ namespace igabde
       piece.A(0, 0) = k_n;
       if (d == 1)
         {
-          // Frictionless: free tangential motion is reported as slip.
-          piece.status = ContactStatus::slip;
+          piece.status = ContactStatus::closed;
           return piece;
         }
       double trial[3] = {0., 0., 0.}, norm = 0.;
@@ -122,7 +123,7 @@ namespace igabde
       const double R = mu * pn;
       if (norm <= R)
         {
-          piece.status = ContactStatus::stick;
+          piece.status = mu > 0. ? ContactStatus::stick : ContactStatus::closed;
           for (unsigned int k = 1; k < d; ++k)
             {
               p[k]          = trial[k];
@@ -130,7 +131,7 @@ namespace igabde
             }
           return piece;
         }
-      piece.status       = ContactStatus::slip;
+      piece.status = mu > 0. ? ContactStatus::slip : ContactStatus::closed;
       const double ratio = R / norm;
       for (unsigned int k = 1; k < d; ++k)
         {
@@ -170,7 +171,9 @@ namespace igabde
             br->A(0, 0) = rn;
           else
             br->B(0, 0) = 1.;
-          br->status = closed ? ContactStatus::slip : ContactStatus::open;
+          br->status = !closed          ? ContactStatus::open :
+                       d > 1 && mu > 0. ? ContactStatus::slip :
+                                          ContactStatus::closed;
         }
       if (d == 1)
         return;
@@ -195,7 +198,7 @@ namespace igabde
             {
               for (unsigned int k = 1; k < d; ++k)
                 br->A(k, k) = rt;
-              if (closed)
+              if (closed && mu > 0.)
                 br->status = ContactStatus::stick;
             }
         }

@@ -20,8 +20,8 @@ namespace igabde
           << std::scientific << std::setprecision(4) << std::setw(12) << h_norm
           << std::setw(12) << residual << std::setw(12) << balanced_residual
           << std::setw(12) << step << std::setw(6) << n_open << std::setw(6)
-          << n_stick << std::setw(6) << n_slip << std::setw(6) << n_reduced
-          << ' ' << note
+          << n_stick << std::setw(6) << n_slip << std::setw(7) << n_closed
+          << std::setw(6) << n_reduced << ' ' << note
           << (linear_iterations > 0 ?
                 std::string(note.empty() ? "" : " ") + "gmres " +
                   std::to_string(linear_iterations) :
@@ -37,7 +37,7 @@ namespace igabde
     {
       std::ios::fmtflags f(out.flags());
       out << "   it     phase        |H|    residual    balanced        step"
-             "  open stick  slip   red note\n";
+             "  open stick  slip closed   red note\n";
       for (const ContactIterationRecord &rec : history)
         rec.print(out);
       out << summary() << '\n';
@@ -56,8 +56,8 @@ namespace igabde
         << balanced_residual << ")";
       if (alpha.size() > 0)
         s << ", equilibrium residual " << equilibrium_residual;
-      s << ", open/stick/slip " << n_open << '/' << n_stick << '/' << n_slip
-        << ": " << diagnosis;
+      s << ", open/stick/slip/closed " << n_open << '/' << n_stick << '/'
+        << n_slip << '/' << n_closed << ": " << diagnosis;
       std::string krylov;
       for (const ContactIterationRecord &rec : history)
         if (rec.linear_iterations > 0)

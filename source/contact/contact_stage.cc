@@ -460,6 +460,7 @@ namespace igabde
       result.n_open          = solution.n_open;
       result.n_stick         = solution.n_stick;
       result.n_slip          = solution.n_slip;
+      result.n_closed        = solution.n_closed;
       result.max_penetration = std::max(solution.max_penetration, 0.);
       result.updates         = solution.updates;
       for (const auto &rec : solution.history)
@@ -525,8 +526,6 @@ namespace igabde
             const auto [b, k] = contact.alpha_modes[a];
             u[b].add(x.alpha(a), bodies[b]->free_rigid_modes()[k]);
           }
-        log << "  total contact force on Body 1: " << std::setprecision(6)
-            << result.contact_force << std::endl;
       }
       return result;
     }

@@ -189,16 +189,12 @@ namespace igabde
     void
     count_status(ContactSolverResult &result)
     {
-      result.n_open = result.n_stick = result.n_slip = 0;
+      result.n_open = result.n_stick = result.n_slip = result.n_closed = 0;
       for (const ContactStatus s : result.status)
-        {
-          if (s == ContactStatus::open)
-            ++result.n_open;
-          else if (s == ContactStatus::stick)
-            ++result.n_stick;
-          else
-            ++result.n_slip;
-        }
+        ++(s == ContactStatus::open  ? result.n_open :
+           s == ContactStatus::stick ? result.n_stick :
+           s == ContactStatus::slip  ? result.n_slip :
+                                       result.n_closed);
     }
 
 
@@ -473,9 +469,10 @@ namespace igabde
             for (unsigned int c = 0; c < pieces.size(); ++c)
               result.status[c] = pieces[c].status;
             count_status(result);
-            rec.n_open  = result.n_open;
-            rec.n_stick = result.n_stick;
-            rec.n_slip  = result.n_slip;
+            rec.n_open   = result.n_open;
+            rec.n_stick  = result.n_stick;
+            rec.n_slip   = result.n_slip;
+            rec.n_closed = result.n_closed;
           }
 
           if (done)

@@ -30,6 +30,7 @@ namespace igabde
           j["n_open"]            = r.n_open;
           j["n_stick"]           = r.n_stick;
           j["n_slip"]            = r.n_slip;
+          j["n_closed"]          = r.n_closed;
           if (r.max_penetration)
             j["max_penetration"] = *r.max_penetration;
           if (r.multiplier_updates)
@@ -141,7 +142,7 @@ namespace igabde
       if (contact)
         {
           csv << ",status,contact_solves,newton_iterations,residual,n_open,"
-                 "n_stick,n_slip";
+                 "n_stick,n_slip,n_closed";
           for (const char *c : {"x", "y", "z"})
             if (static_cast<unsigned int>(c[0] - 'x') < dim)
               csv << ",force_" << c;
@@ -169,7 +170,7 @@ namespace igabde
                   << value(r.contact_solves) << ","
                   << value(r.newton_iterations) << "," << value(r.residual)
                   << "," << value(r.n_open) << "," << value(r.n_stick) << ","
-                  << value(r.n_slip);
+                  << value(r.n_slip) << "," << value(r.n_closed);
               for (unsigned int c = 0; c < dim; ++c)
                 csv << ","
                     << (r.total_contact_force ? (*r.total_contact_force)[c] :

@@ -284,7 +284,7 @@ namespace igabde
           external,
           parameters.contact.max_step_cuts,
           scene_file,
-          parameters.output.solver_details ? pcout.get_stream() : discard);
+          parameters.output.solver_details ? contact_log() : discard);
 
       const auto &histories       = parameters.load_path.histories;
       const auto  history_factors = parameters.load_path.history_factors();
@@ -338,7 +338,12 @@ namespace igabde
                 }
             }
           check_finite_displacements<dim>(bodies, u, s + 1);
-          record_forces<dim>(bodies, contact_stage.get(), u, factors, record);
+          record_forces<dim>(bodies,
+                             contact_stage.get(),
+                             u,
+                             factors,
+                             record,
+                             contact_log());
           previous = factors;
           run_summary.load_steps.push_back(record);
           if (contact_stage)

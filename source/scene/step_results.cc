@@ -33,6 +33,7 @@ namespace igabde
       record.n_open            = last.n_open;
       record.n_stick           = last.n_stick;
       record.n_slip            = last.n_slip;
+      record.n_closed          = last.n_closed;
       if (algorithm != contact::Algorithm::bde)
         record.max_penetration = last.max_penetration;
       if (algorithm == contact::Algorithm::augmented_lagrange)
@@ -81,7 +82,8 @@ namespace igabde
       const contact::ContactStage<dim>                              *stage,
       const std::vector<Vector<double>>                             &u,
       const std::vector<double>                                     &factors,
-      StepRecord                                                    &record)
+      StepRecord                                                    &record,
+      std::ostream                                                  &log)
     {
       const auto to_vector = [](const Tensor<1, dim> &t) {
         std::vector<double> v(dim);
@@ -111,6 +113,13 @@ namespace igabde
       if (stage != nullptr)
         {
           record.total_contact_force = to_vector(on_body1);
+          log << "  total contact force on Body 1:" << std::setprecision(6);
+          for (unsigned int c = 0; c < dim; ++c)
+            log << ' '
+                << (std::abs(on_body1[c]) > 1e-10 * on_body1.norm() ?
+                      on_body1[c] :
+                      0.);
+          log << std::endl;
           if (bodies.size() == 1)
             record.bodies.push_back(
               {"obstacle", to_vector(-on_body1), std::nullopt});
@@ -198,9 +207,14 @@ namespace igabde
                 *pairs,
                 parameters.checks.uniform_pressure);
               checks["pressure_uniformity"] = worst;
-              pcout << "  pressure uniformity max |p_i/p - 1| = "
-                    << std::setprecision(3) << std::scientific << worst
-                    << std::defaultfloat << std::setprecision(6) << std::endl;
+              // Below 1e-10 the figure is round-off: said, not printed.
+              pcout << "  pressure uniformity max |p_i/p - 1| "
+                    << std::setprecision(3) << std::scientific;
+              if (worst < 1e-10)
+                pcout << "< 1e-10";
+              else
+                pcout << "= " << worst;
+              pcout << std::defaultfloat << std::setprecision(6) << std::endl;
             }
           if (parameters.checks.hertz_line_load > 0.)
             {
@@ -325,7 +339,8 @@ namespace igabde
       const contact::ContactStage<2> *,
       const std::vector<Vector<double>> &,
       const std::vector<double> &,
-      StepRecord &);
+      StepRecord &,
+      std::ostream &);
     template void
     write_step_output<2>(
       const std::string &,
@@ -350,7 +365,8 @@ namespace igabde
       const contact::ContactStage<3> *,
       const std::vector<Vector<double>> &,
       const std::vector<double> &,
-      StepRecord &);
+      StepRecord &,
+      std::ostream &);
     template void
     write_step_output<3>(
       const std::string &,

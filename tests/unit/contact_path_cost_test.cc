@@ -66,17 +66,18 @@ TEST(PathCost, FullWinsWithManyPairsOnASmallFactor)
 
 
 
-// The measured constants on the inputs summary.json recorded for B2 with
-// FE_Q(2) at 8x32x8 (3 264 contact unknowns, 3 264 face unknowns per beam,
-// estimated factors of 1.011e8 entries per beam): the condensed path, which
-// took 36 s against 96 s for the full path on this machine (2026-11-23).
-TEST(PathCost, MeasuredConstantsChooseCondensedForB2LagrangeAt8x32x8)
+// The measured constants, fitted on B2 FE_Q(2) at 8x32x8, on a case they
+// were not fitted to: B2 NURBS at 8x16x8 (510 contact unknowns, 510 face
+// unknowns per beam, estimated factors of 7.9e6 entries per beam, 9 Newton
+// iterations), where the condensed path took 1.25 s against 9.39 s for the
+// full path (doc/performance.md, 2026-11-23).
+TEST(PathCost, MeasuredConstantsChooseCondensedForHeldOutB2NurbsAt8x16x8)
 {
   PathCostInputs in;
-  in.contact_unknowns  = 3264.;
-  in.face_unknowns     = {3264., 3264.};
-  in.factor_entries    = {1.011e8, 1.011e8};
-  in.newton_iterations = 8.;
+  in.contact_unknowns  = 510.;
+  in.face_unknowns     = {510., 510.};
+  in.factor_entries    = {7.9e6, 7.9e6};
+  in.newton_iterations = 9.;
   const PathCostEstimate e =
     estimate_path_costs(in, PathCostConstants::measured());
   EXPECT_EQ(e.path, Path::condensed) << e.reason;

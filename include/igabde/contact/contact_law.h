@@ -14,18 +14,22 @@ namespace igabde
     /**
      * @brief State of one contact pair at the end of a solve (or iteration).
      *
-     * A closed frictionless pair, and a closed pair with a zero friction
-     * radius, move freely in the tangential directions and are reported as
-     * slip.
+     * A closed pair without friction (mu = 0, or a frictionless scene with
+     * no tangential unknowns) is "closed": it neither sticks nor slips. A
+     * closed pair with friction whose friction radius is zero (a grazing
+     * pair, p_n = 0) moves freely in the tangential directions and is
+     * reported as slip. The numbers are the values of the `status` field
+     * of the contact VTU (0 open, 1 stick, 2 slip, 3 closed).
      */
     enum class ContactStatus
     {
       open,
       stick,
-      slip
+      slip,
+      closed
     };
 
-    /** @brief "open", "stick" or "slip". */
+    /** @brief "open", "stick", "slip" or "closed". */
     std::string
     to_string(const ContactStatus status);
 

@@ -33,7 +33,7 @@ namespace igabde
       /** @brief Accepted step length (0 if none). */
       double step = 0.;
       /** @brief Contact counts at the start of the iteration. */
-      unsigned int n_open = 0, n_stick = 0, n_slip = 0;
+      unsigned int n_open = 0, n_stick = 0, n_slip = 0, n_closed = 0;
       /** @brief Size of the reduced linear system. */
       unsigned int n_reduced = 0;
       /** @brief Iterations of the iterative linear solve of this Newton
@@ -71,7 +71,7 @@ namespace igabde
       /** @brief Per-contact status at p, u. */
       std::vector<ContactStatus> status;
       /** @brief Status counts. */
-      unsigned int n_open = 0, n_stick = 0, n_slip = 0;
+      unsigned int n_open = 0, n_stick = 0, n_slip = 0, n_closed = 0;
       /** @brief Per-iteration history. */
       std::vector<ContactIterationRecord> history;
       /** @brief Coupled displacement unknowns w (full path; else empty). */

@@ -72,7 +72,7 @@ namespace igabde
       std::string  diagnosis;
       unsigned int iterations = 0;
       double       residual   = 0.;
-      unsigned int n_open = 0, n_stick = 0, n_slip = 0;
+      unsigned int n_open = 0, n_stick = 0, n_slip = 0, n_closed = 0;
       /// Post-solve condition check (only when converged).
       bool        conditions_passed = false;
       std::string first_violation;

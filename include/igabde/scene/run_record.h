@@ -49,7 +49,7 @@ namespace igabde
       unsigned int contact_solves    = 0;
       unsigned int step_cuts         = 0;
       double       residual          = 0.;
-      unsigned int n_open = 0, n_stick = 0, n_slip = 0;
+      unsigned int n_open = 0, n_stick = 0, n_slip = 0, n_closed = 0;
       /// Penalty methods only.
       std::optional<double> max_penetration;
       /// Augmented Lagrange only.

@@ -48,7 +48,8 @@ namespace igabde
      * @brief The contact resultant and support reaction of every body (and
      * the obstacle's contact force) at the end of a step with displacements
      * @p u and load factors @p factors, into @p record; @p stage is nullptr
-     * without contact.
+     * without contact. With contact, the step's resultant on Body 1 goes to
+     * @p log, its components below 1e-10 of its length (round-off) as 0.
      */
     template <int dim>
     void
@@ -57,7 +58,8 @@ namespace igabde
       const contact::ContactStage<dim>                              *stage,
       const std::vector<Vector<double>>                             &u,
       const std::vector<double>                                     &factors,
-      StepRecord                                                    &record);
+      StepRecord                                                    &record,
+      std::ostream                                                  &log);
 
     /**
      * @brief The files of load step @p step in @p directory: the pair table
