@@ -2,7 +2,10 @@
 // themselves: the scene reader checks Contact/Algorithm against them
 // without linking any solver (the fuzz target of contrib/fuzz).
 
+#include <igabde/contact/condensation.h>
 #include <igabde/contact/contact_solver.h>
+#include <igabde/contact/pairing.h>
+#include <igabde/contact/path_cost.h>
 
 #include <string>
 #include <vector>
@@ -49,6 +52,33 @@ namespace igabde
             return "full";
           case Path::automatic:
             return "auto";
+        }
+      return "";
+    }
+
+
+
+    std::string
+    to_string(const Condensation condensation)
+    {
+      return condensation == Condensation::schur ? "schur" : "columns";
+    }
+
+
+
+    std::string
+    to_string(const Pairing pairing)
+    {
+      switch (pairing)
+        {
+          case Pairing::node_to_surface:
+            return "node-to-surface";
+          case Pairing::node_to_node:
+            return "node-to-node";
+          case Pairing::weighted_gap:
+            return "weighted-gap";
+          case Pairing::weighted_gap_standard:
+            return "weighted-gap-standard";
         }
       return "";
     }

@@ -814,25 +814,6 @@ namespace igabde
 
 
 
-    std::string
-    to_string(const Pairing pairing)
-    {
-      switch (pairing)
-        {
-          case Pairing::node_to_surface:
-            return "node-to-surface";
-          case Pairing::node_to_node:
-            return "node-to-node";
-          case Pairing::weighted_gap:
-            return "weighted-gap";
-          case Pairing::weighted_gap_standard:
-            return "weighted-gap-standard";
-        }
-      return "";
-    }
-
-
-
     template <int dim>
     std::unique_ptr<PairingStrategy<dim>>
     create_pairing_strategy(const Pairing pairing)

@@ -22,23 +22,19 @@ namespace igabde
       const unsigned int                                    n_components,
       const Eigen::MatrixXd                                &G,
       const bool                                            obstacle,
-      const std::string                                    &solver,
+      const Solver                                          solver,
       const unsigned int krylov_max_iterations)
       : bodies(bodies)
       , d(n_components)
       , n_pairs(pairs.size())
       , n_alpha(G.cols())
       , G(G)
-      , solver_type(solver == "klu"       ? "Amesos_Klu" :
-                    solver == "gmres-amg" ? "gmres-amg" :
-                                            "Amesos_Mumps")
-      , krylov(solver == "gmres-amg")
+      , solver_type(solver == Solver::klu       ? "Amesos_Klu" :
+                    solver == Solver::gmres_amg ? "gmres-amg" :
+                                                  "Amesos_Mumps")
+      , krylov(solver == Solver::gmres_amg)
       , krylov_max_iterations(krylov_max_iterations)
     {
-      AssertThrow(solver == "mumps" || solver == "klu" || solver == "gmres-amg",
-                  base::ExcInput("Contact/Full system solver = " + solver +
-                                 " is not known; use mumps, klu or "
-                                 "gmres-amg."));
       for (const auto *body : bodies)
         {
           offsets.push_back(n_u);
@@ -700,7 +696,7 @@ namespace igabde
 
     template <int dim>
     contact::CoupledFactory<dim>
-    coupled_factory(const std::string &solver,
+    coupled_factory(const Solver       solver,
                     const unsigned int krylov_max_iterations)
     {
       return [solver, krylov_max_iterations](
@@ -722,9 +718,9 @@ namespace igabde
 
 
     template contact::CoupledFactory<2>
-    coupled_factory<2>(const std::string &, const unsigned int);
+    coupled_factory<2>(const Solver, const unsigned int);
     template contact::CoupledFactory<3>
-    coupled_factory<3>(const std::string &, const unsigned int);
+    coupled_factory<3>(const Solver, const unsigned int);
     template class CoupledSystem<2>;
     template class CoupledSystem<3>;
   } // namespace coupled

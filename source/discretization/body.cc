@@ -118,7 +118,7 @@ namespace igabde
     {
       // The unknowns the contact points touch, less those held at zero.
       std::vector<types::global_dof_index> interface_dofs;
-      if (settings.linear_solver == "direct")
+      if (settings.linear_solver == discretization::LinearSolver::direct)
         {
           std::vector<bool> touched(n_unknowns, false);
           // A volume operator at a surface point lists every basis function
@@ -635,7 +635,7 @@ namespace igabde
     Body<dim>::factorize_matrix(
       const std::vector<types::global_dof_index> &interface_dofs)
     {
-      if (settings.linear_solver == "direct")
+      if (settings.linear_solver == discretization::LinearSolver::direct)
         {
           // MUMPS on the free block; constrained unknowns and pins are
           // eliminated (zero in every solution).
@@ -676,7 +676,7 @@ namespace igabde
                 solve_constraints.is_constrained(entry->column()))
               entry->value() = (entry->column() == row ? diagonal_scale : 0.);
         }
-      if (settings.linear_solver == "cg-amg")
+      if (settings.linear_solver == discretization::LinearSolver::cg_amg)
         {
           // ML with the displacement components as near-null space (one
           // constant mode per component) and the higher-order smoother
@@ -802,14 +802,9 @@ namespace igabde
     create_body(const BodyDescription<dim>   &description,
                 const DiscretizationSettings &settings)
     {
-      if (settings.type == "nurbs")
+      if (settings.type == Type::nurbs)
         return std::make_unique<IgaBody<dim>>(description, settings);
-      else if (settings.type == "lagrange")
-        return std::make_unique<LagrangeBody<dim>>(description, settings);
-      AssertThrow(false,
-                  ExcMessage("Discretization/Type: unknown value '" +
-                             settings.type + "'; use 'nurbs' or 'lagrange'."));
-      return nullptr;
+      return std::make_unique<LagrangeBody<dim>>(description, settings);
     }
 
 

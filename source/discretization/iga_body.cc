@@ -67,16 +67,7 @@ namespace igabde
         breaks[d] = geometry.knot_vector(d).breakpoints();
       orientation = geometry.orientation();
 
-      AssertThrow(settings.pair_placement == "greville" ||
-                    settings.pair_placement == "knots" ||
-                    settings.pair_placement == "gauss",
-                  base::ExcInput("Contact/Pair placement: unknown value '" +
-                                 settings.pair_placement +
-                                 "'; use greville, knots or gauss."));
-      default_placement =
-        (settings.pair_placement == "knots" ? PairPlacement::knots :
-         settings.pair_placement == "gauss" ? PairPlacement::gauss :
-                                              PairPlacement::greville);
+      default_placement = settings.pair_placement;
 
       Point<dim> lo = geometry.control_point(0), hi = lo;
       for (unsigned int a = 0; a < geometry.n_control_points(); ++a)

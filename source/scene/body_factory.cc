@@ -8,16 +8,6 @@ namespace igabde
 {
   namespace scene
   {
-    namespace
-    {
-      elasticity::PlaneModel
-      plane_model(const AllParameters &parameters)
-      {
-        return parameters.plane_model == "plane stress" ?
-                 elasticity::PlaneModel::plane_stress :
-                 elasticity::PlaneModel::plane_strain;
-      }
-    } // namespace
 
 
 
@@ -29,9 +19,9 @@ namespace igabde
       elasticity::IsotropicMaterial<dim> material;
       material.youngs_modulus = parameters.body1.youngs_modulus;
       material.poisson_ratio  = parameters.body1.poisson_ratio;
-      material.plane_model    = plane_model(parameters);
+      material.plane_model    = parameters.plane_model;
       const auto &e           = parameters.exact;
-      if (e.type == "kirsch")
+      if (e.type == ExactSolutionType::kirsch)
         {
           AssertThrow(dim == 2,
                       base::ExcInput(scene_file +
@@ -42,7 +32,7 @@ namespace igabde
                                                 e.hole_radius,
                                                 material);
         }
-      else if (e.type == "lame")
+      else if (e.type == ExactSolutionType::lame)
         return postprocess::lame_solution<dim>(e.inner_radius,
                                                e.outer_radius,
                                                e.pressure,
@@ -66,7 +56,7 @@ namespace igabde
       d.name                    = (name == "Body 1" ? "body1" : "body2");
       d.material.youngs_modulus = body.youngs_modulus;
       d.material.poisson_ratio  = body.poisson_ratio;
-      d.material.plane_model    = plane_model(parameters);
+      d.material.plane_model    = parameters.plane_model;
       d.material.validate(scene_file + ": " + name);
 
       d.geometry =
@@ -163,7 +153,7 @@ namespace igabde
                                    scene_file,
                                    exact),
         settings));
-      if (parameters.body2.type == "deformable")
+      if (parameters.body2.type == BodyType::deformable)
         bodies.push_back(discretization::create_body<dim>(
           make_body_description<dim>(parameters,
                                      parameters.body2,
@@ -181,17 +171,18 @@ namespace igabde
     create_obstacle(const AllParameters &parameters,
                     const std::string   &scene_file)
     {
-      if (parameters.body2.type != "rigid plane")
+      if (parameters.body2.type != BodyType::rigid_plane)
         return nullptr;
       // The scene reader has refused a zero or malformed normal already.
-      const std::string    where = scene_file + ": Body 2/";
-      const Tensor<1, dim> normal =
-        base::parse_tensor<dim>(parameters.body2.plane_normal,
-                                where + "Plane normal");
-      return std::make_unique<contact::RigidPlane<dim>>(
-        base::parse_point<dim>(parameters.body2.plane_point,
-                               where + "Plane point"),
-        normal);
+      (void)scene_file;
+      Point<dim>     point;
+      Tensor<1, dim> normal;
+      for (unsigned int d = 0; d < dim; ++d)
+        {
+          point[d]  = parameters.body2.plane_point[d];
+          normal[d] = parameters.body2.plane_normal[d];
+        }
+      return std::make_unique<contact::RigidPlane<dim>>(point, normal);
     }
 
 

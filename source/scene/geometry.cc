@@ -21,22 +21,24 @@ namespace igabde
     {
       const auto need_2d = [&]() {
         AssertThrow(dim == 2,
-                    base::ExcInput(where + "Geometry = " + body.geometry +
+                    base::ExcInput(where +
+                                   "Geometry = " + to_string(body.geometry) +
                                    " is a 2D geometry; set Dimension = 2 "
                                    "or choose a 3D geometry."));
       };
       const auto need_3d = [&]() {
         AssertThrow(dim == 3,
-                    base::ExcInput(where + "Geometry = " + body.geometry +
+                    base::ExcInput(where +
+                                   "Geometry = " + to_string(body.geometry) +
                                    " is a 3D geometry; set Dimension = 3."));
       };
-      AssertThrow(body.geometry == "box" ||
-                    body.geometry == "plate with hole" ||
-                    body.geometry == "hertz quarter disc" ||
-                    body.geometry == "full disc" ||
-                    body.geometry == "half disc" ||
-                    body.geometry == "full cylinder" ||
-                    body.geometry == "half cylinder" ||
+      AssertThrow(body.geometry == Geometry::box ||
+                    body.geometry == Geometry::plate_with_hole ||
+                    body.geometry == Geometry::hertz_quarter_disc ||
+                    body.geometry == Geometry::full_disc ||
+                    body.geometry == Geometry::half_disc ||
+                    body.geometry == Geometry::full_cylinder ||
+                    body.geometry == Geometry::half_cylinder ||
                     body.inner_radius < body.outer_radius,
                   base::ExcInput(where + "Inner radius (" +
                                  std::to_string(body.inner_radius) +
@@ -44,18 +46,16 @@ namespace igabde
                                  std::to_string(body.outer_radius) + ")."));
 
       nurbs::NurbsPatch<dim> patch;
-      if (body.geometry == "box")
+      if (body.geometry == Geometry::box)
         {
           // Empty corners: the unit box [0, 1]^dim.
           Point<dim> lo, hi;
           for (unsigned int d = 0; d < dim; ++d)
             hi[d] = 1.;
-          if (!base::trim(body.lower_corner).empty())
-            lo =
-              base::parse_point<dim>(body.lower_corner, where + "Lower corner");
-          if (!base::trim(body.upper_corner).empty())
-            hi =
-              base::parse_point<dim>(body.upper_corner, where + "Upper corner");
+          for (unsigned int d = 0; d < dim && !body.lower_corner.empty(); ++d)
+            lo[d] = body.lower_corner[d];
+          for (unsigned int d = 0; d < dim && !body.upper_corner.empty(); ++d)
+            hi[d] = body.upper_corner[d];
           for (unsigned int d = 0; d < dim; ++d)
             AssertThrow(lo[d] < hi[d],
                         base::ExcInput(where + "Lower corner must be below "
@@ -63,8 +63,8 @@ namespace igabde
                                                "coordinate."));
           patch = nurbs::make_box<dim>(lo, hi);
         }
-      else if (body.geometry == "quarter annulus" ||
-               body.geometry == "thick cylinder")
+      else if (body.geometry == Geometry::quarter_annulus ||
+               body.geometry == Geometry::thick_cylinder)
         {
           if constexpr (dim == 2)
             patch =
@@ -74,46 +74,49 @@ namespace igabde
                                                             body.outer_radius,
                                                             body.width);
         }
-      else if (body.geometry == "plate with hole")
+      else if (body.geometry == Geometry::plate_with_hole)
         {
           need_2d();
           if constexpr (dim == 2)
             patch =
               nurbs::make_plate_with_hole(body.inner_radius, body.plate_size);
         }
-      else if (body.geometry == "hertz quarter disc")
+      else if (body.geometry == Geometry::hertz_quarter_disc)
         {
           need_2d();
           if constexpr (dim == 2)
             patch = nurbs::make_hertz_quarter_disc(body.radius);
         }
-      else if (body.geometry == "full disc" || body.geometry == "half disc" ||
-               body.geometry == "full cylinder" ||
-               body.geometry == "half cylinder")
+      else if (body.geometry == Geometry::full_disc ||
+               body.geometry == Geometry::half_disc ||
+               body.geometry == Geometry::full_cylinder ||
+               body.geometry == Geometry::half_cylinder)
         {
-          const bool cylinder = (body.geometry == "full cylinder" ||
-                                 body.geometry == "half cylinder");
+          const bool cylinder = (body.geometry == Geometry::full_cylinder ||
+                                 body.geometry == Geometry::half_cylinder);
           cylinder ? need_3d() : need_2d();
           AssertThrow(body.radius > 0.,
-                      base::ExcInput(
-                        where + "Radius = " + std::to_string(body.radius) +
-                        " must be > 0 for Geometry = " + body.geometry + "."));
+                      base::ExcInput(where +
+                                     "Radius = " + std::to_string(body.radius) +
+                                     " must be > 0 for Geometry = " +
+                                     to_string(body.geometry) + "."));
           AssertThrow(!cylinder || body.width > 0.,
-                      base::ExcInput(
-                        where + "Width = " + std::to_string(body.width) +
-                        " must be > 0 for Geometry = " + body.geometry + "."));
+                      base::ExcInput(where +
+                                     "Width = " + std::to_string(body.width) +
+                                     " must be > 0 for Geometry = " +
+                                     to_string(body.geometry) + "."));
           Point<dim> c;
-          if (!base::trim(body.centre).empty())
-            c = base::parse_point<dim>(body.centre, where + "Centre");
-          const bool full =
-            (body.geometry == "full disc" || body.geometry == "full cylinder");
+          for (unsigned int d = 0; d < dim && !body.centre.empty(); ++d)
+            c[d] = body.centre[d];
+          const bool full = (body.geometry == Geometry::full_disc ||
+                             body.geometry == Geometry::full_cylinder);
           if constexpr (dim == 2)
             patch = full ? nurbs::make_full_disc(c, body.radius) :
                            nurbs::make_half_disc(c, body.radius);
           else
             patch = nurbs::make_cylinder(c, body.radius, body.width, full);
         }
-      else if (body.geometry == "curved beam")
+      else if (body.geometry == Geometry::curved_beam)
         {
           need_3d();
           if constexpr (dim == 3)
@@ -123,27 +126,13 @@ namespace igabde
         }
       else
         AssertThrow(false,
-                    base::ExcInput(where + "Geometry = '" + body.geometry +
-                                   "' is unknown."));
+                    base::ExcInput(where + "Geometry = '" +
+                                   to_string(body.geometry) + "' is unknown."));
 
-      const std::vector<double> n =
-        base::parse_doubles(body.subdivisions, where + "Subdivisions");
-      AssertThrow(n.size() == 1 || n.size() == dim,
-                  base::ExcInput(where + "Subdivisions = '" +
-                                 body.subdivisions +
-                                 "': give one count or one per direction."));
+      // Read and checked with the scene (BodyParameters::parse_parameters).
       std::array<unsigned int, dim> n_spans;
       for (unsigned int d = 0; d < dim; ++d)
-        {
-          const double count = (n.size() == 1 ? n[0] : n[d]);
-          AssertThrow(count >= 1 && count == std::floor(count) && count < 1e4,
-                      base::ExcInput(where + "Subdivisions = '" +
-                                     body.subdivisions +
-                                     "': counts must be integers from 1 to "
-                                     "9999 (then Discretization/Refinements "
-                                     "for finer meshes)."));
-          n_spans[d] = static_cast<unsigned int>(count);
-        }
+        n_spans[d] = body.subdivisions[d];
       // k-refinement: elevate first, then insert knots, so that the base
       // subdivisions (and later refinements) give C^{p-1} spaces, not the C0
       // space that inserting before elevating would leave.
@@ -198,11 +187,11 @@ namespace igabde
 
 
     std::vector<std::string>
-    patch_faces(const std::string &geometry, const unsigned int dimension)
+    patch_faces(const Geometry geometry, const unsigned int dimension)
     {
       // As the builders in nurbs/geometry_builders.h number them: face f at
       // the low (f even) or high (f odd) end of parametric direction f/2.
-      if (geometry == "box")
+      if (geometry == Geometry::box)
         {
           std::vector<std::string> faces = {"x = lower",
                                             "x = upper",
@@ -212,7 +201,8 @@ namespace igabde
             faces.insert(faces.end(), {"z = lower", "z = upper"});
           return faces;
         }
-      if (geometry == "quarter annulus" || geometry == "thick cylinder")
+      if (geometry == Geometry::quarter_annulus ||
+          geometry == Geometry::thick_cylinder)
         {
           std::vector<std::string> faces = {"inner arc r = r0",
                                             "outer arc r = r1",
@@ -222,18 +212,18 @@ namespace igabde
             faces.insert(faces.end(), {"z = 0", "z = width"});
           return faces;
         }
-      if (geometry == "plate with hole" && dimension == 2)
+      if (geometry == Geometry::plate_with_hole && dimension == 2)
         return {"the hole",
                 "the outer edges x = L, y = L",
                 "symmetry edge y = 0",
                 "symmetry edge x = 0"};
-      if (geometry == "hertz quarter disc" && dimension == 2)
+      if (geometry == Geometry::hertz_quarter_disc && dimension == 2)
         return {"symmetry segment x = 0",
                 "upper arc",
                 "lower arc (contact)",
                 "cut y = R"};
-      if ((geometry == "full disc" && dimension == 2) ||
-          (geometry == "full cylinder" && dimension == 3))
+      if ((geometry == Geometry::full_disc && dimension == 2) ||
+          (geometry == Geometry::full_cylinder && dimension == 3))
         {
           std::vector<std::string> faces = {"left arc",
                                             "right arc",
@@ -243,8 +233,8 @@ namespace igabde
             faces.insert(faces.end(), {"z = Centre z", "z = Centre z + Width"});
           return faces;
         }
-      if ((geometry == "half disc" && dimension == 2) ||
-          (geometry == "half cylinder" && dimension == 3))
+      if ((geometry == Geometry::half_disc && dimension == 2) ||
+          (geometry == Geometry::half_cylinder && dimension == 3))
         {
           std::vector<std::string> faces = {"left arc",
                                             "right arc",
@@ -254,7 +244,7 @@ namespace igabde
             faces.insert(faces.end(), {"z = Centre z", "z = Centre z + Width"});
           return faces;
         }
-      if (geometry == "curved beam" && dimension == 3)
+      if (geometry == Geometry::curved_beam && dimension == 3)
         return {"inner face r = r0",
                 "outer face r = r1",
                 "theta = 0 (z = 0)",

@@ -17,22 +17,74 @@ namespace igabde
     namespace
     {
       /**
-       * The choice among @p choices whose name (contact::to_string()) is
-       * @p name: the one place where a selection's text becomes its enum
-       * (the Selection pattern has refused any other text already).
+       * The choice among @p choices whose name (the to_string() of its
+       * enum) is @p name: the one place where a selection's text becomes
+       * its enum (the Selection pattern has refused any other text
+       * already).
        */
       template <typename Choice>
       Choice
       parse_choice(const std::string &name, const std::vector<Choice> &choices)
       {
         for (const Choice choice : choices)
-          if (contact::to_string(choice) == name)
+          if (to_string(choice) == name)
             return choice;
         AssertThrow(false,
                     base::ExcInput("'" + name + "' is not one of the choices"));
         return choices.front();
       }
     } // namespace
+
+
+
+    std::string
+    to_string(const BodyType type)
+    {
+      return type == BodyType::deformable  ? "deformable" :
+             type == BodyType::rigid_plane ? "rigid plane" :
+                                             "none";
+    }
+
+
+
+    std::string
+    to_string(const Geometry geometry)
+    {
+      switch (geometry)
+        {
+          case Geometry::box:
+            return "box";
+          case Geometry::quarter_annulus:
+            return "quarter annulus";
+          case Geometry::thick_cylinder:
+            return "thick cylinder";
+          case Geometry::plate_with_hole:
+            return "plate with hole";
+          case Geometry::hertz_quarter_disc:
+            return "hertz quarter disc";
+          case Geometry::curved_beam:
+            return "curved beam";
+          case Geometry::full_disc:
+            return "full disc";
+          case Geometry::half_disc:
+            return "half disc";
+          case Geometry::full_cylinder:
+            return "full cylinder";
+          case Geometry::half_cylinder:
+            return "half cylinder";
+        }
+      return "";
+    }
+
+
+
+    std::string
+    to_string(const ExactSolutionType type)
+    {
+      return type == ExactSolutionType::kirsch ? "kirsch" :
+             type == ExactSolutionType::lame   ? "lame" :
+                                                 "none";
+    }
 
 
 
@@ -277,7 +329,7 @@ namespace igabde
       unsigned int
       read_face(const std::string              &key,
                 const std::vector<std::string> &faces,
-                const std::string              &geometry,
+                const Geometry                  geometry,
                 const std::string              &where,
                 const std::string              &item)
       {
@@ -287,7 +339,7 @@ namespace igabde
                     base::ExcInput(where + ": face in '" + item +
                                    "' must be a patch face 0.." +
                                    std::to_string(faces.size() - 1) +
-                                   " of the " + geometry + ": " +
+                                   " of the " + to_string(geometry) + ": " +
                                    face_list(faces) + "."));
         return static_cast<unsigned int>(face[0]);
       }
@@ -334,28 +386,42 @@ namespace igabde
                                      const std::string &context)
     {
       std::string supports_text, tractions_text, point_loads_text,
-        body_force_text;
+        body_force_text, lower_text, upper_text, centre_text, subdivisions_text,
+        point_text, normal_text;
       prm.enter_subsection(name);
       {
-        type             = prm.get("Type");
-        geometry         = prm.get("Geometry");
-        lower_corner     = prm.get("Lower corner");
-        upper_corner     = prm.get("Upper corner");
-        inner_radius     = prm.get_double("Inner radius");
-        outer_radius     = prm.get_double("Outer radius");
-        radius           = prm.get_double("Radius");
-        centre           = prm.get("Centre");
-        width            = prm.get_double("Width");
-        plate_size       = prm.get_double("Plate size");
-        subdivisions     = prm.get("Subdivisions");
-        youngs_modulus   = prm.get_double("Young's modulus");
-        poisson_ratio    = prm.get_double("Poisson's ratio");
-        supports_text    = prm.get("Supports");
-        tractions_text   = prm.get("Tractions");
-        point_loads_text = prm.get("Point loads");
-        body_force_text  = prm.get("Body force");
-        plane_point      = prm.get("Plane point");
-        plane_normal     = prm.get("Plane normal");
+        type              = parse_choice<BodyType>(prm.get("Type"),
+                                      {BodyType::deformable,
+                                                    BodyType::rigid_plane,
+                                                    BodyType::none});
+        geometry          = parse_choice<Geometry>(prm.get("Geometry"),
+                                          {Geometry::box,
+                                                    Geometry::quarter_annulus,
+                                                    Geometry::thick_cylinder,
+                                                    Geometry::plate_with_hole,
+                                                    Geometry::hertz_quarter_disc,
+                                                    Geometry::curved_beam,
+                                                    Geometry::full_disc,
+                                                    Geometry::half_disc,
+                                                    Geometry::full_cylinder,
+                                                    Geometry::half_cylinder});
+        lower_text        = prm.get("Lower corner");
+        upper_text        = prm.get("Upper corner");
+        inner_radius      = prm.get_double("Inner radius");
+        outer_radius      = prm.get_double("Outer radius");
+        radius            = prm.get_double("Radius");
+        centre_text       = prm.get("Centre");
+        width             = prm.get_double("Width");
+        plate_size        = prm.get_double("Plate size");
+        subdivisions_text = prm.get("Subdivisions");
+        youngs_modulus    = prm.get_double("Young's modulus");
+        poisson_ratio     = prm.get_double("Poisson's ratio");
+        supports_text     = prm.get("Supports");
+        tractions_text    = prm.get("Tractions");
+        point_loads_text  = prm.get("Point loads");
+        body_force_text   = prm.get("Body force");
+        point_text        = prm.get("Plane point");
+        normal_text       = prm.get("Plane normal");
       }
       prm.leave_subsection();
 
@@ -363,11 +429,55 @@ namespace igabde
       tractions.clear();
       point_loads.clear();
       body_force.assign(dimension, 0.);
-      if (type != "deformable")
+      const std::string where = context + name + "/";
+      if (type == BodyType::rigid_plane)
+        {
+          plane_point =
+            read_vector(point_text, dimension, where + "Plane point");
+          plane_normal =
+            read_vector(normal_text, dimension, where + "Plane normal");
+          AssertThrow(std::any_of(plane_normal.begin(),
+                                  plane_normal.end(),
+                                  [](const double x) {
+                                    return x != 0.;
+                                  }),
+                      base::ExcInput(where + "Plane normal = '" + normal_text +
+                                     "' must not be zero; give the normal "
+                                     "pointing towards Body 1, e.g. '0, 1'."));
+        }
+      if (type != BodyType::deformable)
         return;
 
+      // The points and counts of the geometry, each read once.
+      const auto optional_vector = [&](const std::string &text,
+                                       const std::string &parameter) {
+        return base::trim(text).empty() ?
+                 std::vector<double>() :
+                 read_vector(text, dimension, where + parameter);
+      };
+      lower_corner = optional_vector(lower_text, "Lower corner");
+      upper_corner = optional_vector(upper_text, "Upper corner");
+      centre       = optional_vector(centre_text, "Centre");
+      const std::vector<double> n =
+        base::parse_doubles(subdivisions_text, where + "Subdivisions");
+      AssertThrow(n.size() == 1 || n.size() == dimension,
+                  base::ExcInput(where + "Subdivisions = '" +
+                                 subdivisions_text +
+                                 "': give one count or one per direction."));
+      subdivisions.resize(dimension);
+      for (unsigned int d = 0; d < dimension; ++d)
+        {
+          const double count = (n.size() == 1 ? n[0] : n[d]);
+          AssertThrow(count >= 1 && count == std::floor(count) && count < 1e4,
+                      base::ExcInput(where + "Subdivisions = '" +
+                                     subdivisions_text +
+                                     "': counts must be integers from 1 to "
+                                     "9999 (then Discretization/Refinements "
+                                     "for finer meshes)."));
+          subdivisions[d] = static_cast<unsigned int>(count);
+        }
+
       // What no material and no body can have, refused before any set-up.
-      const std::string where = context + name + "/";
       AssertThrow(youngs_modulus > 0.,
                   base::ExcInput(where +
                                  "Young's modulus = " + number(youngs_modulus) +
@@ -382,7 +492,7 @@ namespace igabde
 
       const std::vector<std::string> faces = patch_faces(geometry, dimension);
       AssertThrow(!faces.empty(),
-                  base::ExcInput(where + "Geometry = " + geometry +
+                  base::ExcInput(where + "Geometry = " + to_string(geometry) +
                                  " does not exist in " +
                                  std::to_string(dimension) +
                                  "D; choose another geometry or Dimension."));
@@ -537,7 +647,10 @@ namespace igabde
     {
       prm.enter_subsection("Exact solution");
       {
-        type           = prm.get("Type");
+        type           = parse_choice<ExactSolutionType>(prm.get("Type"),
+                                               {ExactSolutionType::none,
+                                                          ExactSolutionType::kirsch,
+                                                          ExactSolutionType::lame});
         remote_tension = prm.get_double("Remote tension");
         hole_radius    = prm.get_double("Hole radius");
         inner_radius   = prm.get_double("Inner radius");
@@ -709,23 +822,34 @@ namespace igabde
                       contact::Algorithm::augmented_lagrange});
         penalty_factor            = prm.get_double("Penalty factor");
         tangential_penalty_factor = prm.get_double("Tangential penalty factor");
-        full_system_solver        = prm.get("Full system solver");
-        krylov_max_iterations     = prm.get_integer("Krylov max iterations");
-        penalty_line_search       = prm.get_bool("Penalty line search");
-        path                      = parse_choice<contact::Path>(prm.get("Path"),
+        full_system_solver =
+          parse_choice<coupled::Solver>(prm.get("Full system solver"),
+                                        {coupled::Solver::mumps,
+                                         coupled::Solver::klu,
+                                         coupled::Solver::gmres_amg});
+        krylov_max_iterations = prm.get_integer("Krylov max iterations");
+        penalty_line_search   = prm.get_bool("Penalty line search");
+        path                  = parse_choice<contact::Path>(prm.get("Path"),
                                            {contact::Path::condensed,
-                                                                 contact::Path::full,
-                                                                 contact::Path::automatic});
-        condensation              = prm.get("Condensation");
-        slave_face                = prm.get_integer("Slave face");
-        master_face               = prm.get_integer("Master face");
-        pair_placement            = prm.get("Pair placement");
-        pairing                   = parse_choice<contact::Pairing>(
+                                                             contact::Path::full,
+                                                             contact::Path::automatic});
+        condensation =
+          parse_choice<contact::Condensation>(prm.get("Condensation"),
+                                              {contact::Condensation::schur,
+                                               contact::Condensation::columns});
+        slave_face     = prm.get_integer("Slave face");
+        master_face    = prm.get_integer("Master face");
+        pair_placement = parse_choice<discretization::PairPlacement>(
+          prm.get("Pair placement"),
+          {discretization::PairPlacement::greville,
+           discretization::PairPlacement::knots,
+           discretization::PairPlacement::gauss});
+        pairing = parse_choice<contact::Pairing>(
           prm.get("Pairing"),
           {contact::Pairing::node_to_surface,
-                             contact::Pairing::node_to_node,
-                             contact::Pairing::weighted_gap,
-                             contact::Pairing::weighted_gap_standard});
+           contact::Pairing::node_to_node,
+           contact::Pairing::weighted_gap,
+           contact::Pairing::weighted_gap_standard});
         tolerance      = prm.get_double("Tolerance");
         max_iterations = prm.get_integer("Max iterations");
         r_scale        = prm.get_double("r scale");
@@ -985,10 +1109,17 @@ namespace igabde
     {
       prm.enter_subsection("Discretization");
       {
-        settings.type                = prm.get("Type");
-        settings.degree              = prm.get_integer("Degree");
-        settings.refinements         = prm.get_integer("Refinements");
-        settings.linear_solver       = prm.get("Linear solver");
+        settings.type =
+          parse_choice<discretization::Type>(prm.get("Type"),
+                                             {discretization::Type::nurbs,
+                                              discretization::Type::lagrange});
+        settings.degree        = prm.get_integer("Degree");
+        settings.refinements   = prm.get_integer("Refinements");
+        settings.linear_solver = parse_choice<discretization::LinearSolver>(
+          prm.get("Linear solver"),
+          {discretization::LinearSolver::direct,
+           discretization::LinearSolver::umfpack,
+           discretization::LinearSolver::cg_amg});
         settings.linear_tolerance    = prm.get_double("Linear tolerance");
         settings.output_subdivisions = prm.get_integer("Output subdivisions");
       }
@@ -1037,8 +1168,11 @@ namespace igabde
     {
       name        = prm.get("Scene name");
       dimension   = prm.get_integer("Dimension");
-      plane_model = prm.get("Plane model");
-      probes      = prm.get("Probe points");
+      plane_model = parse_choice<elasticity::PlaneModel>(
+        prm.get("Plane model"),
+        {elasticity::PlaneModel::plane_strain,
+         elasticity::PlaneModel::plane_stress});
+      probes = prm.get("Probe points");
       output.parse_parameters(prm);
       parse_discretization_parameters(prm, discretization);
       const std::string f = scene_file + ": ";
@@ -1053,7 +1187,7 @@ namespace igabde
 
       // Checks that need more than a pattern; each names the parameter and
       // the fix.
-      AssertThrow(body1.type == "deformable",
+      AssertThrow(body1.type == BodyType::deformable,
                   base::ExcInput(f + "Body 1/Type must be 'deformable'; only "
                                      "Body 2 may be a rigid plane."));
       AssertThrow(contact.friction_coefficient >= 0.,
@@ -1061,7 +1195,7 @@ namespace igabde
                     f + "Contact/Friction coefficient = " +
                     number(contact.friction_coefficient) +
                     " is negative; use mu >= 0 (0 for frictionless)."));
-      AssertThrow(!contact.enabled || body2.type != "none",
+      AssertThrow(!contact.enabled || body2.type != BodyType::none,
                   base::ExcInput(f + "Contact/Enabled is true but Body 2/Type "
                                      "is 'none'; set Body 2/Type to "
                                      "'deformable' or 'rigid plane'."));
@@ -1093,22 +1227,22 @@ namespace igabde
       for (const auto *body : {&body1, &body2})
         for (const auto &traction : body->tractions)
           AssertThrow(traction.kind != TractionParameters::Kind::exact ||
-                        exact.type != "none",
+                        exact.type != ExactSolutionType::none,
                       base::ExcInput(f +
                                      (body == &body1 ? "Body 1" : "Body 2") +
                                      "/Tractions: 'exact' needs Exact "
                                      "solution/Type other than none."));
-      AssertThrow((contact.pairing != contact::Pairing::weighted_gap &&
-                   contact.pairing !=
-                     contact::Pairing::weighted_gap_standard) ||
-                    contact.pair_placement == "greville",
-                  base::ExcInput(
-                    f + "Contact/Pair placement = " + contact.pair_placement +
-                    " places point pairs, but Contact/Pairing = " +
-                    contact::to_string(contact.pairing) +
-                    " has one pair per basis function of the slave face; "
-                    "remove Contact/Pair placement or use Pairing = "
-                    "node-to-surface."));
+      AssertThrow(
+        (contact.pairing != contact::Pairing::weighted_gap &&
+         contact.pairing != contact::Pairing::weighted_gap_standard) ||
+          contact.pair_placement == discretization::PairPlacement::greville,
+        base::ExcInput(
+          f + "Contact/Pair placement = " + to_string(contact.pair_placement) +
+          " places point pairs, but Contact/Pairing = " +
+          contact::to_string(contact.pairing) +
+          " has one pair per basis function of the slave face; "
+          "remove Contact/Pair placement or use Pairing = "
+          "node-to-surface."));
       if (contact.enabled)
         {
           // The contact faces must exist on the bodies that carry them.
@@ -1121,36 +1255,20 @@ namespace igabde
                         base::ExcInput(f + "Contact/" + parameter + " = " +
                                        std::to_string(face) +
                                        " is not a patch face of " + body_name +
-                                       " (" + body.geometry + " in " +
-                                       std::to_string(dimension) +
+                                       " (" + to_string(body.geometry) +
+                                       " in " + std::to_string(dimension) +
                                        "D: " + face_list(faces) + ")."));
           };
           check_face(body1, "Body 1", "Slave face", contact.slave_face);
-          if (body2.type == "deformable")
+          if (body2.type == BodyType::deformable)
             check_face(body2, "Body 2", "Master face", contact.master_face);
-        }
-      if (body2.type == "rigid plane")
-        {
-          const std::string where = f + "Body 2/";
-          read_vector(body2.plane_point, dimension, where + "Plane point");
-          const std::vector<double> normal =
-            read_vector(body2.plane_normal, dimension, where + "Plane normal");
-          AssertThrow(std::any_of(normal.begin(),
-                                  normal.end(),
-                                  [](const double x) {
-                                    return x != 0.;
-                                  }),
-                      base::ExcInput(where + "Plane normal = '" +
-                                     body2.plane_normal +
-                                     "' must not be zero; give the normal "
-                                     "pointing towards Body 1, e.g. '0, 1'."));
         }
       // A body with no Supports at all is held by nothing but contact.
       for (const auto *body : {&body1, &body2})
         {
           const std::string name = (body == &body1 ? "Body 1" : "Body 2");
-          AssertThrow(body->type != "deformable" || !body->supports.empty() ||
-                        contact.enabled,
+          AssertThrow(body->type != BodyType::deformable ||
+                        !body->supports.empty() || contact.enabled,
                       base::ExcInput(
                         f + name +
                         "/Supports is empty and the scene has no contact "
@@ -1159,7 +1277,7 @@ namespace igabde
                         " against rigid motion; add Supports, e.g. "
                         "'0: x; 2: y'."));
         }
-      AssertThrow(!contact.enabled || body2.type != "deformable" ||
+      AssertThrow(!contact.enabled || body2.type != BodyType::deformable ||
                     !body1.supports.empty() || !body2.supports.empty(),
                   base::ExcInput(
                     f + "Body 1/Supports and Body 2/Supports are both empty: "

@@ -36,7 +36,7 @@ namespace igabde
     {
       run_summary.scene            = parameters.name;
       run_summary.dim              = dim;
-      run_summary.discretization   = parameters.discretization.type;
+      run_summary.discretization   = to_string(parameters.discretization.type);
       run_summary.degree           = parameters.discretization.degree;
       run_summary.refinements      = parameters.discretization.refinements;
       run_summary.memory_allocator = base::memory_allocator();
@@ -175,8 +175,9 @@ namespace igabde
           cs.solver.algorithm        = c.algorithm;
           cs.solver.path             = c.path;
           cs.schur_condensation =
-            c.condensation == "schur" &&
-            parameters.discretization.linear_solver == "direct";
+            c.condensation == contact::Condensation::schur &&
+            parameters.discretization.linear_solver ==
+              discretization::LinearSolver::direct;
           cs.solver.penalty.normal_factor     = c.penalty_factor;
           cs.solver.penalty.tangential_factor = c.tangential_penalty_factor;
           cs.solver.penalty.line_search       = c.penalty_line_search;
@@ -239,8 +240,8 @@ namespace igabde
             {"factor_entries", s.cost_inputs.factor_entries},
             {"newton_iterations", s.cost_inputs.newton_iterations}};
           const bool full = (s.path == contact::Path::full);
-          if (c.full_system_solver != "mumps" && full)
-            summary["full_system_solver"] = c.full_system_solver;
+          if (c.full_system_solver != coupled::Solver::mumps && full)
+            summary["full_system_solver"] = to_string(c.full_system_solver);
           if (full)
             summary["coupled_matrix_nonzeros"] = s.coupled_nonzeros;
           if (s.algorithm != contact::Algorithm::bde)
@@ -423,7 +424,7 @@ namespace igabde
     Simulator<dim>::run()
     {
       pcout << "Scene " << parameters.name << " (" << dim << "D, "
-            << parameters.discretization.type << ", degree "
+            << to_string(parameters.discretization.type) << ", degree "
             << parameters.discretization.degree << ", "
             << parameters.discretization.refinements << " refinements)"
             << std::endl;

@@ -62,8 +62,8 @@ namespace igabde
                              scene_file + ": " + name + "/",
                              settings.degree,
                              &subdivisions);
-        const bool              nurbs = (settings.type == "nurbs");
-        const double            split = std::pow(2., refinements);
+        const bool   nurbs = (settings.type == discretization::Type::nurbs);
+        const double split = std::pow(2., refinements);
         std::array<double, dim> nodes;
         SizeEstimate::BodySize  size;
         size.name       = name;
@@ -137,7 +137,7 @@ namespace igabde
                                               c.slave_face,
                                               c.enabled,
                                               scene_file));
-        if (parameters.body2.type == "deformable")
+        if (parameters.body2.type == BodyType::deformable)
           e.bodies.push_back(estimate_body<dim>(parameters.body2,
                                                 "Body 2",
                                                 parameters.discretization,
@@ -145,9 +145,9 @@ namespace igabde
                                                 c.master_face,
                                                 c.enabled,
                                                 scene_file));
-        const bool direct =
-          (parameters.discretization.linear_solver != "cg-amg");
-        double vectors = 0.;
+        const bool direct  = (parameters.discretization.linear_solver !=
+                             discretization::LinearSolver::cg_amg);
+        double     vectors = 0.;
         for (const auto &b : e.bodies)
           {
             e.bytes_matrix += bytes_per_matrix_entry * b.matrix_entries;

@@ -50,10 +50,10 @@ namespace
   /// linear solver and, with @p schur, from the Schur complement on the
   /// contact face; also returns the asymmetry before symmetrisation.
   std::pair<Eigen::MatrixXd, double>
-  condensed_flexibility(const std::string &type,
-                        const double       mu,
-                        const std::string &linear_solver,
-                        const bool         schur)
+  condensed_flexibility(const discretization::Type         type,
+                        const double                       mu,
+                        const discretization::LinearSolver linear_solver,
+                        const bool                         schur)
   {
     discretization::DiscretizationSettings settings;
     settings.type          = type;
@@ -95,14 +95,18 @@ namespace
 
 TEST(ContactFlexibility, SymmetricPositiveDefiniteForFixedBodies)
 {
-  for (const std::string type : {"nurbs", "lagrange"})
+  for (const auto type :
+       {discretization::Type::nurbs, discretization::Type::lagrange})
     for (const double mu : {0., 0.3})
       {
-        SCOPED_TRACE(type + " mu=" + std::to_string(mu));
+        SCOPED_TRACE(to_string(type) + " mu=" + std::to_string(mu));
         // Per-column solves on UMFPACK's LU: the columns come from
         // independent solves, so only round-off can make W asymmetric.
         const auto [W, asymmetry] =
-          condensed_flexibility(type, mu, "umfpack", false);
+          condensed_flexibility(type,
+                                mu,
+                                discretization::LinearSolver::umfpack,
+                                false);
         ASSERT_GT(W.rows(), 0);
         EXPECT_LT(asymmetry, 1e-10);
         // Positive definite: the smallest eigenvalue is positive relative
@@ -122,16 +126,26 @@ TEST(ContactFlexibility, SchurComplementEqualsColumnSolves)
   // against one UMFPACK LU solve per column: two independent factorisations
   // of the same K, so they agree to round-off times the condition number
   // of these small blocks (about 1e4): 1e-10 relative is a safe bound.
-  for (const std::string type : {"nurbs", "lagrange"})
+  for (const auto type :
+       {discretization::Type::nurbs, discretization::Type::lagrange})
     for (const double mu : {0., 0.3})
       {
-        SCOPED_TRACE(type + " mu=" + std::to_string(mu));
+        SCOPED_TRACE(to_string(type) + " mu=" + std::to_string(mu));
         const auto [W_columns, a1] =
-          condensed_flexibility(type, mu, "umfpack", false);
+          condensed_flexibility(type,
+                                mu,
+                                discretization::LinearSolver::umfpack,
+                                false);
         const auto [W_schur, a2] =
-          condensed_flexibility(type, mu, "direct", true);
+          condensed_flexibility(type,
+                                mu,
+                                discretization::LinearSolver::direct,
+                                true);
         const auto [W_block, a3] =
-          condensed_flexibility(type, mu, "direct", false);
+          condensed_flexibility(type,
+                                mu,
+                                discretization::LinearSolver::direct,
+                                false);
         ASSERT_EQ(W_columns.rows(), W_schur.rows());
         EXPECT_LT((W_schur - W_columns).norm(), 1e-10 * W_columns.norm());
         EXPECT_LT((W_block - W_columns).norm(), 1e-10 * W_columns.norm());

@@ -51,10 +51,11 @@ namespace
 
 TEST(ContactV3, BNewtonFromZeroForcesGivesTheUniformPressure)
 {
-  for (const std::string type : {"nurbs", "lagrange"})
+  for (const auto type :
+       {discretization::Type::nurbs, discretization::Type::lagrange})
     for (const double mu : {0., 0.3})
       {
-        SCOPED_TRACE(type + " mu=" + std::to_string(mu));
+        SCOPED_TRACE(to_string(type) + " mu=" + std::to_string(mu));
         // Upper block: pressure 1 on its top, held vertically only by the
         // contact. Lower block: also held in y at its bottom.
         auto                                upper = v3_block("upper", 0.);

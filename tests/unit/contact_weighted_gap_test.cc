@@ -85,11 +85,11 @@ namespace
 
   template <int dim>
   PatchResult
-  patch_test(const std::string     &type,
-             const contact::Pairing pairing,
-             const unsigned int     n_slave,
-             const unsigned int     n_master,
-             const double           mu)
+  patch_test(const discretization::Type type,
+             const contact::Pairing     pairing,
+             const unsigned int         n_slave,
+             const unsigned int         n_master,
+             const double               mu)
   {
     auto upper = v3_block<dim>("upper", 0., n_slave);
     discretization::NeumannCondition<dim> pressure;
@@ -154,14 +154,15 @@ namespace
   void
   run_cases()
   {
-    for (const std::string type : {"nurbs", "lagrange"})
+    for (const auto type :
+         {discretization::Type::nurbs, discretization::Type::lagrange})
       for (const auto &[n_slave, n_master] :
            {std::pair<unsigned int, unsigned int>{2, 3}, {3, 2}})
         for (const double mu : {0., 0.3})
           {
             std::ostringstream name;
-            name << dim << "D " << type << " slave " << n_slave << " on master "
-                 << n_master << " mu=" << mu;
+            name << dim << "D " << to_string(type) << " slave " << n_slave
+                 << " on master " << n_master << " mu=" << mu;
             SCOPED_TRACE(name.str());
             const auto closest =
               patch_test<dim>(type,
@@ -190,7 +191,8 @@ namespace
                 // The slave face's trace space: (n (p = 2) + 2)^(dim-1)
                 // functions for NURBS, (2 n + 1)^(dim-1) nodes for FE_Q(2).
                 const unsigned int per_direction =
-                  (type == "nurbs" ? n_slave + 2 : 2 * n_slave + 1);
+                  (type == discretization::Type::nurbs ? n_slave + 2 :
+                                                         2 * n_slave + 1);
                 EXPECT_EQ(weighted.n_pairs,
                           static_cast<unsigned int>(
                             std::pow(per_direction, dim - 1)));
@@ -214,7 +216,8 @@ namespace
             // the rule is the tensor product). There node-to-surface passes.
             // FE_Q(2) slave 3 on master 2 fails: Simpson's rule on the
             // middle third misses the master's kink at 1/2.
-            if (type == "nurbs" && n_slave == 3 && n_master == 2)
+            if (type == discretization::Type::nurbs && n_slave == 3 &&
+                n_master == 2)
               EXPECT_LE(closest.normal_error, 1e-6);
             else
               EXPECT_GT(closest.normal_error, 1e-3);

@@ -48,7 +48,7 @@ namespace
 
   std::unique_ptr<discretization::Body<2>>
   make_body(const discretization::BodyDescription<2> &description,
-            const std::string                        &type,
+            const discretization::Type                type,
             const unsigned int                        refinements)
   {
     discretization::DiscretizationSettings settings;
@@ -153,7 +153,8 @@ TEST(ElasticityStressMeasures, HomogeneousStretchBothDiscretisations)
 {
   const double delta = 1e-3;
   for (const auto model : {plane_stress, plane_strain})
-    for (const std::string type : {"nurbs", "lagrange"})
+    for (const auto type :
+         {discretization::Type::nurbs, discretization::Type::lagrange})
       {
         discretization::BodyDescription<2> d;
         d.name     = "square";
@@ -178,7 +179,7 @@ TEST(ElasticityStressMeasures, HomogeneousStretchBothDiscretisations)
             EXPECT_NEAR(elasticity::von_mises(sigma, body->material()),
                         expected,
                         1e-10 * expected)
-              << type << ", plane "
+              << to_string(type) << ", plane "
               << (model == plane_stress ? "stress" : "strain") << ", at " << x;
             EXPECT_NEAR(sigma[0][0], s, 1e-10 * s);
           }
@@ -202,7 +203,8 @@ TEST(ElasticityStressMeasures, LameCylinderInnerWallBothDiscretisations)
   // 2.31325 exactly: 2.3133 to four significant digits.
   EXPECT_NEAR(lame, 2.3133, 1e-4 * 2.3133);
 
-  for (const std::string type : {"nurbs", "lagrange"})
+  for (const auto type :
+       {discretization::Type::nurbs, discretization::Type::lagrange})
     {
       discretization::BodyDescription<2> d;
       d.name     = "cylinder";
@@ -223,6 +225,6 @@ TEST(ElasticityStressMeasures, LameCylinderInnerWallBothDiscretisations)
       EXPECT_NEAR(elasticity::von_mises(sigma, body->material()),
                   lame,
                   1e-2 * lame)
-        << type;
+        << to_string(type);
     }
 }

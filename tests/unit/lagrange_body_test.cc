@@ -33,7 +33,7 @@ TEST(LagrangeBody, CurvedBeamVolumeAndFaces)
   d.dirichlet.push_back(clamp);
 
   discretization::DiscretizationSettings settings;
-  settings.type   = "lagrange";
+  settings.type   = discretization::Type::lagrange;
   settings.degree = 2;
   auto body       = discretization::create_body<3>(d, settings);
   body->setup();
@@ -71,16 +71,17 @@ TEST(LagrangeBody, ContainsOnlyItsOwnPoints)
   d.geometry = nurbs::make_box<3>(Point<3>(0., 0., 1.), Point<3>(6., 1., 2.));
   nurbs::elevate_to_degree(d.geometry, 2);
   nurbs::subdivide(d.geometry, std::array<unsigned int, 3>{{4, 2, 2}});
-  for (const std::string type : {"lagrange", "nurbs"})
+  for (const auto type :
+       {discretization::Type::lagrange, discretization::Type::nurbs})
     {
       discretization::DiscretizationSettings settings;
       settings.type   = type;
       settings.degree = 2;
       auto body       = discretization::create_body<3>(d, settings);
       body->setup();
-      EXPECT_TRUE(body->contains(Point<3>(0., 0., 2.))) << type;
-      EXPECT_TRUE(body->contains(Point<3>(3., 0.5, 1.5))) << type;
-      EXPECT_FALSE(body->contains(Point<3>(6., 0., 0.))) << type;
-      EXPECT_FALSE(body->contains(Point<3>(3., 0.5, 0.5))) << type;
+      EXPECT_TRUE(body->contains(Point<3>(0., 0., 2.))) << to_string(type);
+      EXPECT_TRUE(body->contains(Point<3>(3., 0.5, 1.5))) << to_string(type);
+      EXPECT_FALSE(body->contains(Point<3>(6., 0., 0.))) << to_string(type);
+      EXPECT_FALSE(body->contains(Point<3>(3., 0.5, 0.5))) << to_string(type);
     }
 }

@@ -65,7 +65,7 @@ namespace
   lagrange(const unsigned int degree)
   {
     discretization::DiscretizationSettings settings;
-    settings.type   = "lagrange";
+    settings.type   = discretization::Type::lagrange;
     settings.degree = degree;
     return settings;
   }

@@ -36,7 +36,7 @@ namespace
   settings(const unsigned int degree, const unsigned int refinements)
   {
     DiscretizationSettings s;
-    s.type        = "nurbs";
+    s.type        = discretization::Type::nurbs;
     s.degree      = degree;
     s.refinements = refinements;
     return s;

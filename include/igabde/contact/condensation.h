@@ -17,6 +17,21 @@ namespace igabde
   namespace contact
   {
     /**
+     * @brief Contact/Condensation: how the condensed path forms W with the
+     * direct solver: from the Schur complement on the pairs' unknowns
+     * (schur), or by one solve per pair direction (columns).
+     */
+    enum class Condensation
+    {
+      schur,
+      columns
+    };
+
+    /** @brief The name of @p condensation as the scene writes it. */
+    std::string
+    to_string(const Condensation condensation);
+
+    /**
      * @brief The contact problem condensed onto the pairs: the flexibility
      * F^L in the pairs' local frames, the rigid-mode columns G of floating
      * bodies and what is needed to set q and b per load step.

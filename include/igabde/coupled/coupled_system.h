@@ -7,6 +7,8 @@
 #include <igabde/contact/coupled_operator.h>
 #include <igabde/contact/pairing.h>
 
+#include <igabde/coupled/solver.h>
+
 #include <deal.II/base/index_set.h>
 
 #include <deal.II/lac/trilinos_precondition.h>
@@ -54,7 +56,7 @@ namespace igabde
        * @param n_components Components per pair (1 frictionless, else dim).
        * @param G The rigid-mode columns of the contact problem.
        * @param obstacle Whether Body 1 faces a rigid obstacle.
-       * @param solver "mumps", "klu" or "gmres-amg".
+       * @param solver The linear solver.
        * @param krylov_max_iterations GMRES iteration limit per solve
        * (gmres-amg).
        */
@@ -64,7 +66,7 @@ namespace igabde
         const unsigned int                                    n_components,
         const Eigen::MatrixXd                                &G,
         const bool                                            obstacle,
-        const std::string                                    &solver,
+        const Solver                                          solver,
         const unsigned int krylov_max_iterations = 1000);
 
       unsigned int
@@ -190,12 +192,12 @@ namespace igabde
     /**
      * @brief The factory of the full contact path's coupled system that
      * the contact stage calls once the pairs are formed: CoupledSystem
-     * with the linear solver @p solver ("mumps", "klu" or "gmres-amg") and
+     * with the linear solver @p solver and
      * the GMRES iteration limit @p krylov_max_iterations.
      */
     template <int dim>
     contact::CoupledFactory<dim>
-    coupled_factory(const std::string &solver,
+    coupled_factory(const Solver       solver,
                     const unsigned int krylov_max_iterations);
   } // namespace coupled
 } // namespace igabde

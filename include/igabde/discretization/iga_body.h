@@ -22,17 +22,6 @@ namespace igabde
     using namespace dealii;
 
     /**
-     * @brief Where contact pair points sit on a NURBS surface
-     * (DiscretizationSettings::pair_placement).
-     */
-    enum class PairPlacement
-    {
-      greville,
-      knots,
-      gauss
-    };
-
-    /**
      * @brief The isogeometric (NURBS) discretisation of a body, hosted in
      * deal.II.
      *

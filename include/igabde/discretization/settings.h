@@ -7,28 +7,66 @@ namespace igabde
 {
   namespace discretization
   {
+    /** @brief Discretization/Type: how a body's displacement is discretised. */
+    enum class Type
+    {
+      /// Isogeometric: the NURBS basis of the exact geometry.
+      nurbs,
+      /// deal.II's FE_Q on a mesh of the same NURBS map.
+      lagrange
+    };
+
+    /** @brief Discretization/Linear solver. */
+    enum class LinearSolver
+    {
+      /// MUMPS (LDL^T, with a Schur interface where the path asks).
+      direct,
+      /// UMFPACK (LU).
+      umfpack,
+      /// Conjugate gradients with Trilinos ML algebraic multigrid.
+      cg_amg
+    };
+
+    /**
+     * @brief Contact/Pair placement: where contact pair points sit on a
+     * NURBS face. A Lagrange body uses its face nodes whatever this says.
+     */
+    enum class PairPlacement
+    {
+      /// Images of the Greville abscissae.
+      greville,
+      /// The knot grid.
+      knots,
+      /// The face's Gauss points.
+      gauss
+    };
+
+    /** @brief The name of each value as the scene writes it. */
+    std::string
+    to_string(const Type type);
+    /** @copydoc to_string(const Type) */
+    std::string
+    to_string(const LinearSolver solver);
+    /** @copydoc to_string(const Type) */
+    std::string
+    to_string(const PairPlacement placement);
+
     /**
      * @brief How the scene discretises bodies.
      */
     struct DiscretizationSettings
     {
-      /// "nurbs" or "lagrange".
-      std::string type = "nurbs";
+      Type type = Type::nurbs;
       /// Polynomial degree (NURBS: degree after elevation; Lagrange: FE_Q).
       unsigned int degree = 2;
       /// Extra uniform h-refinements of the scene's base mesh.
-      unsigned int refinements = 0;
-      /// Linear solver: "direct", "umfpack" or "cg-amg".
-      std::string linear_solver = "direct";
+      unsigned int refinements   = 0;
+      LinearSolver linear_solver = LinearSolver::direct;
       /// Relative tolerance of the iterative solver.
       double linear_tolerance = 1e-12;
       /// Subdivisions per cell and direction in the VTU output.
-      unsigned int output_subdivisions = 4;
-      /// Where contact pair points sit on a NURBS face: "greville" (images
-      /// of the Greville abscissae), "knots" (the knot grid) or "gauss"
-      /// (the face's Gauss points). A Lagrange body uses its face nodes
-      /// whatever this says.
-      std::string pair_placement = "greville";
+      unsigned int  output_subdivisions = 4;
+      PairPlacement pair_placement      = PairPlacement::greville;
     };
   } // namespace discretization
 } // namespace igabde

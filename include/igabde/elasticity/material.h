@@ -21,6 +21,14 @@ namespace igabde
       plane_stress
     };
 
+    /** @brief "plane strain" or "plane stress", as the scene writes it. */
+    inline std::string
+    to_string(const PlaneModel model)
+    {
+      return model == PlaneModel::plane_strain ? "plane strain" :
+                                                 "plane stress";
+    }
+
     /**
      * @brief Isotropic linear elastic material.
      */

@@ -35,7 +35,7 @@ namespace igabde
      * name. Empty when the geometry does not exist in that dimension.
      */
     std::vector<std::string>
-    patch_faces(const std::string &geometry, const unsigned int dimension);
+    patch_faces(const Geometry geometry, const unsigned int dimension);
   } // namespace scene
 } // namespace igabde
 

@@ -3,8 +3,13 @@
 
 #include <igabde/discretization/settings.h>
 
+#include <igabde/elasticity/material.h>
+
+#include <igabde/contact/condensation.h>
 #include <igabde/contact/contact_solver.h>
 #include <igabde/contact/pairing.h>
+
+#include <igabde/coupled/solver.h>
 
 #include <deal.II/base/parameter_handler.h>
 
@@ -17,6 +22,52 @@ namespace igabde
   namespace scene
   {
     using namespace dealii;
+
+    /** @brief Body N/Type. */
+    enum class BodyType
+    {
+      /// A meshed elastic body.
+      deformable,
+      /// A fixed flat obstacle with no mesh and no unknowns (Body 2 only).
+      rigid_plane,
+      /// No such body (Body 2 only).
+      none
+    };
+
+    /** @brief Body N/Geometry: the built-in exact NURBS geometries. */
+    enum class Geometry
+    {
+      box,
+      quarter_annulus,
+      thick_cylinder,
+      plate_with_hole,
+      hertz_quarter_disc,
+      curved_beam,
+      full_disc,
+      half_disc,
+      full_cylinder,
+      half_cylinder
+    };
+
+    /** @brief Exact solution/Type. */
+    enum class ExactSolutionType
+    {
+      none,
+      /// Kirsch's plate with a hole (V1).
+      kirsch,
+      /// Lame's thick cylinder (V2).
+      lame
+    };
+
+    /** @brief The name of each value as the scene writes it. */
+    std::string
+    to_string(const BodyType type);
+    /** @copydoc to_string(const BodyType) */
+    std::string
+    to_string(const Geometry geometry);
+    /** @copydoc to_string(const BodyType) */
+    std::string
+    to_string(const ExactSolutionType type);
 
     /**
      * @brief Where and what a run writes.
@@ -107,29 +158,28 @@ namespace igabde
      */
     struct BodyParameters
     {
-      /// "deformable", "rigid plane" or "none" (Body 2 only).
-      std::string type = "deformable";
-      /// Geometry builder name.
-      std::string geometry = "box";
-      /// Box lower corner (m), comma-separated; empty: the origin.
-      std::string lower_corner;
-      /// Box upper corner (m), comma-separated; empty: all ones.
-      std::string upper_corner;
+      BodyType type     = BodyType::deformable;
+      Geometry geometry = Geometry::box;
+      /// Box lower corner (m), dimension values; empty: the origin.
+      std::vector<double> lower_corner;
+      /// Box upper corner (m), dimension values; empty: all ones.
+      std::vector<double> upper_corner;
       /// Radii of annulus-like geometries (m).
       double inner_radius = 1.;
       /// Radii of annulus-like geometries (m).
       double outer_radius = 2.;
       /// Radius of the Hertz quarter disc, the discs and cylinders (m).
       double radius = 8.;
-      /// Centre of the discs (base centre of the cylinders), comma-separated
-      /// (m); empty: the origin.
-      std::string centre;
+      /// Centre of the discs (base centre of the cylinders) (m), dimension
+      /// values; empty: the origin.
+      std::vector<double> centre;
       /// Extrusion width of 3D geometries (m).
       double width = 1.;
       /// Half-size L of the plate with a hole (m).
       double plate_size = 4.;
-      /// Knot spans per direction of the base mesh, before refinements.
-      std::string subdivisions = "1";
+      /// Knot spans per direction of the base mesh, before refinements
+      /// (dimension counts, 1 to 9999).
+      std::vector<unsigned int> subdivisions = {1, 1, 1};
       /// Young's modulus (Pa).
       double youngs_modulus = 1000.;
       /// Poisson's ratio (-).
@@ -143,10 +193,11 @@ namespace igabde
       std::vector<PointLoadParameters> point_loads;
       /// Body force per volume (N/m^3), dimension values.
       std::vector<double> body_force;
-      /// Rigid plane: a point on it (m).
-      std::string plane_point = "0, 0, 0";
-      /// Rigid plane: unit normal pointing towards Body 1.
-      std::string plane_normal = "0, 1, 0";
+      /// Rigid plane: a point on it (m), dimension values.
+      std::vector<double> plane_point = {0., 0., 0.};
+      /// Rigid plane: the normal pointing towards Body 1 (not zero),
+      /// dimension values.
+      std::vector<double> plane_normal = {0., 1., 0.};
 
       /// Declares the subsection @p name ("Body 1" or "Body 2").
       static void
@@ -172,8 +223,7 @@ namespace igabde
      */
     struct ExactSolutionParameters
     {
-      /// "none", "kirsch" (V1) or "lame" (V2).
-      std::string type = "none";
+      ExactSolutionType type = ExactSolutionType::none;
       /// Kirsch remote tension T_x (Pa).
       double remote_tension = 10.;
       /// Kirsch hole radius (m).
@@ -213,19 +263,18 @@ namespace igabde
       double tangential_penalty_factor = 1.;
       /// Line search on the penalty Newton steps.
       bool penalty_line_search = true;
-      /// Linear solver of the full path: "mumps", "klu" or "gmres-amg".
-      std::string full_system_solver = "mumps";
+      /// Linear solver of the full path.
+      coupled::Solver full_system_solver = coupled::Solver::mumps;
       /// GMRES iteration limit per Newton step (gmres-amg).
-      unsigned int krylov_max_iterations = 1000;
-      /// "schur" (Schur complement on the contact face) or "columns" (one
-      /// solve per pair direction).
-      std::string condensation = "schur";
+      unsigned int          krylov_max_iterations = 1000;
+      contact::Condensation condensation = contact::Condensation::schur;
       /// Patch face of Body 1 that may touch.
       unsigned int slave_face = 2;
       /// Patch face of Body 2 that may touch.
       unsigned int master_face = 3;
-      /// Where pairs sit on a NURBS surface: greville, knots or gauss.
-      std::string pair_placement = "greville";
+      /// Where pairs sit on a NURBS surface.
+      discretization::PairPlacement pair_placement =
+        discretization::PairPlacement::greville;
       /// Pairing strategy: "node-to-surface", "node-to-node",
       /// "weighted-gap" or "weighted-gap-standard".
       contact::Pairing pairing = contact::Pairing::node_to_surface;
@@ -325,7 +374,7 @@ namespace igabde
       /// Spatial dimension, 2 or 3.
       unsigned int dimension = 2;
       /// Plane strain or plane stress (2D).
-      std::string plane_model = "plane strain";
+      elasticity::PlaneModel plane_model = elasticity::PlaneModel::plane_strain;
       /// Probe points: "name: x,y[,z]; ...".
       std::string probes;
       /// Output.
