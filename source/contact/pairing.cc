@@ -1,5 +1,6 @@
 #include <igabde/base/utilities.h>
 
+#include <igabde/contact/nearest_points.h>
 #include <igabde/contact/pairing.h>
 
 #include <deal.II/base/quadrature_lib.h>
@@ -63,19 +64,16 @@ namespace igabde
 
 
 
-      /// The index of the sample nearest to @p x.
+      /// The R-tree over the locations of @p samples.
       template <int dim>
-      unsigned int
-      nearest_sample(
-        const std::vector<discretization::SurfacePoint<dim>> &samples,
-        const Point<dim>                                     &x)
+      std::unique_ptr<NearestPoints<dim>>
+      index_samples(
+        const std::vector<discretization::SurfacePoint<dim>> &samples)
       {
-        unsigned int best = 0;
-        for (unsigned int m = 1; m < samples.size(); ++m)
-          if ((samples[m].location - x).norm() <
-              (samples[best].location - x).norm())
-            best = m;
-        return best;
+        std::vector<Point<dim>> locations;
+        for (const auto &s : samples)
+          locations.push_back(s.location);
+        return std::make_unique<NearestPoints<dim>>(std::move(locations));
       }
 
 
@@ -191,12 +189,13 @@ namespace igabde
                   base::ExcInput(context + ": " + master.description() +
                                  " has no contact points."));
       std::vector<ContactPair<dim>> pairs;
+      const auto                    index = index_samples(samples);
       for (const auto &s : slave)
         pairs.push_back(
           make_pair(s,
                     master.deformable() ?
                       facing_point(s,
-                                   samples[nearest_sample(samples, s.location)],
+                                   samples[index->nearest(s.location)],
                                    master,
                                    size,
                                    context) :
@@ -305,6 +304,7 @@ namespace igabde
               n *= coords[k].size();
               extent = std::max(extent, b.back() - b.front());
             }
+          std::vector<Point<dim>> sample_x;
           for (unsigned int i = 0; i < n; ++i)
             {
               Point<dim - 1> eta;
@@ -317,18 +317,14 @@ namespace igabde
               sample_eta.push_back(eta);
               sample_x.push_back(master.face_point(eta).location);
             }
+          index = std::make_unique<NearestPoints<dim>>(std::move(sample_x));
         }
 
         /// The face coordinates of the point of the face closest to @p x.
         Point<dim - 1>
         project(const Point<dim> &x) const
         {
-          unsigned int best = 0;
-          for (unsigned int i = 1; i < sample_x.size(); ++i)
-            if ((sample_x[i] - x).norm_square() <
-                (sample_x[best] - x).norm_square())
-              best = i;
-          Point<dim - 1> eta = sample_eta[best];
+          Point<dim - 1> eta = sample_eta[index->nearest(x)];
           for (unsigned int it = 0; it < 100; ++it)
             {
               const auto           fp = master.face_point(eta);
@@ -370,10 +366,10 @@ namespace igabde
         const discretization::FaceGrid<dim> grid;
 
       private:
-        const std::string           context;
-        double                      extent = 0.;
-        std::vector<Point<dim - 1>> sample_eta;
-        std::vector<Point<dim>>     sample_x;
+        const std::string                   context;
+        double                              extent = 0.;
+        std::vector<Point<dim - 1>>         sample_eta;
+        std::unique_ptr<NearestPoints<dim>> index;
       };
 
 

@@ -1,0 +1,82 @@
+#ifndef igabde_contact_nearest_points_h
+#define igabde_contact_nearest_points_h
+
+#include <deal.II/base/point.h>
+
+#include <deal.II/numerics/rtree.h>
+
+#include <boost/geometry/index/rtree.hpp>
+
+#include <iterator>
+#include <utility>
+#include <vector>
+
+namespace igabde
+{
+  namespace contact
+  {
+    using namespace dealii;
+
+    /**
+     * @brief The samples of a contact surface with an R-tree over them
+     * (deal.II's pack_rtree_of_indices(), Boost.Geometry): the start of
+     * every closest-point search, in O(log n) per query instead of a scan.
+     */
+    template <int dim>
+    class NearestPoints
+    {
+    public:
+      explicit NearestPoints(std::vector<Point<dim>> samples)
+        : samples(std::move(samples))
+        , tree(pack_rtree_of_indices(this->samples))
+      {}
+
+      // The tree refers to the samples it was packed from.
+      NearestPoints(const NearestPoints &) = delete;
+      NearestPoints &
+      operator=(const NearestPoints &) = delete;
+
+      /** @brief Whether there are no samples. */
+      bool
+      empty() const
+      {
+        return samples.empty();
+      }
+
+      /**
+       * @brief The index of the sample nearest to @p x; of several at the
+       * same distance, the first (as a scan in index order would find).
+       */
+      unsigned int
+      nearest(const Point<dim> &x) const
+      {
+        std::vector<std::size_t> candidates;
+        tree.query(boost::geometry::index::nearest(x, 8),
+                   std::back_inserter(candidates));
+        std::size_t best = candidates.front();
+        for (const std::size_t c : candidates)
+          {
+            const double dc = samples[c].distance_square(x);
+            const double db = samples[best].distance_square(x);
+            if (dc < db || (dc == db && c < best))
+              best = c;
+          }
+        return best;
+      }
+
+      /** @brief Sample @p i. */
+      const Point<dim> &
+      operator[](const unsigned int i) const
+      {
+        return samples[i];
+      }
+
+    private:
+      const std::vector<Point<dim>> samples;
+      const decltype(pack_rtree_of_indices(
+        std::declval<const std::vector<Point<dim>> &>())) tree;
+    };
+  } // namespace contact
+} // namespace igabde
+
+#endif
