@@ -6,7 +6,6 @@
 #include <deal.II/numerics/rtree.h>
 
 #include <boost/geometry/index/rtree.hpp>
-
 #include <iterator>
 #include <utility>
 #include <vector>
@@ -72,7 +71,7 @@ namespace igabde
       }
 
     private:
-      const std::vector<Point<dim>> samples;
+      const std::vector<Point<dim>>                       samples;
       const decltype(pack_rtree_of_indices(
         std::declval<const std::vector<Point<dim>> &>())) tree;
     };
