@@ -19,9 +19,10 @@ namespace igabde
      * @p path is replaced.
      *
      * If @p result is given, its contact forces and relative displacements
-     * are stored with it (r = p, u = u): as the reference solution
-     * (/solution, read by contact::read_fclib_solution()) if it converged,
-     * else as the one initial guess (/guesses/1).
+     * are stored with it (r = p, u = u): as the reference solution (the
+     * HDF5 group "solution", read by contact::read_fclib_solution()) if it
+     * converged, else as the one initial guess (the group "guesses", entry
+     * 1).
      *
      * Refused (AssertThrow naming the file): frictionless problems
      * (n_components = 1; FCLIB's spacedim is 2 or 3), problems with
