@@ -1,6 +1,7 @@
-// The names create_contact_solver() knows, apart from the solvers
-// themselves: the scene reader checks Contact/Algorithm against them
-// without linking any solver (the fuzz target of contrib/fuzz).
+// The names of the contact layer's enums (algorithm, path, pairing,
+// condensation) as the scene writes them, apart from the code that uses
+// them: the scene reader parses its selections with them without linking
+// any solver (the fuzz target of contrib/fuzz).
 
 #include <igabde/contact/condensation.h>
 #include <igabde/contact/contact_solver.h>
