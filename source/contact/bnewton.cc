@@ -247,17 +247,7 @@ namespace igabde
           if (start.alpha.size() > 0)
             x.alpha = start.alpha;
           else
-            {
-              // No pair closes along -b (e.g. b = 0): start from zero.
-              try
-                {
-                  x.alpha = touching_alpha(data);
-                }
-              catch (const std::exception &)
-                {
-                  x.alpha.setZero();
-                }
-            }
+            x.alpha = touching_alpha(data);
         }
 
       op.set_proximal_shift(0.);

@@ -8,12 +8,89 @@ namespace igabde
 {
   namespace contact
   {
+    namespace
+    {
+      /**
+       * A combination of free rigid modes that moves no pair along any of
+       * its directions (with frictionless pairs on a plane: the slide along
+       * the plane) is not fixed by the contact problem: its column space
+       * leaves G singular whatever the pairs do. If no load drives it, hold
+       * it at zero (the columns of G become a basis of the resisted
+       * combinations, @p modes.basis maps them back); if a load drives it,
+       * nothing can balance that load and the scene is refused.
+       */
+      template <int dim>
+      void
+      hold_unresisted_modes(
+        RigidModeColumns                                     &modes,
+        const std::vector<const discretization::Body<dim> *> &bodies,
+        const std::string                                    &context,
+        std::ostream                                         &log)
+      {
+        const Eigen::Index n = modes.G.cols();
+        if (n == 0 || modes.G.rows() == 0)
+          return;
+        // Columns scaled to unit length, so that the rank test does not
+        // depend on the units of the modes.
+        Eigen::VectorXd scale(n);
+        for (Eigen::Index a = 0; a < n; ++a)
+          {
+            const double norm = modes.G.col(a).norm();
+            scale(a)          = norm > 0. ? 1. / norm : 1.;
+          }
+        const Eigen::JacobiSVD<Eigen::MatrixXd> svd(modes.G *
+                                                      scale.asDiagonal(),
+                                                    Eigen::ComputeFullV);
+        const Eigen::VectorXd                  &sigma = svd.singularValues();
+        Eigen::Index                            rank  = 0;
+        while (rank < n && sigma(rank) > 1e-8 * sigma(0))
+          ++rank;
+        if (rank == n)
+          return;
+        const Eigen::MatrixXd V = scale.asDiagonal() * svd.matrixV();
+        const double          load_scale =
+          std::max(modes.loads.norm(), modes.history_loads.norm());
+        for (Eigen::Index j = rank; j < n; ++j)
+          {
+            Eigen::VectorXd v = V.col(j);
+            v /= v.norm();
+            Eigen::Index main = 0;
+            v.cwiseAbs().maxCoeff(&main);
+            const auto [b, k] = modes.alpha_modes[main];
+            const std::string name =
+              "Body " + std::to_string(b + 1) + "'s free rigid mode '" +
+              bodies[b]->free_rigid_mode_names()[k] + "'";
+            const double load =
+              std::max(std::abs(v.dot(modes.loads)),
+                       (modes.history_loads.transpose() * v).norm());
+            AssertThrow(
+              !(load > 1e-10 * load_scale),
+              base::ExcInput(
+                context + ": " + name +
+                " carries a load that no contact pair can balance (it moves "
+                "no pair along a direction that carries force; frictionless "
+                "pairs push only along their normals). Hold it with a support "
+                "(Supports) or give the contact friction."));
+            log << "  " << name
+                << " moves no contact pair and carries no load: held at zero"
+                << std::endl;
+          }
+        modes.basis         = V.leftCols(rank);
+        modes.G             = modes.G * modes.basis;
+        modes.loads         = modes.basis.transpose() * modes.loads;
+        modes.history_loads = modes.basis.transpose() * modes.history_loads;
+      }
+    } // namespace
+
+
+
     template <int dim>
     RigidModeColumns
     rigid_mode_columns(
       const std::vector<ContactPair<dim>>                  &pair_list,
       const std::vector<const discretization::Body<dim> *> &bodies,
       const unsigned int                                    m,
+      const std::string                                    &context,
       std::ostream                                         &log)
     {
       RigidModeColumns   result;
@@ -50,6 +127,9 @@ namespace igabde
               << "' closed by the contact equilibrium (exact, no springs)"
               << std::endl;
         }
+      result.basis =
+        Eigen::MatrixXd::Identity(alpha_modes.size(), alpha_modes.size());
+      hold_unresisted_modes(result, bodies, context, log);
       return result;
     }
 
@@ -99,8 +179,9 @@ namespace igabde
       // Rigid modes left free by the supports: u = K^+ f + R alpha, with the
       // equilibrium R^T (f_ext + f_contact) = 0 joining the BDE system.
       RigidModeColumns modes =
-        rigid_mode_columns<dim>(pair_list, bodies, m, log);
+        rigid_mode_columns<dim>(pair_list, bodies, m, context, log);
       result.alpha_modes              = modes.alpha_modes;
+      result.alpha_basis              = modes.basis;
       result.rigid_mode_loads         = modes.loads;
       result.rigid_mode_history_loads = modes.history_loads;
       const Eigen::MatrixXd &GL       = modes.G;
@@ -129,7 +210,7 @@ namespace igabde
                                  "both sides; nothing can touch."));
       ContactProblem &problem = result.problem;
       Eigen::MatrixXd W(m * keep.size(), m * keep.size());
-      problem.G.resize(m * keep.size(), result.alpha_modes.size());
+      problem.G.resize(m * keep.size(), GL.cols());
       for (unsigned int i = 0; i < keep.size(); ++i)
         {
           result.pairs.push_back(pair_list[keep[i]]);
@@ -148,7 +229,7 @@ namespace igabde
       problem.q            = Eigen::VectorXd::Zero(m * result.pairs.size());
       problem.mu.assign(result.pairs.size(), friction);
       problem.name = context;
-      problem.b.resize(result.alpha_modes.size());
+      problem.b.resize(GL.cols());
       problem.b.setZero();
       problem.check_consistency();
       return result;
@@ -160,11 +241,13 @@ namespace igabde
     rigid_mode_columns(const std::vector<ContactPair<2>> &,
                        const std::vector<const discretization::Body<2> *> &,
                        const unsigned int,
+                       const std::string &,
                        std::ostream &);
     template RigidModeColumns
     rigid_mode_columns(const std::vector<ContactPair<3>> &,
                        const std::vector<const discretization::Body<3> *> &,
                        const unsigned int,
+                       const std::string &,
                        std::ostream &);
     template CondensedContact<2>
     condense(const std::vector<ContactPair<2>> &,

@@ -134,7 +134,7 @@ namespace igabde
                               CondensedContact<dim>               &contact)
     {
       RigidModeColumns modes =
-        rigid_mode_columns<dim>(pair_list, bodies, m, log);
+        rigid_mode_columns<dim>(pair_list, bodies, m, context, log);
 
       // Pairs whose points move with held unknowns only (and with no rigid
       // mode) carry no information; leave them out as condense() does.
@@ -172,6 +172,7 @@ namespace igabde
           problem.G.middleRows(m * i, m) = modes.G.middleRows(m * keep[i], m);
         }
       contact.alpha_modes              = modes.alpha_modes;
+      contact.alpha_basis              = modes.basis;
       contact.rigid_mode_loads         = modes.loads;
       contact.rigid_mode_history_loads = modes.history_loads;
       problem.n_contacts               = contact.pairs.size();
@@ -179,7 +180,7 @@ namespace igabde
       problem.q = Eigen::VectorXd::Zero(m * contact.pairs.size());
       problem.mu.assign(contact.pairs.size(), friction);
       problem.name = context;
-      problem.b    = Eigen::VectorXd::Zero(modes.alpha_modes.size());
+      problem.b    = Eigen::VectorXd::Zero(modes.G.cols());
       coupled      = factory(bodies, contact.pairs, m, problem.G, obstacle);
       static_cast<const ContactData &>(problem).check_consistency();
     }

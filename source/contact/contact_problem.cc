@@ -165,9 +165,10 @@ namespace igabde
       AssertThrow(alpha.size() == n_alpha && s.size() == n_alpha,
                   dealii::ExcMessage("touching_alpha: alpha0 or direction "
                                      "has the wrong size"));
-      AssertThrow(s.norm() > 0.,
-                  dealii::ExcMessage("touching_alpha: zero direction (b = 0 "
-                                     "and no direction given)"));
+      // No load on the rigid modes (a body driven by prescribed
+      // displacements whose free modes are unloaded): alpha0 is the start.
+      if (!(s.norm() > 0.))
+        return alpha;
 
       const unsigned int    nc    = problem.n_components;
       const Eigen::VectorXd u0    = problem.q + problem.G * alpha; // u at p = 0
@@ -180,10 +181,9 @@ namespace igabde
           if (g < -1e-14 * slope_scale)
             t = std::min(t, u0[i * nc] / (-g));
         }
-      AssertThrow(std::isfinite(t),
-                  dealii::ExcMessage("touching_alpha: no pair closes when "
-                                     "alpha moves along the direction"));
-      alpha += t * s;
+      // No pair closes along the direction: alpha0 is the start too.
+      if (std::isfinite(t))
+        alpha += t * s;
       return alpha;
     }
 

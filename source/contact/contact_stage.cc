@@ -521,10 +521,11 @@ namespace igabde
         // The bodies' response (the path: solved already on the full
         // path, one solve per body on the condensed one).
         contact_path->add_response(loads, x, u);
+        const Eigen::VectorXd amplitudes = contact.alpha_basis * x.alpha;
         for (unsigned int a = 0; a < contact.alpha_modes.size(); ++a)
           {
             const auto [b, k] = contact.alpha_modes[a];
-            u[b].add(x.alpha(a), bodies[b]->free_rigid_modes()[k]);
+            u[b].add(amplitudes(a), bodies[b]->free_rigid_modes()[k]);
           }
       }
       return result;

@@ -44,33 +44,123 @@ namespace igabde
 
 
 
+    namespace
+    {
+      /**
+       * An orthonormal basis of the rows of G (columns scaled to unit
+       * length) that the Newton matrix ties down; add() says whether a row
+       * enlarges it.
+       */
+      class RowSpace
+      {
+      public:
+        explicit RowSpace(const Eigen::MatrixXd &G)
+          : G(G)
+          , scale(G.cols())
+        {
+          for (Eigen::Index a = 0; a < G.cols(); ++a)
+            {
+              const double norm = G.col(a).norm();
+              scale(a)          = norm > 0. ? 1. / norm : 1.;
+            }
+        }
+
+        bool
+        add(const unsigned int row)
+        {
+          Vec          r      = G.row(row).transpose().cwiseProduct(scale);
+          const double length = r.norm();
+          for (const Vec &e : basis)
+            r -= e.dot(r) * e;
+          if (!(r.norm() > 1e-8 * length))
+            return false;
+          basis.push_back(r / r.norm());
+          return true;
+        }
+
+        bool
+        full() const
+        {
+          return basis.size() == static_cast<std::size_t>(G.cols());
+        }
+
+      private:
+        const Eigen::MatrixXd &G;
+        Vec                    scale;
+        std::vector<Vec>       basis;
+      };
+    } // namespace
+
+
+
     void
     BdeLaw::tie_rule(const ContactData &data,
                      const Vec         &p,
                      const Vec         &u,
                      NewtonBlocks      &pieces) const
     {
+      // The alpha columns of the Newton matrix are tied down by the rows of
+      // G whose pair equation fixes u: the normal rows of closed pairs and
+      // the tangential rows of sticking ones. Until these span every
+      // column, the pairs closest to closing (smallest r_n u_n - p_n) take
+      // the closed branch, and then, if a tangential mode is still free,
+      // closed pairs the stick branch: else a floating body starts with a
+      // singular Newton matrix whenever the one closest pair cannot hold
+      // all its modes (a half disc whose lowest point falls between two
+      // pairs rolls about them).
       if (data.n_alpha() == 0 || data.n_contacts == 0)
         return;
-      for (const PairPiece &piece : pieces)
-        if (piece.closed)
-          return;
-      const unsigned int d    = data.n_components;
-      unsigned int       best = 0;
-      double             gap  = std::numeric_limits<double>::infinity();
+      const unsigned int d = data.n_components;
+      RowSpace           rows(data.G);
       for (unsigned int c = 0; c < data.n_contacts; ++c)
         {
-          const double g = w.r_n[c] * u[c * d] - p[c * d];
-          if (g < gap)
+          if (pieces[c].closed)
+            rows.add(c * d);
+          if (pieces[c].status == ContactStatus::stick)
+            for (unsigned int k = 1; k < d; ++k)
+              rows.add(c * d + k);
+        }
+      if (rows.full())
+        return;
+      std::vector<unsigned int> order(data.n_contacts);
+      for (unsigned int c = 0; c < data.n_contacts; ++c)
+        order[c] = c;
+      std::stable_sort(order.begin(),
+                       order.end(),
+                       [&](const unsigned int a, const unsigned int b) {
+                         return w.r_n[a] * u[a * d] - p[a * d] <
+                                w.r_n[b] * u[b * d] - p[b * d];
+                       });
+      for (const unsigned int c : order)
+        {
+          if (rows.full())
+            return;
+          PairPiece &piece = pieces[c];
+          if (!piece.closed && rows.add(c * d))
             {
-              gap  = g;
-              best = c;
+              piece.closed  = true;
+              piece.A(0, 0) = w.r_n[c];
+              piece.B(0, 0) = 0.;
             }
         }
-      PairPiece &piece = pieces[best];
-      piece.closed     = true;
-      piece.A(0, 0)    = w.r_n[best];
-      piece.B(0, 0)    = 0.;
+      for (const unsigned int c : order)
+        {
+          if (rows.full())
+            return;
+          PairPiece &piece = pieces[c];
+          if (!piece.closed || piece.status == ContactStatus::stick)
+            continue;
+          bool tangential = false;
+          for (unsigned int k = 1; k < d; ++k)
+            tangential = rows.add(c * d + k) || tangential;
+          if (tangential)
+            for (unsigned int k = 1; k < d; ++k)
+              {
+                piece.A.row(k).setZero();
+                piece.B.row(k).setZero();
+                piece.A(k, k) = w.r_t[c];
+              }
+        }
     }
 
 

@@ -508,6 +508,12 @@ namespace igabde
       direct = std::make_unique<TrilinosWrappers::SolverDirect>(
         control,
         TrilinosWrappers::SolverDirect::AdditionalData(false, solver_type));
+      // Amesos prints its solver's error codes to the terminal itself;
+      // they are caught here and their code joins the one message the
+      // contact solver gives.
+      std::ostringstream captured;
+      std::streambuf    *out = std::cout.rdbuf(captured.rdbuf());
+      std::streambuf    *err = std::cerr.rdbuf(captured.rdbuf());
       try
         {
           direct->initialize(matrix);
@@ -516,8 +522,15 @@ namespace igabde
         {
           // A singular Newton matrix (e.g. a floating body whose pairs are
           // all open): solve() reports it, the contact solver says why.
-          factorization_error = "singular";
+          factorization_error    = "singular";
+          const std::string text = captured.str();
+          const auto        code = text.find("INFOG(1) = ");
+          if (code != std::string::npos)
+            factorization_error +=
+              ", MUMPS " + text.substr(code, text.find('\n', code) - code);
         }
+      std::cout.rdbuf(out);
+      std::cerr.rdbuf(err);
     }
 
 
@@ -548,8 +561,9 @@ namespace igabde
         {
           why = "the Newton matrix of the coupled system is singular (" +
                 solver_type +
-                " failed to factorise it; a floating body "
-                "whose pairs are all open is held by nothing)";
+                " failed to factorise it: " + factorization_error +
+                "; a floating body whose pairs are all open is held by "
+                "nothing)";
           return false;
         }
       TrilinosWrappers::MPI::Vector rhs(all, MPI_COMM_SELF),

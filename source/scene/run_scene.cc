@@ -178,34 +178,41 @@ namespace igabde
 
       // The failing rank's message; with several ranks, the others are
       // ended at once (they may wait for it in a collective call).
-      const auto fail = [&](auto &simulator, const std::string &message) {
-        const std::string line =
-          "igabde: error: " +
-          (n_ranks > 1 ? "[rank " + std::to_string(rank) + " of " +
-                           std::to_string(n_ranks) + "] " :
-                         std::string()) +
-          message;
-        if (root)
-          log_file << line << std::endl;
-        std::cerr << line << std::endl;
-        simulator.write_failed_summary(message);
-        if (n_ranks > 1)
-          MPI_Abort(MPI_COMM_WORLD, 1);
-        return 1;
-      };
+      const auto fail =
+        [&](auto &simulator, const std::string &message, const int status) {
+          const std::string line =
+            "igabde: error: " +
+            (n_ranks > 1 ? "[rank " + std::to_string(rank) + " of " +
+                             std::to_string(n_ranks) + "] " :
+                           std::string()) +
+            message;
+          if (root)
+            log_file << line << std::endl;
+          std::cerr << line << std::endl;
+          simulator.write_failed_summary(message);
+          if (n_ranks > 1)
+            MPI_Abort(MPI_COMM_WORLD, status);
+          return status;
+        };
       auto run = [&](auto &simulator) -> int {
         try
           {
             simulator.run();
             return 0;
           }
+        // A scene that reads but cannot be set up (faces that do not face
+        // each other, a load nothing can balance) is an input error too.
+        catch (const base::ExcInput &e)
+          {
+            return fail(simulator, base::exception_message(e), 2);
+          }
         catch (const ExceptionBase &e)
           {
-            return fail(simulator, base::exception_message(e));
+            return fail(simulator, base::exception_message(e), 1);
           }
         catch (const std::exception &e)
           {
-            return fail(simulator, e.what());
+            return fail(simulator, e.what(), 1);
           }
       };
 

@@ -174,7 +174,7 @@ TEST(Cli, SurfacesThatDoNotFaceEachOther)
                                    "' --set 'Body 2/Plane normal=0,-1' "
                                    "--set 'Output/Directory=out'",
                                  folder);
-  EXPECT_NE(result.status, 0);
+  EXPECT_EQ(result.status, 2);
   EXPECT_NE(result.output.find("do not face each other"), std::string::npos)
     << result.output;
   EXPECT_NE(result.output.find("Plane normal"), std::string::npos)

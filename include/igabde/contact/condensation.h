@@ -44,8 +44,11 @@ namespace igabde
       /// The pairs kept (those held by supports on both sides are left
       /// out).
       std::vector<ContactPair<dim>> pairs;
-      /// (body, mode) of every column of G.
+      /// (body, mode) of every free rigid mode.
       std::vector<std::pair<unsigned int, unsigned int>> alpha_modes;
+      /// The free rigid modes' amplitudes per column of G (see
+      /// RigidModeColumns::basis).
+      Eigen::MatrixXd alpha_basis;
       /// r_k . f_ext of every column at load factor 1.
       Eigen::VectorXd rigid_mode_loads;
       /// r_k . f_h of every column (rows) and load history h (columns), at
@@ -78,9 +81,14 @@ namespace igabde
     {
       /// n_components * n_pairs x n_alpha.
       Eigen::MatrixXd G;
-      /// (body, mode) of every column.
+      /// (body, mode) of every free rigid mode.
       std::vector<std::pair<unsigned int, unsigned int>> alpha_modes;
-      /// r_k . f_ext of every column at load factor 1.
+      /// Amplitudes of the free rigid modes (rows, as alpha_modes) per
+      /// column of G: the identity, unless a combination of modes moves no
+      /// pair along a force-carrying direction and carries no load; that
+      /// combination is held at zero and the columns span the others.
+      Eigen::MatrixXd basis;
+      /// r_a . f_ext of every column at load factor 1.
       Eigen::VectorXd loads;
       /// r_k . f_h per column (rows) and load history h (columns).
       Eigen::MatrixXd history_loads;
@@ -92,6 +100,7 @@ namespace igabde
       const std::vector<ContactPair<dim>>                  &pairs,
       const std::vector<const discretization::Body<dim> *> &bodies,
       const unsigned int                                    n_components,
+      const std::string                                    &context,
       std::ostream                                         &log);
 
     template <int dim>

@@ -147,7 +147,9 @@ namespace igabde
      * @param problem The problem (must have n_alpha() > 0).
      * @param alpha0 Starting alpha (size n_alpha(), or empty for zero).
      * @param direction Search direction in alpha space (empty for -b).
-     * @return alpha with min over closing pairs of u_n(p = 0) equal to 0.
+     * @return alpha with min over closing pairs of u_n(p = 0) equal to 0;
+     * @p alpha0 (or zero) when the direction is zero (no load on the rigid
+     * modes) or no pair closes along it.
      */
     Eigen::VectorXd
     touching_alpha(const ContactData     &problem,

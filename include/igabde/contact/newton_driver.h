@@ -92,9 +92,11 @@ namespace igabde
     /**
      * @brief The B-differentiable equations of the seed (pair_law()) with
      * weights r and a friction radius, and the floating-body tie rule:
-     * with floating bodies and no pair closed, the alpha columns of the
-     * Newton matrix vanish; the pair with the smallest r_n u_n - p_n is
-     * then taken in the closed branch (exactly a tie after
+     * with floating bodies the alpha columns of the Newton matrix are tied
+     * down only by the rows of G of closed (normal) and sticking
+     * (tangential) pairs; while these do not span every column, the pairs
+     * with the smallest r_n u_n - p_n take the closed branch, then closed
+     * pairs the stick branch (the first is exactly a tie after
      * touching_alpha()).
      */
     class BdeLaw : public PairLawModel
