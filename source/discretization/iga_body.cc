@@ -817,7 +817,10 @@ namespace igabde
                   ExcMessage("Body '" + this->description().name +
                              "': cannot open '" + filename +
                              "' for writing; does its directory exist?"));
+      // zlib's fastest level: the best level took 9 times as long for 2 %
+      // smaller files (V5, 2026-11-25).
       DataOutBase::VtkFlags flags;
+      flags.compression_level = DataOutBase::VtkFlags::best_speed;
       DataOutBase::write_vtu(patches, names, ranges, flags, out);
     }
 

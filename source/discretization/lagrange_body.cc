@@ -764,6 +764,11 @@ namespace igabde
                              std::max(fe.degree,
                                       this->settings.output_subdivisions),
                              DataOut<dim>::curved_inner_cells);
+      // zlib's fastest level: the best level took 9 times as long for 2 %
+      // smaller files (V5, 2026-11-25).
+      DataOutBase::VtkFlags flags;
+      flags.compression_level = DataOutBase::VtkFlags::best_speed;
+      data_out.set_flags(flags);
       std::ofstream out(filename);
       AssertThrow(out, ExcMessage("Cannot write '" + filename + "'."));
       data_out.write_vtu(out);

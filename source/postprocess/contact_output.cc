@@ -116,12 +116,10 @@ namespace igabde
             for (unsigned int d = 0; d < dim; ++d)
               patch.data(row++, 0) = pair.slip[d];
         }
-      std::ofstream out = open_for_writing(filename);
-      DataOutBase::write_vtu(patches,
-                             names,
-                             vectors,
-                             DataOutBase::VtkFlags(),
-                             out);
+      std::ofstream         out = open_for_writing(filename);
+      DataOutBase::VtkFlags flags;
+      flags.compression_level = DataOutBase::VtkFlags::best_speed;
+      DataOutBase::write_vtu(patches, names, vectors, flags, out);
     }
 
 
