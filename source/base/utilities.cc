@@ -4,6 +4,7 @@
 #include <cstdlib>
 #include <dlfcn.h>
 #include <filesystem>
+#include <iomanip>
 #include <sstream>
 #include <system_error>
 
@@ -133,6 +134,19 @@ namespace igabde
 
 
 
+    template <int dim>
+    std::string
+    to_string(const Point<dim> &x)
+    {
+      std::ostringstream out;
+      out << std::setprecision(4);
+      for (unsigned int d = 0; d < dim; ++d)
+        out << (d > 0 ? ", " : "") << x[d];
+      return out.str();
+    }
+
+
+
     std::string
     exception_message(const ExceptionBase &e)
     {
@@ -169,6 +183,10 @@ namespace igabde
     parse_point<2>(const std::string &, const std::string &);
     template Point<3>
     parse_point<3>(const std::string &, const std::string &);
+    template std::string
+    to_string<2>(const Point<2> &);
+    template std::string
+    to_string<3>(const Point<3> &);
 
 
     std::string

@@ -2,6 +2,7 @@
 
 #include <igabde/contact/condition_check.h>
 #include <igabde/contact/contact_stage.h>
+#include <igabde/contact/nearest_points.h>
 
 #include <algorithm>
 #include <cmath>
@@ -254,7 +255,16 @@ namespace igabde
         TimerOutput::Scope t(timer, prepare_section);
         contact_path->prepare(pair_list, contact);
       }
-      pair_list                     = contact.pairs;
+      pair_list = contact.pairs;
+      {
+        std::vector<Point<dim>> points;
+        for (const auto &pair : pair_list)
+          points.push_back(pair.x1);
+        const NearestPoints<dim> nearest(std::move(points));
+        pair_spacing.resize(pair_list.size());
+        for (unsigned int i = 0; i < pair_list.size(); ++i)
+          pair_spacing[i] = nearest.spacing(i);
+      }
       const ContactProblem &problem = contact.problem;
       log << "  contact: " << pair_list.size() << " pairs ("
           << (obstacle ? obstacle->kind() : std::string("two bodies")) << ", "
@@ -276,6 +286,30 @@ namespace igabde
       x.alpha           = Eigen::VectorXd::Zero(problem.n_alpha());
       x.w               = Eigen::VectorXd::Zero(contact_path->op().n_dofs());
       previous_external = Eigen::VectorXd::Zero(problem.n_rows());
+    }
+
+
+
+    template <int dim>
+    std::optional<std::pair<double, Point<dim>>>
+    ContactStage<dim>::largest_sliding(
+      const std::vector<Vector<double>> &u) const
+    {
+      if (obstacle)
+        return std::nullopt;
+      std::pair<double, Point<dim>> result(0., Point<dim>());
+      for (unsigned int i = 0; i < pair_list.size(); ++i)
+        {
+          if (!(pair_spacing[i] > 0.))
+            continue;
+          const Tensor<1, dim> du = pair_list[i].op1.displacement(u[0]) -
+                                    pair_list[i].op2.displacement(u[1]);
+          const Tensor<1, dim> &n = pair_list[i].frame[0];
+          const double ratio = (du - (du * n) * n).norm() / pair_spacing[i];
+          if (ratio > result.first)
+            result = {ratio, pair_list[i].x1};
+        }
+      return result;
     }
 
 
@@ -448,10 +482,8 @@ namespace igabde
               const unsigned int i = solution.pairs_involved[k];
               if (i >= pair_list.size())
                 continue;
-              where << (k > 0 ? "," : "") << " pair " << i << " at (";
-              for (unsigned int d = 0; d < dim; ++d)
-                where << (d > 0 ? ", " : "") << pair_list[i].x1[d];
-              where << ")";
+              where << (k > 0 ? "," : "") << " pair " << i << " at ("
+                    << base::to_string(pair_list[i].x1) << ")";
             }
           result.diagnosis += where.str();
         }

@@ -84,14 +84,6 @@ namespace igabde
        * other and do not overlap (penetration beyond round-off, 1e-10 of
        * the contact face's size).
        */
-      template <int dim>
-      std::string
-      to_string(const Point<dim> &x)
-      {
-        std::ostringstream o;
-        o << x;
-        return o.str();
-      }
 
 
 
@@ -103,7 +95,7 @@ namespace igabde
                  const ContactSurface<dim> &master)
       {
         return context + ": the contact surfaces do not face each other at (" +
-               to_string(location) +
+               base::to_string(location) +
                "): the outward normal of Body 1's contact face points "
                "away from " +
                master.description() +
@@ -357,7 +349,7 @@ namespace igabde
           AssertThrow(false,
                       ExcMessage(context +
                                  ": the closest point projection of (" +
-                                 to_string(x) + ") on " + master.description() +
+                                 base::to_string(x) + ") on " + master.description() +
                                  " did not converge in 100 iterations."));
           return eta;
         }

@@ -701,6 +701,23 @@ namespace igabde
 
 
     template <int dim>
+    std::pair<double, Point<dim>>
+    IgaBody<dim>::largest_strain(const Vector<double> &u) const
+    {
+      AssertDimension(u.size(), this->n_unknowns);
+      nurbs::NurbsValues<dim> values(geometry,
+                                     QGauss<dim>(max_degree() + 1),
+                                     update_values | update_gradients |
+                                       update_quadrature_points);
+      return elasticity::largest_strain<dim>(parametric_mesh.begin_active(),
+                                             parametric_mesh.end(),
+                                             values,
+                                             u);
+    }
+
+
+
+    template <int dim>
     void
     IgaBody<dim>::write_vtu(const Vector<double> &u,
                             const std::string    &filename) const

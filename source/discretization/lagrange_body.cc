@@ -791,6 +791,25 @@ namespace igabde
 
 
 
+    template <int dim>
+    std::pair<double, Point<dim>>
+    LagrangeBody<dim>::largest_strain(const Vector<double> &u) const
+    {
+      AssertDimension(u.size(), this->n_unknowns);
+      elasticity::FEValuesEvaluator<dim> values(*mapping,
+                                                fe,
+                                                QGauss<dim>(fe.degree + 1),
+                                                update_values |
+                                                  update_gradients |
+                                                  update_quadrature_points);
+      return elasticity::largest_strain<dim>(dof_handler.begin_active(),
+                                             dof_handler.end(),
+                                             values,
+                                             u);
+    }
+
+
+
     template class LagrangeBody<2>;
     template class LagrangeBody<3>;
   } // namespace discretization

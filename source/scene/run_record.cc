@@ -49,6 +49,10 @@ namespace igabde
         }
       if (r.total_contact_force)
         j["total_contact_force"] = *r.total_contact_force;
+      if (r.largest_strain)
+        j["largest_strain"] = *r.largest_strain;
+      if (r.largest_sliding)
+        j["largest_sliding"] = *r.largest_sliding;
       if (!r.failed)
         {
           nlohmann::json per_body = nlohmann::json::array();

@@ -339,6 +339,15 @@ namespace igabde
                 }
             }
           check_finite_displacements<dim>(bodies, u, s + 1);
+          {
+            TimerOutput::Scope t(timer, "postprocess");
+            check_model_range<dim>(bodies,
+                                   contact_stage.get(),
+                                   u,
+                                   record,
+                                   run_summary.warnings,
+                                   contact_log());
+          }
           record_forces<dim>(bodies,
                              contact_stage.get(),
                              u,

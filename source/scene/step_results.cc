@@ -130,6 +130,71 @@ namespace igabde
 
     template <int dim>
     void
+    check_model_range(
+      const std::vector<std::unique_ptr<discretization::Body<dim>>> &bodies,
+      const contact::ContactStage<dim>                              *stage,
+      const std::vector<Vector<double>>                             &u,
+      StepRecord                                                    &record,
+      std::vector<std::string>                                      &warnings,
+      std::ostream                                                  &log)
+    {
+      // Beyond these the linearised model no longer describes the scene:
+      // a strain of 0.1, where the quadratic term the small-strain measure
+      // drops (of relative size eps / 2) reaches 5 % of it; paired points
+      // moved apart by more than the pair spacing (pairs formed once in the
+      // reference configuration no longer face each other).
+      const double strain_limit = 0.1, sliding_limit = 1.;
+      const auto warn = [&](const std::string &kind, const std::string &text) {
+        for (const std::string &w : warnings)
+          if (w.find(kind) != std::string::npos)
+            return;
+        warnings.push_back("load step " + std::to_string(record.step) + ": " +
+                           text);
+        log << "  warning: " << warnings.back() << std::endl;
+      };
+      std::pair<double, Point<dim>> strain(0., Point<dim>());
+      unsigned int                  strain_body = 0;
+      for (unsigned int b = 0; b < bodies.size(); ++b)
+        {
+          const auto largest = bodies[b]->largest_strain(u[b]);
+          if (largest.first >= strain.first)
+            std::tie(strain, strain_body) = std::make_pair(largest, b);
+        }
+      record.largest_strain = strain.first;
+      std::ostringstream text;
+      text << std::setprecision(3);
+      if (strain.first > strain_limit)
+        {
+          text << "the largest strain is " << strain.first << " (Body "
+               << strain_body + 1 << " at (" << base::to_string(strain.second)
+               << ")"
+               << "), beyond 0.1, where the quadratic term that small-strain "
+                  "elasticity drops reaches 5 % of the strain: the results "
+                  "are outside the model's range.";
+          warn("the largest strain", text.str());
+        }
+      const auto largest = stage ? stage->largest_sliding(u) : std::nullopt;
+      if (!largest)
+        return;
+      const auto &sliding    = *largest;
+      record.largest_sliding = sliding.first;
+      if (sliding.first > sliding_limit)
+        {
+          text.str("");
+          text << "paired points have moved " << sliding.first
+               << " pair spacings apart along the surface (at ("
+               << base::to_string(sliding.second) << ")"
+               << "): the pairs, formed once in the reference configuration, "
+                  "no longer face each other, so the contact is outside the "
+                  "model's small-sliding range.";
+          warn("pair spacings apart", text.str());
+        }
+    }
+
+
+
+    template <int dim>
+    void
     write_step_output(
       const std::string                                             &directory,
       const bool                                                     write_vtu,
@@ -263,8 +328,10 @@ namespace igabde
                 }
             }
         }
-      summary.checks   = checks;
-      summary.warnings = warnings;
+      summary.checks = checks;
+      summary.warnings.insert(summary.warnings.end(),
+                              warnings.begin(),
+                              warnings.end());
 
       nlohmann::json points   = nlohmann::json::object();
       nlohmann::json stresses = nlohmann::json::object();
@@ -342,6 +409,14 @@ namespace igabde
       StepRecord &,
       std::ostream &);
     template void
+    check_model_range<2>(
+      const std::vector<std::unique_ptr<discretization::Body<2>>> &,
+      const contact::ContactStage<2> *,
+      const std::vector<Vector<double>> &,
+      StepRecord &,
+      std::vector<std::string> &,
+      std::ostream &);
+    template void
     write_step_output<2>(
       const std::string &,
       const bool,
@@ -366,6 +441,14 @@ namespace igabde
       const std::vector<Vector<double>> &,
       const std::vector<double> &,
       StepRecord &,
+      std::ostream &);
+    template void
+    check_model_range<3>(
+      const std::vector<std::unique_ptr<discretization::Body<3>>> &,
+      const contact::ContactStage<3> *,
+      const std::vector<Vector<double>> &,
+      StepRecord &,
+      std::vector<std::string> &,
       std::ostream &);
     template void
     write_step_output<3>(

@@ -441,6 +441,47 @@ TEST(HardCase, FloatingHalfDiscOnTheFullPathAndWithFriction)
 
 
 
+TEST(HardCase, DraggedBlocksEndWithAWarning)
+{
+  // V3's block (1 x 1 on a second block, 4 spans per side after two
+  // refinements, pressure 1, mu = 0.3) with its top dragged by 0.3: it
+  // slides by about 0.3 against a frictional resistance of 0.3, more than
+  // the pair spacing (at most 1/4 of the face), so pairs formed in the
+  // reference configuration no longer face each other. V4's block (on a
+  // rigid plane, where sliding is exact) dragged by 0.5 with mu = 10
+  // sticks and shears by about its own height 0.5 (strain of order 1,
+  // beyond the small-strain model). Each converges and says that it left
+  // the model's range; V3 and V4 as given (no slide; slip 0.05, strain
+  // about 3 %) do not.
+  const auto warnings = [](const SceneRun &run) {
+    expect_converged(run);
+    return run.summary.contains("warnings") ?
+             run.summary.at("warnings").dump() :
+             std::string();
+  };
+  const SceneRun slides = run_scene("dragslide",
+                                    "v3-contact-patch-2d.prm",
+                                    "--set 'Body 1/Supports=3: x=0.3' "
+                                    "--set 'Contact/Friction coefficient=0.3' "
+                                    "--set 'Checks/Uniform pressure=0'");
+  EXPECT_NE(warnings(slides).find("pair spacings apart"), std::string::npos)
+    << slides.output;
+  // About 0.3 over a spacing of at most 1/4.
+  EXPECT_GT(
+    slides.summary.at("load_steps").back().at("largest_sliding").get<double>(),
+    0.3 / 0.25 * 0.9);
+  const SceneRun sticks = run_scene("dragstick",
+                                    "v4-sliding-block.prm",
+                                    "--set 'Body 1/Supports=3: x=0.5' "
+                                    "--set 'Contact/Friction coefficient=10'");
+  EXPECT_NE(warnings(sticks).find("the largest strain"), std::string::npos)
+    << sticks.output;
+  EXPECT_EQ(warnings(run_scene("v3base", "v3-contact-patch-2d.prm", "")), "");
+  EXPECT_EQ(warnings(run_scene("v4base", "v4-sliding-block.prm", "")), "");
+}
+
+
+
 TEST(HardCase, LoadNoContactCanCarryStopsWithADiagnosis)
 {
   // The quarter disc without its symmetry support, frictionless, with a

@@ -69,6 +69,12 @@ namespace igabde
     Point<dim>
     parse_point(const std::string &text, const std::string &where);
 
+    /// A point as messages write it: "0.5, 0" (the parentheses are the
+    /// caller's).
+    template <int dim>
+    std::string
+    to_string(const Point<dim> &x);
+
     /**
      * @brief The message of a deal.II exception without the banner (file,
      * line, function), on one line.

@@ -18,6 +18,7 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <ostream>
 #include <string>
 #include <tuple>
@@ -263,6 +264,19 @@ namespace igabde
       ContactSummary
       summary() const;
 
+      /**
+       * @brief The largest tangential displacement between the two points
+       * of a pair at the displacements @p u (total, not the step's slip),
+       * relative to the pair spacing there (the distance from the pair's
+       * point on Body 1 to the nearest other pair's), and that pair's
+       * point: past 1, pairs formed once in the reference configuration no
+       * longer face each other (the small-sliding model's range check).
+       * None against a rigid plane, whose gap and normal stay exact
+       * whatever the slide.
+       */
+      std::optional<std::pair<double, Point<dim>>>
+      largest_sliding(const std::vector<Vector<double>> &u) const;
+
       /// The contact forces of the last solve on body @p b as a load vector
       /// of its unknowns.
       Vector<double>
@@ -314,7 +328,9 @@ namespace igabde
 
       unsigned int                  m = 1;
       std::vector<ContactPair<dim>> pair_list;
-      CondensedContact<dim>         contact;
+      /// Per pair: the distance to the nearest other pair (largest_sliding()).
+      std::vector<double>   pair_spacing;
+      CondensedContact<dim> contact;
       /// The path taken, and why; the names of its phases.
       Path        resolved_path = Path::condensed;
       std::string path_why;

@@ -63,6 +63,23 @@ namespace igabde
         return best;
       }
 
+      /**
+       * @brief The distance from sample @p i to the nearest other sample
+       * (0 if there is none).
+       */
+      double
+      spacing(const unsigned int i) const
+      {
+        std::vector<std::size_t> candidates;
+        tree.query(boost::geometry::index::nearest(samples[i], 2),
+                   std::back_inserter(candidates));
+        double result = 0.;
+        for (const std::size_t c : candidates)
+          if (c != i)
+            result = samples[c].distance(samples[i]);
+        return result;
+      }
+
       /** @brief Sample @p i. */
       const Point<dim> &
       operator[](const unsigned int i) const

@@ -391,6 +391,13 @@ namespace igabde
       virtual void
       write_vtu(const Vector<double> &u, const std::string &filename) const = 0;
 
+      /**
+       * @brief The largest principal strain in magnitude at the quadrature
+       * points, and where (the small-strain model's range check).
+       */
+      virtual std::pair<double, Point<dim>>
+      largest_strain(const Vector<double> &u) const = 0;
+
       /// Body area (2D) or volume (3D) by the body's quadrature.
       virtual double
       measure() const = 0;

@@ -132,6 +132,9 @@ namespace igabde
       double
       measure() const override;
 
+      std::pair<double, Point<dim>>
+      largest_strain(const Vector<double> &u) const override;
+
       /// @brief The refined and elevated patch: the analysis space.
       const nurbs::NurbsPatch<dim> &
       patch() const;

@@ -82,6 +82,9 @@ namespace igabde
       double
       measure() const override;
 
+      std::pair<double, Point<dim>>
+      largest_strain(const Vector<double> &u) const override;
+
       /**
        * @brief The smallest ratio det J(p) / |det J(centre)| of the cell maps
        * over the points @p unit_points of the unit cell and all cells, and

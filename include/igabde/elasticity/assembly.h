@@ -427,6 +427,32 @@ namespace igabde
         }
       return result;
     }
+
+    /**
+     * @brief The largest principal strain (in magnitude) of @p u at the
+     * quadrature points of the cells [@p begin, @p end) of @p values
+     * (gradients and quadrature points), and where it is.
+     */
+    template <int dim, typename Iterator, typename CellValues>
+    std::pair<double, Point<dim>>
+    largest_strain(const Iterator                         &begin,
+                   const std::enable_if_t<true, Iterator> &end,
+                   CellValues                             &values,
+                   const Vector<double>                   &u)
+    {
+      std::pair<double, Point<dim>> result(0., Point<dim>());
+      std::vector<double>           local_u;
+      for (Iterator cell = begin; cell != end; ++cell)
+        {
+          values.reinit(cell);
+          get_local_values(values, u, local_u);
+          for (unsigned int q = 0; q < values.n_quadrature_points(); ++q)
+            for (const double e : eigenvalues(strain<dim>(values, local_u, q)))
+              if (std::abs(e) > result.first)
+                result = {std::abs(e), values.quadrature_point(q)};
+        }
+      return result;
+    }
   } // namespace elasticity
 } // namespace igabde
 

@@ -67,6 +67,10 @@ namespace igabde
       std::vector<BodyForceRecord> bodies;
       /// Contact force on Body 1 (contact scenes, finished steps).
       std::optional<std::vector<double>> total_contact_force;
+      /// The largest principal strain of the bodies (finished steps).
+      std::optional<double> largest_strain;
+      /// ContactStage::largest_sliding() (contact scenes, finished steps).
+      std::optional<double> largest_sliding;
     };
 
     /// The load step as summary.json writes it.

@@ -62,6 +62,25 @@ namespace igabde
       std::ostream                                                  &log);
 
     /**
+     * @brief The model's range at the end of a load step: the largest
+     * strain of the bodies and, with @p stage, the largest tangential
+     * displacement between paired points in pair spacings go to @p record;
+     * the first step past a strain of 0.1 (small-strain, linear elastic)
+     * or past one pair spacing (pairs formed once in the reference
+     * configuration, small sliding) adds a warning to @p warnings and a
+     * line to @p log.
+     */
+    template <int dim>
+    void
+    check_model_range(
+      const std::vector<std::unique_ptr<discretization::Body<dim>>> &bodies,
+      const contact::ContactStage<dim>                              *stage,
+      const std::vector<Vector<double>>                             &u,
+      StepRecord                                                    &record,
+      std::vector<std::string>                                      &warnings,
+      std::ostream                                                  &log);
+
+    /**
      * @brief The files of load step @p step in @p directory: the pair table
      * contact-NNNN.csv of @p pairs (nullptr without contact) and, with
      * @p write_vtu, the pairs' and the bodies' VTU files and each body's PVD
