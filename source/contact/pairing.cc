@@ -347,10 +347,10 @@ namespace igabde
                 return eta;
             }
           AssertThrow(false,
-                      ExcMessage(context +
-                                 ": the closest point projection of (" +
-                                 base::to_string(x) + ") on " + master.description() +
-                                 " did not converge in 100 iterations."));
+                      ExcMessage(
+                        context + ": the closest point projection of (" +
+                        base::to_string(x) + ") on " + master.description() +
+                        " did not converge in 100 iterations."));
           return eta;
         }
 
