@@ -1187,6 +1187,16 @@ namespace igabde
 
       // Checks that need more than a pattern; each names the parameter and
       // the fix.
+      for (const std::string &item : base::split(probes, ';'))
+        {
+          const auto [name, location] =
+            base::split_entry(item, f + "Probe points", "'name: x, y[, z]'");
+          AssertThrow(base::parse_doubles(location, f + "Probe points")
+                          .size() == dimension,
+                      base::ExcInput(f + "Probe points: '" + item + "' needs " +
+                                     std::to_string(dimension) +
+                                     " coordinates ('name: x, y[, z]')."));
+        }
       AssertThrow(body1.type == BodyType::deformable,
                   base::ExcInput(f + "Body 1/Type must be 'deformable'; only "
                                      "Body 2 may be a rigid plane."));

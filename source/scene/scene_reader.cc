@@ -267,6 +267,31 @@ namespace igabde
             {
               prm.parse_input(scene_file);
             }
+          catch (const ParameterHandler::ExcNoSubsection &e)
+            {
+              // deal.II's "Line <n> of file <f>: There is no such
+              // subsection to be entered: name", said as a sentence.
+              const std::string text = base::exception_message(e);
+              const auto        at   = text.find("entered: ");
+              const std::string name = at == std::string::npos ?
+                                         text :
+                                         base::trim(text.substr(at + 9));
+              const auto        line = text.find("Line <");
+              const std::string where =
+                line == std::string::npos ?
+                  std::string() :
+                  " (line " +
+                    text.substr(line + 6, text.find('>', line) - line - 6) +
+                    ")";
+              AssertThrow(
+                false,
+                base::ExcInput(
+                  scene_file + ": there is no section '" + name + "'" + where +
+                  (name.rfind("Body ", 0) == 0 ?
+                     ": igabde models one or two bodies, 'Body 1' and "
+                     "'Body 2'." :
+                     "; igabde --print-parameters lists the sections.")));
+            }
           catch (const ExceptionBase &)
             {
               throw;

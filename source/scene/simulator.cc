@@ -90,6 +90,7 @@ namespace igabde
             pcout << "    free rigid mode left by the supports: " << name
                   << " (closed by the contact equilibrium)" << std::endl;
         }
+      check_probe_points<dim>(parameters, scene_file, bodies);
       run_summary.n_dofs      = static_cast<unsigned long long>(n_dofs);
       run_summary.n_elements  = n_elements;
       nlohmann::json per_body = nlohmann::json::array();

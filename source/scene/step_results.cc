@@ -128,6 +128,50 @@ namespace igabde
 
 
 
+    namespace
+    {
+      /// The first body that holds @p x (bodies.size() if none).
+      template <int dim>
+      unsigned int
+      body_holding(
+        const std::vector<std::unique_ptr<discretization::Body<dim>>> &bodies,
+        const Point<dim>                                              &x)
+      {
+        for (unsigned int k = 0; k < bodies.size(); ++k)
+          if (bodies[k]->contains(x))
+            return k;
+        return bodies.size();
+      }
+    } // namespace
+
+
+
+    template <int dim>
+    void
+    check_probe_points(
+      const AllParameters                                           &parameters,
+      const std::string                                             &scene_file,
+      const std::vector<std::unique_ptr<discretization::Body<dim>>> &bodies)
+    {
+      for (const std::string &item : base::split(parameters.probes, ';'))
+        {
+          const auto [name, location] =
+            base::split_entry(item,
+                              scene_file + ": Probe points",
+                              "'name: x, y[, z]'");
+          AssertThrow(
+            body_holding<dim>(
+              bodies,
+              base::parse_point<dim>(location, scene_file + ": Probe points")) <
+              bodies.size(),
+            base::ExcInput(scene_file + ": Probe points: '" + item +
+                           "' lies in no body; give a point of Body 1" +
+                           (bodies.size() > 1 ? " or Body 2." : ".")));
+        }
+    }
+
+
+
     template <int dim>
     void
     check_model_range(
@@ -343,15 +387,8 @@ namespace igabde
                               "'name: x, y[, z]'");
           const Point<dim> x =
             base::parse_point<dim>(location, scene_file + ": Probe points");
-          // The first body that holds the point.
-          unsigned int b = bodies.size();
-          for (unsigned int k = 0; k < bodies.size() && b == bodies.size(); ++k)
-            if (bodies[k]->contains(x))
-              b = k;
-          AssertThrow(b < bodies.size(),
-                      base::ExcInput(scene_file + ": Probe points: '" + item +
-                                     "' lies in no body; give a point of "
-                                     "Body 1 or Body 2."));
+          // In a body: check_probe_points() before the solve.
+          const unsigned int   b = body_holding<dim>(bodies, x);
           const Tensor<1, dim> d =
             bodies[b]->point_operator(x).displacement(u[b]);
           std::vector<double> value(dim);
@@ -409,6 +446,11 @@ namespace igabde
       StepRecord &,
       std::ostream &);
     template void
+    check_probe_points<2>(
+      const AllParameters &,
+      const std::string &,
+      const std::vector<std::unique_ptr<discretization::Body<2>>> &);
+    template void
     check_model_range<2>(
       const std::vector<std::unique_ptr<discretization::Body<2>>> &,
       const contact::ContactStage<2> *,
@@ -442,6 +484,11 @@ namespace igabde
       const std::vector<double> &,
       StepRecord &,
       std::ostream &);
+    template void
+    check_probe_points<3>(
+      const AllParameters &,
+      const std::string &,
+      const std::vector<std::unique_ptr<discretization::Body<3>>> &);
     template void
     check_model_range<3>(
       const std::vector<std::unique_ptr<discretization::Body<3>>> &,

@@ -360,3 +360,57 @@ TEST(CliBadInput, UnreadableSceneMarksItsOutputFolderFailed)
   EXPECT_EQ(elsewhere.status, 2) << elsewhere.output;
   EXPECT_FALSE(std::filesystem::exists(cli::join(folder.path, "new")));
 }
+
+
+
+TEST(CliBadInput, ProbeWithTheWrongNumberOfCoordinates)
+{
+  expect_refused_at_parse_time("probe-syntax",
+                               "Probe points=a: 1",
+                               "Probe points: 'a: 1' needs 2 coordinates");
+}
+
+
+
+TEST(CliBadInput, ProbeOutsideEveryBodyRefusedBeforeTheSolve)
+{
+  // Found when the bodies are built, before anything is factorised or
+  // solved (after the solve, before): exit status 2, one error line, no
+  // load step.
+  const cli::ScratchFolder folder("bad-input-probe-outside");
+  const std::string        scene =
+    cli::join(std::string(IGABDE_SOURCE_DIR), "prm/v3-contact-patch-2d.prm");
+  const auto result = cli::run_igabde("'" + scene +
+                                        "' --set 'Probe points=far: 5, 5' "
+                                        "--set 'Output/Directory=out'",
+                                      folder);
+  EXPECT_EQ(result.status, 2) << result.output;
+  EXPECT_NE(result.output.find("Probe points: 'far: 5, 5' lies in no body"),
+            std::string::npos)
+    << result.output;
+  EXPECT_EQ(result.output.find("Load step"), std::string::npos)
+    << result.output;
+}
+
+
+
+TEST(CliBadInput, ThirdBodySaysHowManyBodiesThereAre)
+{
+  // deal.II's own text was "Line <n> of file <f>: There is no such
+  // subsection to be entered: Body 3".
+  const cli::ScratchFolder folder("bad-input-body-3");
+  const std::string        scene = cli::join(folder.path, "three.prm");
+  {
+    std::ofstream out(scene);
+    out << "set Dimension = 2\nsubsection Body 3\n  set Radius = 1\nend\n";
+  }
+  const auto result = cli::run_igabde("'" + scene + "'", folder);
+  EXPECT_EQ(result.status, 2) << result.output;
+  EXPECT_NE(result.output.find("there is no section 'Body 3' (line 2): "
+                               "igabde models one or two bodies"),
+            std::string::npos)
+    << result.output;
+  EXPECT_EQ(result.output.find("There is no such subsection"),
+            std::string::npos)
+    << result.output;
+}

@@ -62,6 +62,17 @@ namespace igabde
       std::ostream                                                  &log);
 
     /**
+     * @brief Refuses (input error) a probe point of the scene that lies in
+     * no body, before anything is solved.
+     */
+    template <int dim>
+    void
+    check_probe_points(
+      const AllParameters                                           &parameters,
+      const std::string                                             &scene_file,
+      const std::vector<std::unique_ptr<discretization::Body<dim>>> &bodies);
+
+    /**
      * @brief The model's range at the end of a load step: the largest
      * strain of the bodies and, with @p stage, the largest tangential
      * displacement between paired points in pair spacings go to @p record;
