@@ -357,7 +357,9 @@ namespace igabde
     void
     subdivide(
       NurbsPatch<dim>                                               &patch,
-      const std::array<unsigned int, static_cast<std::size_t>(dim)> &n_spans)
+      const std::array<unsigned int, static_cast<std::size_t>(dim)> &n_spans,
+      const std::array<double, static_cast<std::size_t>(dim)>       &grading,
+      const std::array<bool, static_cast<std::size_t>(dim)> &toward_high)
     {
       for (unsigned int d = 0; d < dim; ++d)
         {
@@ -366,9 +368,29 @@ namespace igabde
                                  "one part per span."));
           const std::vector<double> b = patch.breakpoints(d);
           std::vector<double>       new_knots;
-          for (unsigned int e = 0; e + 1 < b.size(); ++e)
-            for (unsigned int j = 1; j < n_spans[d]; ++j)
-              new_knots.push_back(b[e] + (b[e + 1] - b[e]) * j / n_spans[d]);
+          const unsigned int        n = n_spans[d] * (b.size() - 1);
+          if (grading[d] > 1. && n > 1)
+            {
+              const double q  = std::pow(grading[d], 1. / (n - 1.));
+              const double lo = b.front(), length = b.back() - b.front();
+              const double sum = std::pow(q, n) - 1.;
+              for (unsigned int j = 1; j < n; ++j)
+                {
+                  // The fraction from the end the parts are smallest at.
+                  const double f    = toward_high[d] ?
+                                        1. - (std::pow(q, n - j) - 1.) / sum :
+                                        (std::pow(q, j) - 1.) / sum;
+                  const double knot = lo + f * length;
+                  if (std::none_of(b.begin(), b.end(), [&](const double x) {
+                        return std::abs(x - knot) <= 1e-12 * length;
+                      }))
+                    new_knots.push_back(knot);
+                }
+            }
+          else
+            for (unsigned int e = 0; e + 1 < b.size(); ++e)
+              for (unsigned int j = 1; j < n_spans[d]; ++j)
+                new_knots.push_back(b[e] + (b[e + 1] - b[e]) * j / n_spans[d]);
           patch.insert_knots(d, new_knots);
         }
     }
@@ -388,8 +410,14 @@ namespace igabde
     template void
     elevate_to_degree(NurbsPatch<3> &, const unsigned int);
     template void
-    subdivide<2>(NurbsPatch<2> &, const std::array<unsigned int, 2> &);
+    subdivide<2>(NurbsPatch<2> &,
+                 const std::array<unsigned int, 2> &,
+                 const std::array<double, 2> &,
+                 const std::array<bool, 2> &);
     template void
-    subdivide<3>(NurbsPatch<3> &, const std::array<unsigned int, 3> &);
+    subdivide<3>(NurbsPatch<3> &,
+                 const std::array<unsigned int, 3> &,
+                 const std::array<double, 3> &,
+                 const std::array<bool, 3> &);
   } // namespace nurbs
 } // namespace igabde

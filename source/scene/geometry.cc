@@ -180,7 +180,16 @@ namespace igabde
       if (subdivisions != nullptr)
         *subdivisions = n_spans;
       else
-        nurbs::subdivide(patch, n_spans);
+        {
+          std::array<double, dim> grading;
+          std::array<bool, dim>   toward_high;
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              grading[d]     = body.grading[d];
+              toward_high[d] = body.grading_toward_high[d];
+            }
+          nurbs::subdivide(patch, n_spans, grading, toward_high);
+        }
       return patch;
     }
 

@@ -241,6 +241,15 @@ namespace igabde
                           "Knot spans per parametric direction of the base "
                           "mesh (one number for all, or one per direction), "
                           "before Discretization/Refinements.");
+        prm.declare_entry(
+          "Grading",
+          "",
+          Patterns::Anything(),
+          "Spans graded toward faces: 'face: ratio; ...', the spans of the "
+          "face's parametric direction growing geometrically away from it, "
+          "the largest 'ratio' times the smallest (e.g. '0: 8; 2: 8' refines "
+          "the Hertz quarter disc toward its contact point). At most one face "
+          "per direction; empty: uniform spans.");
         prm.declare_entry("Young's modulus",
                           "1000",
                           Patterns::Double(0.),
@@ -387,7 +396,7 @@ namespace igabde
     {
       std::string supports_text, tractions_text, point_loads_text,
         body_force_text, lower_text, upper_text, centre_text, subdivisions_text,
-        point_text, normal_text;
+        grading_text, point_text, normal_text;
       prm.enter_subsection(name);
       {
         type              = parse_choice<BodyType>(prm.get("Type"),
@@ -414,6 +423,7 @@ namespace igabde
         width             = prm.get_double("Width");
         plate_size        = prm.get_double("Plate size");
         subdivisions_text = prm.get("Subdivisions");
+        grading_text      = prm.get("Grading");
         youngs_modulus    = prm.get_double("Young's modulus");
         poisson_ratio     = prm.get_double("Poisson's ratio");
         supports_text     = prm.get("Supports");
@@ -475,6 +485,29 @@ namespace igabde
                                      "9999 (then Discretization/Refinements "
                                      "for finer meshes)."));
           subdivisions[d] = static_cast<unsigned int>(count);
+        }
+      grading.assign(dimension, 1.);
+      grading_toward_high.assign(dimension, false);
+      for (const std::string &item : base::split(grading_text, ';'))
+        {
+          const auto [face_text, ratio_text] =
+            base::split_entry(item, where + "Grading", "'face: ratio'");
+          const unsigned int face =
+            base::parse_face(face_text, 2 * dimension, where + "Grading", item);
+          const std::vector<double> ratio =
+            base::parse_doubles(ratio_text, where + "Grading");
+          AssertThrow(ratio.size() == 1 && ratio[0] >= 1. && ratio[0] <= 1e6,
+                      base::ExcInput(where + "Grading: '" + item +
+                                     "': the ratio of the largest span to the "
+                                     "smallest must lie in [1, 1e6]."));
+          AssertThrow(grading[face / 2] == 1.,
+                      base::ExcInput(where + "Grading: '" + item +
+                                     "': direction " +
+                                     std::to_string(face / 2) +
+                                     " is graded twice; grade toward one of "
+                                     "its faces."));
+          grading[face / 2]             = ratio[0];
+          grading_toward_high[face / 2] = (face % 2 == 1);
         }
 
       // What no material and no body can have, refused before any set-up.

@@ -168,6 +168,29 @@ TEST(HardCase, ContactPatchWithStiffnessContrast)
 
 
 
+TEST(HardCase, ContactPatchOnGradedMeshes)
+{
+  // The patch test on meshes graded toward the contact face (ratio 8 in
+  // depth) and along it (ratio 4, the same for both blocks, so that the
+  // pairs coincide): the uniform closed-form pressure holds on any mesh,
+  // for both discretisations.
+  for (const std::string type : {"nurbs", "lagrange"})
+    {
+      SCOPED_TRACE(type);
+      expect_patch_test(run_scene("graded" + type,
+                                  "v3-contact-patch-2d.prm",
+                                  "--set 'Discretization/Type=" + type +
+                                    "' "
+                                    "--set 'Discretization/Refinements=0' "
+                                    "--set 'Body 1/Subdivisions=8' "
+                                    "--set 'Body 2/Subdivisions=8' "
+                                    "--set 'Body 1/Grading=0: 4; 2: 8' "
+                                    "--set 'Body 2/Grading=0: 4; 3: 8'"));
+    }
+}
+
+
+
 TEST(HardCase, ContactPatchNearlyIncompressible)
 {
   expect_patch_test(run_scene("nu049",

@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -145,6 +146,43 @@ TEST(NurbsPatch, KnotInsertionAndElevationKeepTheMap)
     k.refine_uniformly(1);
     expect_same_map(original, k, 1e-13);
   }
+}
+
+
+
+TEST(NurbsPatch, GradedSubdivisionIsGeometricAndKeepsTheMap)
+{
+  // Four parts graded 8 toward the low end: q = 8^(1/3) = 2, parts h, 2h,
+  // 4h, 8h with 15 h = 1, breakpoints 0, 1/15, 3/15, 7/15, 1; toward the
+  // high end the mirror image 0, 8/15, 12/15, 14/15, 1 (hand derivation).
+  NurbsPatch<2> box = make_box<2>(Point<2>(0., 0.), Point<2>(1., 1.));
+  elevate_to_degree(box, 2);
+  const NurbsPatch<2> original = box;
+  subdivide(box, {{4, 4}}, {{8., 8.}}, {{false, true}});
+  const std::vector<double> low = box.breakpoints(0), high = box.breakpoints(1);
+  const std::vector<double> expected_low  = {0., 1., 3., 7., 15.};
+  const std::vector<double> expected_high = {0., 8., 12., 14., 15.};
+  ASSERT_EQ(low.size(), 5u);
+  ASSERT_EQ(high.size(), 5u);
+  for (unsigned int j = 0; j < 5; ++j)
+    {
+      EXPECT_NEAR(low[j], expected_low[j] / 15., 1e-14);
+      EXPECT_NEAR(high[j], expected_high[j] / 15., 1e-14);
+    }
+  expect_same_map(original, box, 1e-13);
+
+  // On the plate with a hole (two base spans around the hole, direction 1)
+  // the base
+  // breakpoint 0.5 stays and the graded knots are laid over the whole
+  // direction: 2 x 3 = 6 graded parts, plus the base breakpoint where no
+  // graded knot falls.
+  const NurbsPatch<2> plate  = make_plate_with_hole(1., 4.);
+  NurbsPatch<2>       graded = plate;
+  subdivide(graded, {{1, 3}}, {{1., 4.}});
+  const std::vector<double> b = graded.breakpoints(1);
+  EXPECT_NE(std::find(b.begin(), b.end(), 0.5), b.end());
+  EXPECT_EQ(b.size(), 8u);
+  expect_same_map(plate, graded, 1e-13);
 }
 
 

@@ -193,12 +193,22 @@ namespace igabde
      * {8, 16, 8} on a one-span beam gives B2's 8 x 16 x 8 mesh. (The
      * array size is written so that it is not deduced: dim comes from
      * @p patch.)
+     *
+     * With @p grading[d] = r > 1 the parts of direction d grow
+     * geometrically instead, the largest r times the smallest, the
+     * smallest at the low end of the direction (or at its high end if
+     * @p toward_high[d]): the knots of the N = n_spans[d] * (base spans)
+     * parts lie at (q^j - 1) / (q^N - 1) of the direction, q = r^(1/(N-1)).
+     * The base breakpoints stay; a graded knot that falls on one is not
+     * inserted again.
      */
     template <int dim>
     void
     subdivide(
       NurbsPatch<dim>                                               &patch,
-      const std::array<unsigned int, static_cast<std::size_t>(dim)> &n_spans);
+      const std::array<unsigned int, static_cast<std::size_t>(dim)> &n_spans,
+      const std::array<double, static_cast<std::size_t>(dim)> &grading   = {},
+      const std::array<bool, static_cast<std::size_t>(dim)> &toward_high = {});
   } // namespace nurbs
 } // namespace igabde
 

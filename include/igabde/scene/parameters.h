@@ -180,6 +180,12 @@ namespace igabde
       /// Knot spans per direction of the base mesh, before refinements
       /// (dimension counts, 1 to 9999).
       std::vector<unsigned int> subdivisions = {1, 1, 1};
+      /// Grading of the spans per parametric direction (dimension entries):
+      /// the ratio of the largest span to the smallest (1: uniform), the
+      /// smallest at the low end of the direction (toward_high false) or
+      /// at its high end. Read from "face: ratio; ...".
+      std::vector<double> grading             = {1., 1., 1.};
+      std::vector<bool>   grading_toward_high = {false, false, false};
       /// Young's modulus (Pa).
       double youngs_modulus = 1000.;
       /// Poisson's ratio (-).

@@ -1,0 +1,102 @@
+#!/usr/bin/env python3
+"""Graded meshes on V5: the pair pressures of the scene's uniform 64 x 16
+mesh and of coarser meshes graded toward the contact point, each against
+a converged model of the same disc (NURBS p = 3 on 512 x 128), with the
+unknowns and the seconds of each run.
+
+usage: graded_v5.py IGABDE OUTDIR
+
+The error is the relative L2 distance of the pair pressures p_i from the
+reference profile interpolated at the pairs' x, weighted by the pairs'
+tributary areas: sqrt(sum a_i (p_i - p_ref(x_i))^2 / sum a_i p_ref(x_i)^2),
+over the pairs with x below twice the reference half-width (beyond, both
+are zero)."""
+
+import csv
+import json
+import math
+import os
+import subprocess
+import sys
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(
+    os.path.abspath(__file__))))
+SCENE = os.path.join(ROOT, "prm", "v5-hertz-2d.prm")
+
+REFERENCE = ("reference NURBS p=3 512x128", 3, "512, 128", "")
+RUNS = [("scene NURBS p=2 64x16", 2, "64, 16", ""),
+        ("NURBS p=2 32x8", 2, "32, 8", ""),
+        ("NURBS p=2 24x8", 2, "24, 8", "")]
+# Every grading tried (arc spans x depth spans, the ratio toward the
+# contact point along the arc and in depth), none left out.
+for mesh, ratio, faces in [("32, 8", 4, "02"), ("32, 8", 8, "02"),
+                           ("32, 8", 16, "02"), ("32, 12", 16, "02"),
+                           ("28, 8", 16, "02"), ("26, 8", 16, "02"),
+                           ("24, 6", 8, "02"), ("24, 8", 8, "02"),
+                           ("24, 8", 16, "02"), ("24, 8", 32, "02"),
+                           ("24, 10", 16, "02"), ("24, 8", 16, "0"),
+                           ("20, 8", 16, "02")]:
+    RUNS.append(("NURBS p=2 %s graded %d toward face%s %s"
+                 % (mesh.replace(", ", "x"), ratio,
+                    "s" if len(faces) > 1 else "", " and ".join(faces)),
+                 2, mesh, "; ".join("%s: %d" % (f, ratio) for f in faces)))
+
+
+def run(igabde, out, label, degree, mesh, grading, lagrange=False):
+    folder = os.path.join(out, label.replace(" ", "_").replace("=", ""))
+    subprocess.run([igabde, SCENE, "--quiet",
+                    "--set", "Discretization/Degree=%d" % degree,
+                    "--set", "Discretization/Type=%s" %
+                    ("lagrange" if lagrange else "nurbs"),
+                    "--set", "Body 1/Subdivisions=" + mesh,
+                    "--set", "Body 1/Grading=" + grading,
+                    "--set", "Output/Write vtu=false",
+                    "--set", "Output/Directory=" + folder],
+                   check=True, stdout=subprocess.DEVNULL)
+    with open(os.path.join(folder, "summary.json")) as f:
+        summary = json.load(f)
+    with open(os.path.join(folder, "contact-0001.csv")) as f:
+        pairs = [(float(r["x"]), float(r["area"]), float(r["pressure"]))
+                 for r in csv.DictReader(f)]
+    pairs.sort()
+    return summary, pairs
+
+
+def interpolate(profile, x):
+    for (x0, _, p0), (x1, _, p1) in zip(profile, profile[1:]):
+        if x0 <= x <= x1:
+            return p0 + (p1 - p0) * (x - x0) / (x1 - x0) if x1 > x0 else p0
+    return 0.
+
+
+def main():
+    igabde, out = sys.argv[1], sys.argv[2]
+    os.makedirs(out, exist_ok=True)
+    ref_summary, ref = run(igabde, out, *REFERENCE)
+    a_ref = max(x for x, _, p in ref if p > 0.)
+    rows = []
+    for label, degree, mesh, grading in RUNS:
+        summary, pairs = run(igabde, out, label, degree, mesh, grading)
+        num = den = 0.
+        for x, area, p in pairs:
+            if x > 2. * a_ref:
+                continue
+            q = interpolate(ref, x)
+            num += area * (p - q) ** 2
+            den += area * q ** 2
+        rows.append((label, summary["n_dofs"], math.sqrt(num / den),
+                     summary["timing"]["total"]))
+    with open(os.path.join(out, "graded_v5.md"), "w") as f:
+        f.write("| mesh | unknowns | pressure error vs reference | "
+                "seconds |\n|---|---|---|---|\n")
+        for label, n, err, seconds in rows:
+            f.write("| %s | %d | %.2f %% | %.3f |\n"
+                    % (label, n, 100. * err, seconds))
+        f.write("\nreference: %d unknowns, %.2f s, last loaded pair at "
+                "x = %.4f\n" % (ref_summary["n_dofs"],
+                                ref_summary["timing"]["total"], a_ref))
+    print(open(os.path.join(out, "graded_v5.md")).read())
+
+
+if __name__ == "__main__":
+    main()
