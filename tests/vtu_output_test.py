@@ -6,7 +6,8 @@ per beam, once with NURBS p = 2 and once with FE_Q(2), each into a scratch
 folder that is removed afterwards, and checks for each run:
 
   - every .pvd parses, every file it names exists and is one of the folder's
-    solution VTUs, and every solution VTU is named by its body's .pvd;
+    solution VTUs (contact.pvd: its pair VTUs), and every solution VTU is
+    named by its body's .pvd;
   - every .vtu of the folder opens with vtkXMLUnstructuredGridReader (the
     bodies' solution-*.vtu and the pairs' contact-*.vtu);
   - the point and cell data fields each file must have are there, with the
@@ -265,8 +266,9 @@ def check_run(folder, discretization, summary):
           set(vtus) == solution_vtus | set(contact_vtus),
           "%s: VTU files other than solution-* and contact-*: %s"
           % (label, vtus))
-    check(pvds == ["solution-body1.pvd", "solution-body2.pvd"],
-          "%s: PVD files %s, expected solution-body1.pvd and "
+    check(pvds == ["contact.pvd", "solution-body1.pvd",
+                   "solution-body2.pvd"],
+          "%s: PVD files %s, expected contact.pvd, solution-body1.pvd and "
           "solution-body2.pvd" % (label, pvds))
     n_steps = len(summary.get("load_steps", []))
     check(n_steps >= 1, "%s: no load step in summary.json" % label)
@@ -282,16 +284,18 @@ def check_run(folder, discretization, summary):
         sets = root.findall("./Collection/DataSet")
         check(len(sets) == n_steps, "%s: %s names %d data sets for %d load "
               "steps" % (label, pvd, len(sets), n_steps))
-        body = pvd[len("solution-"):-len(".pvd")]
+        prefix = ("contact-" if pvd == "contact.pvd" else
+                  "solution-%s-" % pvd[len("solution-"):-len(".pvd")])
         for s in sets:
             name = s.get("file")
             check(os.path.exists(os.path.join(folder, name)),
                   "%s: %s names %s, which does not exist"
                   % (label, pvd, name))
-            check(name.startswith("solution-%s-" % body),
-                  "%s: %s names %s, another body's file"
+            check(name.startswith(prefix),
+                  "%s: %s names %s, another series' file"
                   % (label, pvd, name))
-            named.add(name)
+            if pvd != "contact.pvd":
+                named.add(name)
     check(named == solution_vtus, "%s: solution VTUs not named by a PVD: "
           "%s; named but absent: %s" % (label, sorted(solution_vtus - named),
                                         sorted(named - solution_vtus)))

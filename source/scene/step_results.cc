@@ -257,9 +257,15 @@ namespace igabde
                                            directory + "/contact-" +
                                              number.str() + ".csv");
           if (write_vtu)
-            postprocess::write_pair_vtu<dim>(*pairs,
-                                             directory + "/contact-" +
-                                               number.str() + ".vtu");
+            {
+              const std::string name = "contact-" + number.str() + ".vtu";
+              postprocess::write_pair_vtu<dim>(*pairs, directory + "/" + name);
+              // The pairs' series after the bodies' (contact.pvd).
+              pvd_records.resize(bodies.size() + 1);
+              pvd_records.back().emplace_back(double(step), name);
+              std::ofstream pvd(directory + "/contact.pvd");
+              DataOutBase::write_pvd_record(pvd, pvd_records.back());
+            }
         }
       if (!write_vtu)
         return;

@@ -94,8 +94,9 @@ namespace igabde
     /**
      * @brief The files of load step @p step in @p directory: the pair table
      * contact-NNNN.csv of @p pairs (nullptr without contact) and, with
-     * @p write_vtu, the pairs' and the bodies' VTU files and each body's PVD
-     * series (@p pvd_records, one per body, grows by this step).
+     * @p write_vtu, the pairs' and the bodies' VTU files, each body's PVD
+     * series and the pairs' contact.pvd (@p pvd_records, one per body and
+     * then one for the pairs, grows by this step).
      */
     template <int dim>
     void
