@@ -60,11 +60,13 @@ main(int argc, char **argv)
 {
   using namespace dealii;
   const igabde::base::LightMpiSingleton light_mpi_singleton;
-  // All cores for the task-based parts (WorkStream assembly, the parallel
-  // multi-RHS solves); one MPI rank is the supported case so far.
+  // The node's cores for the task-based parts (WorkStream assembly, the
+  // parallel multi-RHS solves), divided among the ranks under mpirun; the
+  // dense linear algebra gets the same share.
   Utilities::MPI::MPI_InitFinalize mpi(argc,
                                        argv,
                                        numbers::invalid_unsigned_int);
+  igabde::base::limit_dense_threads_per_rank();
   // deal.II would print a stack trace for every user error; user errors are
   // reported in one line instead.
   deal_II_exceptions::disable_abort_on_exception();

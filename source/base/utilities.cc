@@ -1,5 +1,9 @@
 #include <igabde/base/utilities.h>
 
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/multithread_info.h>
+
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <dlfcn.h>
@@ -208,6 +212,27 @@ namespace igabde
       if (mallctl("opt.thp", &thp, &size, nullptr, 0) == 0 && thp)
         result += ", transparent huge pages " + std::string(thp);
       return result;
+    }
+
+
+
+    unsigned int
+    limit_dense_threads_per_rank()
+    {
+      if (dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) == 1 ||
+          std::getenv("OPENBLAS_NUM_THREADS") != nullptr ||
+          std::getenv("OMP_NUM_THREADS") != nullptr)
+        return 0;
+      const int threads = std::max(1u, dealii::MultithreadInfo::n_threads());
+      // Looked up at run time: the BLAS behind libblas.so.3 may not be
+      // OpenBLAS, and OpenMP may not be loaded.
+      using set_threads_type = void (*)(int);
+      for (const char *name :
+           {"openblas_set_num_threads", "omp_set_num_threads"})
+        if (const auto set =
+              reinterpret_cast<set_threads_type>(dlsym(RTLD_DEFAULT, name)))
+          set(threads);
+      return threads;
     }
 
 

@@ -149,19 +149,28 @@ namespace igabde
       const unsigned int    nc = pair_list.size();
       Eigen::MatrixXd       FL(m * nc, m * nc);
       FL.setZero();
+      // Each body's share where it is factorised (under MPI the bodies'
+      // groups at the same time), then handed to every rank.
+      std::vector<FullMatrix<double>> flexibilities(bodies.size());
+      for (unsigned int b = 0; b < bodies.size(); ++b)
+        if (bodies[b]->factorizes_here())
+          {
+            std::vector<discretization::PointOperator<dim>> ops;
+            std::vector<Tensor<1, dim>>                     directions;
+            ops.reserve(m * nc);
+            directions.reserve(m * nc);
+            for (unsigned int j = 0; j < nc; ++j)
+              for (unsigned int s = 0; s < m; ++s)
+                {
+                  ops.push_back(b == 0 ? pair_list[j].op1 : pair_list[j].op2);
+                  directions.push_back(pair_list[j].frame[s]);
+                }
+            flexibilities[b] = bodies[b]->flexibility_in_group(ops, directions);
+          }
       for (unsigned int b = 0; b < bodies.size(); ++b)
         {
-          std::vector<discretization::PointOperator<dim>> ops;
-          std::vector<Tensor<1, dim>>                     directions;
-          ops.reserve(m * nc);
-          directions.reserve(m * nc);
-          for (unsigned int j = 0; j < nc; ++j)
-            for (unsigned int s = 0; s < m; ++s)
-              {
-                ops.push_back(b == 0 ? pair_list[j].op1 : pair_list[j].op2);
-                directions.push_back(pair_list[j].frame[s]);
-              }
-          const FullMatrix<double> Fb = bodies[b]->flexibility(ops, directions);
+          bodies[b]->share_flexibility(flexibilities[b]);
+          const FullMatrix<double> &Fb = flexibilities[b];
           for (unsigned int i = 0; i < m * nc; ++i)
             for (unsigned int j = 0; j < m * nc; ++j)
               FL(i, j) += Fb(i, j);

@@ -6,6 +6,7 @@
 #include <igabde/discretization/lagrange_body.h>
 
 #include <deal.II/base/exceptions.h>
+#include <deal.II/base/mpi.h>
 #include <deal.II/base/multithread_info.h>
 #include <deal.II/base/thread_management.h>
 
@@ -114,8 +115,50 @@ namespace igabde
 
     template <int dim>
     void
+    Body<dim>::set_parallel_layout(const ParallelLayout &new_layout)
+    {
+      layout = new_layout;
+    }
+
+
+
+    template <int dim>
+    bool
+    Body<dim>::factorizes_here() const
+    {
+      return layout.group != MPI_COMM_NULL;
+    }
+
+
+
+    template <int dim>
+    void
+    Body<dim>::share_factorization()
+    {
+      if (Utilities::MPI::n_mpi_processes(layout.world) == 1)
+        return;
+      if (!linear_solver->cholesky)
+        linear_solver->cholesky =
+          std::make_unique<linear_algebra::SparseCholesky>();
+      linear_solver->cholesky->share(layout.world, layout.root);
+      unsigned int n_h = u_history.size();
+      Utilities::MPI::broadcast(&n_h, 1, layout.root, layout.world);
+      u_history.resize(n_h, Vector<double>(n_unknowns));
+      for (auto &u : u_history)
+        Utilities::MPI::broadcast(u.data(),
+                                  u.size(),
+                                  layout.root,
+                                  layout.world);
+    }
+
+
+
+    template <int dim>
+    void
     Body<dim>::factorize(const std::vector<PointOperator<dim>> &interface)
     {
+      if (!factorizes_here())
+        return;
       // The unknowns the contact points touch, less those held at zero.
       std::vector<types::global_dof_index> interface_dofs;
       if (settings.linear_solver == discretization::LinearSolver::direct)
@@ -156,7 +199,7 @@ namespace igabde
           system_matrix.vmult(rhs_d, lifts[h]);
           columns[h] -= rhs_d;
         }
-      solve(columns);
+      solve_in_group(columns);
       u_history = columns;
       for (unsigned int h = 0; h < n_h; ++h)
         u_history[h] += lifts[h];
@@ -169,6 +212,40 @@ namespace igabde
     Body<dim>::flexibility(const std::vector<PointOperator<dim>> &operators,
                            const std::vector<Tensor<1, dim>> &directions) const
     {
+      FullMatrix<double> F;
+      if (factorizes_here())
+        F = flexibility_in_group(operators, directions);
+      share_flexibility(F);
+      return F;
+    }
+
+
+
+    template <int dim>
+    void
+    Body<dim>::share_flexibility(FullMatrix<double> &F) const
+    {
+      if (Utilities::MPI::n_mpi_processes(layout.world) == 1)
+        return;
+      unsigned int n = F.m();
+      Utilities::MPI::broadcast(&n, 1, layout.root, layout.world);
+      if (F.m() != n)
+        F.reinit(n, n);
+      if (n > 0)
+        Utilities::MPI::broadcast(&F(0, 0),
+                                  std::size_t(n) * n,
+                                  layout.root,
+                                  layout.world);
+    }
+
+
+
+    template <int dim>
+    FullMatrix<double>
+    Body<dim>::flexibility_in_group(
+      const std::vector<PointOperator<dim>> &operators,
+      const std::vector<Tensor<1, dim>>     &directions) const
+    {
       AssertDimension(operators.size(), directions.size());
       const unsigned int n = operators.size();
       FullMatrix<double> F(n, n);
@@ -176,6 +253,10 @@ namespace igabde
         return F;
       if (has_schur_complement())
         {
+          // Dense work on the root alone (every rank of the group holds the
+          // factor of S; the others would only repeat it).
+          if (Utilities::MPI::this_mpi_process(layout.world) != layout.root)
+            return FullMatrix<double>();
           // Columns of point forces on the interface unknowns: F = C^T S^-1 C
           // (the readout of a point displacement is the transpose of the
           // point-force distribution).
@@ -206,11 +287,14 @@ namespace igabde
           return linear_solver->cholesky->interface_flexibility(C);
         }
 
-      // One solve per column on the shared factorisation.
+      // One solve per column on the shared factorisation (the group's;
+      // the root's columns hold the solutions).
       std::vector<Vector<double>> columns(n, Vector<double>(n_unknowns));
       for (unsigned int j = 0; j < n; ++j)
         operators[j].distribute(directions[j], columns[j]);
-      solve(columns);
+      solve_in_group(columns);
+      if (Utilities::MPI::this_mpi_process(layout.world) != layout.root)
+        return FullMatrix<double>();
       for (unsigned int j = 0; j < n; ++j)
         for (unsigned int i = 0; i < n; ++i)
           F(i, j) = directions[i] * operators[i].displacement(columns[j]);
@@ -653,7 +737,8 @@ namespace igabde
                                               interface_dofs,
                                               dim == 3 ?
                                                 Order::nested_dissection :
-                                                Order::minimum_degree);
+                                                Order::minimum_degree,
+                                              layout.group);
           return;
         }
 
@@ -706,6 +791,29 @@ namespace igabde
     template <int dim>
     void
     Body<dim>::solve(std::vector<Vector<double>> &rhs_and_solutions) const
+    {
+      if (Utilities::MPI::n_mpi_processes(layout.world) == 1)
+        {
+          solve_in_group(rhs_and_solutions);
+          return;
+        }
+      // The group solves the root's vectors (every rank computed the same
+      // right-hand sides); the root hands the solutions to all.
+      if (factorizes_here())
+        solve_in_group(rhs_and_solutions);
+      for (auto &v : rhs_and_solutions)
+        Utilities::MPI::broadcast(v.data(),
+                                  v.size(),
+                                  layout.root,
+                                  layout.world);
+    }
+
+
+
+    template <int dim>
+    void
+    Body<dim>::solve_in_group(
+      std::vector<Vector<double>> &rhs_and_solutions) const
     {
       // The factorisation is shared; the columns are independent and are
       // solved in parallel chunks (UMFPACK's solve phase only reads it).

@@ -1,6 +1,7 @@
 #include <igabde/linear_algebra/sparse_cholesky.h>
 
 #include <deal.II/base/exceptions.h>
+#include <deal.II/base/mpi.h>
 
 #include <deal.II/lac/lapack_templates.h>
 
@@ -137,6 +138,15 @@ namespace igabde
     {
       DMUMPS_STRUC_C id{};
       bool           mumps_alive = false;
+      /// The ranks that factorise together; the host is its rank 0.
+      MPI_Comm communicator = MPI_COMM_SELF;
+      /// Whether this rank is the host (holds matrix, vectors and S).
+      bool host = true;
+      /// Whether this rank took part in the factorisation (false after
+      /// share() on a rank outside its communicator).
+      bool member = true;
+      /// Entries of the factor (MUMPS' count, or of S when dense only).
+      double entries = 0.;
 
       /// Global index of each free unknown (MUMPS' numbering minus one).
       std::vector<types::global_dof_index> free_dofs;
@@ -220,10 +230,14 @@ namespace igabde
       const SparseMatrix<double>                 &matrix,
       const std::vector<bool>                    &eliminated,
       const std::vector<types::global_dof_index> &interface,
-      const PivotOrder                            pivot_order)
+      const PivotOrder                            pivot_order,
+      const MPI_Comm                              communicator)
     {
       Data &d = *data;
       d.release();
+      d.communicator = communicator;
+      d.host         = (Utilities::MPI::this_mpi_process(communicator) == 0);
+      d.member       = true;
       const types::global_dof_index n = matrix.m();
       AssertDimension(eliminated.size(), n);
 
@@ -257,25 +271,27 @@ namespace igabde
           // The free block in one pass over K's rows (deal.II stores a
           // row's diagonal first, the other columns ascending): its lower
           // triangle for MUMPS (1-based, nonzero values), and its pattern
-          // (both triangles, sorted, 0-based) for the pivot order.
+          // (both triangles, sorted, 0-based) for the pivot order. Only
+          // the host reads K (MUMPS' centralised input).
           const SparsityPattern &pattern = matrix.get_sparsity_pattern();
           const unsigned int     n_free  = d.free_dofs.size();
           const bool             ordering =
             (pivot_order != PivotOrder::minimum_degree && n_s < n_free);
-          std::size_t n_entries = 0;
-          for (const auto row : d.free_dofs)
-            n_entries += pattern.row_length(row);
+          const unsigned int n_read    = (d.host ? n_free : 0);
+          std::size_t        n_entries = 0;
+          for (unsigned int r = 0; r < n_read; ++r)
+            n_entries += pattern.row_length(d.free_dofs[r]);
           d.rows.clear();
           d.cols.clear();
           d.values.clear();
           d.rows.reserve(n_entries / 2 + n_free);
           d.cols.reserve(n_entries / 2 + n_free);
           d.values.reserve(n_entries / 2 + n_free);
-          std::vector<std::size_t>  row_start(ordering ? n_free + 1 : 0, 0);
+          std::vector<std::size_t>  row_start(ordering ? n_read + 1 : 0, 0);
           std::vector<unsigned int> columns;
           if (ordering)
             columns.reserve(n_entries);
-          for (unsigned int r = 0; r < n_free; ++r)
+          for (unsigned int r = 0; r < n_read; ++r)
             {
               const types::global_dof_index row       = d.free_dofs[r];
               const std::size_t             row_begin = columns.size();
@@ -312,12 +328,12 @@ namespace igabde
           MPI_Initialized(&initialized);
           AssertThrow(initialized,
                       ExcMessage("SparseCholesky needs MPI to be initialised "
-                                 "(MUMPS runs on MPI_COMM_SELF)."));
+                                 "(MUMPS runs on an MPI communicator)."));
           d.id     = DMUMPS_STRUC_C{};
-          d.id.par = 1;
+          d.id.par = 1; // the host works too
           d.id.sym = 1; // symmetric positive definite: LDL^T
           d.id.comm_fortran =
-            static_cast<MUMPS_INT>(MPI_Comm_c2f(MPI_COMM_SELF));
+            static_cast<MUMPS_INT>(MPI_Comm_c2f(communicator));
           d.call(-1);
           d.mumps_alive = true;
           // Silent; automatic ordering.
@@ -337,27 +353,31 @@ namespace igabde
             {
               for (unsigned int a = 0; a < n_s; ++a)
                 schur_list[a] = d.reduced_index[interface[a]];
-              d.schur.reinit(n_s, n_s);
+              if (d.host)
+                d.schur.reinit(n_s, n_s);
               d.id.icntl[icntl(19)] = 1; // centralised on the host
               d.id.size_schur       = n_s;
               d.id.listvar_schur    = schur_list.data();
               d.id.schur_lld        = n_s;
             }
-          std::vector<double> schur_values(std::size_t(n_s) * n_s, 0.);
-          d.id.schur = (n_s > 0 ? schur_values.data() : nullptr);
+          std::vector<double> schur_values(d.host ? std::size_t(n_s) * n_s : 0,
+                                           0.);
+          d.id.schur = (n_s > 0 && d.host ? schur_values.data() : nullptr);
 
           // Pivot order (PivotOrder): MUMPS' own (approximate minimum
           // degree when a Schur complement is asked for), nested
           // dissection with the Schur unknowns last, or whichever of the
           // two MUMPS' analysis estimates to need fewer flops.
+          // The host orders; every rank learns whether it did (METIS may
+          // fail), so that all take the same branch.
           const bool both = (pivot_order == PivotOrder::cheaper_of_both);
           if (pivot_order != PivotOrder::nested_dissection)
             d.call(1);
           const std::vector<MUMPS_INT> order =
-            (ordering ?
+            (ordering && d.host ?
                nested_dissection_order(n_free, row_start, columns, schur_list) :
                std::vector<MUMPS_INT>());
-          if (!order.empty())
+          if (Utilities::MPI::max(order.empty() ? 0u : 1u, communicator) > 0)
             {
               const double minimum_degree_flops = d.id.rinfog[0];
               const int    automatic            = d.id.icntl[icntl(7)];
@@ -393,9 +413,9 @@ namespace igabde
           d.id.perm_in       = nullptr;
 
           // ICNTL(19) = 1 with a symmetric matrix: the lower triangle,
-          // stored by rows (row a, column b <= a at a * n_s + b); what the
-          // upper part holds is not specified.
-          for (unsigned int a = 0; a < n_s; ++a)
+          // stored by rows (row a, column b <= a at a * n_s + b), on the
+          // host; what the upper part holds is not specified.
+          for (unsigned int a = 0; a < (d.host ? n_s : 0); ++a)
             for (unsigned int b = 0; b <= a; ++b)
               {
                 const double v = schur_values[std::size_t(a) * n_s + b];
@@ -404,7 +424,11 @@ namespace igabde
               }
         }
 
-      if (n_s > 0)
+      d.entries =
+        (d.mumps_alive ? (d.id.infog[28] >= 0 ? double(d.id.infog[28]) :
+                                                -1e6 * double(d.id.infog[28])) :
+                         0.5 * n_s * (n_s + 1.));
+      if (n_s > 0 && (d.host || d.dense_only))
         {
           const int ld = n_s;
           d.schur_factor.resize(std::size_t(n_s) * n_s);
@@ -418,6 +442,28 @@ namespace igabde
                                  "not positive definite: a body is not held "
                                  "against a rigid motion."));
         }
+    }
+
+
+
+    void
+    SparseCholesky::share(const MPI_Comm world, const unsigned int root)
+    {
+      if (Utilities::MPI::n_mpi_processes(world) == 1)
+        return;
+      Data      &d       = *data;
+      const bool is_root = (Utilities::MPI::this_mpi_process(world) == root);
+      unsigned long long n_s = d.interface.size();
+      Utilities::MPI::broadcast(&n_s, 1, root, world);
+      d.interface.resize(n_s);
+      Utilities::MPI::broadcast(d.interface.data(), n_s, root, world);
+      d.schur_factor.resize(n_s * n_s);
+      Utilities::MPI::broadcast(d.schur_factor.data(), n_s * n_s, root, world);
+      Utilities::MPI::broadcast(&d.entries, 1, root, world);
+      // A rank that never called initialize() (it holds no MUMPS instance)
+      // has the factor of S only.
+      if (!d.mumps_alive && !d.dense_only && !is_root)
+        d.member = false;
     }
 
 
@@ -492,6 +538,9 @@ namespace igabde
       const unsigned int nrhs = rhs_and_solutions.size();
       if (nrhs == 0)
         return;
+      AssertThrow(d.member,
+                  ExcMessage("SparseCholesky::solve() on a rank that holds "
+                             "no part of the factorisation."));
       const unsigned int n_free = d.free_dofs.size();
       const unsigned int n_s    = d.interface.size();
 
@@ -513,15 +562,17 @@ namespace igabde
           return;
         }
 
-      std::vector<double> rhs(std::size_t(n_free) * nrhs);
-      for (unsigned int k = 0; k < nrhs; ++k)
+      // The host's vectors in and out; the other ranks take part.
+      const unsigned int  n_held = (d.host ? nrhs : 0);
+      std::vector<double> rhs(std::size_t(n_free) * n_held);
+      for (unsigned int k = 0; k < n_held; ++k)
         {
           AssertDimension(rhs_and_solutions[k].size(), d.reduced_index.size());
           for (unsigned int i = 0; i < n_free; ++i)
             rhs[std::size_t(k) * n_free + i] =
               rhs_and_solutions[k][d.free_dofs[i]];
         }
-      d.id.rhs  = rhs.data();
+      d.id.rhs  = (d.host ? rhs.data() : nullptr);
       d.id.nrhs = nrhs;
       d.id.lrhs = n_free;
       if (n_s == 0)
@@ -532,19 +583,20 @@ namespace igabde
       else
         {
           // Reduction onto the interface, dense solve with S, expansion.
-          std::vector<double> reduced(std::size_t(n_s) * nrhs);
-          d.id.redrhs           = reduced.data();
+          std::vector<double> reduced(std::size_t(n_s) * n_held);
+          d.id.redrhs           = (d.host ? reduced.data() : nullptr);
           d.id.lredrhs          = n_s;
           d.id.icntl[icntl(26)] = 1;
           d.call(3);
-          d.solve_schur(reduced.data(), nrhs);
+          if (d.host)
+            d.solve_schur(reduced.data(), nrhs);
           d.id.icntl[icntl(26)] = 2;
           d.call(3);
           d.id.icntl[icntl(26)] = 0;
           d.id.redrhs           = nullptr;
         }
       d.id.rhs = nullptr;
-      for (unsigned int k = 0; k < nrhs; ++k)
+      for (unsigned int k = 0; k < n_held; ++k)
         {
           rhs_and_solutions[k] = 0.;
           for (unsigned int i = 0; i < n_free; ++i)
@@ -558,10 +610,7 @@ namespace igabde
     double
     SparseCholesky::factor_entries() const
     {
-      if (!data->mumps_alive)
-        return 0.5 * n_interface() * (n_interface() + 1.);
-      const MUMPS_INT e = data->id.infog[28];
-      return (e >= 0 ? double(e) : -1e6 * double(e));
+      return data->entries;
     }
 
 

@@ -110,6 +110,9 @@ namespace igabde
         j["point_stresses"] = *s.point_stresses;
       if (s.timing)
         j["timing"] = *s.timing;
+      j["mpi_ranks"] = s.mpi_ranks;
+      if (s.ranks)
+        j["ranks"] = *s.ranks;
       return j;
     }
 

@@ -12,7 +12,12 @@
 #include <igabde/scene/step_results.h>
 
 #include <deal.II/base/mpi.h>
+#include <deal.II/base/utilities.h>
 
+#include <algorithm>
+#include <boost/serialization/string.hpp>
+#include <boost/serialization/utility.hpp>
+#include <boost/serialization/vector.hpp>
 #include <cmath>
 #include <fstream>
 #include <iomanip>
@@ -40,6 +45,7 @@ namespace igabde
       run_summary.degree           = parameters.discretization.degree;
       run_summary.refinements      = parameters.discretization.refinements;
       run_summary.memory_allocator = base::memory_allocator();
+      run_summary.mpi_ranks = Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD);
     }
 
 
@@ -56,6 +62,111 @@ namespace igabde
 
     template <int dim>
     Simulator<dim>::~Simulator() = default;
+
+
+
+    template <int dim>
+    Simulator<dim>::Communicators::~Communicators()
+    {
+      for (auto &c : list)
+        if (c != MPI_COMM_NULL)
+          Utilities::MPI::free_communicator(c);
+    }
+
+
+
+    template <int dim>
+    void
+    Simulator<dim>::split_ranks_among_bodies()
+    {
+      const unsigned int n_ranks =
+        Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD);
+      const unsigned int rank =
+        Utilities::MPI::this_mpi_process(MPI_COMM_WORLD);
+      factorised_here.clear();
+      if (n_ranks == 1 || parameters.discretization.linear_solver !=
+                            discretization::LinearSolver::direct)
+        {
+          // One process, or a solver that every rank runs for itself.
+          for (const auto &body : bodies)
+            factorised_here.push_back(body->name());
+          return;
+        }
+      // Two bodies: ranks in proportion to the estimated factor sizes, at
+      // least one each; the first ranks factorise Body 1.
+      std::vector<unsigned int> first(bodies.size() + 1, n_ranks);
+      first[0] = 0;
+      if (bodies.size() == 2)
+        {
+          const auto   estimate = estimate_size(parameters, scene_file).bodies;
+          const double w0       = std::max(estimate[0].factor_entries, 1.);
+          const double w1       = std::max(estimate[1].factor_entries, 1.);
+          first[1] =
+            std::clamp<unsigned int>(std::lround(n_ranks * w0 / (w0 + w1)),
+                                     1,
+                                     n_ranks - 1);
+        }
+      unsigned int color = 0;
+      while (rank >= first[color + 1])
+        ++color;
+      MPI_Comm  group = MPI_COMM_NULL;
+      const int ierr  = MPI_Comm_split(MPI_COMM_WORLD, color, rank, &group);
+      AssertThrowMPI(ierr);
+      body_groups.list.push_back(group);
+      for (unsigned int b = 0; b < bodies.size(); ++b)
+        {
+          discretization::ParallelLayout layout;
+          layout.world = MPI_COMM_WORLD;
+          layout.group = (b == color ? group : MPI_COMM_NULL);
+          layout.root  = first[b];
+          bodies[b]->set_parallel_layout(layout);
+          if (b == color)
+            factorised_here.push_back(bodies[b]->name());
+          pcout << "  " << bodies[b]->name() << " factorised on rank"
+                << (first[b + 1] - first[b] > 1 ?
+                      "s " + std::to_string(first[b]) + ".." +
+                        std::to_string(first[b + 1] - 1) :
+                      " " + std::to_string(first[b]))
+                << " of " << n_ranks << std::endl;
+        }
+    }
+
+
+
+    template <int dim>
+    void
+    Simulator<dim>::gather_rank_figures()
+    {
+      const MPI_Comm world  = MPI_COMM_WORLD;
+      auto           timing = timing_seconds(timer);
+      // Every rank runs the same phases; their largest seconds are the
+      // run's.
+      std::vector<double> seconds;
+      for (const auto &[phase, s] : timing)
+        seconds.push_back(s);
+      AssertThrow(Utilities::MPI::min(seconds.size(), world) ==
+                    Utilities::MPI::max(seconds.size(), world),
+                  ExcInternalError());
+      std::vector<double> largest(seconds.size());
+      Utilities::MPI::max(seconds, world, largest);
+      unsigned int k = 0;
+      for (auto &entry : timing)
+        entry.second = largest[k++];
+      final_timing = timing;
+
+      Utilities::System::MemoryStats memory;
+      Utilities::System::get_memory_stats(memory);
+      const auto peaks =
+        Utilities::MPI::gather(world,
+                               std::pair(memory.VmHWM / 1024., factorised_here),
+                               0);
+      nlohmann::json ranks = nlohmann::json::array();
+      for (unsigned int r = 0; r < peaks.size(); ++r)
+        ranks.push_back({{"rank", r},
+                         {"peak_memory_mib", peaks[r].first},
+                         {"factorises", peaks[r].second}});
+      run_summary.ranks = ranks;
+    }
 
 
 
@@ -122,15 +233,31 @@ namespace igabde
     Simulator<dim>::factorize_bodies(const contact::ContactStage<dim> *stage)
     {
       TimerOutput::Scope t(timer, "factorization");
+      split_ranks_among_bodies();
+      // Each group factorises its body (the groups at the same time), then
+      // every rank receives what it did not compute.
+      std::vector<double> seconds(bodies.size(), 0.);
+      for (unsigned int b = 0; b < bodies.size(); ++b)
+        if (bodies[b]->factorizes_here())
+          {
+            Timer clock;
+            // What the contact path needs of the body (a Schur interface on
+            // the contact face, or nothing).
+            bodies[b]->factorize(
+              stage != nullptr ?
+                stage->factorization_interface(b) :
+                std::vector<discretization::PointOperator<dim>>());
+            seconds[b] = clock.wall_time();
+          }
+      for (auto &body : bodies)
+        body->share_factorization();
+      {
+        std::vector<double> largest(seconds.size());
+        Utilities::MPI::max(seconds, MPI_COMM_WORLD, largest);
+        seconds = largest;
+      }
       for (unsigned int b = 0; b < bodies.size(); ++b)
         {
-          Timer clock;
-          // What the contact path needs of the body (a Schur interface on
-          // the contact face, or nothing).
-          bodies[b]->factorize(
-            stage != nullptr ?
-              stage->factorization_interface(b) :
-              std::vector<discretization::PointOperator<dim>>());
           if (bodies[b]->factor_entries() > 0. && summary.contains("bodies") &&
               b < summary["bodies"].size())
             summary["bodies"][b]["factor_entries"] =
@@ -148,7 +275,7 @@ namespace igabde
                               " face unknowns" :
                             std::string())
                       << ")";
-              pcout << ", " << std::setprecision(3) << clock.wall_time() << " s"
+              pcout << ", " << std::setprecision(3) << seconds[b] << " s"
                     << std::setprecision(6) << std::endl;
             }
         }
@@ -409,7 +536,7 @@ namespace igabde
                                              contact_stage != nullptr,
                                              dim));
 
-      run_summary.timing        = timing_seconds(timer);
+      run_summary.timing = final_timing ? *final_timing : timing_seconds(timer);
       const nlohmann::json json = to_json(run_summary);
       base::write_file_atomically(output_directory + "/summary.json",
                                   json.dump(2) + "\n");
@@ -456,6 +583,7 @@ namespace igabde
       setup_bodies();
       setup_contact();
       solve_load_steps();
+      gather_rank_figures();
       write_summary("ok", "");
     }
 

@@ -133,6 +133,16 @@ namespace igabde
       /** The private session base this object created; empty if none. */
       std::string session_base;
     };
+
+    /**
+     * @brief Under mpirun, limits the dense linear algebra's threads
+     * (OpenBLAS, OpenMP) of this process to deal.II's thread count for it
+     * (the node's cores divided among its ranks), so that ranks × threads
+     * does not exceed the cores. OPENBLAS_NUM_THREADS or OMP_NUM_THREADS in
+     * the environment override it. Returns the number set (0: left alone).
+     */
+    unsigned int
+    limit_dense_threads_per_rank();
   } // namespace base
 } // namespace igabde
 

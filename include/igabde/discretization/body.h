@@ -21,6 +21,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <mpi.h>
 #include <string>
 #include <vector>
 
@@ -28,6 +29,27 @@ namespace igabde
 {
   namespace discretization
   {
+    /**
+     * @brief Where a body's direct factorisation runs under MPI.
+     *
+     * Every rank of @p world holds the body (its space, matrix and fields);
+     * the ranks of @p group factorise it together (MUMPS on that
+     * communicator, the group's first rank holding the matrix and the
+     * Schur complement), and hand what the others need (the factor of the
+     * Schur complement, the external solutions, every solve's result) over
+     * @p world from @p root, the group's first rank. The default is one
+     * process doing everything.
+     */
+    struct ParallelLayout
+    {
+      /// Every rank that uses the body.
+      MPI_Comm world = MPI_COMM_SELF;
+      /// The ranks that factorise it; MPI_COMM_NULL on the others.
+      MPI_Comm group = MPI_COMM_SELF;
+      /// Rank in @p world of the group's first rank.
+      unsigned int root = 0;
+    };
+
     using namespace dealii;
 
     template <int dim>
@@ -173,6 +195,26 @@ namespace igabde
       factorize(const std::vector<PointOperator<dim>> &interface = {});
 
       /**
+       * @brief Sets where the factorisation runs (before factorize()).
+       * factorize() is then collective on the layout's group (a rank outside
+       * it does nothing), share_factorization() and solve() on its world.
+       */
+      void
+      set_parallel_layout(const ParallelLayout &layout);
+
+      /// Whether this rank factorises the body (always in one process).
+      bool
+      factorizes_here() const;
+
+      /**
+       * @brief After factorize() on the group: every rank of the world gets
+       * the external solutions and, with a Schur complement, its factor
+       * (collective on the world; nothing to do in one process).
+       */
+      void
+      share_factorization();
+
+      /**
        * @brief The flexibility of point-force patterns:
        * F(i, j) = d_i . u_j(x_i), where u_j solves K u_j = f_j for the unit
        * force @p directions[j] at the point of @p operators[j] (with the
@@ -183,6 +225,21 @@ namespace igabde
       FullMatrix<double>
       flexibility(const std::vector<PointOperator<dim>> &operators,
                   const std::vector<Tensor<1, dim>>     &directions) const;
+
+      /**
+       * @brief flexibility() in two halves, so that the bodies' groups
+       * compute theirs at the same time: flexibility_in_group() on the
+       * ranks that factorise the body (collective on the layout's group;
+       * the result is on the layout's root, empty elsewhere), then
+       * share_flexibility() on every rank (collective on the world).
+       */
+      FullMatrix<double>
+      flexibility_in_group(const std::vector<PointOperator<dim>> &operators,
+                           const std::vector<Tensor<1, dim>> &directions) const;
+
+      /// Second half of flexibility(): @p F from the layout's root to all.
+      void
+      share_flexibility(FullMatrix<double> &F) const;
 
       /**
        * @brief The assembled stiffness K, before supports are applied (the
@@ -315,7 +372,9 @@ namespace igabde
       /**
        * @brief Solves K u = f for every column, with homogeneous supports
        * (and the pins that remove free rigid modes); one factorisation serves
-       * all. On return each vector holds its solution.
+       * all. On return each vector holds its solution. Under a
+       * ParallelLayout collective on its world: the group solves the root's
+       * vectors and every rank receives the solutions.
        */
       void
       solve(std::vector<Vector<double>> &rhs_and_solutions) const;
@@ -475,6 +534,12 @@ namespace igabde
       /// body.cc so that this header stays free of solver libraries.
       struct LinearSolver;
       std::unique_ptr<LinearSolver> linear_solver;
+      ParallelLayout                layout;
+
+      /// solve() on this rank's share of the factorisation (collective on
+      /// the layout's group; the root's vectors hold the solutions).
+      void
+      solve_in_group(std::vector<Vector<double>> &rhs_and_solutions) const;
       /// Solution of each load history at factor 1.
       std::vector<Vector<double>> u_history;
       std::vector<Vector<double>> rigid_modes;

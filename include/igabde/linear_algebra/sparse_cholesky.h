@@ -8,6 +8,7 @@
 #include <deal.II/lac/vector.h>
 
 #include <memory>
+#include <mpi.h>
 #include <vector>
 
 namespace igabde
@@ -30,6 +31,14 @@ namespace igabde
      * C^T K^{-1} C = C_I^T S^{-1} C_I without one solve per column, and a
      * full solve is a reduction onto I, a dense solve with S and an
      * expansion (MUMPS' ICNTL(26)).
+     *
+     * The factorisation runs on an MPI communicator (MPI_COMM_SELF unless
+     * told otherwise): its first rank, the host, holds the matrix, the
+     * right-hand sides, the solutions and S (MUMPS' centralised input and
+     * Schur complement); the other ranks take part in every call and hold
+     * their share of the factor. share() hands the Cholesky factor of S to
+     * ranks outside the communicator, so that interface_flexibility() works
+     * there too.
      */
     class SparseCholesky
     {
@@ -69,12 +78,25 @@ namespace igabde
        * @param interface unknowns onto which the Schur complement is formed
        * (free, distinct); empty: a plain factorisation.
        * @param order the pivot order (PivotOrder).
+       * @param communicator the ranks that factorise together (collective
+       * on it); only its first rank reads @p matrix.
        */
       void
       initialize(const SparseMatrix<double>                 &matrix,
                  const std::vector<bool>                    &eliminated,
                  const std::vector<types::global_dof_index> &interface,
-                 PivotOrder order = PivotOrder::cheaper_of_both);
+                 PivotOrder     order        = PivotOrder::cheaper_of_both,
+                 const MPI_Comm communicator = MPI_COMM_SELF);
+
+      /**
+       * @brief Hands the interface, the Cholesky factor of S and the factor
+       * size from the world rank @p root (the host of the communicator the
+       * factorisation ran on) to every rank of @p world (collective on
+       * @p world). A rank that did not factorise can then call
+       * interface_flexibility() but not solve().
+       */
+      void
+      share(const MPI_Comm world, const unsigned int root);
 
       /// Number of interface unknowns (size of the Schur complement).
       unsigned int
@@ -84,7 +106,8 @@ namespace igabde
       const std::vector<types::global_dof_index> &
       interface_dofs() const;
 
-      /// The Schur complement onto the interface (dense, symmetric).
+      /// The Schur complement onto the interface (dense, symmetric; on the
+      /// host of the factorisation's communicator).
       const FullMatrix<double> &
       schur_complement() const;
 
@@ -98,7 +121,9 @@ namespace igabde
 
       /**
        * @brief Solves K u = f for every vector (in place), all at once;
-       * eliminated unknowns are zero on return.
+       * eliminated unknowns are zero on return. Collective on the
+       * factorisation's communicator: the host's vectors are read and
+       * solved, the other ranks' are left as they are.
        */
       void
       solve(std::vector<Vector<double>> &rhs_and_solutions) const;

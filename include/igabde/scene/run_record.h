@@ -111,8 +111,12 @@ namespace igabde
       /// Probe displacements and stresses of the last step.
       std::optional<nlohmann::json> points;
       std::optional<nlohmann::json> point_stresses;
-      /// Seconds per timer phase and "total".
+      /// Seconds per timer phase and "total" (the largest over the ranks).
       std::optional<std::map<std::string, double>> timing;
+      /// Processes the run used (mpirun -np N).
+      unsigned int mpi_ranks = 1;
+      /// Per rank: its peak memory and the bodies it factorised.
+      std::optional<nlohmann::json> ranks;
     };
 
     /// The run as summary.json writes it.

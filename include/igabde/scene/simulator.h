@@ -10,7 +10,9 @@
 #include <deal.II/base/conditional_ostream.h>
 #include <deal.II/base/timer.h>
 
+#include <map>
 #include <memory>
+#include <mpi.h>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <ostream>
@@ -74,10 +76,24 @@ namespace igabde
       void
       setup_bodies();
 
-      /// Factorises every body; with @p stage and the Schur condensation,
-      /// onto the unknowns of its contact points.
+      /**
+       * Factorises every body; with @p stage and the Schur condensation,
+       * onto the unknowns of its contact points. Under MPI with the direct
+       * solver the ranks are split among the bodies (in proportion to their
+       * estimated factor sizes), each group factorises its body at the same
+       * time as the other, and the results are shared with every rank.
+       */
       void
       factorize_bodies(const contact::ContactStage<dim> *stage);
+
+      /// Under MPI with the direct solver: which ranks factorise which body.
+      void
+      split_ranks_among_bodies();
+
+      /// At the end of a run: the largest seconds per phase over the ranks
+      /// and every rank's peak memory (collective).
+      void
+      gather_rank_figures();
 
       /// With contact: the contact stage (pairs, condensation or coupled
       /// system) and its facts in the summary; the factorisation either way.
@@ -112,6 +128,19 @@ namespace igabde
       /// The set-up facts of run_summary (RunSummary::setup), as the bodies
       /// and the contact stage fill them in.
       nlohmann::json &summary;
+
+      /// The communicators of the body groups (split_ranks_among_bodies()),
+      /// freed after the bodies (declared before them).
+      struct Communicators
+      {
+        std::vector<MPI_Comm> list;
+        ~Communicators();
+      } body_groups;
+      /// Names of the bodies this rank factorises.
+      std::vector<std::string> factorised_here;
+      /// The timing written by write_summary() once gather_rank_figures()
+      /// has run.
+      std::optional<std::map<std::string, double>> final_timing;
 
       std::optional<discretization::ExactSolution<dim>>        exact;
       std::vector<std::unique_ptr<discretization::Body<dim>>>  bodies;
