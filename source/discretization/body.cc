@@ -107,7 +107,9 @@ namespace igabde
       setup_space();
       AssertDimension(dof_locations.size(), n_unknowns);
       AssertDimension(dof_components.size(), n_unknowns);
-      assemble();
+      assembled = false;
+      if (layout.matrix_everywhere || factorizes_here())
+        ensure_assembled();
       find_free_rigid_modes();
     }
 
@@ -118,6 +120,51 @@ namespace igabde
     Body<dim>::set_parallel_layout(const ParallelLayout &new_layout)
     {
       layout = new_layout;
+    }
+
+
+
+    template <int dim>
+    void
+    Body<dim>::ensure_assembled()
+    {
+      if (assembled)
+        return;
+      assemble();
+      assembled      = true;
+      matrix_entries = system_matrix.n_nonzero_elements();
+    }
+
+
+
+    template <int dim>
+    std::size_t
+    Body<dim>::n_matrix_entries() const
+    {
+      return matrix_entries;
+    }
+
+
+
+    template <int dim>
+    void
+    Body<dim>::share_assembly()
+    {
+      if (Utilities::MPI::n_mpi_processes(layout.world) == 1)
+        return;
+      unsigned int n_h = history_rhs.size();
+      Utilities::MPI::broadcast(&n_h, 1, layout.root, layout.world);
+      history_rhs.resize(n_h, Vector<double>(n_unknowns));
+      for (auto &f : history_rhs)
+        Utilities::MPI::broadcast(f.data(),
+                                  f.size(),
+                                  layout.root,
+                                  layout.world);
+      if (n_h > 0)
+        load_rhs = history_rhs[0];
+      unsigned long long entries = matrix_entries;
+      Utilities::MPI::broadcast(&entries, 1, layout.root, layout.world);
+      matrix_entries = entries;
     }
 
 
@@ -378,14 +425,28 @@ namespace igabde
     {
       AssertDimension(u.size(), n_unknowns);
       AssertDimension(f.size(), n_unknowns);
-      Vector<double> r(n_unknowns);
-      system_matrix.vmult(r, u);
-      r -= f;
-      Tensor<1, dim> reaction;
-      for (types::global_dof_index i = 0; i < n_unknowns; ++i)
-        if (constraints.is_constrained(i))
-          reaction[dof_components[i]] += r[i];
-      return reaction;
+      // Under a parallel layout the root computes it (it holds K; every
+      // rank has the same u and f) and hands it to all.
+      std::array<double, dim> reaction{};
+      if (Utilities::MPI::this_mpi_process(layout.world) == layout.root)
+        {
+          AssertThrow(assembled, ExcInternalError());
+          Vector<double> r(n_unknowns);
+          system_matrix.vmult(r, u);
+          r -= f;
+          for (types::global_dof_index i = 0; i < n_unknowns; ++i)
+            if (constraints.is_constrained(i))
+              reaction[dof_components[i]] += r[i];
+        }
+      if (Utilities::MPI::n_mpi_processes(layout.world) > 1)
+        Utilities::MPI::broadcast(reaction.data(),
+                                  dim,
+                                  layout.root,
+                                  layout.world);
+      Tensor<1, dim> result;
+      for (unsigned int c = 0; c < dim; ++c)
+        result[c] = reaction[c];
+      return result;
     }
 
 
@@ -394,6 +455,7 @@ namespace igabde
     const SparseMatrix<double> &
     Body<dim>::stiffness_matrix() const
     {
+      Assert(assembled, ExcMessage("K is not assembled on this rank."));
       return system_matrix;
     }
 

@@ -116,13 +116,15 @@ namespace igabde
       for (unsigned int b = 0; b < bodies.size(); ++b)
         {
           discretization::ParallelLayout layout;
-          layout.world = MPI_COMM_WORLD;
-          layout.group = (b == color ? group : MPI_COMM_NULL);
-          layout.root  = first[b];
+          layout.world             = MPI_COMM_WORLD;
+          layout.group             = (b == color ? group : MPI_COMM_NULL);
+          layout.root              = first[b];
+          layout.matrix_everywhere = false;
           bodies[b]->set_parallel_layout(layout);
           if (b == color)
             factorised_here.push_back(bodies[b]->name());
-          pcout << "  " << bodies[b]->name() << " factorised on rank"
+          pcout << "  " << bodies[b]->name()
+                << " assembled and factorised on rank"
                 << (first[b + 1] - first[b] > 1 ?
                       "s " + std::to_string(first[b]) + ".." +
                         std::to_string(first[b + 1] - 1) :
@@ -180,17 +182,33 @@ namespace igabde
       bodies = create_bodies<dim>(parameters, scene_file, exact);
       pvd_records.resize(bodies.size());
 
-      types::global_dof_index n_dofs     = 0;
-      unsigned int            n_elements = 0;
-      for (auto &body : bodies)
+      // Under MPI each body is assembled and factorised by its own group of
+      // ranks (the groups at the same time); the others receive its loads.
+      split_ranks_among_bodies();
+      std::vector<double> seconds(bodies.size(), 0.);
+      for (unsigned int b = 0; b < bodies.size(); ++b)
         {
           Timer clock;
-          body->setup_system();
+          bodies[b]->setup_system();
+          seconds[b] = clock.wall_time();
+        }
+      for (auto &body : bodies)
+        body->share_assembly();
+      {
+        std::vector<double> largest(seconds.size());
+        Utilities::MPI::max(seconds, MPI_COMM_WORLD, largest);
+        seconds = largest;
+      }
+
+      types::global_dof_index n_dofs     = 0;
+      unsigned int            n_elements = 0;
+      for (unsigned int b = 0; b < bodies.size(); ++b)
+        {
+          const auto &body = bodies[b];
           if (parameters.output.progress)
             pcout << "  [progress] " << body->name() << ": space and assembly, "
                   << body->n_dofs() << " unknowns, " << std::setprecision(3)
-                  << clock.wall_time() << " s" << std::setprecision(6)
-                  << std::endl;
+                  << seconds[b] << " s" << std::setprecision(6) << std::endl;
           n_dofs += body->n_dofs();
           n_elements += body->n_elements();
           pcout << "  " << body->name() << ": " << body->n_elements()
@@ -210,7 +228,7 @@ namespace igabde
           {"name", body->name()},
           {"n_dofs", static_cast<unsigned long long>(body->n_dofs())},
           {"n_elements", body->n_elements()},
-          {"matrix_entries", body->stiffness_matrix().n_nonzero_elements()},
+          {"matrix_entries", body->n_matrix_entries()},
           {"free_rigid_modes", body->free_rigid_mode_names()}});
       summary["bodies"] = per_body;
 
@@ -233,7 +251,6 @@ namespace igabde
     Simulator<dim>::factorize_bodies(const contact::ContactStage<dim> *stage)
     {
       TimerOutput::Scope t(timer, "factorization");
-      split_ranks_among_bodies();
       // Each group factorises its body (the groups at the same time), then
       // every rank receives what it did not compute.
       std::vector<double> seconds(bodies.size(), 0.);
@@ -329,6 +346,13 @@ namespace igabde
             coupled::coupled_factory<dim>(c.full_system_solver,
                                           c.krylov_max_iterations));
           contact_stage->build_pairs(timer);
+          // The coupled system reads every body's K on every rank.
+          if (contact_stage->path() == contact::Path::full)
+            {
+              TimerOutput::Scope t(timer, "assembly");
+              for (auto &body : bodies)
+                body->ensure_assembled();
+            }
           factorize_bodies(contact_stage.get());
           {
             Timer clock;

@@ -48,6 +48,10 @@ namespace igabde
       MPI_Comm group = MPI_COMM_SELF;
       /// Rank in @p world of the group's first rank.
       unsigned int root = 0;
+      /// Whether every rank assembles K (false: only the group does, and
+      /// the others receive the load vectors; ensure_assembled() builds K
+      /// where it is needed after all).
+      bool matrix_everywhere = true;
     };
 
     using namespace dealii;
@@ -195,12 +199,30 @@ namespace igabde
       factorize(const std::vector<PointOperator<dim>> &interface = {});
 
       /**
-       * @brief Sets where the factorisation runs (before factorize()).
-       * factorize() is then collective on the layout's group (a rank outside
-       * it does nothing), share_factorization() and solve() on its world.
+       * @brief Sets where the assembly and the factorisation run (before
+       * setup_system()). factorize() is then collective on the layout's
+       * group (a rank outside it does nothing), share_assembly(),
+       * share_factorization(), solve() and support_reaction() on its world.
        */
       void
       set_parallel_layout(const ParallelLayout &layout);
+
+      /**
+       * @brief After setup_system() on every rank: the ranks that did not
+       * assemble K receive the load vectors and the matrix's size from the
+       * layout's root (collective on the world; nothing to do in one
+       * process).
+       */
+      void
+      share_assembly();
+
+      /// Assembles K on this rank if setup_system() left it out.
+      void
+      ensure_assembled();
+
+      /// Entries of K's sparsity pattern (also where K was not assembled).
+      std::size_t
+      n_matrix_entries() const;
 
       /// Whether this rank factorises the body (always in one process).
       bool
@@ -535,6 +557,10 @@ namespace igabde
       struct LinearSolver;
       std::unique_ptr<LinearSolver> linear_solver;
       ParallelLayout                layout;
+      /// Whether K and the load vectors were assembled on this rank.
+      bool assembled = false;
+      /// n_matrix_entries(), from the root where K is not assembled.
+      std::size_t matrix_entries = 0;
 
       /// solve() on this rank's share of the factorisation (collective on
       /// the layout's group; the root's vectors hold the solutions).
