@@ -35,7 +35,7 @@ namespace
   print_usage(std::ostream &out)
   {
     out
-      << "Usage: igabde SCENE.prm [--quiet] [--force] "
+      << "Usage: igabde SCENE.prm [--quiet] [--force] [--export-geometry] "
          "[--set \"Section/Name=value\"]...\n"
          "       igabde --print-parameters [prm|json]\n"
          "       igabde --help\n\n"
@@ -43,7 +43,9 @@ namespace
          "log and\nVTU/PVD fields into its output folder (Output/Directory, "
          "default\noutput/<scene name>/). --set overrides any parameter "
          "(repeatable).\n--quiet leaves out the progress lines (Output/Progress = "
-         "false).\n--force runs a scene whose size estimate exceeds the free "
+         "false).\n--export-geometry also writes each body's refined geometry as "
+         "a G+Smo\nXML file and its control net as VTU (Output/Export "
+         "geometry = true).\n--force runs a scene whose size estimate exceeds the free "
          "memory\n(without it, such a scene stops at once with the estimate); "
          "IGABDE_MEMORY_LIMIT=GiB\nin the environment caps the memory the "
          "estimate is held against.\n"
@@ -111,6 +113,8 @@ main(int argc, char **argv)
         force = true;
       else if (arg == "--quiet" || arg == "-q")
         overrides.emplace_back("Output/Progress", "false");
+      else if (arg == "--export-geometry")
+        overrides.emplace_back("Output/Export geometry", "true");
       else if (arg == "--set")
         {
           if (i + 1 >= argc)

@@ -4,6 +4,8 @@
 #include <igabde/scene/body_factory.h>
 #include <igabde/scene/geometry.h>
 
+#include <deal.II/base/function_parser.h>
+
 namespace igabde
 {
   namespace scene
@@ -117,6 +119,34 @@ namespace igabde
                     return stress(x) * n;
                   };
                   break;
+                }
+              case TractionParameters::Kind::function:
+                {
+                  const auto at_time = [&traction](const double t) {
+                    const auto f =
+                      make_function_parser<dim>(traction.expressions, t);
+                    return [f](const Point<dim> &x, const Tensor<1, dim> &) {
+                      Tensor<1, dim> value;
+                      for (unsigned int c = 0; c < dim; ++c)
+                        value[c] = f->value(x, c);
+                      return value;
+                    };
+                  };
+                  if (!traction.uses_t)
+                    {
+                      bc.traction = at_time(0.);
+                      break;
+                    }
+                  // One traction per step, each on its own history
+                  // (AllParameters::parse_parameters).
+                  for (unsigned int s = 0; s < traction.step_t.size(); ++s)
+                    {
+                      discretization::NeumannCondition<dim> step = bc;
+                      step.traction = at_time(traction.step_t[s]);
+                      step.history  = traction.step_histories[s];
+                      d.tractions.push_back(step);
+                    }
+                  continue;
                 }
             }
           d.tractions.push_back(bc);

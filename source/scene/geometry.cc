@@ -1,17 +1,63 @@
+#include <igabde/base/files.h>
 #include <igabde/base/utilities.h>
 
 #include <igabde/nurbs/geometry_builders.h>
+#include <igabde/nurbs/geometry_file.h>
 
 #include <igabde/scene/geometry.h>
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <sstream>
 
 namespace igabde
 {
   namespace scene
   {
+    namespace
+    {
+      /// The one patch of the body's geometry file.
+      template <int dim>
+      nurbs::NurbsPatch<dim>
+      read_single_patch(const BodyParameters &body, const std::string &where)
+      {
+        nurbs::MultiPatchGeometry<dim> file;
+        try
+          {
+            file = nurbs::read_geometry_file<dim>(body.geometry_path);
+          }
+        catch (const base::ExcInput &e)
+          {
+            AssertThrow(false,
+                        base::ExcInput(where + base::exception_message(e)));
+          }
+        AssertThrow(file.patches.size() == 1,
+                    base::ExcInput(
+                      where + body.geometry_path + " holds " +
+                      std::to_string(file.patches.size()) +
+                      " patches; a body is one patch in this version "
+                      "(gluing patches is not built yet): give a file with "
+                      "one Geometry element."));
+        return file.patches.front();
+      }
+    } // namespace
+
+
+
+    void
+    check_geometry_file(const BodyParameters &body,
+                        const unsigned int    dimension,
+                        const std::string    &where)
+    {
+      if (dimension == 2)
+        read_single_patch<2>(body, where);
+      else
+        read_single_patch<3>(body, where);
+    }
+
+
+
     template <int dim>
     nurbs::NurbsPatch<dim>
     make_geometry(const BodyParameters          &body,
@@ -33,6 +79,7 @@ namespace igabde
                                    " is a 3D geometry; set Dimension = 3."));
       };
       AssertThrow(body.geometry == Geometry::box ||
+                    body.geometry == Geometry::file ||
                     body.geometry == Geometry::plate_with_hole ||
                     body.geometry == Geometry::hertz_quarter_disc ||
                     body.geometry == Geometry::full_disc ||
@@ -116,6 +163,10 @@ namespace igabde
           else
             patch = nurbs::make_cylinder(c, body.radius, body.width, full);
         }
+      else if (body.geometry == Geometry::file)
+        patch = read_single_patch<dim>(body,
+                                       where + "Geometry file = " +
+                                         body.geometry_file + ": ");
       else if (body.geometry == Geometry::curved_beam)
         {
           need_3d();
@@ -260,11 +311,71 @@ namespace igabde
                 "theta = 90 deg (x = 0)",
                 "y = 0",
                 "y = width"};
+      if (geometry == Geometry::file)
+        {
+          std::vector<std::string> faces = {"xi_0 = low",
+                                            "xi_0 = high",
+                                            "xi_1 = low",
+                                            "xi_1 = high"};
+          if (dimension == 3)
+            faces.insert(faces.end(), {"xi_2 = low", "xi_2 = high"});
+          return faces;
+        }
       return {};
     }
 
 
 
+    template <int dim>
+    nlohmann::json
+    geometry_record(const BodyParameters         &body,
+                    const nurbs::NurbsPatch<dim> &patch)
+    {
+      return nlohmann::json{{"geometry",
+                             body.geometry == Geometry::file ?
+                               body.geometry_file :
+                               to_string(body.geometry)},
+                            {"patches", 1},
+                            {"control_points", patch.n_control_points()},
+                            {"measure", nurbs::patch_measure(patch)}};
+    }
+
+
+
+    template <int dim>
+    void
+    export_geometry(const nurbs::NurbsPatch<dim> &patch,
+                    const std::string            &directory,
+                    const std::string            &name)
+    {
+      nurbs::MultiPatchGeometry<dim> geometry;
+      geometry.patches.push_back(patch);
+      std::ostringstream xml;
+      nurbs::write_geometry_file(geometry, xml);
+      base::write_file_atomically(directory + "/" + name + "-geometry.xml",
+                                  xml.str());
+      std::ofstream vtu(directory + "/" + name + "-control-net.vtu");
+      nurbs::write_control_net_vtu(geometry, vtu);
+      AssertThrow(vtu.good(),
+                  base::ExcInput("cannot write " + directory + "/" + name +
+                                 "-control-net.vtu; check that the output "
+                                 "folder is writable."));
+    }
+
+
+
+    template nlohmann::json
+    geometry_record<2>(const BodyParameters &, const nurbs::NurbsPatch<2> &);
+    template nlohmann::json
+    geometry_record<3>(const BodyParameters &, const nurbs::NurbsPatch<3> &);
+    template void
+    export_geometry<2>(const nurbs::NurbsPatch<2> &,
+                       const std::string &,
+                       const std::string &);
+    template void
+    export_geometry<3>(const nurbs::NurbsPatch<3> &,
+                       const std::string &,
+                       const std::string &);
     template nurbs::NurbsPatch<2>
     make_geometry<2>(const BodyParameters &,
                      const std::string &,

@@ -6,8 +6,13 @@
 #include <igabde/scene/geometry.h>
 #include <igabde/scene/parameters.h>
 
+#include <deal.II/base/function_parser.h>
+
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <iostream>
+#include <regex>
 #include <sstream>
 
 namespace igabde
@@ -72,6 +77,8 @@ namespace igabde
             return "full cylinder";
           case Geometry::half_cylinder:
             return "half cylinder";
+          case Geometry::file:
+            return "file";
         }
       return "";
     }
@@ -101,7 +108,88 @@ namespace igabde
         return {base::trim(entry.substr(0, at)),
                 base::trim(entry.substr(at + 1))};
       }
+
+
+
+      /**
+       * @brief Refuses, naming @p where, a 'function' load whose
+       * expressions are not one per component or that deal.II's
+       * FunctionParser cannot evaluate; sets @p uses_t when one of them
+       * uses the variable t.
+       */
+      void
+      check_expressions(const std::vector<std::string> &expressions,
+                        const unsigned int              dimension,
+                        const std::string              &where,
+                        bool                           *uses_t)
+      {
+        std::string all;
+        for (const auto &e : expressions)
+          all += (all.empty() ? "" : "; ") + e;
+        AssertThrow(expressions.size() == dimension,
+                    base::ExcInput(where + ": 'function " + all + "' has " +
+                                   std::to_string(expressions.size()) +
+                                   " expressions; give " +
+                                   std::to_string(dimension) +
+                                   ", one per component, separated by ';'."));
+        // deal.II's FunctionParser prints muparser's report on std::cerr
+        // before it throws; the one-line error below says it instead.
+        std::ostringstream silenced;
+        std::streambuf    *cerr_buffer = std::cerr.rdbuf(silenced.rdbuf());
+        try
+          {
+            // Parse errors show at the first evaluation.
+            if (dimension == 2)
+              {
+                const auto f = make_function_parser<2>(expressions, 0.);
+                for (unsigned int c = 0; c < 2; ++c)
+                  f->value(Point<2>(), c);
+              }
+            else
+              {
+                const auto f = make_function_parser<3>(expressions, 0.);
+                for (unsigned int c = 0; c < 3; ++c)
+                  f->value(Point<3>(), c);
+              }
+          }
+        catch (const ExceptionBase &e)
+          {
+            std::cerr.rdbuf(cerr_buffer);
+            AssertThrow(false,
+                        base::ExcInput(where + ": cannot evaluate 'function " +
+                                       all + "' (" +
+                                       base::exception_message(e) +
+                                       "); write expressions of " +
+                                       (dimension == 2 ? "x, y" : "x, y, z") +
+                                       " and t in deal.II's FunctionParser "
+                                       "syntax, e.g. '-100*(1-x^2)'."));
+          }
+        std::cerr.rdbuf(cerr_buffer);
+        static const std::regex t_variable(
+          "(^|[^A-Za-z0-9_])t([^A-Za-z0-9_(]|$)");
+        *uses_t = std::any_of(expressions.begin(),
+                              expressions.end(),
+                              [](const std::string &e) {
+                                return std::regex_search(e, t_variable);
+                              });
+      }
     } // namespace
+
+
+
+    template <int dim>
+    std::shared_ptr<FunctionParser<dim>>
+    make_function_parser(const std::vector<std::string> &expressions,
+                         const double                    t)
+    {
+      auto f = std::make_shared<FunctionParser<dim>>(dim);
+      f->initialize(dim == 2 ? "x,y,t" : "x,y,z,t",
+                    expressions,
+                    {{"pi", numbers::PI}},
+                    true);
+      f->set_time(t);
+      return f;
+    }
 
 
 
@@ -142,6 +230,15 @@ namespace igabde
                           "tests switch it off, so that their reference "
                           "output holds physical figures only; summary.json "
                           "always has these figures.");
+        prm.declare_entry("Export geometry",
+                          "false",
+                          Patterns::Bool(),
+                          "Write each body's geometry after Subdivisions, "
+                          "degree elevation and Refinements as a G+Smo XML "
+                          "file (<body>-geometry.xml, readable with Geometry "
+                          "= file) and its control net as VTU "
+                          "(<body>-control-net.vtu). The command-line flag "
+                          "--export-geometry sets it to true.");
       }
       prm.leave_subsection();
     }
@@ -153,11 +250,12 @@ namespace igabde
     {
       prm.enter_subsection("Output");
       {
-        directory      = prm.get("Directory");
-        write_vtu      = prm.get_bool("Write vtu");
-        print_timing   = prm.get_bool("Print timing");
-        progress       = prm.get_bool("Progress");
-        solver_details = prm.get_bool("Solver details");
+        directory       = prm.get("Directory");
+        write_vtu       = prm.get_bool("Write vtu");
+        print_timing    = prm.get_bool("Print timing");
+        progress        = prm.get_bool("Progress");
+        solver_details  = prm.get_bool("Solver details");
+        export_geometry = prm.get_bool("Export geometry");
       }
       prm.leave_subsection();
     }
@@ -183,7 +281,7 @@ namespace igabde
           Patterns::Selection("box|quarter annulus|thick cylinder|"
                               "plate with hole|hertz quarter disc|"
                               "curved beam|full disc|half disc|"
-                              "full cylinder|half cylinder"),
+                              "full cylinder|half cylinder|file"),
           "Exact NURBS geometry. box: [Lower corner, Upper corner]. quarter "
           "annulus / thick cylinder: Inner/Outer radius, 0..90 degrees "
           "(3D: extruded by Width along z). plate with hole: the quarter "
@@ -195,7 +293,18 @@ namespace igabde
           "(faces 0 left, 1 right, 2 bottom arc, 3 top arc or diameter). "
           "full cylinder / half cylinder (3D): those extruded along z from "
           "Centre z by Width (faces 4: z = Centre z, 5: z = Centre z + "
-          "Width).");
+          "Width). file: the single-patch G+Smo XML file Geometry file "
+          "(faces 0..2dim-1: low and high end of parametric directions 0, 1, "
+          "2).");
+        prm.declare_entry("Geometry file",
+                          "",
+                          Patterns::Anything(),
+                          "Geometry = file: a G+Smo XML file holding one "
+                          "TensorBSpline or TensorNurbs patch of the scene's "
+                          "dimension, relative to the scene file's folder "
+                          "(or absolute). Subdivisions, Grading and "
+                          "Discretization/Degree and Refinements apply to it "
+                          "as to the built-in shapes.");
         prm.declare_entry("Lower corner",
                           "",
                           Patterns::Anything(),
@@ -276,10 +385,15 @@ namespace igabde
           "",
           Patterns::Anything(),
           "Tractions on patch faces, scaled by the load factor: "
-          "'face: pressure p' (t = -p n), 'face: vector tx, ty[, tz]' or "
-          "'face: exact' (sigma_exact n from the Exact solution); separated "
-          "by ';'. An entry ending in '@ name' follows the load history "
-          "'name' of Load path/Histories instead.");
+          "'face: pressure p' (t = -p n), 'face: vector tx, ty[, tz]', "
+          "'face: exact' (sigma_exact n from the Exact solution) or "
+          "'face: function fx; fy[; fz]' (deal.II FunctionParser "
+          "expressions of x, y[, z] and t, in Pa, e.g. '3: function 0; "
+          "-100*(1-x^2)'); separated by ';'. An entry ending in '@ name' "
+          "follows the load history 'name' of Load path/Histories instead. "
+          "A function that uses t is the traction itself at t = the step's "
+          "factor of its history (not scaled again); one without t is "
+          "scaled like every other entry.");
         prm.declare_entry("Point loads",
                           "",
                           Patterns::Anything(),
@@ -413,7 +527,9 @@ namespace igabde
                                                     Geometry::full_disc,
                                                     Geometry::half_disc,
                                                     Geometry::full_cylinder,
-                                                    Geometry::half_cylinder});
+                                                    Geometry::half_cylinder,
+                                                    Geometry::file});
+        geometry_file     = base::trim(prm.get("Geometry file"));
         lower_text        = prm.get("Lower corner");
         upper_text        = prm.get("Upper corner");
         inner_radius      = prm.get_double("Inner radius");
@@ -581,14 +697,18 @@ namespace igabde
           supports.push_back(support);
         }
 
-      // Tractions: "face: pressure p", "face: vector tx, ty", "face: exact".
-      for (const std::string &entry : base::split(tractions_text, ';'))
+      // Tractions: "face: pressure p", "face: vector tx, ty", "face: exact",
+      // "face: function fx; fy[; fz]" (the components of a function are
+      // the next pieces between ';').
+      const std::vector<std::string> pieces = base::split(tractions_text, ';');
+      for (unsigned int i = 0; i < pieces.size(); ++i)
         {
-          const auto [item, history] = split_history(entry);
-          const auto [key, rest]     = base::split_entry(
+          auto [item, history]   = split_history(pieces[i]);
+          const auto [key, rest] = base::split_entry(
             item,
             where + "Tractions",
-            "'face: pressure p', 'face: vector tx, ty' or 'face: exact'");
+            "'face: pressure p', 'face: vector tx, ty', 'face: exact' or "
+            "'face: function fx; fy'");
           TractionParameters traction;
           traction.face =
             read_face(key, faces, geometry, where + "Tractions", item);
@@ -609,11 +729,27 @@ namespace igabde
             }
           else if (rest == "exact")
             traction.kind = TractionParameters::Kind::exact;
+          else if (rest.rfind("function", 0) == 0)
+            {
+              traction.kind = TractionParameters::Kind::function;
+              traction.expressions.push_back(base::trim(rest.substr(8)));
+              while (traction.expressions.size() < dimension &&
+                     i + 1 < pieces.size())
+                {
+                  std::tie(item, history) = split_history(pieces[++i]);
+                  traction.expressions.push_back(item);
+                }
+              check_expressions(traction.expressions,
+                                dimension,
+                                where + "Tractions",
+                                &traction.uses_t);
+            }
           else
             AssertThrow(false,
                         base::ExcInput(where + "Tractions: '" + rest +
                                        "' is not 'pressure p', 'vector tx, "
-                                       "ty[, tz]' or 'exact'."));
+                                       "ty[, tz]', 'exact' or 'function fx; "
+                                       "fy[; fz]'."));
           traction.history = history;
           tractions.push_back(traction);
         }
@@ -987,6 +1123,7 @@ namespace igabde
     void
     LoadPathParameters::parse_parameters(ParameterHandler &prm)
     {
+      step_history_steps.clear();
       prm.enter_subsection("Load path");
       {
         n_steps      = prm.get_integer("Number of steps");
@@ -1056,6 +1193,8 @@ namespace igabde
           std::vector<double> f = {base_steps[s].first, base_steps[s].second};
           for (const auto &h : histories)
             f.push_back(s < h.second.size() ? h.second[s] : 0.);
+          for (const unsigned int step : step_history_steps)
+            f.push_back(step == s ? 1. : 0.);
           result.push_back(f);
         }
       return result;
@@ -1211,6 +1350,29 @@ namespace igabde
       const std::string f = scene_file + ": ";
       body1.parse_parameters(prm, "Body 1", dimension, f);
       body2.parse_parameters(prm, "Body 2", dimension, f);
+      // A geometry file is found from the scene file's folder and read
+      // now, so that a bad file ends the run before anything is built.
+      for (auto *body : {&body1, &body2})
+        if (body->type == BodyType::deformable &&
+            body->geometry == Geometry::file)
+          {
+            const std::string where =
+              f + (body == &body1 ? "Body 1" : "Body 2") + "/Geometry file";
+            AssertThrow(!body->geometry_file.empty(),
+                        base::ExcInput(where + " is empty; Geometry = file "
+                                               "needs the path of a G+Smo "
+                                               "XML file."));
+            const std::filesystem::path file(body->geometry_file);
+            body->geometry_path =
+              file.is_absolute() ?
+                file.string() :
+                (std::filesystem::path(scene_file).parent_path() / file)
+                  .lexically_normal()
+                  .string();
+            check_geometry_file(*body,
+                                dimension,
+                                where + " = " + body->geometry_file + ": ");
+          }
       exact.parse_parameters(prm);
       contact.parse_parameters(prm);
       // Pair placement is a property of the discretised surface.
@@ -1386,6 +1548,33 @@ namespace igabde
           for (const auto &l : body->point_loads)
             known(l.history);
         }
+      // A traction that depends on t gets one history per step: factor 1
+      // at its step, 0 elsewhere, the expression evaluated at that step's
+      // factor of the history it names.
+      const auto factors = load_path.history_factors();
+      for (auto *body : {&body1, &body2})
+        for (auto &traction : body->tractions)
+          if (traction.kind == TractionParameters::Kind::function &&
+              traction.uses_t)
+            {
+              const unsigned int base =
+                load_path.history_index(traction.history, 0);
+              traction.step_t.clear();
+              traction.step_histories.clear();
+              for (unsigned int s = 0; s < n_steps; ++s)
+                {
+                  traction.step_t.push_back(factors[s][base]);
+                  traction.step_histories.push_back(
+                    2 + load_path.histories.size() +
+                    load_path.step_history_steps.size());
+                  load_path.step_history_steps.push_back(s);
+                }
+            }
     }
+
+    template std::shared_ptr<FunctionParser<2>>
+    make_function_parser<2>(const std::vector<std::string> &, double);
+    template std::shared_ptr<FunctionParser<3>>
+    make_function_parser<3>(const std::vector<std::string> &, double);
   } // namespace scene
 } // namespace igabde

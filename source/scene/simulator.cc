@@ -5,6 +5,7 @@
 
 #include <igabde/coupled/coupled_system.h>
 #include <igabde/scene/body_factory.h>
+#include <igabde/scene/geometry.h>
 #include <igabde/scene/interrupt.h>
 #include <igabde/scene/load_controller.h>
 #include <igabde/scene/simulator.h>
@@ -223,13 +224,24 @@ namespace igabde
       run_summary.n_dofs      = static_cast<unsigned long long>(n_dofs);
       run_summary.n_elements  = n_elements;
       nlohmann::json per_body = nlohmann::json::array();
-      for (const auto &body : bodies)
-        per_body.push_back(nlohmann::json{
-          {"name", body->name()},
-          {"n_dofs", static_cast<unsigned long long>(body->n_dofs())},
-          {"n_elements", body->n_elements()},
-          {"matrix_entries", body->n_matrix_entries()},
-          {"free_rigid_modes", body->free_rigid_mode_names()}});
+      for (unsigned int b = 0; b < bodies.size(); ++b)
+        {
+          const auto    &body = bodies[b];
+          nlohmann::json entry =
+            geometry_record<dim>(b == 0 ? parameters.body1 : parameters.body2,
+                                 body->geometry_patch());
+          entry.update(nlohmann::json{
+            {"name", body->name()},
+            {"n_dofs", static_cast<unsigned long long>(body->n_dofs())},
+            {"n_elements", body->n_elements()},
+            {"matrix_entries", body->n_matrix_entries()},
+            {"free_rigid_modes", body->free_rigid_mode_names()}});
+          per_body.push_back(entry);
+          if (parameters.output.export_geometry && root)
+            export_geometry(body->geometry_patch(),
+                            output_directory,
+                            body->name());
+        }
       summary["bodies"] = per_body;
 
       // Every body without supports that fix it must be held by contact

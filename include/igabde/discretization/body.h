@@ -27,6 +27,14 @@
 
 namespace igabde
 {
+  namespace nurbs
+  {
+    // Only the reference geometry_patch() returns: the contact layer,
+    // which sees bodies through this header, stays free of nurbs/.
+    template <int dim>
+    class NurbsPatch;
+  } // namespace nurbs
+
   namespace discretization
   {
     /**
@@ -482,6 +490,14 @@ namespace igabde
       /// Body area (2D) or volume (3D) by the body's quadrature.
       virtual double
       measure() const = 0;
+
+      /**
+       * @brief The exact geometry after degree elevation, Subdivisions and
+       * Refinements: the NURBS analysis space, or the map the Lagrange
+       * mesh's cells follow.
+       */
+      virtual const nurbs::NurbsPatch<dim> &
+      geometry_patch() const = 0;
 
     protected:
       /**

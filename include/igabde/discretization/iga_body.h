@@ -132,6 +132,12 @@ namespace igabde
       double
       measure() const override;
 
+      const nurbs::NurbsPatch<dim> &
+      geometry_patch() const override
+      {
+        return geometry;
+      }
+
       std::pair<double, Point<dim>>
       largest_strain(const Vector<double> &u) const override;
 

@@ -6,6 +6,7 @@
 #include <igabde/scene/parameters.h>
 
 #include <array>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -36,6 +37,40 @@ namespace igabde
      */
     std::vector<std::string>
     patch_faces(const Geometry geometry, const unsigned int dimension);
+
+    /**
+     * @brief Reads the geometry file of @p body (Geometry = file, its
+     * geometry_path resolved) as a @p dimension-D file and refuses, with a
+     * one-line input error prefixed by @p where, a file that cannot be
+     * read, is not valid (nurbs::read_geometry_file()) or holds more than
+     * one patch.
+     */
+    void
+    check_geometry_file(const BodyParameters &body,
+                        const unsigned int    dimension,
+                        const std::string    &where);
+
+    /**
+     * @brief What summary.json says of a body's geometry: its source
+     * (the built-in shape or the file as the scene names it), patches,
+     * control points and measure (area or volume of the exact geometry
+     * @p patch, by nurbs::patch_measure()).
+     */
+    template <int dim>
+    nlohmann::json
+    geometry_record(const BodyParameters         &body,
+                    const nurbs::NurbsPatch<dim> &patch);
+
+    /**
+     * @brief Writes @p patch as the G+Smo XML file
+     * @p directory/@p name-geometry.xml and its control net as
+     * @p directory/@p name-control-net.vtu.
+     */
+    template <int dim>
+    void
+    export_geometry(const nurbs::NurbsPatch<dim> &patch,
+                    const std::string            &directory,
+                    const std::string            &name);
   } // namespace scene
 } // namespace igabde
 

@@ -14,8 +14,15 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include <array>
+#include <memory>
 #include <string>
 #include <vector>
+
+namespace dealii
+{
+  template <int dim>
+  class FunctionParser;
+}
 
 namespace igabde
 {
@@ -46,7 +53,9 @@ namespace igabde
       full_disc,
       half_disc,
       full_cylinder,
-      half_cylinder
+      half_cylinder,
+      /// A G+Smo XML file (Body N/Geometry file).
+      file
     };
 
     /** @brief Exact solution/Type. */
@@ -65,6 +74,17 @@ namespace igabde
     /** @copydoc to_string(const BodyType) */
     std::string
     to_string(const Geometry geometry);
+
+    /**
+     * @brief deal.II's FunctionParser for the @p dim components
+     * @p expressions in the variables x, y[, z] and t (and the constant
+     * pi), at time @p t. Evaluating it is thread-safe (the parser keeps
+     * one muparser per thread).
+     */
+    template <int dim>
+    std::shared_ptr<dealii::FunctionParser<dim>>
+    make_function_parser(const std::vector<std::string> &expressions,
+                         const double                    t);
     /** @copydoc to_string(const BodyType) */
     std::string
     to_string(const ExactSolutionType type);
@@ -88,6 +108,9 @@ namespace igabde
       /// contact counts) and step-cut notices (off in scene tests: they are
       /// not physical results); summary.json always has them.
       bool solver_details = true;
+      /// Write each body's geometry after refinement as a G+Smo XML file
+      /// and its control net as VTU (--export-geometry).
+      bool export_geometry = false;
 
       /// Declares the "Output" subsection.
       static void
@@ -127,7 +150,9 @@ namespace igabde
         /// The constant traction values (Pa), one per component.
         vector,
         /// sigma_exact n from the Exact solution.
-        exact
+        exact,
+        /// Components given as expressions of x, y[, z] and t.
+        function
       };
       /// Patch face (boundary id of the parametric mesh).
       unsigned int face = 0;
@@ -137,6 +162,20 @@ namespace igabde
       std::vector<double> values;
       /// Load history scaling the traction ('@ name'; empty: Load factors).
       std::string history;
+      /// Kind::function: one expression per component (deal.II's
+      /// FunctionParser syntax, variables x, y[, z] and t).
+      std::vector<std::string> expressions;
+      /// Kind::function: whether an expression uses t. Such a traction is
+      /// the expression's value at t = the step's factor of its history
+      /// (not scaled again); it enters the solve as one load history per
+      /// step (LoadPathParameters::step_history_steps), so that every
+      /// step's load is exact and the superposition of history solutions
+      /// stays as for every other load.
+      bool uses_t = false;
+      /// uses_t: per step, the value of t and the index of its history in
+      /// LoadPathParameters::history_factors() (set by AllParameters).
+      std::vector<double>       step_t;
+      std::vector<unsigned int> step_histories;
     };
 
     /**
@@ -177,6 +216,11 @@ namespace igabde
       double width = 1.;
       /// Half-size L of the plate with a hole (m).
       double plate_size = 4.;
+      /// Geometry = file: the G+Smo XML file, as written in the scene
+      /// (relative to the scene file's folder or absolute), and the path
+      /// it resolves to.
+      std::string geometry_file;
+      std::string geometry_path;
       /// Knot spans per direction of the base mesh, before refinements
       /// (dimension counts, 1 to 9999).
       std::vector<unsigned int> subdivisions = {1, 1, 1};
@@ -341,6 +385,13 @@ namespace igabde
       /// Named load histories: a factor per step each, referenced from
       /// load entries by '@ name'.
       std::vector<std::pair<std::string, std::vector<double>>> histories;
+      /**
+       * @brief Histories that are not named by the user: the load of a
+       * t-dependent expression at one step each. Entry j is the 0-based
+       * step at which history 2 + histories.size() + j has factor 1 (0 at
+       * every other step). Added by AllParameters::parse_parameters.
+       */
+      std::vector<unsigned int> step_history_steps;
 
       /// Declares the "Load path" subsection.
       static void

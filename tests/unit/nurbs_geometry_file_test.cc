@@ -1,0 +1,356 @@
+// Reading and writing G+Smo XML geometry files: files written by hand in
+// the layout G+Smo writes (the references: a circle's radius, a known
+// area, the declared topology), the exact round trip of the writer, the
+// measures of exact geometries against their closed forms, and every bad
+// input refused with a message that names the file.
+#include <igabde/base/utilities.h>
+
+#include <igabde/nurbs/geometry_builders.h>
+#include <igabde/nurbs/geometry_file.h>
+
+#include <gtest/gtest.h>
+
+#include "cli_helpers.h"
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+using namespace dealii;
+using namespace igabde;
+using namespace igabde::nurbs;
+
+namespace
+{
+  /// Writes @p text to @p name in @p folder and returns the path.
+  std::string
+  write(const cli::ScratchFolder &folder,
+        const std::string        &name,
+        const std::string        &text)
+  {
+    const std::string path = cli::join(folder.path, name);
+    std::ofstream(path) << text;
+    return path;
+  }
+
+  /// A TensorBSpline2 or TensorNurbs2 element (id @p id) in G+Smo's
+  /// layout.
+  std::string
+  patch_2d(const std::string &id,
+           const std::string &knots0,
+           const std::string &knots1,
+           const std::string &coefs,
+           const std::string &weights = "",
+           const std::string &degree0 = "1",
+           const std::string &degree1 = "1",
+           const std::string &geo_dim = "2")
+  {
+    const std::string tensor = "<Basis type=\"TensorBSplineBasis2\">\n"
+                               " <Basis type=\"BSplineBasis\" index=\"0\">\n"
+                               "  <KnotVector degree=\"" +
+                               degree0 + "\">" + knots0 +
+                               "</KnotVector>\n"
+                               " </Basis>\n"
+                               " <Basis type=\"BSplineBasis\" index=\"1\">\n"
+                               "  <KnotVector degree=\"" +
+                               degree1 + "\">" + knots1 +
+                               "</KnotVector>\n"
+                               " </Basis>\n"
+                               "</Basis>\n";
+    const std::string basis =
+      weights.empty() ? tensor :
+                        "<Basis type=\"TensorNurbsBasis2\">\n" + tensor +
+                          "<weights>" + weights + "</weights>\n</Basis>\n";
+    return "<Geometry type=\"" +
+           std::string(weights.empty() ? "TensorBSpline2" : "TensorNurbs2") +
+           "\" id=\"" + id + "\">\n" + basis + "<coefs geoDim=\"" + geo_dim +
+           "\">\n" + coefs + "</coefs>\n</Geometry>\n";
+  }
+
+  std::string
+  xml(const std::string &body)
+  {
+    return "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<xml>\n" + body +
+           "</xml>\n";
+  }
+
+  /// The unit square [x0, x0 + 1] x [y0, y0 + 1], bilinear, id @p id.
+  std::string
+  square(const std::string &id, const double x0, const double y0)
+  {
+    std::ostringstream c;
+    c << x0 << ' ' << y0 << '\n'
+      << x0 + 1 << ' ' << y0 << '\n'
+      << x0 << ' ' << y0 + 1 << '\n'
+      << x0 + 1 << ' ' << y0 + 1 << '\n';
+    return patch_2d(id, "0 0 1 1", "0 0 1 1", c.str());
+  }
+
+  /// The message of the input error that reading @p path ends with.
+  template <int dim>
+  std::string
+  refusal(const std::string &path)
+  {
+    try
+      {
+        read_geometry_file<dim>(path);
+      }
+    catch (const base::ExcInput &e)
+      {
+        return base::exception_message(e);
+      }
+    catch (...)
+      {
+        return "(another exception than an input error)";
+      }
+    return "(no error)";
+  }
+
+  void
+  expect_refused(const cli::ScratchFolder &folder,
+                 const std::string        &name,
+                 const std::string        &text,
+                 const std::string        &says)
+  {
+    SCOPED_TRACE(name);
+    const std::string path    = write(folder, name, text);
+    const std::string message = refusal<2>(path);
+    EXPECT_NE(message.find(path), std::string::npos) << message;
+    EXPECT_NE(message.find(says), std::string::npos) << message;
+  }
+} // namespace
+
+
+
+TEST(GeometryFile, ReadsAQuarterAnnulusWrittenInGismosLayout)
+{
+  // The quarter annulus 1 <= r <= 2 written as G+Smo writes a NURBS
+  // surface: direction 0 the arc (degree 2, middle weight cos 45 deg),
+  // direction 1 radial; control points direction 0 fastest.
+  const cli::ScratchFolder folder("geometry-annulus", "unit");
+  const double             w = std::sqrt(0.5);
+  std::ostringstream       weights;
+  weights.precision(17);
+  weights << "1 " << w << " 1 1 " << w << " 1";
+  const std::string           path = write(folder,
+                                 "annulus.xml",
+                                 xml(patch_2d("7",
+                                              "0 0 0 1 1 1",
+                                              "0 0 1 1",
+                                              "1 0\n1 1\n0 1\n2 0\n2 2\n0 2\n",
+                                              weights.str(),
+                                              "2",
+                                              "1")));
+  const MultiPatchGeometry<2> g    = read_geometry_file<2>(path);
+  ASSERT_EQ(g.patches.size(), 1u);
+  EXPECT_TRUE(g.interfaces.empty());
+  const NurbsPatch<2> &p = g.patches[0];
+  EXPECT_EQ(p.degree(0), 2u);
+  EXPECT_EQ(p.degree(1), 1u);
+  // Every point of the inner and outer arcs lies on its circle.
+  for (const double u : {0., 0.1, 0.37, 0.5, 0.81, 1.})
+    {
+      EXPECT_NEAR(p.value(Point<2>(u, 0.)).norm(), 1., 1e-14);
+      EXPECT_NEAR(p.value(Point<2>(u, 1.)).norm(), 2., 1e-14);
+    }
+  // Area pi (2^2 - 1^2) / 4.
+  EXPECT_NEAR(patch_measure(p), M_PI * 3. / 4., 1e-12);
+}
+
+
+
+TEST(GeometryFile, ReadsTheTopologyOfAThreePatchLShape)
+{
+  // Three unit squares forming an L, declared as G+Smo does: patches by
+  // id range, interfaces "patch side patch side" followed by the
+  // direction map and orientation, boundary as (patch, side) pairs; G+Smo
+  // sides are 1..4 = west, east, south, north.
+  const cli::ScratchFolder folder("geometry-lshape", "unit");
+  const std::string        path =
+    write(folder,
+          "lshape.xml",
+          xml(square("0", 0., -1.) + square("1", -1., -1.) +
+              square("2", -1., 0.) +
+              "<MultiPatch parDim=\"2\" id=\"9\">\n"
+              " <patches type=\"id_range\">0 2</patches>\n"
+              " <interfaces>\n2 3 1 4 0 1 1 1\n1 2 0 1 0 1 1 1\n"
+              " </interfaces>\n"
+              " <boundary>\n2 1\n2 2\n2 4\n1 1\n1 3\n0 2\n0 3\n0 4\n"
+              " </boundary>\n"
+              "</MultiPatch>\n"));
+  const MultiPatchGeometry<2> g = read_geometry_file<2>(path);
+  ASSERT_EQ(g.patches.size(), 3u);
+  ASSERT_EQ(g.interfaces.size(), 2u);
+  // Patch 2's south face (face 2) meets patch 1's north face (face 3).
+  EXPECT_EQ(g.interfaces[0].patch[0], 2u);
+  EXPECT_EQ(g.interfaces[0].face[0], 2u);
+  EXPECT_EQ(g.interfaces[0].patch[1], 1u);
+  EXPECT_EQ(g.interfaces[0].face[1], 3u);
+  EXPECT_EQ(g.interfaces[0].flags, (std::vector<int>{0, 1, 1, 1}));
+  ASSERT_EQ(g.boundary.size(), 8u);
+  EXPECT_EQ(g.boundary[2], std::make_pair(2u, 3u));
+  double area = 0.;
+  for (const auto &p : g.patches)
+    area += patch_measure(p);
+  EXPECT_NEAR(area, 3., 1e-14);
+
+  // Written and read back: the same patches, interfaces and boundary.
+  std::ostringstream out;
+  write_geometry_file(g, out);
+  const MultiPatchGeometry<2> h =
+    read_geometry_file<2>(write(folder, "again.xml", out.str()));
+  ASSERT_EQ(h.patches.size(), 3u);
+  ASSERT_EQ(h.interfaces.size(), 2u);
+  EXPECT_EQ(h.interfaces[1].patch, g.interfaces[1].patch);
+  EXPECT_EQ(h.interfaces[1].face, g.interfaces[1].face);
+  EXPECT_EQ(h.interfaces[1].flags, g.interfaces[1].flags);
+  EXPECT_EQ(h.boundary, g.boundary);
+}
+
+
+
+TEST(GeometryFile, WriteThenReadIsExact)
+{
+  // Refined, elevated patches with irrational weights and coordinates: the
+  // 17 significant digits written give back the same doubles.
+  const cli::ScratchFolder folder("geometry-round-trip", "unit");
+  NurbsPatch<3>            beam = make_curved_beam(1., 1.5, 0.4);
+  elevate_to_degree(beam, 3);
+  subdivide(beam, {{3, 5, 2}}, {{1., 4., 1.}});
+  MultiPatchGeometry<3> g;
+  g.patches.push_back(beam);
+  std::ostringstream out;
+  write_geometry_file(g, out);
+  const NurbsPatch<3> back =
+    read_geometry_file<3>(write(folder, "beam.xml", out.str())).patches[0];
+  ASSERT_EQ(back.n_control_points(), beam.n_control_points());
+  for (unsigned int d = 0; d < 3; ++d)
+    EXPECT_EQ(back.knot_vector(d).knots(), beam.knot_vector(d).knots());
+  for (unsigned int a = 0; a < beam.n_control_points(); ++a)
+    {
+      EXPECT_EQ(back.weight(a), beam.weight(a));
+      EXPECT_EQ(back.control_point(a), beam.control_point(a));
+    }
+  // The left-handed beam is accepted; its volume is the quarter annulus
+  // times the width.
+  EXPECT_NEAR(patch_measure(back),
+              M_PI * (1.5 * 1.5 - 1.) / 4. * 0.4,
+              1e-12 * 0.4);
+
+  // The control net as VTU: one cell per cell of the net.
+  std::ostringstream vtu;
+  write_control_net_vtu(g, vtu);
+  const unsigned int cells = (beam.n_control_points(0) - 1) *
+                             (beam.n_control_points(1) - 1) *
+                             (beam.n_control_points(2) - 1);
+  EXPECT_NE(vtu.str().find("NumberOfCells=\"" + std::to_string(cells) + "\""),
+            std::string::npos);
+}
+
+
+
+TEST(GeometryFile, MeasuresOfExactGeometries)
+{
+  EXPECT_NEAR(patch_measure(make_thick_cylinder_quarter<3>(1., 2., 3.)),
+              M_PI * 3. / 4. * 3.,
+              1e-12 * 7.);
+  EXPECT_NEAR(patch_measure(make_full_disc(Point<2>(1., 2.), 8.)),
+              M_PI * 64.,
+              1e-12 * 200.);
+  NurbsPatch<2> hole = make_plate_with_hole(1., 4.);
+  EXPECT_NEAR(patch_measure(hole), 16. - M_PI / 4., 1e-12 * 16.);
+}
+
+
+
+TEST(GeometryFile, BadFilesAreRefusedNamingTheFile)
+{
+  const cli::ScratchFolder folder("geometry-bad", "unit");
+  const std::string        unit_square =
+    patch_2d("0", "0 0 1 1", "0 0 1 1", "0 0\n1 0\n0 1\n1 1\n");
+
+  const std::string missing = cli::join(folder.path, "missing.xml");
+  EXPECT_NE(refusal<2>(missing).find("no such file"), std::string::npos);
+
+  // Truncated: the closing tags are missing.
+  const std::string whole = xml(unit_square);
+  expect_refused(folder,
+                 "truncated.xml",
+                 whole.substr(0, whole.size() / 2),
+                 "not well-formed XML");
+  expect_refused(folder, "no-patch.xml", xml(""), "no <Geometry> element");
+  expect_refused(folder,
+                 "coefs.xml",
+                 xml(patch_2d("0", "0 0 1 1", "0 0 1 1", "0 0\n1 0\n0 1\n")),
+                 "4 control points");
+  expect_refused(
+    folder,
+    "weights-count.xml",
+    xml(patch_2d("0", "0 0 1 1", "0 0 1 1", "0 0\n1 0\n0 1\n1 1\n", "1 1 1")),
+    "weights");
+  expect_refused(
+    folder,
+    "weight-zero.xml",
+    xml(patch_2d("0", "0 0 1 1", "0 0 1 1", "0 0\n1 0\n0 1\n1 1\n", "1 1 0 1")),
+    "must be positive");
+  expect_refused(
+    folder,
+    "decreasing.xml",
+    xml(patch_2d("0", "0 0 0.7 0.3 1 1", "0 0 1 1", "0 0\n1 0\n0 1\n1 1\n")),
+    "non-decreasing");
+  expect_refused(folder,
+                 "short.xml",
+                 xml(patch_2d("0", "0 0 1", "0 0 1 1", "0 0\n1 0\n0 1\n1 1\n")),
+                 "too few knots");
+  expect_refused(folder,
+                 "geodim.xml",
+                 xml(patch_2d("0",
+                              "0 0 1 1",
+                              "0 0 1 1",
+                              "0 0 0\n1 0 0\n0 1 0\n1 1 0\n",
+                              "",
+                              "1",
+                              "1",
+                              "3")),
+                 "geoDim = 3");
+  expect_refused(folder,
+                 "not-a-number.xml",
+                 xml(
+                   patch_2d("0", "0 0 1 1", "0 0 1 1", "0 0\n1 0\n0 x\n1 1\n")),
+                 "'x' is not a number");
+  // A bilinear patch whose upper corners are crossed: the map folds.
+  expect_refused(folder,
+                 "folded.xml",
+                 xml(
+                   patch_2d("0", "0 0 1 1", "0 0 1 1", "0 0\n1 0\n1 1\n0 1\n")),
+                 "changes sign");
+  // All control points on one line: the patch has no area.
+  expect_refused(folder,
+                 "flat.xml",
+                 xml(
+                   patch_2d("0", "0 0 1 1", "0 0 1 1", "0 0\n1 0\n2 0\n3 0\n")),
+                 "vanishes");
+  // Patches that do not touch, declared glued.
+  expect_refused(folder,
+                 "interface.xml",
+                 xml(square("0", 0., 0.) + square("1", 3., 0.) +
+                     "<MultiPatch parDim=\"2\" id=\"5\">\n"
+                     " <patches type=\"id_range\">0 1</patches>\n"
+                     " <interfaces>0 2 1 1 0 1 1 1</interfaces>\n"
+                     "</MultiPatch>\n"),
+                 "must coincide");
+  expect_refused(folder,
+                 "side.xml",
+                 xml(square("0", 0., 0.) + square("1", 1., 0.) +
+                     "<MultiPatch parDim=\"2\" id=\"5\">\n"
+                     " <patches type=\"id_range\">0 1</patches>\n"
+                     " <interfaces>0 2 1 7 0 1 1 1</interfaces>\n"
+                     "</MultiPatch>\n"),
+                 "sides are 1 to 4");
+  // A 3D patch in a 2D scene.
+  NurbsPatch<3>         box = make_box<3>(Point<3>(), Point<3>(1., 1., 1.));
+  MultiPatchGeometry<3> g;
+  g.patches.push_back(box);
+  std::ostringstream out;
+  write_geometry_file(g, out);
+  expect_refused(folder, "box3d.xml", out.str(), "another dimension");
+}
