@@ -599,7 +599,7 @@ namespace igabde
     template <int dim>
     void
     Body<dim>::assemble_history_loads(
-      const std::function<void(const Tensor<1, dim> &,
+      const std::function<void(const elasticity::BodyForce<dim> &,
                                const std::vector<NeumannCondition<dim>> &,
                                SparseMatrix<double> &,
                                Vector<double> &)> &assemble,
@@ -619,14 +619,19 @@ namespace igabde
           if (h == 0)
             {
               system_matrix.reinit(sparsity);
-              assemble(d.body_force, tractions, system_matrix, history_rhs[h]);
+              assemble(elasticity::BodyForce<dim>{d.body_force,
+                                                  d.body_force_field},
+                       tractions,
+                       system_matrix,
+                       history_rhs[h]);
             }
           else if (!tractions.empty())
             {
-              // K again, into a scratch matrix: only scenes with tractions
-              // on their own histories pay for it.
-              scratch.reinit(sparsity);
-              assemble(Tensor<1, dim>(), tractions, scratch, history_rhs[h]);
+              // The tractions' loads only (an empty matrix: no stiffness).
+              assemble(elasticity::BodyForce<dim>(),
+                       tractions,
+                       scratch,
+                       history_rhs[h]);
             }
           for (const auto &load : d.point_loads)
             if (load.history == h)

@@ -215,19 +215,32 @@ namespace igabde
                                  std::to_string(bc.boundary_id) +
                                  " does not exist; patch faces are 0.." +
                                  std::to_string(2 * dim - 1) + "."));
-          for (const unsigned int a :
-               geometry.face_control_points(bc.boundary_id))
+          // A value given as a function of the point: the face's
+          // control-point values that interpolate it at the face's
+          // Greville points.
+          const std::vector<unsigned int> face_points =
+            geometry.face_control_points(bc.boundary_id);
+          std::array<std::vector<double>, dim> field_values;
+          for (unsigned int c = 0; c < dim; ++c)
+            if (bc.components[c] && bc.field[c])
+              field_values[c] = nurbs::interpolate_on_face(geometry,
+                                                           bc.boundary_id,
+                                                           bc.field[c]);
+          for (unsigned int k = 0; k < face_points.size(); ++k)
             for (unsigned int c = 0; c < dim; ++c)
               if (bc.components[c])
                 {
+                  const unsigned int a = face_points[k];
+                  const double       value =
+                    bc.field[c] ? field_values[c][k] : bc.value[c];
                   const types::global_dof_index i  = dim * a + c;
                   const auto                    it = values.find(i);
                   if (it != values.end())
                     {
                       // Equal to round-off of the values and of the body's
                       // size (a prescribed zero against 1e-17 m agrees).
-                      AssertThrow(std::abs(it->second - bc.value[c]) <=
-                                    1e-12 * std::max({std::abs(bc.value[c]),
+                      AssertThrow(std::abs(it->second - value) <=
+                                    1e-12 * std::max({std::abs(value),
                                                       std::abs(it->second),
                                                       diameter}),
                                   ExcMessage(
@@ -240,7 +253,7 @@ namespace igabde
                                     "); make them agree on the common edge."));
                       // A non-zero value on two histories would follow
                       // whichever came last.
-                      AssertThrow(bc.value[c] == 0. ||
+                      AssertThrow(value == 0. ||
                                     this->prescribed_history[i] == bc.history,
                                   ExcMessage(
                                     "Body '" + name +
@@ -251,7 +264,7 @@ namespace igabde
                                     std::to_string(bc.boundary_id) +
                                     "); give them the same '@ history'."));
                     }
-                  values[i]                   = bc.value[c];
+                  values[i]                   = value;
                   this->prescribed_history[i] = bc.history;
                 }
         }
@@ -321,10 +334,11 @@ namespace igabde
 
       // Cells: p+1 (p+2 rational) Gauss points per direction; faces one
       // more.
-      nurbs::NurbsValues<dim> cell_values(geometry,
-                                          QGauss<dim>(n_quadrature_points_1d()),
-                                          update_values | update_gradients |
-                                            update_JxW_values);
+      nurbs::NurbsValues<dim> cell_values(
+        geometry,
+        QGauss<dim>(n_quadrature_points_1d()),
+        update_values | update_gradients | update_JxW_values |
+          (desc.body_force_field ? update_quadrature_points : update_default));
       cell_values.check_orientation("Body '" + desc.name + "'");
       const nurbs::NurbsValues<dim> face_values(
         geometry,
@@ -334,7 +348,7 @@ namespace igabde
       // One load vector per load history; K with history 0, which holds
       // the body force.
       this->assemble_history_loads(
-        [&](const Tensor<1, dim>                     &body_force,
+        [&](const elasticity::BodyForce<dim>         &body_force,
             const std::vector<NeumannCondition<dim>> &tractions,
             SparseMatrix<double>                     &matrix,
             Vector<double>                           &rhs) {

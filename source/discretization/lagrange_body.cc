@@ -364,6 +364,12 @@ namespace igabde
       this->constraints.clear();
       this->prescribed_constraints.clear();
       this->prescribed_history.clear();
+      // Values given as functions of the point: taken at the nodes.
+      std::map<types::global_dof_index, Point<dim>> nodes;
+      for (const auto &bc : this->description().dirichlet)
+        for (unsigned int c = 0; c < dim; ++c)
+          if (bc.field[c] && nodes.empty())
+            DoFTools::map_dofs_to_support_points(*mapping, dof_handler, nodes);
       for (const auto &bc : this->description().dirichlet)
         {
           std::vector<bool> mask(bc.components.begin(), bc.components.end());
@@ -380,7 +386,8 @@ namespace igabde
               else
                 // A non-zero value on two histories would follow whichever
                 // came last.
-                AssertThrow(bc.value[this->dof_components[i]] == 0. ||
+                AssertThrow((bc.value[this->dof_components[i]] == 0. &&
+                             !bc.field[this->dof_components[i]]) ||
                               this->prescribed_history[i] == bc.history,
                             ExcMessage(
                               "Body '" + this->description().name +
@@ -390,8 +397,10 @@ namespace igabde
                               "faces meet (face " +
                               std::to_string(bc.boundary_id) +
                               "); give them the same '@ history'."));
-              this->prescribed_constraints
-                .set_inhomogeneity(i, bc.value[this->dof_components[i]]);
+              const unsigned int c = this->dof_components[i];
+              this->prescribed_constraints.set_inhomogeneity(
+                i,
+                bc.field[c] ? bc.field[c](nodes.at(i)) : bc.value[c]);
               this->prescribed_history[i] = bc.history;
             }
         }
@@ -481,7 +490,9 @@ namespace igabde
         *mapping,
         fe,
         QGauss<dim>(fe.degree + 1),
-        update_values | update_gradients | update_JxW_values);
+        update_values | update_gradients | update_JxW_values |
+          (description.body_force_field ? update_quadrature_points :
+                                          update_default));
       const elasticity::FEValuesEvaluator<dim, FEFaceValues<dim>> face_values(
         *mapping,
         fe,
@@ -489,7 +500,7 @@ namespace igabde
         update_values | update_quadrature_points | update_normal_vectors |
           update_JxW_values);
       this->assemble_history_loads(
-        [&](const Tensor<1, dim>                     &body_force,
+        [&](const elasticity::BodyForce<dim>         &body_force,
             const std::vector<NeumannCondition<dim>> &tractions,
             SparseMatrix<double>                     &matrix,
             Vector<double>                           &rhs) {

@@ -3,6 +3,7 @@
 #include <deal.II/base/exceptions.h>
 
 #include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/lapack_full_matrix.h>
 #include <deal.II/lac/vector.h>
 
 #include <algorithm>
@@ -846,8 +847,104 @@ namespace igabde
 
 
 
+    template <int dim>
+    std::vector<double>
+    interpolate_on_face(const NurbsPatch<dim>                           &patch,
+                        const unsigned int                               face,
+                        const std::function<double(const Point<dim> &)> &g)
+    {
+      const std::vector<unsigned int> points = patch.face_control_points(face);
+      const unsigned int              fixed  = face / 2;
+      // The face's directions, their sizes and 1D collocation matrices
+      // B(i, j) = N_j(greville_i); coordinates of the collocation points.
+      std::vector<unsigned int>            directions, sizes;
+      std::vector<FullMatrix<double>>      B;
+      std::array<std::vector<double>, dim> coords;
+      coords[fixed] = {face % 2 == 0 ? patch.parametric_lower()[fixed] :
+                                       patch.parametric_upper()[fixed]};
+      for (unsigned int d = 0; d < dim; ++d)
+        if (d != fixed)
+          {
+            const KnotVector   &kv = patch.knot_vector(d);
+            const unsigned int  n  = kv.n_basis_functions();
+            const unsigned int  p  = kv.degree();
+            FullMatrix<double>  M(n, n);
+            std::vector<double> values;
+            coords[d] = kv.greville_abscissae();
+            for (unsigned int i = 0; i < n; ++i)
+              {
+                const unsigned int span = kv.find_span(coords[d][i]);
+                kv.basis_functions(coords[d][i], span, values);
+                for (unsigned int j = 0; j <= p; ++j)
+                  M(i, span - p + j) = values[j];
+              }
+            directions.push_back(d);
+            sizes.push_back(n);
+            B.push_back(M);
+          }
+      const unsigned int n_face = points.size();
+
+      // Applies f to every line of the face tensor (direction 0 fastest)
+      // along face direction k.
+      const auto along = [&](std::vector<double>                         &data,
+                             const unsigned int                           k,
+                             const std::function<void(Vector<double> &)> &f) {
+        unsigned int stride = 1;
+        for (unsigned int l = 0; l < k; ++l)
+          stride *= sizes[l];
+        const unsigned int n = sizes[k];
+        Vector<double>     line(n);
+        for (unsigned int start = 0; start < n_face; ++start)
+          if ((start / stride) % n == 0)
+            {
+              for (unsigned int i = 0; i < n; ++i)
+                line[i] = data[start + i * stride];
+              f(line);
+              for (unsigned int i = 0; i < n; ++i)
+                data[start + i * stride] = line[i];
+            }
+      };
+
+      // W at the collocation points: (B_1 x B_2) w.
+      std::vector<double> W(n_face), rhs(n_face);
+      for (unsigned int i = 0; i < n_face; ++i)
+        W[i] = patch.weight(points[i]);
+      for (unsigned int k = 0; k < B.size(); ++k)
+        along(W, k, [&](Vector<double> &line) {
+          Vector<double> out(line.size());
+          B[k].vmult(out, line);
+          line = out;
+        });
+      const std::vector<Point<dim>> xi = tensor_product_points<dim>(coords);
+      for (unsigned int i = 0; i < n_face; ++i)
+        rhs[i] = g(patch.value(xi[i])) * W[i];
+      // (B_1 x B_2) y = W g, then v = y / w.
+      for (unsigned int k = 0; k < B.size(); ++k)
+        {
+          LAPACKFullMatrix<double> lu;
+          lu.copy_from(B[k]);
+          lu.compute_lu_factorization();
+          along(rhs, k, [&](Vector<double> &line) {
+            lu.solve(line);
+          });
+        }
+      for (unsigned int i = 0; i < n_face; ++i)
+        rhs[i] /= patch.weight(points[i]);
+      return rhs;
+    }
+
+
+
     template class NurbsPatch<2>;
     template class NurbsPatch<3>;
+    template std::vector<double>
+    interpolate_on_face<2>(const NurbsPatch<2> &,
+                           unsigned int,
+                           const std::function<double(const Point<2> &)> &);
+    template std::vector<double>
+    interpolate_on_face<3>(const NurbsPatch<3> &,
+                           unsigned int,
+                           const std::function<double(const Point<3> &)> &);
     template Tensor<1, 2>
     cofactor_column<2>(const Tensor<2, 2> &, const unsigned int);
     template Tensor<1, 3>

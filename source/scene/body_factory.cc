@@ -81,6 +81,15 @@ namespace igabde
             {
               bc.components[c] = support.components[c];
               bc.value[c]      = support.values[c];
+              if (!support.expressions[c].empty())
+                {
+                  std::vector<std::string> expressions(dim, "0");
+                  expressions[c] = support.expressions[c];
+                  const auto f   = make_function_parser<dim>(expressions, 0.);
+                  bc.field[c]    = [f, c](const Point<dim> &x) {
+                    return f->value(x, c);
+                  };
+                }
             }
           bc.history = parameters.load_path.history_index(support.history, 1);
           d.dirichlet.push_back(bc);
@@ -161,6 +170,17 @@ namespace igabde
           d.point_loads.push_back(point_load);
         }
       d.body_force = tensor(body.body_force);
+      if (!body.body_force_expressions.empty())
+        {
+          const auto f =
+            make_function_parser<dim>(body.body_force_expressions, 0.);
+          d.body_force_field = [f](const Point<dim> &x) {
+            Tensor<1, dim> value;
+            for (unsigned int c = 0; c < dim; ++c)
+              value[c] = f->value(x, c);
+            return value;
+          };
+        }
       return d;
     }
 

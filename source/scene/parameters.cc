@@ -377,7 +377,9 @@ namespace igabde
           "where a component is x, y or z, optionally with a value "
           "(x=0.05) scaled by the step's displacement factor (or by the "
           "load history 'name' when the entry ends in '@ name'); e.g. "
-          "'0: x; 2: y'. Faces: 0/1 low/high end of parametric direction "
+          "'0: x; 2: y'; a component may be 'y = function -0.01*x^2' (a "
+          "FunctionParser expression of x, y[, z], one component per entry). "
+          "Faces: 0/1 low/high end of parametric direction "
           "0, 2/3 of direction 1, 4/5 of direction 2; a face the Geometry "
           "does not have is refused when the scene is read.");
         prm.declare_entry(
@@ -404,7 +406,10 @@ namespace igabde
         prm.declare_entry("Body force",
                           "0, 0, 0",
                           Patterns::Anything(),
-                          "Body force per unit volume (N/m^3).");
+                          "Body force per unit volume (N/m^3), scaled by "
+                          "the load factor: 'fx, fy[, fz]' or 'function fx; "
+                          "fy[; fz]' (FunctionParser expressions of x, y[, "
+                          "z], e.g. 'function 0; -9.81*7800').");
         prm.declare_entry("Plane point",
                           "0, 0, 0",
                           Patterns::Anything(),
@@ -657,6 +662,36 @@ namespace igabde
           SupportParameters support;
           support.face =
             read_face(key, faces, geometry, where + "Supports", item);
+          // 'c = function expression': one component given by an
+          // expression of the point, scaled like a value.
+          static const std::regex function_entry(
+            "^\\s*([xyz])\\s*=\\s*function\\s+(.+)$");
+          std::smatch function_match;
+          if (std::regex_match(value, function_match, function_entry))
+            {
+              const int c = function_match[1].str()[0] - 'x';
+              AssertThrow(c < static_cast<int>(dimension),
+                          base::ExcInput(
+                            where + "Supports: '" + item + "': component " +
+                            function_match[1].str() + " does not exist in " +
+                            std::to_string(dimension) + "D."));
+              std::vector<std::string> all(dimension, "0");
+              all[c]      = base::trim(function_match[2].str());
+              bool uses_t = false;
+              check_expressions(all, dimension, where + "Supports", &uses_t);
+              AssertThrow(!uses_t,
+                          base::ExcInput(
+                            where + "Supports: '" + item +
+                            "' uses t; a prescribed displacement is scaled "
+                            "by its history's factor (write the expression "
+                            "of x, y[, z] and choose the history with "
+                            "'@ name')."));
+              support.components[c]  = true;
+              support.expressions[c] = all[c];
+              support.history        = history;
+              supports.push_back(support);
+              continue;
+            }
           std::string rest = value;
           for (char &c : rest)
             if (c == ',')
@@ -767,8 +802,26 @@ namespace igabde
              read_vector(force, dimension, where + "Point loads"),
              history});
         }
-      body_force =
-        read_vector(body_force_text, dimension, where + "Body force");
+      body_force_expressions.clear();
+      if (base::trim(body_force_text).rfind("function", 0) == 0)
+        {
+          body_force.assign(dimension, 0.);
+          body_force_expressions =
+            base::split(base::trim(body_force_text).substr(8), ';');
+          bool uses_t = false;
+          check_expressions(body_force_expressions,
+                            dimension,
+                            where + "Body force",
+                            &uses_t);
+          AssertThrow(!uses_t,
+                      base::ExcInput(where + "Body force uses t; the body "
+                                             "force is scaled by the load "
+                                             "factor (write an expression "
+                                             "of x, y[, z])."));
+        }
+      else
+        body_force =
+          read_vector(body_force_text, dimension, where + "Body force");
     }
 
 

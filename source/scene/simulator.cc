@@ -8,6 +8,7 @@
 #include <igabde/scene/geometry.h>
 #include <igabde/scene/interrupt.h>
 #include <igabde/scene/load_controller.h>
+#include <igabde/scene/rank_split.h>
 #include <igabde/scene/simulator.h>
 #include <igabde/scene/size_estimate.h>
 #include <igabde/scene/step_results.h>
@@ -16,9 +17,6 @@
 #include <deal.II/base/utilities.h>
 
 #include <algorithm>
-#include <boost/serialization/string.hpp>
-#include <boost/serialization/utility.hpp>
-#include <boost/serialization/vector.hpp>
 #include <cmath>
 #include <fstream>
 #include <iomanip>
@@ -67,113 +65,6 @@ namespace igabde
 
 
     template <int dim>
-    Simulator<dim>::Communicators::~Communicators()
-    {
-      for (auto &c : list)
-        if (c != MPI_COMM_NULL)
-          Utilities::MPI::free_communicator(c);
-    }
-
-
-
-    template <int dim>
-    void
-    Simulator<dim>::split_ranks_among_bodies()
-    {
-      const unsigned int n_ranks =
-        Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD);
-      const unsigned int rank =
-        Utilities::MPI::this_mpi_process(MPI_COMM_WORLD);
-      factorised_here.clear();
-      if (n_ranks == 1 || parameters.discretization.linear_solver !=
-                            discretization::LinearSolver::direct)
-        {
-          // One process, or a solver that every rank runs for itself.
-          for (const auto &body : bodies)
-            factorised_here.push_back(body->name());
-          return;
-        }
-      // Two bodies: ranks in proportion to the estimated factor sizes, at
-      // least one each; the first ranks factorise Body 1.
-      std::vector<unsigned int> first(bodies.size() + 1, n_ranks);
-      first[0] = 0;
-      if (bodies.size() == 2)
-        {
-          const auto   estimate = estimate_size(parameters, scene_file).bodies;
-          const double w0       = std::max(estimate[0].factor_entries, 1.);
-          const double w1       = std::max(estimate[1].factor_entries, 1.);
-          first[1] =
-            std::clamp<unsigned int>(std::lround(n_ranks * w0 / (w0 + w1)),
-                                     1,
-                                     n_ranks - 1);
-        }
-      unsigned int color = 0;
-      while (rank >= first[color + 1])
-        ++color;
-      MPI_Comm  group = MPI_COMM_NULL;
-      const int ierr  = MPI_Comm_split(MPI_COMM_WORLD, color, rank, &group);
-      AssertThrowMPI(ierr);
-      body_groups.list.push_back(group);
-      for (unsigned int b = 0; b < bodies.size(); ++b)
-        {
-          discretization::ParallelLayout layout;
-          layout.world             = MPI_COMM_WORLD;
-          layout.group             = (b == color ? group : MPI_COMM_NULL);
-          layout.root              = first[b];
-          layout.matrix_everywhere = false;
-          bodies[b]->set_parallel_layout(layout);
-          if (b == color)
-            factorised_here.push_back(bodies[b]->name());
-          pcout << "  " << bodies[b]->name()
-                << " assembled and factorised on rank"
-                << (first[b + 1] - first[b] > 1 ?
-                      "s " + std::to_string(first[b]) + ".." +
-                        std::to_string(first[b + 1] - 1) :
-                      " " + std::to_string(first[b]))
-                << " of " << n_ranks << std::endl;
-        }
-    }
-
-
-
-    template <int dim>
-    void
-    Simulator<dim>::gather_rank_figures()
-    {
-      const MPI_Comm world  = MPI_COMM_WORLD;
-      auto           timing = timing_seconds(timer);
-      // Every rank runs the same phases; their largest seconds are the
-      // run's.
-      std::vector<double> seconds;
-      for (const auto &[phase, s] : timing)
-        seconds.push_back(s);
-      AssertThrow(Utilities::MPI::min(seconds.size(), world) ==
-                    Utilities::MPI::max(seconds.size(), world),
-                  ExcInternalError());
-      std::vector<double> largest(seconds.size());
-      Utilities::MPI::max(seconds, world, largest);
-      unsigned int k = 0;
-      for (auto &entry : timing)
-        entry.second = largest[k++];
-      final_timing = timing;
-
-      Utilities::System::MemoryStats memory;
-      Utilities::System::get_memory_stats(memory);
-      const auto peaks =
-        Utilities::MPI::gather(world,
-                               std::pair(memory.VmHWM / 1024., factorised_here),
-                               0);
-      nlohmann::json ranks = nlohmann::json::array();
-      for (unsigned int r = 0; r < peaks.size(); ++r)
-        ranks.push_back({{"rank", r},
-                         {"peak_memory_mib", peaks[r].first},
-                         {"factorises", peaks[r].second}});
-      run_summary.ranks = ranks;
-    }
-
-
-
-    template <int dim>
     void
     Simulator<dim>::setup_bodies()
     {
@@ -185,7 +76,20 @@ namespace igabde
 
       // Under MPI each body is assembled and factorised by its own group of
       // ranks (the groups at the same time); the others receive its loads.
-      split_ranks_among_bodies();
+      {
+        std::vector<double> factor_entries;
+        if (bodies.size() == 2 &&
+            Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1)
+          for (const auto &body : estimate_size(parameters, scene_file).bodies)
+            factor_entries.push_back(body.factor_entries);
+        factorised_here = split_ranks_among_bodies<dim>(
+          bodies,
+          factor_entries,
+          parameters.discretization.linear_solver ==
+            discretization::LinearSolver::direct,
+          body_groups,
+          pcout);
+      }
       std::vector<double> seconds(bodies.size(), 0.);
       for (unsigned int b = 0; b < bodies.size(); ++b)
         {
@@ -319,7 +223,8 @@ namespace igabde
       const auto steps      = parameters.load_path.steps();
       bool       body_force = false;
       for (const auto &body : bodies)
-        body_force = body_force || body->description().body_force.norm() > 0.;
+        body_force = body_force || body->description().body_force.norm() > 0. ||
+                     static_cast<bool>(body->description().body_force_field);
       nlohmann::json effects;
       if (parameters.contact.enabled)
         {
@@ -619,7 +524,8 @@ namespace igabde
       setup_bodies();
       setup_contact();
       solve_load_steps();
-      gather_rank_figures();
+      std::tie(final_timing, run_summary.ranks) =
+        gather_rank_figures(timer, factorised_here);
       write_summary("ok", "");
     }
 

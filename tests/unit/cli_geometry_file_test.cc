@@ -267,3 +267,70 @@ TEST(CliGeometryFile, BadGeometryFilesAndExpressionsAreRefusedWhenRead)
                  "cannot evaluate");
   EXPECT_FALSE(std::filesystem::exists(cli::join(folder.path, "out")));
 }
+
+
+
+TEST(CliExpressionLoads, LinearPrescribedFieldIsReproducedInside)
+{
+  // u = A x with constant A is an exact elasticity solution without body
+  // force; prescribed on every face of a graded box, both discretisations
+  // (which contain the linear fields) must give it back inside.
+  const cli::ScratchFolder folder("expression-supports");
+  const std::string        scene = cli::join(folder.path, "box.prm");
+  write_box_scene(scene);
+  std::string supports;
+  for (const std::string face : {"0", "1", "2", "3"})
+    supports += face + ": x = function 0.001*x+0.002*y; " + face +
+                ": y = function -0.003*x+0.0015*y; ";
+  for (const std::string type : {"nurbs", "lagrange"})
+    {
+      SCOPED_TRACE(type);
+      const auto r = cli::run_igabde(
+        "'" + scene + "' --quiet --set Discretization/Type=" + type +
+          " --set 'Body 1/Subdivisions=3, 4' --set 'Body 1/Grading=0: 5' "
+          "--set 'Body 1/Supports=" +
+          supports +
+          "' --set 'Probe points=p: 0.3, 0.7' --set Output/Directory=" + type,
+        folder);
+      ASSERT_EQ(r.status, 0) << r.output;
+      const auto p = summary(cli::join(folder.path, type)).at("points").at("p");
+      EXPECT_NEAR(p[0].get<double>(), 0.001 * 0.3 + 0.002 * 0.7, 1e-12);
+      EXPECT_NEAR(p[1].get<double>(), -0.003 * 0.3 + 0.0015 * 0.7, 1e-12);
+    }
+}
+
+
+
+TEST(CliExpressionLoads, BodyForceFieldReactionIsItsIntegral)
+{
+  // f = (0, -100 x) on the unit box held at its bottom: the support
+  // reaction is -int f = (0, 50).
+  const cli::ScratchFolder folder("expression-body-force");
+  const std::string        scene = cli::join(folder.path, "box.prm");
+  write_box_scene(scene);
+  for (const std::string type : {"nurbs", "lagrange"})
+    {
+      const auto r =
+        cli::run_igabde("'" + scene +
+                          "' --quiet --set Discretization/Type=" + type +
+                          " --set 'Body 1/Body force=function 0; "
+                          "-100*x' --set Output/Directory=" +
+                          type,
+                        folder);
+      ASSERT_EQ(r.status, 0) << r.output;
+      const auto reaction = summary(cli::join(folder.path, type))
+                              .at("load_steps")[0]
+                              .at("bodies")[0]
+                              .at("support_reaction");
+      EXPECT_NEAR(reaction[0].get<double>(), 0., 1e-10);
+      EXPECT_NEAR(reaction[1].get<double>(), 50., 1e-10);
+    }
+  const std::string run =
+    "'" + scene + "' --set Output/Directory=refused --set ";
+  expect_refused(run + "'Body 1/Body force=function 0; -100*t'",
+                 folder,
+                 "Body force uses t");
+  expect_refused(run + "'Body 1/Supports=2: x y; 3: y = function 0.1*t'",
+                 folder,
+                 "uses t");
+}

@@ -3,6 +3,7 @@
 
 #include <igabde/discretization/settings.h>
 
+#include <igabde/elasticity/body_force.h>
 #include <igabde/elasticity/error_norms.h>
 #include <igabde/elasticity/material.h>
 
@@ -549,7 +550,7 @@ namespace igabde
        */
       void
       assemble_history_loads(
-        const std::function<void(const Tensor<1, dim> &,
+        const std::function<void(const elasticity::BodyForce<dim> &,
                                  const std::vector<NeumannCondition<dim>> &,
                                  SparseMatrix<double> &,
                                  Vector<double> &)> &assemble,

@@ -38,6 +38,9 @@ namespace igabde
       std::array<bool, dim> components{};
       /// Prescribed value per component (m), constant on the face.
       Tensor<1, dim> value;
+      /// Where set, the prescribed value of that component as a function
+      /// of the point (m) instead of value[c].
+      std::array<std::function<double(const Point<dim> &)>, dim> field;
       /// Load history scaling the value (1: the displacement factors).
       unsigned int history = 1;
     };
@@ -96,6 +99,9 @@ namespace igabde
       std::vector<PointLoad<dim>> point_loads;
       /// Body force per unit volume (N/m^3), on history 0.
       Tensor<1, dim> body_force;
+      /// A body force that varies in space (N/m^3), on history 0; when set
+      /// it replaces body_force.
+      std::function<Tensor<1, dim>(const Point<dim> &)> body_force_field;
 
       /// Number of load histories the loads refer to: 2 (load and
       /// displacement factors) or more.

@@ -1,10 +1,12 @@
 #ifndef igabde_elasticity_assembly_h
 #define igabde_elasticity_assembly_h
 
+#include <igabde/elasticity/body_force.h>
 #include <igabde/elasticity/error_norms.h>
 #include <igabde/elasticity/material.h>
 
 #include <deal.II/base/exceptions.h>
+#include <deal.II/base/point.h>
 #include <deal.II/base/symmetric_tensor.h>
 #include <deal.II/base/tensor.h>
 #include <deal.II/base/types.h>
@@ -18,6 +20,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <type_traits>
 #include <vector>
@@ -235,6 +238,28 @@ namespace igabde
 
 
     /**
+     * @brief Adds the load int v . f(x) dx of the body force field @p f
+     * (the values need update_quadrature_points).
+     */
+    template <int dim, typename Values>
+    void
+    add_body_force(const Values &values,
+                   const std::function<Tensor<1, dim>(const Point<dim> &)> &f,
+                   Vector<double>                                          &rhs)
+    {
+      for (unsigned int q = 0; q < values.n_quadrature_points(); ++q)
+        {
+          const Tensor<1, dim> fq = f(values.quadrature_point(q));
+          for (unsigned int l = 0; l < values.n_basis(); ++l)
+            for (unsigned int c = 0; c < dim; ++c)
+              rhs[values.local_dof(l, c)] +=
+                values.shape_value(l, q) * fq[c] * values.JxW(q);
+        }
+    }
+
+
+
+    /**
      * @brief Adds the load int v . t(x, n) dGamma on the face @p face_values
      * was reinitialised on; points with a zero surface measure (a collapsed
      * NURBS edge) are skipped.
@@ -286,17 +311,20 @@ namespace igabde
                     const CellValues                       &cell_values,
                     const FaceValues                       &face_values,
                     const IsotropicMaterial<dim>           &material,
-                    const Tensor<1, dim>                   &body_force,
+                    const BodyForce<dim>                   &body_force,
                     const Tractions                        &tractions,
                     SparseMatrix<double>                   &matrix,
                     Vector<double>                         &rhs)
     {
+      // An empty matrix asks for the loads only (the tractions of another
+      // load history): no stiffness is computed.
+      const bool with_matrix = !matrix.empty();
       // Named copies, not a structured binding: the assembly lambda below
       // captures them (C++17 allows no capture of a binding).
       const auto   lame           = lame_parameters(material);
       const double lambda         = lame.first;
       const double mu             = lame.second;
-      const bool   has_body_force = body_force.norm() > 0.;
+      const bool   has_body_force = !body_force.zero();
 
       struct Scratch
       {
@@ -312,18 +340,40 @@ namespace igabde
       };
 
       auto worker = [&](const Iterator &cell, Scratch &scratch, Copy &copy) {
+        if (!with_matrix && !has_body_force)
+          {
+            // Loads of tractions only: cells without a loaded face add
+            // nothing.
+            bool loaded = false;
+            for (const unsigned int f : cell->face_indices())
+              if (cell->face(f)->at_boundary())
+                for (const auto &neumann : tractions)
+                  loaded = loaded ||
+                           neumann.boundary_id == cell->face(f)->boundary_id();
+            if (!loaded)
+              {
+                copy.dofs.clear();
+                copy.rhs.reinit(0);
+                return;
+              }
+          }
         scratch.cell.reinit(cell);
         const unsigned int n_dofs = scratch.cell.dofs_per_cell();
-        copy.matrix.reinit(n_dofs, n_dofs);
         copy.rhs.reinit(n_dofs);
         scratch.cell.get_dof_indices(copy.dofs);
-        add_cell_stiffness<dim>(scratch.cell,
-                                lambda,
-                                mu,
-                                copy.matrix,
-                                scratch.stiffness);
-        if (has_body_force)
-          add_body_force<dim>(scratch.cell, body_force, copy.rhs);
+        if (with_matrix)
+          {
+            copy.matrix.reinit(n_dofs, n_dofs);
+            add_cell_stiffness<dim>(scratch.cell,
+                                    lambda,
+                                    mu,
+                                    copy.matrix,
+                                    scratch.stiffness);
+          }
+        if (has_body_force && body_force.field)
+          add_body_force<dim>(scratch.cell, body_force.field, copy.rhs);
+        else if (has_body_force)
+          add_body_force<dim>(scratch.cell, body_force.constant, copy.rhs);
         for (const unsigned int f : cell->face_indices())
           if (cell->face(f)->at_boundary())
             for (const auto &neumann : tractions)
@@ -335,7 +385,8 @@ namespace igabde
       };
 
       auto copier = [&](const Copy &copy) {
-        matrix.add(copy.dofs, copy.matrix);
+        if (with_matrix)
+          matrix.add(copy.dofs, copy.matrix);
         for (unsigned int i = 0; i < copy.dofs.size(); ++i)
           rhs[copy.dofs[i]] += copy.rhs[i];
       };

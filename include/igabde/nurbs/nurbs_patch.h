@@ -8,6 +8,7 @@
 #include <deal.II/base/tensor.h>
 
 #include <array>
+#include <functional>
 #include <utility>
 #include <vector>
 
@@ -209,6 +210,22 @@ namespace igabde
     template <int dim>
     Tensor<1, dim>
     cofactor_column(const Tensor<2, dim> &J, const unsigned int d);
+
+    /**
+     * @brief Control-point values on the face @p face of @p patch whose
+     * NURBS interpolant sum_A R_A v_A matches @p g at the images of the
+     * face's Greville points (collocation: exact for g in the face's NURBS
+     * space, e.g. constants and, on polynomial patches, the face's
+     * polynomials). Ordered as NurbsPatch::face_control_points(). The
+     * collocation matrix is diag(1/W) (B_1 x B_2) diag(w) with the 1D
+     * B-spline collocation matrices B_k, so it is solved by one 1D LU per
+     * face direction, not as a dense system.
+     */
+    template <int dim>
+    std::vector<double>
+    interpolate_on_face(const NurbsPatch<dim>                           &patch,
+                        const unsigned int                               face,
+                        const std::function<double(const Point<dim> &)> &g);
 
     /**
      * @brief Every tensor combination of the per-direction coordinates

@@ -135,6 +135,9 @@ namespace igabde
       /// Load history scaling the values ('@ name'; empty: Displacement
       /// factors).
       std::string history;
+      /// A component given as 'c = function expr': its expression of x,
+      /// y[, z] (empty: the constant value).
+      std::array<std::string, 3> expressions;
     };
 
     /**
@@ -243,6 +246,9 @@ namespace igabde
       std::vector<PointLoadParameters> point_loads;
       /// Body force per volume (N/m^3), dimension values.
       std::vector<double> body_force;
+      /// 'function fx; fy[; fz]': the body force's expressions of x, y[, z]
+      /// (empty: the constant body_force).
+      std::vector<std::string> body_force_expressions;
       /// Rigid plane: a point on it (m), dimension values.
       std::vector<double> plane_point = {0., 0., 0.};
       /// Rigid plane: the normal pointing towards Body 1 (not zero),

@@ -4,6 +4,7 @@
 #include <igabde/discretization/body.h>
 
 #include <igabde/scene/parameters.h>
+#include <igabde/scene/rank_split.h>
 #include <igabde/scene/run_record.h>
 #include <igabde/scene/scene_reader.h>
 
@@ -86,15 +87,6 @@ namespace igabde
       void
       factorize_bodies(const contact::ContactStage<dim> *stage);
 
-      /// Under MPI with the direct solver: which ranks factorise which body.
-      void
-      split_ranks_among_bodies();
-
-      /// At the end of a run: the largest seconds per phase over the ranks
-      /// and every rank's peak memory (collective).
-      void
-      gather_rank_figures();
-
       /// With contact: the contact stage (pairs, condensation or coupled
       /// system) and its facts in the summary; the factorisation either way.
       void
@@ -131,15 +123,11 @@ namespace igabde
 
       /// The communicators of the body groups (split_ranks_among_bodies()),
       /// freed after the bodies (declared before them).
-      struct Communicators
-      {
-        std::vector<MPI_Comm> list;
-        ~Communicators();
-      } body_groups;
+      Communicators body_groups;
       /// Names of the bodies this rank factorises.
       std::vector<std::string> factorised_here;
       /// The timing written by write_summary() once gather_rank_figures()
-      /// has run.
+      /// has run (the largest seconds per phase over the ranks).
       std::optional<std::map<std::string, double>> final_timing;
 
       std::optional<discretization::ExactSolution<dim>>        exact;

@@ -1,0 +1,140 @@
+#include <igabde/scene/rank_split.h>
+#include <igabde/scene/run_record.h>
+
+#include <deal.II/base/utilities.h>
+
+#include <algorithm>
+#include <boost/serialization/string.hpp>
+#include <boost/serialization/utility.hpp>
+#include <boost/serialization/vector.hpp>
+#include <cmath>
+
+namespace igabde
+{
+  namespace scene
+  {
+    Communicators::~Communicators()
+    {
+      for (auto &c : list)
+        if (c != MPI_COMM_NULL)
+          Utilities::MPI::free_communicator(c);
+    }
+
+
+
+    template <int dim>
+    std::vector<std::string>
+    split_ranks_among_bodies(
+      const std::vector<std::unique_ptr<discretization::Body<dim>>> &bodies,
+      const std::vector<double> &factor_entries,
+      const bool                 direct_solver,
+      Communicators             &groups,
+      ConditionalOStream        &pcout)
+    {
+      const unsigned int n_ranks =
+        Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD);
+      const unsigned int rank =
+        Utilities::MPI::this_mpi_process(MPI_COMM_WORLD);
+      std::vector<std::string> factorised_here;
+      if (n_ranks == 1 || !direct_solver)
+        {
+          // One process, or a solver that every rank runs for itself.
+          for (const auto &body : bodies)
+            factorised_here.push_back(body->name());
+          return factorised_here;
+        }
+      // Two bodies: ranks in proportion to the estimated factor sizes, at
+      // least one each; the first ranks factorise Body 1.
+      std::vector<unsigned int> first(bodies.size() + 1, n_ranks);
+      first[0] = 0;
+      if (bodies.size() == 2)
+        {
+          const double w0 = std::max(factor_entries[0], 1.);
+          const double w1 = std::max(factor_entries[1], 1.);
+          first[1] =
+            std::clamp<unsigned int>(std::lround(n_ranks * w0 / (w0 + w1)),
+                                     1,
+                                     n_ranks - 1);
+        }
+      unsigned int color = 0;
+      while (rank >= first[color + 1])
+        ++color;
+      MPI_Comm  group = MPI_COMM_NULL;
+      const int ierr  = MPI_Comm_split(MPI_COMM_WORLD, color, rank, &group);
+      AssertThrowMPI(ierr);
+      groups.list.push_back(group);
+      for (unsigned int b = 0; b < bodies.size(); ++b)
+        {
+          discretization::ParallelLayout layout;
+          layout.world             = MPI_COMM_WORLD;
+          layout.group             = (b == color ? group : MPI_COMM_NULL);
+          layout.root              = first[b];
+          layout.matrix_everywhere = false;
+          bodies[b]->set_parallel_layout(layout);
+          if (b == color)
+            factorised_here.push_back(bodies[b]->name());
+          pcout << "  " << bodies[b]->name()
+                << " assembled and factorised on rank"
+                << (first[b + 1] - first[b] > 1 ?
+                      "s " + std::to_string(first[b]) + ".." +
+                        std::to_string(first[b + 1] - 1) :
+                      " " + std::to_string(first[b]))
+                << " of " << n_ranks << std::endl;
+        }
+      return factorised_here;
+    }
+
+
+
+    std::pair<std::map<std::string, double>, nlohmann::json>
+    gather_rank_figures(const TimerOutput              &timer,
+                        const std::vector<std::string> &factorised_here)
+    {
+      const MPI_Comm world  = MPI_COMM_WORLD;
+      auto           timing = timing_seconds(timer);
+      // Every rank runs the same phases; their largest seconds are the
+      // run's.
+      std::vector<double> seconds;
+      for (const auto &[phase, s] : timing)
+        seconds.push_back(s);
+      AssertThrow(Utilities::MPI::min(seconds.size(), world) ==
+                    Utilities::MPI::max(seconds.size(), world),
+                  ExcInternalError());
+      std::vector<double> largest(seconds.size());
+      Utilities::MPI::max(seconds, world, largest);
+      unsigned int k = 0;
+      for (auto &entry : timing)
+        entry.second = largest[k++];
+
+      Utilities::System::MemoryStats memory;
+      Utilities::System::get_memory_stats(memory);
+      const auto peaks =
+        Utilities::MPI::gather(world,
+                               std::pair(memory.VmHWM / 1024., factorised_here),
+                               0);
+      nlohmann::json ranks = nlohmann::json::array();
+      for (unsigned int r = 0; r < peaks.size(); ++r)
+        ranks.push_back({{"rank", r},
+                         {"peak_memory_mib", peaks[r].first},
+                         {"factorises", peaks[r].second}});
+      return {timing, ranks};
+    }
+
+
+
+    template std::vector<std::string>
+    split_ranks_among_bodies<2>(
+      const std::vector<std::unique_ptr<discretization::Body<2>>> &,
+      const std::vector<double> &,
+      bool,
+      Communicators &,
+      ConditionalOStream &);
+    template std::vector<std::string>
+    split_ranks_among_bodies<3>(
+      const std::vector<std::unique_ptr<discretization::Body<3>>> &,
+      const std::vector<double> &,
+      bool,
+      Communicators &,
+      ConditionalOStream &);
+  } // namespace scene
+} // namespace igabde
