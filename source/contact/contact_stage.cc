@@ -576,6 +576,7 @@ namespace igabde
         {
           PairState<dim> s;
           s.location = pair_list[i].x1;
+          s.normal   = pair_list[i].normal1;
           s.area     = pair_list[i].area;
           for (unsigned int k = 0; k < m; ++k)
             {

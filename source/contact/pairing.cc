@@ -140,8 +140,9 @@ namespace igabde
         const Tensor<1, dim> n = m.normal;
         AssertThrow(s.normal * n < 0.,
                     base::ExcInput(not_facing(context, s.location, master)));
-        pair.frame = local_frame<dim>(n);
-        pair.gap   = (pair.x1 - pair.x2) * n;
+        pair.frame   = local_frame<dim>(n);
+        pair.normal1 = s.normal;
+        pair.gap     = (pair.x1 - pair.x2) * n;
         AssertThrow(pair.gap >= -1e-10 * size,
                     base::ExcInput(penetrates(context, master, pair.gap)));
         pair.gap = std::max(pair.gap, 0.);
@@ -764,13 +765,14 @@ namespace igabde
               continue;
             }
           ContactPair<dim> pair;
-          pair.area  = in.area;
-          pair.x1    = Point<dim>(in.x1 / in.area);
-          pair.x2    = Point<dim>(in.x2 / in.area);
-          pair.frame = local_frame<dim>(in.normal / in.normal.norm());
-          pair.gap   = in.gap / in.area;
-          pair.op1   = make_operator<dim>(in.op1, in.area, dofs1);
-          pair.op2   = make_operator<dim>(in.op2, in.area, dofs2);
+          pair.area    = in.area;
+          pair.x1      = Point<dim>(in.x1 / in.area);
+          pair.x2      = Point<dim>(in.x2 / in.area);
+          pair.frame   = local_frame<dim>(in.normal / in.normal.norm());
+          pair.normal1 = -pair.frame[0];
+          pair.gap     = in.gap / in.area;
+          pair.op1     = make_operator<dim>(in.op1, in.area, dofs1);
+          pair.op2     = make_operator<dim>(in.op2, in.area, dofs2);
           pairs.push_back(pair);
         }
       AssertThrow(!pairs.empty(),

@@ -8,6 +8,7 @@
 
 #include <fstream>
 #include <iomanip>
+#include <limits>
 
 namespace igabde
 {
@@ -31,8 +32,36 @@ namespace igabde
 
 
     template <int dim>
+    std::vector<double>
+    recovered_pressures(const discretization::Body<dim>            &body1,
+                        const Vector<double>                       &u1,
+                        const std::vector<contact::PairState<dim>> &pairs)
+    {
+      std::vector<double> p(pairs.size(),
+                            std::numeric_limits<double>::quiet_NaN());
+      for (unsigned int i = 0; i < pairs.size(); ++i)
+        {
+          const Tensor<1, dim> n = pairs[i].normal;
+          try
+            {
+              p[i] = -n * (body1.stress(u1, pairs[i].location) * n);
+            }
+          catch (const ExceptionBase &)
+            {
+              // A weighted-gap pair's point is a weighted mean of its
+              // support; on a concave face it lies off the body: no
+              // stress there (NaN).
+            }
+        }
+      return p;
+    }
+
+
+
+    template <int dim>
     void
     write_pair_csv(const std::vector<contact::PairState<dim>> &pairs,
+                   const std::vector<double>                  &recovered,
                    const std::string                          &filename)
     {
       std::ofstream      csv = open_for_writing(filename);
@@ -45,7 +74,7 @@ namespace igabde
       csv << ",area,gap,p_n";
       for (unsigned int s = 1; s < m; ++s)
         csv << ",p_t" << s;
-      csv << ",pressure";
+      csv << ",pressure,recovered_pressure";
       for (unsigned int s = 1; s < m; ++s)
         csv << ",slip_t" << s;
       csv << ",status\n" << std::setprecision(12);
@@ -58,7 +87,7 @@ namespace igabde
           csv << "," << pair.area << "," << pair.displacement_local[0];
           for (unsigned int s = 0; s < m; ++s)
             csv << "," << pair.force_local[s];
-          csv << "," << pair.pressure();
+          csv << "," << pair.pressure() << "," << recovered[i];
           for (unsigned int s = 1; s < m; ++s)
             csv << "," << pair.displacement_local[s];
           csv << "," << contact::to_string(pair.status) << "\n";
@@ -70,11 +99,15 @@ namespace igabde
     template <int dim>
     void
     write_pair_vtu(const std::vector<contact::PairState<dim>> &pairs,
+                   const std::vector<double>                  &recovered,
                    const std::string                          &filename)
     {
       const bool friction =
         !pairs.empty() && pairs.front().force_local.size() > 1;
-      std::vector<std::string> names = {"pressure", "gap", "status"};
+      std::vector<std::string> names = {"pressure",
+                                        "recovered_pressure",
+                                        "gap",
+                                        "status"};
       for (unsigned int d = 0; d < dim; ++d)
         names.emplace_back("contact_force");
       if (friction)
@@ -87,14 +120,14 @@ namespace igabde
                    DataComponentInterpretation::DataComponentInterpretation>>
         vectors;
       vectors.emplace_back(
-        3,
-        3 + dim - 1,
+        4,
+        4 + dim - 1,
         "contact_force",
         DataComponentInterpretation::component_is_part_of_vector);
       if (friction)
         vectors.emplace_back(
-          3 + dim,
-          3 + 2 * dim - 1,
+          4 + dim,
+          4 + 2 * dim - 1,
           "slip",
           DataComponentInterpretation::component_is_part_of_vector);
 
@@ -108,6 +141,7 @@ namespace igabde
           patch.data.reinit(names.size(), 1);
           unsigned int row     = 0;
           patch.data(row++, 0) = pair.pressure();
+          patch.data(row++, 0) = recovered[i];
           patch.data(row++, 0) = pair.displacement_local[0];
           patch.data(row++, 0) = static_cast<int>(pair.status);
           for (unsigned int d = 0; d < dim; ++d)
@@ -124,17 +158,29 @@ namespace igabde
 
 
 
+    template std::vector<double>
+    recovered_pressures<2>(const discretization::Body<2> &,
+                           const Vector<double> &,
+                           const std::vector<contact::PairState<2>> &);
+    template std::vector<double>
+    recovered_pressures<3>(const discretization::Body<3> &,
+                           const Vector<double> &,
+                           const std::vector<contact::PairState<3>> &);
     template void
     write_pair_csv<2>(const std::vector<contact::PairState<2>> &,
+                      const std::vector<double> &,
                       const std::string &);
     template void
     write_pair_csv<3>(const std::vector<contact::PairState<3>> &,
+                      const std::vector<double> &,
                       const std::string &);
     template void
     write_pair_vtu<2>(const std::vector<contact::PairState<2>> &,
+                      const std::vector<double> &,
                       const std::string &);
     template void
     write_pair_vtu<3>(const std::vector<contact::PairState<3>> &,
+                      const std::vector<double> &,
                       const std::string &);
   } // namespace postprocess
 } // namespace igabde

@@ -253,13 +253,18 @@ namespace igabde
       // The pair table every step; fields only with Write vtu.
       if (pairs != nullptr)
         {
+          const std::vector<double> recovered =
+            postprocess::recovered_pressures<dim>(*bodies[0], u[0], *pairs);
           postprocess::write_pair_csv<dim>(*pairs,
+                                           recovered,
                                            directory + "/contact-" +
                                              number.str() + ".csv");
           if (write_vtu)
             {
               const std::string name = "contact-" + number.str() + ".vtu";
-              postprocess::write_pair_vtu<dim>(*pairs, directory + "/" + name);
+              postprocess::write_pair_vtu<dim>(*pairs,
+                                               recovered,
+                                               directory + "/" + name);
               // The pairs' series after the bodies' (contact.pvd).
               pvd_records.resize(bodies.size() + 1);
               pvd_records.back().emplace_back(double(step), name);

@@ -68,7 +68,9 @@ namespace
     std::ifstream in(cli::join(scratch.path, "out/contact-0001.csv"));
     std::string   line;
     std::getline(in, line);
-    EXPECT_EQ(line, "pair,x,y,area,gap,p_n,p_t1,pressure,slip_t1,status");
+    EXPECT_EQ(line,
+              "pair,x,y,area,gap,p_n,p_t1,pressure,recovered_pressure,"
+              "slip_t1,status");
     while (std::getline(in, line))
       {
         std::vector<std::string> cells;

@@ -102,6 +102,8 @@ namespace igabde
     {
       /// Body 1's point.
       Point<dim> location;
+      /// Body 1's outward unit normal at the point.
+      Tensor<1, dim> normal;
       /// Tributary area (share of a uniform pressure).
       double area = 0.;
       /// Local force components (normal first; tangents when frictional).

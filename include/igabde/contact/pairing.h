@@ -32,6 +32,9 @@ namespace igabde
       Point<dim>     x1;
       Point<dim>     x2;
       Tensor<2, dim> frame;
+      /// Body 1's outward unit normal at x1 (weighted-gap pairs: minus the
+      /// frame's normal).
+      Tensor<1, dim> normal1;
       double         gap  = 0.;
       double         area = 0.;
       /// Operators of the two points (op2 empty on an obstacle).

@@ -1,7 +1,11 @@
 #ifndef igabde_postprocess_contact_output_h
 #define igabde_postprocess_contact_output_h
 
+#include <igabde/discretization/body.h>
+
 #include <igabde/contact/contact_stage.h>
+
+#include <deal.II/lac/vector.h>
 
 #include <string>
 #include <vector>
@@ -11,23 +15,39 @@ namespace igabde
   namespace postprocess
   {
     /**
+     * @brief The contact pressure recovered from Body 1's stress field at
+     * each pair's point: -n . sigma(u_h) . n with the pair's normal n
+     * (compression positive, Pa), beside the pair pressure p_n / area that
+     * the contact solution gives.
+     */
+    template <int dim>
+    std::vector<double>
+    recovered_pressures(const discretization::Body<dim>            &body1,
+                        const dealii::Vector<double>               &u1,
+                        const std::vector<contact::PairState<dim>> &pairs);
+
+    /**
      * @brief Writes the pairs of a load step as a CSV table (full
      * precision): pair, x, y[, z], area, gap, p_n[, p_t1[, p_t2]],
-     * pressure[, slip_t1[, slip_t2]], status.
+     * pressure, recovered_pressure (@p recovered), [slip_t1[, slip_t2]],
+     * status.
      */
     template <int dim>
     void
     write_pair_csv(const std::vector<contact::PairState<dim>> &pairs,
+                   const std::vector<double>                  &recovered,
                    const std::string                          &filename);
 
     /**
      * @brief Writes the pairs of a load step as a VTU point cloud (deal.II's
-     * DataOutBase, binary): pressure, gap, status (0 open, 1 stick, 2 slip),
-     * the contact force on Body 1 and, with friction, the slip.
+     * DataOutBase, binary): pressure, recovered_pressure (@p recovered),
+     * gap, status (0 open, 1 stick, 2 slip, 3 closed), the contact force on
+     * Body 1 and, with friction, the slip.
      */
     template <int dim>
     void
     write_pair_vtu(const std::vector<contact::PairState<dim>> &pairs,
+                   const std::vector<double>                  &recovered,
                    const std::string                          &filename);
   } // namespace postprocess
 } // namespace igabde

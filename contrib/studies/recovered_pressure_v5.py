@@ -1,0 +1,108 @@
+#!/usr/bin/env python3
+"""The recovered contact pressure on V5: for NURBS and FE_Q(2) meshes, the
+pair pressures p_i = p_n / area and the pressures recovered from the
+stress field, -n . sigma(u_h) . n at the pairs, each against a converged
+model of the same disc (the pair pressures of NURBS p = 3 on 512 x 128),
+with the unknowns and seconds of each run.
+
+usage: recovered_pressure_v5.py IGABDE OUTDIR
+
+Errors as in graded_v5.py: the relative L2 distance from the reference
+profile interpolated at the pairs' x, weighted by the tributary areas,
+over the pairs with x below twice the reference half-width; and the
+largest single-pair deviation over the same pairs, in % of the
+reference's peak pressure."""
+
+import csv
+import json
+import math
+import os
+import subprocess
+import sys
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(
+    os.path.abspath(__file__))))
+SCENE = os.path.join(ROOT, "prm", "v5-hertz-2d.prm")
+
+REFERENCE = ("reference NURBS p=3 512x128", "nurbs", 3, "512, 128")
+RUNS = [("NURBS p=2 64x16 (scene)", "nurbs", 2, "64, 16"),
+        ("NURBS p=2 128x32", "nurbs", 2, "128, 32"),
+        ("NURBS p=2 256x64", "nurbs", 2, "256, 64"),
+        ("FE_Q(2) 64x16", "lagrange", 2, "64, 16"),
+        ("FE_Q(2) 128x32", "lagrange", 2, "128, 32"),
+        ("FE_Q(2) 256x64", "lagrange", 2, "256, 64")]
+
+
+def run(igabde, out, label, kind, degree, mesh):
+    folder = os.path.join(out, "".join(c if c.isalnum() else "_"
+                                       for c in label))
+    subprocess.run([igabde, SCENE, "--quiet",
+                    "--set", "Discretization/Degree=%d" % degree,
+                    "--set", "Discretization/Type=" + kind,
+                    "--set", "Body 1/Subdivisions=" + mesh,
+                    "--set", "Output/Write vtu=false",
+                    "--set", "Output/Directory=" + folder],
+                   check=True, stdout=subprocess.DEVNULL)
+    with open(os.path.join(folder, "summary.json")) as f:
+        summary = json.load(f)
+    with open(os.path.join(folder, "contact-0001.csv")) as f:
+        pairs = [(float(r["x"]), float(r["area"]), float(r["pressure"]),
+                  float(r["recovered_pressure"]))
+                 for r in csv.DictReader(f)]
+    pairs.sort()
+    return summary, pairs
+
+
+def interpolate(profile, x):
+    for (x0, p0), (x1, p1) in zip(profile, profile[1:]):
+        if x0 <= x <= x1:
+            return p0 + (p1 - p0) * (x - x0) / (x1 - x0) if x1 > x0 else p0
+    return 0.
+
+
+def errors(pairs, column, reference, a_ref, p_peak):
+    num = den = largest = 0.
+    for pair in pairs:
+        x, area, p = pair[0], pair[1], pair[column]
+        if x > 2. * a_ref:
+            continue
+        q = interpolate(reference, x)
+        num += area * (p - q) ** 2
+        den += area * q ** 2
+        largest = max(largest, abs(p - q))
+    return math.sqrt(num / den), largest / p_peak
+
+
+def main():
+    igabde, out = sys.argv[1], sys.argv[2]
+    os.makedirs(out, exist_ok=True)
+    ref_summary, ref_pairs = run(igabde, out, *REFERENCE)
+    reference = [(x, p) for x, _, p, _ in ref_pairs]
+    a_ref = max(x for x, p in reference if p > 0.)
+    p_peak = max(p for _, p in reference)
+    _, ref_recovered = errors(ref_pairs, 3, reference, a_ref, p_peak)
+    rows = []
+    for label, kind, degree, mesh in RUNS:
+        summary, pairs = run(igabde, out, label, kind, degree, mesh)
+        rows.append((label, summary["n_dofs"], summary["timing"]["total"],
+                     errors(pairs, 2, reference, a_ref, p_peak),
+                     errors(pairs, 3, reference, a_ref, p_peak)))
+    path = os.path.join(out, "recovered_pressure_v5.md")
+    with open(path, "w") as f:
+        f.write("| mesh | unknowns | seconds | pair pressure L2 | "
+                "pair largest | recovered L2 | recovered largest |\n"
+                "|---|---|---|---|---|---|---|\n")
+        for label, n, seconds, (l2, big), (rl2, rbig) in rows:
+            f.write("| %s | %d | %.2f | %.2f %% | %.2f %% | %.2f %% | "
+                    "%.2f %% |\n" % (label, n, seconds, 100. * l2,
+                                     100. * big, 100. * rl2, 100. * rbig))
+        f.write("\nreference: %d unknowns, %.2f s, last loaded pair at "
+                "x = %.4f, peak %.4f; its own recovered pressure's largest "
+                "deviation from its pair pressures: %.2f %% of the peak\n"
+                % (ref_summary["n_dofs"], ref_summary["timing"]["total"],
+                   a_ref, p_peak, 100. * ref_recovered))
+    print(open(path).read())
+
+
+if __name__ == "__main__":
+    main()
