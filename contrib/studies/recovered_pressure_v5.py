@@ -33,16 +33,21 @@ RUNS = [("NURBS p=2 64x16 (scene)", "nurbs", 2, "64, 16"),
         ("FE_Q(2) 256x64", "lagrange", 2, "256, 64")]
 
 
-def run(igabde, out, label, kind, degree, mesh):
+def run(igabde, out, label, kind, degree, mesh, settings=()):
+    """Runs V5 with the mesh and the further --set @p settings; returns
+    summary.json and the pairs (x, area, pressure, recovered pressure)
+    sorted by x."""
     folder = os.path.join(out, "".join(c if c.isalnum() else "_"
                                        for c in label))
-    subprocess.run([igabde, SCENE, "--quiet",
-                    "--set", "Discretization/Degree=%d" % degree,
-                    "--set", "Discretization/Type=" + kind,
-                    "--set", "Body 1/Subdivisions=" + mesh,
-                    "--set", "Output/Write vtu=false",
-                    "--set", "Output/Directory=" + folder],
-                   check=True, stdout=subprocess.DEVNULL)
+    command = [igabde, SCENE, "--quiet",
+               "--set", "Discretization/Degree=%d" % degree,
+               "--set", "Discretization/Type=" + kind,
+               "--set", "Body 1/Subdivisions=" + mesh,
+               "--set", "Output/Write vtu=false",
+               "--set", "Output/Directory=" + folder]
+    for setting in settings:
+        command += ["--set", setting]
+    subprocess.run(command, check=True, stdout=subprocess.DEVNULL)
     with open(os.path.join(folder, "summary.json")) as f:
         summary = json.load(f)
     with open(os.path.join(folder, "contact-0001.csv")) as f:

@@ -973,8 +973,14 @@ namespace igabde
                           "greville",
                           Patterns::Selection("greville|knots|gauss"),
                           "Where pairs sit on a NURBS surface: images of the "
-                          "Greville abscissae, knot-grid points or Gauss "
-                          "points. Lagrange surfaces use their nodes.");
+                          "Greville abscissae (one per face control point, "
+                          "the most accurate: doc/studies.md), knot-grid "
+                          "points (fewer than the control points for p >= 2: "
+                          "least-squares areas) or Gauss points (p+1 per "
+                          "span: more pairs than the face has control "
+                          "points, redundant on a curved face, where the "
+                          "solver may not converge). Lagrange surfaces use "
+                          "their nodes.");
         std::string pairings;
         for (const auto &name : contact::available_pairing_strategies())
           pairings += (pairings.empty() ? "" : "|") + name;

@@ -5,6 +5,7 @@
 
 #include <igabde/coupled/coupled_system.h>
 #include <igabde/scene/body_factory.h>
+#include <igabde/scene/contact_setup.h>
 #include <igabde/scene/geometry.h>
 #include <igabde/scene/interrupt.h>
 #include <igabde/scene/load_controller.h>
@@ -220,115 +221,44 @@ namespace igabde
     void
     Simulator<dim>::setup_contact()
     {
-      const auto steps      = parameters.load_path.steps();
-      bool       body_force = false;
+      bool body_force = false;
       for (const auto &body : bodies)
         body_force = body_force || body->description().body_force.norm() > 0. ||
                      static_cast<bool>(body->description().body_force_field);
-      nlohmann::json effects;
-      if (parameters.contact.enabled)
-        {
-          contact::ContactSettings cs;
-          const auto              &c = parameters.contact;
-          cs.friction_coefficient    = c.friction_coefficient;
-          cs.slave_face              = c.slave_face;
-          cs.master_face             = c.master_face;
-          cs.pairing                 = c.pairing;
-          cs.solver.algorithm        = c.algorithm;
-          cs.solver.path             = c.path;
-          cs.schur_condensation =
-            c.condensation == contact::Condensation::schur &&
-            parameters.discretization.linear_solver ==
-              discretization::LinearSolver::direct;
-          cs.solver.penalty.normal_factor     = c.penalty_factor;
-          cs.solver.penalty.tangential_factor = c.tangential_penalty_factor;
-          cs.solver.penalty.line_search       = c.penalty_line_search;
-          cs.solver.bnewton.tolerance         = c.tolerance;
-          cs.solver.bnewton.max_iterations    = c.max_iterations;
-          cs.solver.bnewton.r_factor          = c.r_scale;
-          cs.solver.bnewton.log               = c.verbose;
-          cs.solver.bnewton.log_stream        = &contact_log();
-          cs.context                          = scene_file;
-          cs.progress                         = parameters.output.progress;
-          cs.log_solves = parameters.output.solver_details;
-          for (const auto &b : estimate_size(parameters, scene_file).bodies)
-            cs.factor_entries.push_back(b.factor_entries);
-          cs.n_load_steps = steps.size();
-
-          contact_stage = std::make_unique<contact::ContactStage<dim>>(
-            cs,
-            bodies,
-            create_obstacle<dim>(parameters, scene_file),
-            contact_log(),
-            coupled::coupled_factory<dim>(c.full_system_solver,
-                                          c.krylov_max_iterations));
-          contact_stage->build_pairs(timer);
-          // The coupled system reads every body's K on every rank.
-          if (contact_stage->path() == contact::Path::full)
-            {
-              TimerOutput::Scope t(timer, "assembly");
-              for (auto &body : bodies)
-                body->ensure_assembled();
-            }
-          factorize_bodies(contact_stage.get());
-          {
-            Timer clock;
-            contact_stage->prepare(timer);
-            if (parameters.output.progress)
-              pcout << "  [progress] "
-                    << (contact_stage->path() == contact::Path::full ?
-                          "coupled system" :
-                          "condensation")
-                    << ", " << std::setprecision(3) << clock.wall_time() << " s"
-                    << std::setprecision(6) << std::endl;
-          }
-          const contact::ContactSummary s     = contact_stage->summary();
-          effects["contact"]                  = true;
-          effects["friction"]                 = s.friction;
-          effects["tangential_unknowns"]      = s.friction;
-          effects["rigid_obstacle"]           = s.rigid_obstacle;
-          effects["initial_gaps"]             = s.initial_gaps;
-          effects["body_force"]               = body_force;
-          effects["floating_rigid_modes"]     = s.floating_rigid_modes;
-          effects["pairs_left_out_supported"] = s.pairs_left_out;
-          effects["load_steps"]               = steps.size();
-          summary["effects"]                  = effects;
-          summary["n_contact_pairs"]          = s.n_pairs;
-          summary["n_contact_unknowns"]       = s.n_unknowns;
-          summary["contact_algorithm"]        = contact::to_string(s.algorithm);
-          summary["contact_path"]             = contact::to_string(s.path);
-          summary["contact_path_reason"]      = s.path_reason;
-          if (s.estimated_condensed_seconds > 0. ||
-              s.estimated_full_seconds > 0.)
-            summary["contact_path_estimated_seconds"] = {
-              {"condensed", s.estimated_condensed_seconds},
-              {"full", s.estimated_full_seconds}};
-          summary["contact_path_cost_inputs"] = {
-            {"contact_unknowns", s.cost_inputs.contact_unknowns},
-            {"face_unknowns", s.cost_inputs.face_unknowns},
-            {"factor_entries", s.cost_inputs.factor_entries},
-            {"newton_iterations", s.cost_inputs.newton_iterations}};
-          const bool full = (s.path == contact::Path::full);
-          if (c.full_system_solver != coupled::Solver::mumps && full)
-            summary["full_system_solver"] = to_string(c.full_system_solver);
-          if (full)
-            summary["coupled_matrix_nonzeros"] = s.coupled_nonzeros;
-          if (s.algorithm != contact::Algorithm::bde)
-            {
-              summary["penalty_factor_fkn"] = c.penalty_factor;
-              summary["tangential_penalty_factor_fkt"] =
-                c.tangential_penalty_factor;
-            }
-        }
-      else
+      if (!parameters.contact.enabled)
         {
           factorize_bodies(nullptr);
-          effects["contact"]    = false;
-          effects["friction"]   = false;
-          effects["body_force"] = body_force;
-          effects["load_steps"] = steps.size();
-          summary["effects"]    = effects;
+          record_setup(parameters, nullptr, body_force, summary);
+          return;
         }
+      contact_stage = std::make_unique<contact::ContactStage<dim>>(
+        make_contact_settings(parameters, scene_file, contact_log()),
+        bodies,
+        create_obstacle<dim>(parameters, scene_file),
+        contact_log(),
+        coupled::coupled_factory<dim>(
+          parameters.contact.full_system_solver,
+          parameters.contact.krylov_max_iterations));
+      contact_stage->build_pairs(timer);
+      // The coupled system reads every body's K on every rank.
+      if (contact_stage->path() == contact::Path::full)
+        {
+          TimerOutput::Scope t(timer, "assembly");
+          for (auto &body : bodies)
+            body->ensure_assembled();
+        }
+      factorize_bodies(contact_stage.get());
+      Timer clock;
+      contact_stage->prepare(timer);
+      if (parameters.output.progress)
+        pcout << "  [progress] "
+              << (contact_stage->path() == contact::Path::full ?
+                    "coupled system" :
+                    "condensation")
+              << ", " << std::setprecision(3) << clock.wall_time() << " s"
+              << std::setprecision(6) << std::endl;
+      const contact::ContactSummary s = contact_stage->summary();
+      record_setup(parameters, &s, body_force, summary);
     }
 
 
