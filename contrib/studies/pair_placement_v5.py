@@ -17,7 +17,8 @@ import subprocess
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from recovered_pressure_v5 import REFERENCE, errors, run  # noqa: E402
+from recovered_pressure_v5 import (errors, folder_of,  # noqa: E402
+                                   reference_run, run)
 
 PLACEMENTS = [("Greville", ["Contact/Pairing=node-to-surface",
                             "Contact/Pair placement=greville"]),
@@ -32,10 +33,7 @@ PLACEMENTS = [("Greville", ["Contact/Pairing=node-to-surface",
 def main():
     igabde, out = sys.argv[1], sys.argv[2]
     os.makedirs(out, exist_ok=True)
-    _, ref_pairs = run(igabde, out, *REFERENCE)
-    reference = [(x, p) for x, _, p, _ in ref_pairs]
-    a_ref = max(x for x, p in reference if p > 0.)
-    p_peak = max(p for _, p in reference)
+    _, _, reference, a_ref, p_peak = reference_run(igabde, out)
     rows = []
     for degree in (2, 3):
         for mesh in ("64, 16", "128, 32"):
@@ -47,9 +45,8 @@ def main():
                                          degree, mesh, settings)
                 except subprocess.CalledProcessError:
                     # A run that fails keeps its summary.json: say why.
-                    folder = os.path.join(out, "".join(
-                        c if c.isalnum() else "_" for c in label))
-                    with open(os.path.join(folder, "summary.json")) as f:
+                    with open(os.path.join(folder_of(out, label),
+                                           "summary.json")) as f:
                         failed = json.load(f)
                     rows.append((label, failed.get("n_contact_pairs", 0),
                                  failed.get("n_dofs", 0), None, None,

@@ -33,12 +33,17 @@ RUNS = [("NURBS p=2 64x16 (scene)", "nurbs", 2, "64, 16"),
         ("FE_Q(2) 256x64", "lagrange", 2, "256, 64")]
 
 
+def folder_of(out, label):
+    """The output folder of the run named @p label."""
+    return os.path.join(out, "".join(c if c.isalnum() else "_"
+                                     for c in label))
+
+
 def run(igabde, out, label, kind, degree, mesh, settings=()):
     """Runs V5 with the mesh and the further --set @p settings; returns
     summary.json and the pairs (x, area, pressure, recovered pressure)
     sorted by x."""
-    folder = os.path.join(out, "".join(c if c.isalnum() else "_"
-                                       for c in label))
+    folder = folder_of(out, label)
     command = [igabde, SCENE, "--quiet",
                "--set", "Discretization/Degree=%d" % degree,
                "--set", "Discretization/Type=" + kind,
@@ -78,13 +83,21 @@ def errors(pairs, column, reference, a_ref, p_peak):
     return math.sqrt(num / den), largest / p_peak
 
 
-def main():
-    igabde, out = sys.argv[1], sys.argv[2]
-    os.makedirs(out, exist_ok=True)
+def reference_run(igabde, out):
+    """The converged model: its summary, its pairs, its pressure profile
+    (x, p), the last loaded pair's x and the peak pressure."""
     ref_summary, ref_pairs = run(igabde, out, *REFERENCE)
     reference = [(x, p) for x, _, p, _ in ref_pairs]
     a_ref = max(x for x, p in reference if p > 0.)
     p_peak = max(p for _, p in reference)
+    return ref_summary, ref_pairs, reference, a_ref, p_peak
+
+
+def main():
+    igabde, out = sys.argv[1], sys.argv[2]
+    os.makedirs(out, exist_ok=True)
+    ref_summary, ref_pairs, reference, a_ref, p_peak = reference_run(igabde,
+                                                                     out)
     _, ref_recovered = errors(ref_pairs, 3, reference, a_ref, p_peak)
     rows = []
     for label, kind, degree, mesh in RUNS:

@@ -329,15 +329,22 @@ namespace igabde
     template <int dim>
     nlohmann::json
     geometry_record(const BodyParameters         &body,
+                    const unsigned int            degree,
                     const nurbs::NurbsPatch<dim> &patch)
     {
+      // The measure of the exact geometry, from its patch before
+      // Subdivisions and Refinements (the same map with the fewest spans:
+      // the quadrature cost does not grow with the mesh).
+      std::array<unsigned int, dim> subdivisions;
+      const nurbs::NurbsPatch<dim>  coarse =
+        make_geometry<dim>(body, "", degree, &subdivisions);
       return nlohmann::json{{"geometry",
                              body.geometry == Geometry::file ?
                                body.geometry_file :
                                to_string(body.geometry)},
                             {"patches", 1},
                             {"control_points", patch.n_control_points()},
-                            {"measure", nurbs::patch_measure(patch)}};
+                            {"measure", nurbs::patch_measure(coarse)}};
     }
 
 
@@ -365,9 +372,13 @@ namespace igabde
 
 
     template nlohmann::json
-    geometry_record<2>(const BodyParameters &, const nurbs::NurbsPatch<2> &);
+    geometry_record<2>(const BodyParameters &,
+                       unsigned int,
+                       const nurbs::NurbsPatch<2> &);
     template nlohmann::json
-    geometry_record<3>(const BodyParameters &, const nurbs::NurbsPatch<3> &);
+    geometry_record<3>(const BodyParameters &,
+                       unsigned int,
+                       const nurbs::NurbsPatch<3> &);
     template void
     export_geometry<2>(const nurbs::NurbsPatch<2> &,
                        const std::string &,

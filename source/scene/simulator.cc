@@ -134,6 +134,7 @@ namespace igabde
           const auto    &body = bodies[b];
           nlohmann::json entry =
             geometry_record<dim>(b == 0 ? parameters.body1 : parameters.body2,
+                                 parameters.discretization.degree,
                                  body->geometry_patch());
           entry.update(nlohmann::json{
             {"name", body->name()},

@@ -259,6 +259,15 @@ TEST(GeometryFile, MeasuresOfExactGeometries)
               1e-12 * 200.);
   NurbsPatch<2> hole = make_plate_with_hole(1., 4.);
   EXPECT_NEAR(patch_measure(hole), 16. - M_PI / 4., 1e-12 * 16.);
+  // Refined patches get fewer points per span (the default rule); the
+  // closed forms still hold to round-off.
+  NurbsPatch<2> annulus = make_quarter_annulus(1., 2.);
+  subdivide(annulus, {{4, 16}});
+  EXPECT_NEAR(patch_measure(annulus), M_PI * 3. / 4., 1e-12);
+  NurbsPatch<3> beam = make_curved_beam(1., 1.5, 0.4);
+  elevate_to_degree(beam, 2);
+  subdivide(beam, {{8, 32, 8}});
+  EXPECT_NEAR(patch_measure(beam), M_PI * (1.5 * 1.5 - 1.) / 4. * 0.4, 1e-13);
 }
 
 

@@ -107,14 +107,16 @@ namespace igabde
 
     /**
      * @brief Area (2D) or volume (3D) of the patch's image, by Gauss
-     * quadrature of |det J| with @p n_points per direction and knot span
-     * (rational integrands: 12 points give round-off for the project's
-     * circular arcs).
+     * quadrature of |det J| with @p n_points per direction and knot span,
+     * or, for 0, n = max(p + 1, ceil(17 / ln(4 k))) in a direction of k
+     * spans: 13 points on one span give round-off for the project's
+     * circular arcs, and finer spans need fewer (4 at k = 16, 3 from
+     * k = 64 for p = 2).
      */
     template <int dim>
     double
     patch_measure(const NurbsPatch<dim> &patch,
-                  const unsigned int     n_points = 12);
+                  const unsigned int     n_points = 0);
   } // namespace nurbs
 } // namespace igabde
 

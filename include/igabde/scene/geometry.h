@@ -53,12 +53,14 @@ namespace igabde
     /**
      * @brief What summary.json says of a body's geometry: its source
      * (the built-in shape or the file as the scene names it), patches,
-     * control points and measure (area or volume of the exact geometry
-     * @p patch, by nurbs::patch_measure()).
+     * control points of the analysis patch @p patch, and measure (area or
+     * volume of the exact geometry, nurbs::patch_measure() on the body's
+     * patch elevated to @p degree before Subdivisions and Refinements).
      */
     template <int dim>
     nlohmann::json
     geometry_record(const BodyParameters         &body,
+                    const unsigned int            degree,
                     const nurbs::NurbsPatch<dim> &patch);
 
     /**
