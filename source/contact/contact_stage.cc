@@ -134,6 +134,17 @@ namespace igabde
           path_why =
             to_string(settings.solver.algorithm) + " solves the full system";
         }
+      else if (path == Path::automatic &&
+               std::any_of(bodies.begin(), bodies.end(), [](const auto &b) {
+                 return !b->held_rigid_mode_names().empty();
+               }))
+        {
+          // The coupled system has no rows for a held rotation's
+          // constraint; the condensed path projects it in every solve.
+          path     = Path::condensed;
+          path_why = "a body holds a rotation (Hold rotation), which only "
+                     "the condensed path models";
+        }
       else if (path == Path::automatic)
         {
           const PathCostEstimate e =

@@ -8,6 +8,7 @@
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/multithread_info.h>
+#include <deal.II/base/quadrature_lib.h>
 #include <deal.II/base/thread_management.h>
 
 #include <deal.II/lac/solver_cg.h>
@@ -111,6 +112,7 @@ namespace igabde
       if (layout.matrix_everywhere || factorizes_here())
         ensure_assembled();
       find_free_rigid_modes();
+      hold_rotations();
     }
 
 
@@ -223,6 +225,8 @@ namespace igabde
               interface_dofs.push_back(i);
         }
       factorize_matrix(interface_dofs);
+      held_response = held_loads;
+      solve_pinned(held_response);
 
       // Superposition: one load case per load history (history 0 the
       // external loads of the load factors, 1 the prescribed displacements
@@ -331,7 +335,10 @@ namespace igabde
                                              "be given these operators."));
                   }
             }
-          return linear_solver->cholesky->interface_flexibility(C);
+          FullMatrix<double> F0 =
+            linear_solver->cholesky->interface_flexibility(C);
+          correct_for_held_modes(operators, directions, F0);
+          return F0;
         }
 
       // One solve per column on the shared factorisation (the group's;
@@ -661,68 +668,44 @@ namespace igabde
 
 
     template <int dim>
-    void
-    Body<dim>::find_free_rigid_modes()
+    double
+    Body<dim>::rigid_mode_value(const unsigned int            mode,
+                                const types::global_dof_index i) const
     {
-      // Rigid modes evaluated at the control points / nodes: exact for
-      // NURBS too, since the basis reproduces linear fields. Rotations are
-      // taken about the centroid and scaled by the body size so that all
-      // modes have entries of order one.
-      const unsigned int n_modes = (dim == 2 ? 3 : 6);
-      Point<dim>         centre;
-      for (const auto &x : dof_locations)
-        centre += x;
-      if (n_unknowns > 0)
-        centre /= static_cast<double>(n_unknowns);
-      double size = 0.;
-      for (const auto &x : dof_locations)
-        size = std::max(size, (x - centre).norm());
-      size = std::max(size, 1e-300);
-
-      auto mode_value = [&](const unsigned int            mode,
-                            const types::global_dof_index i) -> double {
-        const unsigned int   c = dof_components[i];
-        const Tensor<1, dim> x = (dof_locations[i] - centre) / size;
-        if (mode < dim)
-          return (c == mode ? 1. : 0.);
-        // Rotation about axis a (3D) or about z (2D): u = e_a x x.
-        Tensor<1, dim> u;
-        if (dim == 2)
-          {
-            u[0] = -x[1];
-            u[1] = x[0];
-          }
-        else
-          {
-            const unsigned int a = mode - dim;
-            const unsigned int b = (a + 1) % 3, d = (a + 2) % 3;
-            u[b] = -x[d];
-            u[d] = x[b];
-          }
-        return u[c];
-      };
-
-      std::vector<types::global_dof_index> constrained;
-      for (types::global_dof_index i = 0; i < n_unknowns; ++i)
-        if (constraints.is_constrained(i))
-          constrained.push_back(i);
-
-      Eigen::MatrixXd M(std::max<std::size_t>(constrained.size(), 1), n_modes);
-      M.setZero();
-      for (unsigned int r = 0; r < constrained.size(); ++r)
-        for (unsigned int m = 0; m < n_modes; ++m)
-          M(r, m) = mode_value(m, constrained[r]);
-
-      Eigen::JacobiSVD<Eigen::MatrixXd> svd(M, Eigen::ComputeFullV);
-      const Eigen::VectorXd            &s = svd.singularValues();
-      std::vector<Eigen::VectorXd>      free;
-      for (unsigned int m = 0; m < n_modes; ++m)
+      const unsigned int   c = dof_components[i];
+      const Tensor<1, dim> x = (dof_locations[i] - mode_centre) / mode_size;
+      if (mode < dim)
+        return (c == mode ? 1. : 0.);
+      // Rotation about axis a (3D) or about z (2D): u = e_a x x.
+      Tensor<1, dim> u;
+      if (dim == 2)
         {
-          const double sigma = (m < s.size() ? s(m) : 0.);
-          if (sigma <
-              1e-8 * std::max(1., std::sqrt(double(constrained.size()))))
-            free.push_back(svd.matrixV().col(m));
+          u[0] = -x[1];
+          u[1] = x[0];
         }
+      else
+        {
+          const unsigned int a = mode - dim;
+          const unsigned int b = (a + 1) % 3, d = (a + 2) % 3;
+          u[b] = -x[d];
+          u[d] = x[b];
+        }
+      return u[c];
+    }
+
+
+
+    template <int dim>
+    std::pair<Vector<double>, std::string>
+    Body<dim>::rigid_mode(const std::vector<double> &coefficients) const
+    {
+      const unsigned int n_modes = (dim == 2 ? 3 : 6);
+      AssertDimension(coefficients.size(), n_modes);
+      Vector<double> mode(n_unknowns);
+      for (types::global_dof_index i = 0; i < n_unknowns; ++i)
+        if (!constraints.is_constrained(i))
+          for (unsigned int m = 0; m < n_modes; ++m)
+            mode[i] += coefficients[m] * rigid_mode_value(m, i);
 
       static const char *names2[] = {"translation x",
                                      "translation y",
@@ -733,29 +716,82 @@ namespace igabde
                                      "rotation x",
                                      "rotation y",
                                      "rotation z"};
+      unsigned int       dominant = 0;
+      double             norm     = 0.;
+      for (unsigned int m = 0; m < n_modes; ++m)
+        {
+          norm += coefficients[m] * coefficients[m];
+          if (std::abs(coefficients[m]) > std::abs(coefficients[dominant]))
+            dominant = m;
+        }
+      const bool pure = std::abs(std::abs(coefficients[dominant]) -
+                                 std::sqrt(norm)) < 1e-10 * std::sqrt(norm);
+      return {mode,
+              std::string(dim == 2 ? names2[dominant] : names3[dominant]) +
+                (pure ? "" : " (combined)")};
+    }
+
+
+
+    template <int dim>
+    void
+    Body<dim>::find_free_rigid_modes()
+    {
+      // Rigid modes evaluated at the control points / nodes: exact for
+      // NURBS too, since the basis reproduces linear fields. Rotations are
+      // taken about the centroid and scaled by the body size so that all
+      // modes have entries of order one.
+      const unsigned int n_modes = (dim == 2 ? 3 : 6);
+      mode_centre                = Point<dim>();
+      for (const auto &x : dof_locations)
+        mode_centre += x;
+      if (n_unknowns > 0)
+        mode_centre /= static_cast<double>(n_unknowns);
+      mode_size = 0.;
+      for (const auto &x : dof_locations)
+        mode_size = std::max(mode_size, (x - mode_centre).norm());
+      mode_size = std::max(mode_size, 1e-300);
+
+      std::vector<types::global_dof_index> constrained;
+      for (types::global_dof_index i = 0; i < n_unknowns; ++i)
+        if (constraints.is_constrained(i))
+          constrained.push_back(i);
+
+      Eigen::MatrixXd M(std::max<std::size_t>(constrained.size(), 1), n_modes);
+      M.setZero();
+      for (unsigned int r = 0; r < constrained.size(); ++r)
+        for (unsigned int m = 0; m < n_modes; ++m)
+          M(r, m) = rigid_mode_value(m, constrained[r]);
+
+      Eigen::JacobiSVD<Eigen::MatrixXd> svd(M, Eigen::ComputeFullV);
+      const Eigen::VectorXd            &s = svd.singularValues();
+      rigid_mode_coefficients.clear();
+      for (unsigned int m = 0; m < n_modes; ++m)
+        {
+          const double sigma = (m < s.size() ? s(m) : 0.);
+          if (sigma <
+              1e-8 * std::max(1., std::sqrt(double(constrained.size()))))
+            {
+              const Eigen::VectorXd v = svd.matrixV().col(m);
+              rigid_mode_coefficients.emplace_back(v.data(),
+                                                   v.data() + v.size());
+            }
+        }
       rigid_modes.clear();
       rigid_mode_names.clear();
-      for (const auto &v : free)
+      for (const auto &v : rigid_mode_coefficients)
         {
-          Vector<double> mode(n_unknowns);
-          for (types::global_dof_index i = 0; i < n_unknowns; ++i)
-            if (!constraints.is_constrained(i))
-              for (unsigned int m = 0; m < n_modes; ++m)
-                mode[i] += v(m) * mode_value(m, i);
-          rigid_modes.push_back(mode);
-
-          Eigen::Index dominant = 0;
-          const double vmax     = v.cwiseAbs().maxCoeff(&dominant);
-          const bool   pure     = std::abs(vmax - 1.) < 1e-10;
-          rigid_mode_names.push_back(
-            std::string(dim == 2 ? names2[dominant] : names3[dominant]) +
-            (pure ? "" : " (combined)"));
+          auto [mode, name] = rigid_mode(v);
+          rigid_modes.push_back(std::move(mode));
+          rigid_mode_names.push_back(std::move(name));
         }
 
       // Pins: one unknown per free mode, chosen by column-pivoted QR on the
       // free modes so that they are independent there. With balanced loads
       // the pins carry no reaction, so the pinned solve is a generalised
-      // inverse K^+ (method.md, "Bodies held only through contact").
+      // inverse K^+ (method.md, "Bodies held only through contact"). A
+      // rotation held later (hold_rotations()) keeps its pin: the pinned
+      // solve of loads balanced in that mode, projected.
       solve_constraints.clear();
       solve_constraints.copy_from(constraints);
       if (!rigid_modes.empty())
@@ -777,6 +813,270 @@ namespace igabde
           solve_constraints.merge(pins);
         }
       solve_constraints.close();
+    }
+
+
+
+    template <int dim>
+    void
+    Body<dim>::hold_rotations()
+    {
+      held_modes.clear();
+      held_loads.clear();
+      held_response.clear();
+      held_mode_names.clear();
+      held_moments.clear();
+      const int face = description().hold_rotation_face;
+      if (face < 0 || rigid_modes.empty())
+        return;
+
+      // Gauss points of the face (two more per direction than its degree:
+      // the tractions below are linear in x on a curved face too, up to
+      // the geometry's rational factor).
+      const FaceGrid<dim>         grid = face_grid(face);
+      const QGauss<1>             gauss(grid.degree + 2);
+      std::vector<Point<dim - 1>> etas(1);
+      std::vector<double>         weights(1, 1.);
+      for (unsigned int d = 0; d < dim - 1; ++d)
+        {
+          std::vector<Point<dim - 1>> next_etas;
+          std::vector<double>         next_weights;
+          const auto                 &b = grid.breaks[d];
+          for (unsigned int k = 0; k < etas.size(); ++k)
+            for (unsigned int e = 0; e + 1 < b.size(); ++e)
+              for (unsigned int q = 0; q < gauss.size(); ++q)
+                {
+                  Point<dim - 1> eta = etas[k];
+                  const double   h   = b[e + 1] - b[e];
+                  eta[d]             = b[e] + h * gauss.point(q)[0];
+                  next_etas.push_back(eta);
+                  next_weights.push_back(weights[k] * h * gauss.weight(q));
+                }
+          etas.swap(next_etas);
+          weights.swap(next_weights);
+        }
+      std::vector<FacePoint<dim>> points;
+      double                      area = 0.;
+      Point<dim>                  centroid;
+      for (unsigned int q = 0; q < etas.size(); ++q)
+        {
+          points.push_back(face_point(face, etas[q]));
+          weights[q] *= points.back().measure;
+          area += weights[q];
+          centroid += weights[q] * points.back().location;
+        }
+      AssertThrow(area > 0.,
+                  ExcMessage("Hold rotation: the face has no area."));
+      centroid /= area;
+
+      // One traction per rotation axis, t_a = e_a x (x - centroid): a pure
+      // moment (zero resultant) whose consistent loads c_a are the
+      // constraint's direction; J_ab = int (|y|^2 delta_ab - y_a y_b) is the
+      // moment of t_a about axis b.
+      const unsigned int          n_axes = (dim == 2 ? 1 : 3);
+      std::vector<Vector<double>> c(n_axes, Vector<double>(n_unknowns));
+      FullMatrix<double>          J(n_axes, n_axes);
+      for (unsigned int q = 0; q < points.size(); ++q)
+        {
+          const Tensor<1, dim> y = points[q].location - centroid;
+          for (unsigned int a = 0; a < n_axes; ++a)
+            {
+              Tensor<1, dim> t;
+              if (dim == 2)
+                {
+                  t[0] = -y[1];
+                  t[1] = y[0];
+                }
+              else
+                {
+                  const unsigned int b = (a + 1) % 3, d = (a + 2) % 3;
+                  t[b] = -y[d];
+                  t[d] = y[b];
+                }
+              points[q].op.distribute(weights[q] * t, c[a]);
+              for (unsigned int b = 0; b < n_axes; ++b)
+                J(a, b) += weights[q] * ((a == b ? y * y : 0.) -
+                                         (dim == 2 ? 0. : y[a] * y[b]));
+            }
+        }
+      for (auto &v : c)
+        constraints.set_zero(v);
+
+      // The free modes the constraints c_a^T u = 0 hold: A = C^T R on the
+      // free modes, A = U Sigma V^T; the first r right singular vectors are
+      // held (with the combinations c U of the constraints), the others
+      // stay free. A rotation the supports hold already has no free part.
+      const unsigned int n_free = rigid_modes.size();
+      Eigen::MatrixXd    A(n_axes, n_free);
+      double             c_norm = 0., r_norm = 0.;
+      for (unsigned int a = 0; a < n_axes; ++a)
+        {
+          c_norm = std::max(c_norm, c[a].l2_norm());
+          for (unsigned int j = 0; j < n_free; ++j)
+            A(a, j) = c[a] * rigid_modes[j];
+        }
+      for (const auto &r : rigid_modes)
+        r_norm = std::max(r_norm, r.l2_norm());
+      Eigen::JacobiSVD<Eigen::MatrixXd> svd(A,
+                                            Eigen::ComputeFullU |
+                                              Eigen::ComputeFullV);
+      unsigned int                      rank = 0;
+      while (rank < svd.singularValues().size() &&
+             svd.singularValues()(rank) > 1e-8 * c_norm * r_norm)
+        ++rank;
+
+      const unsigned int n_modes = (dim == 2 ? 3 : 6);
+      auto               combine = [&](const unsigned int column) {
+        std::vector<double> v(n_modes, 0.);
+        for (unsigned int j = 0; j < n_free; ++j)
+          for (unsigned int m = 0; m < n_modes; ++m)
+            v[m] += svd.matrixV()(j, column) * rigid_mode_coefficients[j][m];
+        return v;
+      };
+      std::vector<std::vector<double>> free_coefficients;
+      for (unsigned int k = 0; k < n_free; ++k)
+        if (k < rank)
+          {
+            auto [mode, name] = rigid_mode(combine(k));
+            held_modes.push_back(std::move(mode));
+            held_mode_names.push_back(std::move(name));
+            Vector<double>      load(n_unknowns);
+            std::vector<double> moment(n_axes, 0.);
+            for (unsigned int a = 0; a < n_axes; ++a)
+              {
+                load.add(svd.matrixU()(a, k), c[a]);
+                for (unsigned int b = 0; b < n_axes; ++b)
+                  moment[b] += svd.matrixU()(a, k) * J(a, b);
+              }
+            held_loads.push_back(std::move(load));
+            held_moments.push_back(std::move(moment));
+          }
+        else
+          free_coefficients.push_back(combine(k));
+
+      rigid_mode_coefficients = free_coefficients;
+      rigid_modes.clear();
+      rigid_mode_names.clear();
+      for (const auto &v : rigid_mode_coefficients)
+        {
+          auto [mode, name] = rigid_mode(v);
+          rigid_modes.push_back(std::move(mode));
+          rigid_mode_names.push_back(std::move(name));
+        }
+
+      // S = R_h^T C_h (diagonal Sigma up to round-off), inverted.
+      held_inverse.reinit(rank, rank);
+      for (unsigned int k = 0; k < rank; ++k)
+        for (unsigned int l = 0; l < rank; ++l)
+          held_inverse(k, l) = held_modes[k] * held_loads[l];
+      if (rank > 0)
+        held_inverse.gauss_jordan();
+    }
+
+
+
+    template <int dim>
+    void
+    Body<dim>::balance_held_modes(Vector<double> &f) const
+    {
+      // f <- P^T f = f - C_h S^-1 R_h^T f: the held modes' reactions added.
+      const unsigned int r = held_modes.size();
+      if (r == 0)
+        return;
+      Vector<double> rf(r), lambda(r);
+      for (unsigned int k = 0; k < r; ++k)
+        rf[k] = held_modes[k] * f;
+      held_inverse.vmult(lambda, rf);
+      for (unsigned int k = 0; k < r; ++k)
+        f.add(-lambda[k], held_loads[k]);
+    }
+
+
+
+    template <int dim>
+    void
+    Body<dim>::fix_held_modes(Vector<double> &u) const
+    {
+      // u <- P u = u - R_h S^-T C_h^T u: the held modes' constraints met.
+      const unsigned int r = held_modes.size();
+      if (r == 0)
+        return;
+      Vector<double> cu(r), beta(r);
+      for (unsigned int k = 0; k < r; ++k)
+        cu[k] = held_loads[k] * u;
+      held_inverse.Tvmult(beta, cu);
+      for (unsigned int k = 0; k < r; ++k)
+        u.add(-beta[k], held_modes[k]);
+    }
+
+
+
+    template <int dim>
+    std::vector<double>
+    Body<dim>::held_moment(const Vector<double> &f) const
+    {
+      // lambda = -S^-1 R_h^T f on the loads c_h; their moment about the
+      // face's centroid.
+      const unsigned int  r = held_modes.size();
+      std::vector<double> moment(dim == 2 ? 1 : 3, 0.);
+      if (r == 0)
+        return moment;
+      Vector<double> rf(r), lambda(r);
+      for (unsigned int k = 0; k < r; ++k)
+        rf[k] = held_modes[k] * f;
+      held_inverse.vmult(lambda, rf);
+      for (unsigned int k = 0; k < r; ++k)
+        for (unsigned int b = 0; b < moment.size(); ++b)
+          moment[b] -= lambda[k] * held_moments[k][b];
+      return moment;
+    }
+
+
+
+    template <int dim>
+    void
+    Body<dim>::correct_for_held_modes(
+      const std::vector<PointOperator<dim>> &operators,
+      const std::vector<Tensor<1, dim>>     &directions,
+      FullMatrix<double>                    &F) const
+    {
+      const unsigned int r = held_modes.size();
+      const unsigned int n = operators.size();
+      if (r == 0 || n == 0)
+        return;
+      AssertDimension(held_response.size(), r);
+      Eigen::MatrixXd A(r, n), B(n, r), Gamma(r, r), S_inv(r, r);
+      for (unsigned int k = 0; k < r; ++k)
+        {
+          for (unsigned int j = 0; j < n; ++j)
+            {
+              A(k, j) =
+                directions[j] * operators[j].displacement(held_modes[k]);
+              B(j, k) =
+                directions[j] * operators[j].displacement(held_response[k]);
+            }
+          for (unsigned int l = 0; l < r; ++l)
+            {
+              Gamma(k, l) = held_loads[k] * held_response[l];
+              S_inv(k, l) = held_inverse(k, l);
+            }
+        }
+      const Eigen::MatrixXd M  = S_inv * A;
+      const Eigen::MatrixXd BM = B * M;
+      const Eigen::MatrixXd correction =
+        M.transpose() * Gamma * M - BM - BM.transpose();
+      for (unsigned int i = 0; i < n; ++i)
+        for (unsigned int j = 0; j < n; ++j)
+          F(i, j) += correction(i, j);
+    }
+
+
+
+    template <int dim>
+    const std::vector<std::string> &
+    Body<dim>::held_rigid_mode_names() const
+    {
+      return held_mode_names;
     }
 
 
@@ -880,6 +1180,25 @@ namespace igabde
     template <int dim>
     void
     Body<dim>::solve_in_group(
+      std::vector<Vector<double>> &rhs_and_solutions) const
+    {
+      if (held_modes.empty())
+        {
+          solve_pinned(rhs_and_solutions);
+          return;
+        }
+      for (auto &v : rhs_and_solutions)
+        balance_held_modes(v);
+      solve_pinned(rhs_and_solutions);
+      for (auto &v : rhs_and_solutions)
+        fix_held_modes(v);
+    }
+
+
+
+    template <int dim>
+    void
+    Body<dim>::solve_pinned(
       std::vector<Vector<double>> &rhs_and_solutions) const
     {
       // The factorisation is shared; the columns are independent and are

@@ -94,6 +94,7 @@ namespace igabde
           bc.history = parameters.load_path.history_index(support.history, 1);
           d.dirichlet.push_back(bc);
         }
+      d.hold_rotation_face = body.hold_rotation_face;
       for (const TractionParameters &traction : body.tractions)
         {
           discretization::NeumannCondition<dim> bc;

@@ -383,6 +383,18 @@ namespace igabde
           "0, 2/3 of direction 1, 4/5 of direction 2; a face the Geometry "
           "does not have is refused when the scene is read.");
         prm.declare_entry(
+          "Hold rotation",
+          "",
+          Patterns::Anything(),
+          "A patch face whose mean rotation is held at zero, as a "
+          "distributing coupling does: the body's rigid rotation (about z "
+          "in 2D, about every axis in 3D) is removed by one constraint per "
+          "axis, whose reaction is a pure moment spread over that face as "
+          "a linear traction, so the deformation is not constrained. For a "
+          "body held by forces and contact, e.g. a disc pressed and pushed "
+          "sideways through its flat face. Rotations the Supports already "
+          "hold are left to them. Empty: none.");
+        prm.declare_entry(
           "Tractions",
           "",
           Patterns::Anything(),
@@ -513,7 +525,7 @@ namespace igabde
                                      const unsigned int dimension,
                                      const std::string &context)
     {
-      std::string supports_text, tractions_text, point_loads_text,
+      std::string supports_text, tractions_text, point_loads_text, hold_text,
         body_force_text, lower_text, upper_text, centre_text, subdivisions_text,
         grading_text, point_text, normal_text;
       prm.enter_subsection(name);
@@ -548,6 +560,7 @@ namespace igabde
         youngs_modulus    = prm.get_double("Young's modulus");
         poisson_ratio     = prm.get_double("Poisson's ratio");
         supports_text     = prm.get("Supports");
+        hold_text         = prm.get("Hold rotation");
         tractions_text    = prm.get("Tractions");
         point_loads_text  = prm.get("Point loads");
         body_force_text   = prm.get("Body force");
@@ -788,6 +801,15 @@ namespace igabde
           traction.history = history;
           tractions.push_back(traction);
         }
+
+      // Hold rotation: one face.
+      hold_rotation_face = -1;
+      if (!base::trim(hold_text).empty())
+        hold_rotation_face = read_face(base::trim(hold_text),
+                                       faces,
+                                       geometry,
+                                       where + "Hold rotation",
+                                       hold_text);
 
       // Point loads: "x, y[, z] : fx, fy[, fz]".
       for (const std::string &entry : base::split(point_loads_text, ';'))
@@ -1470,6 +1492,26 @@ namespace igabde
                                  " solves the full system; set Contact/Path "
                                  "to 'full' or 'auto' (or use Algorithm = "
                                  "bde for the condensed path)."));
+      // A held rotation is a constraint the coupled system has no rows for.
+      for (const auto *body : {&body1, &body2})
+        if (contact.enabled && body->type == BodyType::deformable &&
+            body->hold_rotation_face >= 0)
+          {
+            const std::string name = (body == &body1 ? "Body 1" : "Body 2");
+            AssertThrow(contact.algorithm == contact::Algorithm::bde &&
+                          contact.path != contact::Path::full,
+                        base::ExcInput(
+                          f + name +
+                          "/Hold rotation is modelled on the condensed "
+                          "path only, but Contact/" +
+                          (contact.algorithm != contact::Algorithm::bde ?
+                             "Algorithm = " +
+                               contact::to_string(contact.algorithm) +
+                               " solves the full system" :
+                             std::string("Path = full")) +
+                          "; use Contact/Algorithm = bde with Path = "
+                          "condensed or auto."));
+          }
       // What the contact solver would refuse only when it is built.
       AssertThrow(contact.tolerance > 0.,
                   base::ExcInput(

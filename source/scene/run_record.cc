@@ -62,6 +62,8 @@ namespace igabde
                                    {"contact_force", b.contact_force}};
               if (b.support_reaction)
                 entry["support_reaction"] = *b.support_reaction;
+              if (b.held_moment)
+                entry["held_moment"] = *b.held_moment;
               per_body.push_back(entry);
             }
           j["bodies"] = per_body;

@@ -124,6 +124,17 @@ namespace igabde
           for (const auto &name : body->free_rigid_mode_names())
             pcout << "    free rigid mode left by the supports: " << name
                   << " (closed by the contact equilibrium)" << std::endl;
+          for (const auto &name : body->held_rigid_mode_names())
+            pcout << "    rigid mode held by Hold rotation (face "
+                  << body->description().hold_rotation_face << "): " << name
+                  << std::endl;
+          if (body->description().hold_rotation_face >= 0 &&
+              body->held_rigid_mode_names().empty())
+            pcout << "    Hold rotation (face "
+                  << body->description().hold_rotation_face
+                  << "): the supports hold every rotation already; nothing "
+                     "more is held"
+                  << std::endl;
         }
       check_probe_points<dim>(parameters, scene_file, bodies);
       run_summary.n_dofs      = static_cast<unsigned long long>(n_dofs);
@@ -141,7 +152,8 @@ namespace igabde
             {"n_dofs", static_cast<unsigned long long>(body->n_dofs())},
             {"n_elements", body->n_elements()},
             {"matrix_entries", body->n_matrix_entries()},
-            {"free_rigid_modes", body->free_rigid_mode_names()}});
+            {"free_rigid_modes", body->free_rigid_mode_names()},
+            {"held_rigid_modes", body->held_rigid_mode_names()}});
           per_body.push_back(entry);
           if (parameters.output.export_geometry && root)
             export_geometry(body->geometry_patch(),

@@ -108,7 +108,10 @@ namespace igabde
           record.bodies.push_back(
             {bodies[b]->name(),
              to_vector(contact_force),
-             to_vector(bodies[b]->support_reaction(u[b], applied))});
+             to_vector(bodies[b]->support_reaction(u[b], applied)),
+             std::nullopt});
+          if (!bodies[b]->held_rigid_mode_names().empty())
+            record.bodies.back().held_moment = bodies[b]->held_moment(applied);
         }
       if (stage != nullptr)
         {
@@ -122,7 +125,7 @@ namespace igabde
           log << std::endl;
           if (bodies.size() == 1)
             record.bodies.push_back(
-              {"obstacle", to_vector(-on_body1), std::nullopt});
+              {"obstacle", to_vector(-on_body1), std::nullopt, std::nullopt});
         }
     }
 

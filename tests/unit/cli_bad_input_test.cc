@@ -414,3 +414,19 @@ TEST(CliBadInput, ThirdBodySaysHowManyBodiesThereAre)
             std::string::npos)
     << result.output;
 }
+
+
+
+TEST(CliBadInput, HoldRotationOnAMissingFaceOrOnTheFullPath)
+{
+  expect_refused_at_parse_time("hold-face",
+                               "Body 1/Hold rotation=7",
+                               "Body 1/Hold rotation: face in '7' must be a "
+                               "patch face 0..3");
+  expect_refused_at_parse_time("hold-full",
+                               "Body 1/Hold rotation=3",
+                               "Body 1/Hold rotation is modelled on the "
+                               "condensed path only, but Contact/Path = full",
+                               "v3-contact-patch-2d.prm",
+                               "--set 'Contact/Path=full'");
+}

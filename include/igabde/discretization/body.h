@@ -462,6 +462,23 @@ namespace igabde
       free_rigid_mode_names() const;
 
       /**
+       * @brief Names of the rigid modes held by BodyDescription's
+       * hold_rotation_face (removed from free_rigid_modes(); empty when
+       * nothing is held or the supports hold those rotations already).
+       */
+      const std::vector<std::string> &
+      held_rigid_mode_names() const;
+
+      /**
+       * @brief The reaction of the held rotations to the loads @p f (all
+       * loads on the body, contact forces included): the moment (about z
+       * in 2D, x y z in 3D) that the hold applies, as a linear traction on
+       * its face, so that the body is balanced in the held modes.
+       */
+      std::vector<double>
+      held_moment(const Vector<double> &f) const;
+
+      /**
        * @brief Relative L2 and energy errors against @p exact.
        */
       virtual ErrorNorms
@@ -561,6 +578,50 @@ namespace igabde
       void
       find_free_rigid_modes();
 
+      /**
+       * @brief Holds the rotations BodyDescription::hold_rotation_face
+       * names: the free rigid modes R_h that the constraints C_h^T u = 0
+       * (the consistent loads of linear tractions t = e_a x (x - x_c) on
+       * the face, pure moments) fix are removed from the free modes; every
+       * solve becomes u = P K^+ P^T f with P = I - R_h S^-T C_h^T and
+       * S = R_h^T C_h, K^+ the pinned solve. P^T adds the moment reaction
+       * lambda C_h that balances the loads in the held modes; P adds the
+       * held rigid motion that meets the constraints.
+       */
+      void
+      hold_rotations();
+
+      /**
+       * @brief F <- (P^T C)^T K^+ (P^T C) from F = C^T K^+ C (the Schur
+       * complement's flexibility of the point forces C given by
+       * @p operators and @p directions): with A = R_h^T C, B = C^T K^+ C_h,
+       * M = S^-1 A and Gamma = C_h^T K^+ C_h,
+       * F - B M - M^T B^T + M^T Gamma M.
+       */
+      void
+      correct_for_held_modes(const std::vector<PointOperator<dim>> &operators,
+                             const std::vector<Tensor<1, dim>>     &directions,
+                             FullMatrix<double>                    &F) const;
+
+      /// f <- P^T f (see hold_rotations()).
+      void
+      balance_held_modes(Vector<double> &f) const;
+
+      /// u <- P u (see hold_rotations()).
+      void
+      fix_held_modes(Vector<double> &u) const;
+
+      /// Value of pure rigid mode @p mode (translations, then rotations
+      /// about the centroid of the unknowns, scaled) at unknown @p i.
+      double
+      rigid_mode_value(const unsigned int            mode,
+                       const types::global_dof_index i) const;
+
+      /// The rigid mode with @p coefficients on the pure modes (zero at
+      /// the supports) and its name.
+      std::pair<Vector<double>, std::string>
+      rigid_mode(const std::vector<double> &coefficients) const;
+
       void
       factorize_matrix(
         const std::vector<types::global_dof_index> &interface_dofs);
@@ -583,10 +644,28 @@ namespace igabde
       /// the layout's group; the root's vectors hold the solutions).
       void
       solve_in_group(std::vector<Vector<double>> &rhs_and_solutions) const;
+      /// solve_in_group() without the held modes' projections: K^+ with the
+      /// pins of every free rigid mode.
+      void
+      solve_pinned(std::vector<Vector<double>> &rhs_and_solutions) const;
       /// Solution of each load history at factor 1.
       std::vector<Vector<double>> u_history;
       std::vector<Vector<double>> rigid_modes;
       std::vector<std::string>    rigid_mode_names;
+      /// Coefficients of each free rigid mode on the pure modes.
+      std::vector<std::vector<double>> rigid_mode_coefficients;
+      /// Centre and size the rotation modes are taken about.
+      Point<dim> mode_centre;
+      double     mode_size = 1.;
+      /// Held rigid modes R_h, their constraint loads C_h, S^-1, the
+      /// pinned responses K^+ C_h (for the Schur-complement flexibility),
+      /// the modes' names and the moment (per axis) of each load in C_h.
+      std::vector<Vector<double>>      held_modes;
+      std::vector<Vector<double>>      held_loads;
+      FullMatrix<double>               held_inverse;
+      std::vector<Vector<double>>      held_response;
+      std::vector<std::string>         held_mode_names;
+      std::vector<std::vector<double>> held_moments;
     };
 
     /**

@@ -93,6 +93,9 @@ namespace igabde
       elasticity::IsotropicMaterial<dim> material;
       /// Supports.
       std::vector<DirichletCondition<dim>> dirichlet;
+      /// The patch face whose mean rotation is held at zero (a
+      /// distributing coupling's rotation constraint; -1: none).
+      int hold_rotation_face = -1;
       /// Tractions.
       std::vector<NeumannCondition<dim>> tractions;
       /// Point loads.

@@ -239,6 +239,8 @@ namespace igabde
       double poisson_ratio = 0.3;
       /// Supports, read from "face: x y=0.1; face: z".
       std::vector<SupportParameters> supports;
+      /// Hold rotation: the face whose mean rotation is held (-1: none).
+      int hold_rotation_face = -1;
       /// Tractions, read from "face: pressure p; face: vector tx, ty;
       /// face: exact".
       std::vector<TractionParameters> tractions;

@@ -26,6 +26,9 @@ namespace igabde
       std::vector<double> contact_force;
       /// Resultant of the support reactions (none for the obstacle).
       std::optional<std::vector<double>> support_reaction;
+      /// Moment of the held rotations' reaction (Hold rotation; z in 2D,
+      /// x y z in 3D), about the held face's centroid.
+      std::optional<std::vector<double>> held_moment;
     };
 
     /**
