@@ -316,6 +316,10 @@ namespace igabde
           const Tensor<1, dim> du = pair_list[i].op1.displacement(u[0]) -
                                     pair_list[i].op2.displacement(u[1]);
           const Tensor<1, dim> &n = pair_list[i].frame[0];
+          // A pair open by more than its spacing cannot touch in this
+          // configuration: where it now faces does not matter yet.
+          if (pair_list[i].gap + du * n > pair_spacing[i])
+            continue;
           const double ratio = (du - (du * n) * n).norm() / pair_spacing[i];
           if (ratio > result.first)
             result = {ratio, pair_list[i].x1};

@@ -273,6 +273,8 @@ namespace igabde
        * point on Body 1 to the nearest other pair's), and that pair's
        * point: past 1, pairs formed once in the reference configuration no
        * longer face each other (the small-sliding model's range check).
+       * Pairs whose current gap exceeds their spacing are left out: they
+       * cannot touch in this configuration.
        * None against a rigid plane, whose gap and normal stay exact
        * whatever the slide.
        */
