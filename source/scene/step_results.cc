@@ -1,5 +1,7 @@
 #include <igabde/base/utilities.h>
 
+#include <igabde/nurbs/nurbs_patch.h>
+
 #include <igabde/elasticity/stress_measures.h>
 
 #include <igabde/postprocess/contact_checks.h>
@@ -144,6 +146,42 @@ namespace igabde
           if (bodies[k]->contains(x))
             return k;
         return bodies.size();
+      }
+
+
+
+      /**
+       * The depth of the elements next to the patch face @p face (their
+       * size along the face's outward normal) where the most heavily
+       * loaded pair of @p pairs sits: the span of the face's normal
+       * parametric direction next to the face, mapped by the Jacobian there.
+       */
+      template <int dim>
+      double
+      element_depth_under_contact(
+        const nurbs::NurbsPatch<dim>               &patch,
+        const unsigned int                          face,
+        const std::vector<contact::PairState<dim>> &pairs)
+      {
+        const contact::PairState<dim> *centre = nullptr;
+        for (const auto &pair : pairs)
+          if (pair.area > 0. &&
+              (centre == nullptr || pair.pressure() > centre->pressure()))
+            centre = &pair;
+        if (centre == nullptr || !(centre->pressure() > 0.))
+          return 0.;
+        const Point<dim> xi =
+          patch.closest_point_on_face(face, centre->location);
+        const unsigned int         d      = face / 2;
+        const std::vector<double> &breaks = patch.breakpoints(d);
+        const double               h =
+          (face % 2 == 0 ? breaks[1] - breaks[0] :
+                           breaks.back() - breaks[breaks.size() - 2]);
+        const Tensor<2, dim> J = patch.jacobian(xi);
+        Tensor<1, dim>       dx;
+        for (unsigned int i = 0; i < dim; ++i)
+          dx[i] = J[i][d] * h;
+        return std::abs(dx * patch.outward_normal(face, xi));
       }
     } // namespace
 
@@ -356,6 +394,10 @@ namespace igabde
                   hertz.axis_direction = base::parse_tensor<dim>(
                     parameters.checks.hertz_axis_direction,
                     scene_file + ": Checks/Hertz axis direction");
+                  hertz.element_depth =
+                    element_depth_under_contact(bodies[0]->geometry_patch(),
+                                                parameters.contact.slave_face,
+                                                *pairs);
                   const auto r                     = hertz.evaluate(*pairs);
                   checks["hertz_half_width"]       = r.half_width;
                   checks["hertz_half_width_exact"] = r.half_width_exact;
@@ -378,10 +420,10 @@ namespace igabde
                         << "), profile L2 error " << std::setprecision(3)
                         << r.profile_l2_error << std::setprecision(6)
                         << std::endl;
-                  if (!r.warning.empty())
+                  for (const std::string &w : r.warnings)
                     {
-                      pcout << "  warning: " << r.warning << std::endl;
-                      warnings.push_back(r.warning);
+                      pcout << "  warning: " << w << std::endl;
+                      warnings.push_back(w);
                     }
                 }
             }

@@ -635,3 +635,35 @@ TEST(HardCase, BeamScenesThroughTheHardList)
   EXPECT_GT(step.at("n_open").get<int>(), 0);
   EXPECT_GT(step.at("n_stick").get<int>() + step.at("n_slip").get<int>(), 0);
 }
+
+
+
+TEST(HardCase, ContactOnElementsDeeperThanItsZoneWarns)
+{
+  // V5 with 2 spans across the radius instead of 16: the elements under
+  // the contact are 3.7 deep, 5 times Johnson's half-width 0.746, and the
+  // peak pressure comes out several per cent off Johnson (the finite
+  // disc's own distance from Johnson is about 1 %); the run converges and
+  // says that the depth is under-resolved. V5 as given (elements 0.46
+  // deep) does not.
+  const auto warnings = [](const SceneRun &run) {
+    expect_converged(run);
+    return run.summary.contains("warnings") ?
+             run.summary.at("warnings").dump() :
+             std::string();
+  };
+  const SceneRun shallow =
+    run_scene("deep", "v5-hertz-2d.prm", "--set 'Body 1/Subdivisions=64, 2'");
+  EXPECT_NE(warnings(shallow).find("elements under the contact are"),
+            std::string::npos)
+    << shallow.output;
+  const json &checks = shallow.summary.at("checks");
+  EXPECT_GT(std::abs(checks.at("hertz_peak_pressure").get<double>() /
+                       checks.at("hertz_peak_pressure_exact").get<double>() -
+                     1.),
+            0.03);
+  const SceneRun given = run_scene("deep-given", "v5-hertz-2d.prm", "");
+  EXPECT_EQ(warnings(given).find("elements under the contact are"),
+            std::string::npos)
+    << given.output;
+}

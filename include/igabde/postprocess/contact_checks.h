@@ -51,6 +51,9 @@ namespace igabde
       double       effective_modulus = 0.;
       Point<2>     axis_point;
       Tensor<1, 2> axis_direction;
+      /// Depth of Body 1's elements under the contact's centre (their size
+      /// normal to the contact face); 0: not checked.
+      double element_depth = 0.;
 
       struct Result
       {
@@ -86,9 +89,10 @@ namespace igabde
         /// half-width estimate is kept in, hence the resolution of
         /// half_width.
         double edge_pair_spacing = 0.;
-        /// Empty, or why the figures above do not measure the method (the
-        /// contact zone is not resolved by the pairs).
-        std::string warning;
+        /// Why the figures above do not measure the method, if they do not:
+        /// the contact zone is not resolved by the pairs, or by the
+        /// elements under it (element_depth > 2 a).
+        std::vector<std::string> warnings;
       };
 
       Result
