@@ -42,6 +42,22 @@ for mesh, ratio, faces in [("32, 8", 4, "02"), ("32, 8", 8, "02"),
                  2, mesh, "; ".join("%s: %d" % (f, ratio) for f in faces)))
 
 
+# Every band grading tried ('band 0: from, to, ratio' along the arc, the
+# contact zone's edge near 0.25 of it; 16 toward face 2 in depth).
+for mesh, band in [("24, 8", "0, 0.16, 8"), ("24, 8", "0, 0.16, 16"),
+                   ("24, 8", "0.08, 0.16, 16"), ("20, 8", "0, 0.16, 16"),
+                   ("28, 8", "0, 0.16, 16"), ("32, 8", "0, 0.16, 16"),
+                   ("24, 8", "0, 0.2, 16"), ("24, 8", "0, 0.13, 16"),
+                   ("24, 8", "0, 0.3, 4"), ("24, 8", "0, 0.3, 8"),
+                   ("24, 8", "0.2, 0.3, 8"), ("24, 8", "0.2, 0.3, 16"),
+                   ("20, 8", "0, 0.3, 8"), ("28, 8", "0, 0.3, 8"),
+                   ("32, 8", "0, 0.3, 8"), ("40, 8", "0, 0.3, 8"),
+                   ("32, 8", "0.2, 0.3, 8"), ("40, 8", "0.2, 0.3, 8")]:
+    RUNS.append(("NURBS p=2 %s band 0: %s; 2: 16"
+                 % (mesh.replace(", ", "x"), band),
+                 2, mesh, "band 0: %s; 2: 16" % band))
+
+
 def run(igabde, out, label, degree, mesh, grading, lagrange=False):
     folder = os.path.join(out, label.replace(" ", "_").replace("=", ""))
     subprocess.run([igabde, SCENE, "--quiet",

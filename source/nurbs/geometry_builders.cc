@@ -353,13 +353,76 @@ namespace igabde
 
 
 
+    std::vector<double>
+    band_graded_fractions(const unsigned int n,
+                          const double       from,
+                          const double       to,
+                          const double       ratio)
+    {
+      AssertThrow(0. <= from && from < to && to <= 1. && ratio >= 1. && n >= 1,
+                  ExcMessage("band_graded_fractions: needs 0 <= from < to "
+                             "<= 1, ratio >= 1 and n >= 1."));
+      // Part size h(s) = min(ratio h, h + growth dist(s)) on a fine grid;
+      // the number of parts int_0^1 ds / h(s) falls as h grows, so h is
+      // found by bisection, then the knots invert the cumulative count.
+      // A part of size D centred where h = h_c holds D = h_c (the count
+      // over it is 1), so neighbours satisfy D' = D + growth (D + D') / 2:
+      // growth 2/9 makes D' / D = (1 + 1/9) / (1 - 1/9) = 1.25.
+      const double       growth = 2. / 9.;
+      const unsigned int m      = 20000;
+      const auto count = [&](const double h, std::vector<double> *cumulative) {
+        double sum = 0.;
+        if (cumulative != nullptr)
+          cumulative->assign(1, 0.);
+        double previous = 0.;
+        for (unsigned int k = 0; k <= m; ++k)
+          {
+            const double s    = double(k) / m;
+            const double dist = std::max({0., from - s, s - to});
+            const double rho  = 1. / std::min(ratio * h, h + growth * dist);
+            if (k > 0)
+              {
+                sum += 0.5 * (rho + previous) / m;
+                if (cumulative != nullptr)
+                  cumulative->push_back(sum);
+              }
+            previous = rho;
+          }
+        return sum;
+      };
+      double low = 1e-12, high = 1.;
+      for (unsigned int it = 0; it < 60; ++it)
+        {
+          const double mid                       = std::sqrt(low * high);
+          (count(mid, nullptr) > n ? low : high) = mid;
+        }
+      std::vector<double> cumulative;
+      const double        total = count(high, &cumulative);
+      std::vector<double> fractions;
+      unsigned int        k = 0;
+      for (unsigned int j = 1; j < n; ++j)
+        {
+          const double target = total * j / n;
+          while (k + 1 < cumulative.size() && cumulative[k + 1] < target)
+            ++k;
+          const double t =
+            (target - cumulative[k]) / (cumulative[k + 1] - cumulative[k]);
+          fractions.push_back((k + t) / m);
+        }
+      return fractions;
+    }
+
+
+
     template <int dim>
     void
     subdivide(
       NurbsPatch<dim>                                               &patch,
       const std::array<unsigned int, static_cast<std::size_t>(dim)> &n_spans,
       const std::array<double, static_cast<std::size_t>(dim)>       &grading,
-      const std::array<bool, static_cast<std::size_t>(dim)> &toward_high)
+      const std::array<bool, static_cast<std::size_t>(dim)> &toward_high,
+      const std::array<std::array<double, 2>, static_cast<std::size_t>(dim)>
+        &bands)
     {
       for (unsigned int d = 0; d < dim; ++d)
         {
@@ -369,7 +432,22 @@ namespace igabde
           const std::vector<double> b = patch.breakpoints(d);
           std::vector<double>       new_knots;
           const unsigned int        n = n_spans[d] * (b.size() - 1);
-          if (grading[d] > 1. && n > 1)
+          if (grading[d] > 1. && n > 1 && bands[d][0] < bands[d][1])
+            {
+              const double lo = b.front(), length = b.back() - b.front();
+              for (const double f : band_graded_fractions(n,
+                                                          bands[d][0],
+                                                          bands[d][1],
+                                                          grading[d]))
+                {
+                  const double knot = lo + f * length;
+                  if (std::none_of(b.begin(), b.end(), [&](const double x) {
+                        return std::abs(x - knot) <= 1e-12 * length;
+                      }))
+                    new_knots.push_back(knot);
+                }
+            }
+          else if (grading[d] > 1. && n > 1)
             {
               const double q  = std::pow(grading[d], 1. / (n - 1.));
               const double lo = b.front(), length = b.back() - b.front();
@@ -413,11 +491,13 @@ namespace igabde
     subdivide<2>(NurbsPatch<2> &,
                  const std::array<unsigned int, 2> &,
                  const std::array<double, 2> &,
-                 const std::array<bool, 2> &);
+                 const std::array<bool, 2> &,
+                 const std::array<std::array<double, 2>, 2> &);
     template void
     subdivide<3>(NurbsPatch<3> &,
                  const std::array<unsigned int, 3> &,
                  const std::array<double, 3> &,
-                 const std::array<bool, 3> &);
+                 const std::array<bool, 3> &,
+                 const std::array<std::array<double, 2>, 3> &);
   } // namespace nurbs
 } // namespace igabde

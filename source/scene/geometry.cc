@@ -232,14 +232,18 @@ namespace igabde
         *subdivisions = n_spans;
       else
         {
-          std::array<double, dim> grading;
-          std::array<bool, dim>   toward_high;
+          std::array<double, dim>                grading;
+          std::array<bool, dim>                  toward_high;
+          std::array<std::array<double, 2>, dim> bands;
           for (unsigned int d = 0; d < dim; ++d)
             {
               grading[d]     = body.grading[d];
               toward_high[d] = body.grading_toward_high[d];
+              bands[d]       = d < body.grading_band.size() ?
+                                 body.grading_band[d] :
+                                 std::array<double, 2>{{0., 0.}};
             }
-          nurbs::subdivide(patch, n_spans, grading, toward_high);
+          nurbs::subdivide(patch, n_spans, grading, toward_high, bands);
         }
       return patch;
     }

@@ -357,8 +357,13 @@ namespace igabde
           "Spans graded toward faces: 'face: ratio; ...', the spans of the "
           "face's parametric direction growing geometrically away from it, "
           "the largest 'ratio' times the smallest (e.g. '0: 8; 2: 8' refines "
-          "the Hertz quarter disc toward its contact point). At most one face "
-          "per direction; empty: uniform spans.");
+          "the Hertz quarter disc toward its contact point), or toward a band "
+          "inside a direction: 'band d: from, to, ratio', the spans of "
+          "parametric direction d smallest over the fractions [from, to] of "
+          "it and growing by 1.25 per span away from the band up to 'ratio' "
+          "times (e.g. 'band 0: 0.45, 0.55, 8' around the middle of the half "
+          "disc's bottom arc). At most one grading per direction; empty: "
+          "uniform spans.");
         prm.declare_entry("Young's modulus",
                           "1000",
                           Patterns::Double(0.),
@@ -622,8 +627,42 @@ namespace igabde
         }
       grading.assign(dimension, 1.);
       grading_toward_high.assign(dimension, false);
+      grading_band.assign(dimension, {{0., 0.}});
       for (const std::string &item : base::split(grading_text, ';'))
         {
+          if (item.rfind("band", 0) == 0)
+            {
+              // 'band d: from, to, ratio'.
+              const auto [key, value] =
+                base::split_entry(item,
+                                  where + "Grading",
+                                  "'band d: from, to, ratio'");
+              const std::vector<double> d =
+                base::parse_doubles(key.substr(4), where + "Grading");
+              const std::vector<double> v =
+                base::parse_doubles(value, where + "Grading");
+              AssertThrow(d.size() == 1 && d[0] >= 0 && d[0] < dimension &&
+                            d[0] == std::floor(d[0]) && v.size() == 3 &&
+                            0. <= v[0] && v[0] < v[1] && v[1] <= 1. &&
+                            v[2] >= 1. && v[2] <= 1e6,
+                          base::ExcInput(
+                            where + "Grading: '" + item +
+                            "': a band is 'band d: from, to, ratio' with a "
+                            "parametric direction d from 0 to " +
+                            std::to_string(dimension - 1) +
+                            ", 0 <= from < to <= 1 (fractions of the "
+                            "direction) and a ratio of the largest span to "
+                            "the smallest in [1, 1e6]."));
+              const unsigned int dir = static_cast<unsigned int>(d[0]);
+              AssertThrow(grading[dir] == 1.,
+                          base::ExcInput(where + "Grading: '" + item +
+                                         "': direction " + std::to_string(dir) +
+                                         " is graded twice; give one grading "
+                                         "per direction."));
+              grading[dir]      = v[2];
+              grading_band[dir] = {{v[0], v[1]}};
+              continue;
+            }
           const auto [face_text, ratio_text] =
             base::split_entry(item, where + "Grading", "'face: ratio'");
           const unsigned int face =

@@ -430,3 +430,13 @@ TEST(CliBadInput, HoldRotationOnAMissingFaceOrOnTheFullPath)
                                "v3-contact-patch-2d.prm",
                                "--set 'Contact/Path=full'");
 }
+
+
+
+TEST(CliBadInput, GradingBandOutsideItsDirection)
+{
+  expect_refused_at_parse_time("band",
+                               "Body 1/Grading=band 0: 0.6, 0.4, 8",
+                               "Body 1/Grading: 'band 0: 0.6, 0.4, 8': a band "
+                               "is 'band d: from, to, ratio'");
+}

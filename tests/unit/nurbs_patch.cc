@@ -187,6 +187,64 @@ TEST(NurbsPatch, GradedSubdivisionIsGeometricAndKeepsTheMap)
 
 
 
+TEST(NurbsPatch, BandGradedSubdivisionRefinesTheBandAndKeepsTheMap)
+{
+  // 40 parts toward the band [0.45, 0.55] with ratio 8: parts of one size
+  // h inside the band, growing by the factor 1.25 per part away from it
+  // (the size law h + (2/9) dist: a part D centred at distance t has
+  // D = h + (2/9) t, its neighbour D' = D + (2/9)(D + D') / 2, so
+  // D' / D = (1 + 1/9) / (1 - 1/9) = 1.25 exactly), capped at 8 h. The
+  // density integral is evaluated on a grid of 1/20000 (trapezoids on a
+  // smooth density), well under 1e-3 of the smallest part (about 0.01);
+  // the ratios of neighbours within 1e-2. The part that straddles the cap
+  // or the band's edge grows less.
+  const std::vector<double> f = band_graded_fractions(40, 0.45, 0.55, 8.);
+  ASSERT_EQ(f.size(), 39u);
+  std::vector<double> parts;
+  double              previous = 0.;
+  for (const double x : f)
+    {
+      parts.push_back(x - previous);
+      previous = x;
+    }
+  parts.push_back(1. - previous);
+  const double smallest = *std::min_element(parts.begin(), parts.end());
+  const double largest  = *std::max_element(parts.begin(), parts.end());
+  EXPECT_NEAR(largest / smallest, 8., 0.01 * 8.);
+  double start = 0.;
+  for (unsigned int k = 0; k < parts.size(); ++k)
+    {
+      const double end = start + parts[k];
+      if (start >= 0.45 && end <= 0.55)
+        EXPECT_NEAR(parts[k], smallest, 1e-3 * smallest);
+      if (k + 1 < parts.size())
+        {
+          const double ratio = parts[k + 1] / parts[k];
+          EXPECT_LE(std::max(ratio, 1. / ratio), 1.25 + 1e-2);
+        }
+      start = end;
+    }
+  // Symmetric band, symmetric parts.
+  for (unsigned int k = 0; k < parts.size(); ++k)
+    EXPECT_NEAR(parts[k], parts[parts.size() - 1 - k], 1e-3 * smallest);
+
+  // On the half disc along its arc: the map stays, the band's spans are
+  // the smallest.
+  NurbsPatch<2> disc = make_half_disc(Point<2>(0., 8.), 8.);
+  elevate_to_degree(disc, 2);
+  NurbsPatch<2> graded = disc;
+  subdivide(graded,
+            {{40, 4}},
+            {{8., 1.}},
+            {{false, false}},
+            {{{{0.45, 0.55}}, {{0., 0.}}}});
+  expect_same_map(disc, graded, 1e-12);
+  const std::vector<double> b = graded.breakpoints(0);
+  EXPECT_EQ(b.size(), 41u);
+}
+
+
+
 TEST(NurbsBuilders, CirclesAreExact)
 {
   std::mt19937                           rng(5);

@@ -201,14 +201,36 @@ namespace igabde
      * parts lie at (q^j - 1) / (q^N - 1) of the direction, q = r^(1/(N-1)).
      * The base breakpoints stay; a graded knot that falls on one is not
      * inserted again.
+     *
+     * With a band, @p bands[d] = {from, to} with 0 <= from < to <= 1, the
+     * parts of direction d are smallest, of one size h, over that band
+     * (fractions of the direction) and grow by a factor 1.25 per part away
+     * from it up to r h (r = @p grading[d] > 1): the part size is
+     * h(s) = min(r h, h + (2/9) dist(s, band)) (neighbouring parts then
+     * differ by (1 + 1/9)/(1 - 1/9) = 1.25), h chosen so that the N parts
+     * fill the direction, the knots where the integral of 1/h(s) from the
+     * low end reaches 1, 2, ..., N - 1.
      */
     template <int dim>
     void
     subdivide(
       NurbsPatch<dim>                                               &patch,
       const std::array<unsigned int, static_cast<std::size_t>(dim)> &n_spans,
-      const std::array<double, static_cast<std::size_t>(dim)> &grading   = {},
-      const std::array<bool, static_cast<std::size_t>(dim)> &toward_high = {});
+      const std::array<double, static_cast<std::size_t>(dim)> &grading     = {},
+      const std::array<bool, static_cast<std::size_t>(dim)>   &toward_high = {},
+      const std::array<std::array<double, 2>, static_cast<std::size_t>(dim)>
+        &bands = {});
+
+    /**
+     * @brief The interior knots (fractions of a direction, increasing) of
+     * @p n parts graded toward the band [@p from, @p to] with size ratio
+     * @p ratio, as subdivide() places them.
+     */
+    std::vector<double>
+    band_graded_fractions(const unsigned int n,
+                          const double       from,
+                          const double       to,
+                          const double       ratio);
   } // namespace nurbs
 } // namespace igabde
 

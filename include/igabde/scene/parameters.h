@@ -233,6 +233,12 @@ namespace igabde
       /// at its high end. Read from "face: ratio; ...".
       std::vector<double> grading             = {1., 1., 1.};
       std::vector<bool>   grading_toward_high = {false, false, false};
+      /// Per direction: a band {from, to} (fractions of the direction) the
+      /// spans are graded toward instead of a face ('band d: from, to,
+      /// ratio'); from = to: none.
+      std::vector<std::array<double, 2>> grading_band = {{{0., 0.}},
+                                                         {{0., 0.}},
+                                                         {{0., 0.}}};
       /// Young's modulus (Pa).
       double youngs_modulus = 1000.;
       /// Poisson's ratio (-).
