@@ -103,17 +103,26 @@ namespace igabde
        */
       template <int dim>
       std::pair<typename DoFHandler<dim>::active_cell_iterator, Point<dim>>
-      locate(const Mapping<dim>    &mapping,
-             const DoFHandler<dim> &dof_handler,
-             const Point<dim>      &location)
+      locate(const GridTools::Cache<dim> &cache,
+             const DoFHandler<dim>       &dof_handler,
+             const Point<dim>            &location)
       {
-        const auto cell_and_point =
-          GridTools::find_active_cell_around_point(mapping,
-                                                   dof_handler,
-                                                   location);
-        AssertThrow(cell_and_point.first.state() == IteratorState::valid,
+        // The cache's vertex tree finds the candidate cells in log time
+        // (the search over every cell took 45 ms per point on V6's block,
+        // 5.5 s for its recovered pressures).
+        const auto found = GridTools::find_active_cell_around_point(cache,
+                                                                    location,
+                                                                    {},
+                                                                    {},
+                                                                    1e-3);
+        AssertThrow(found.first.state() == IteratorState::valid,
                     ExcMessage("The point lies outside the body."));
-        return cell_and_point;
+        return {typename DoFHandler<dim>::active_cell_iterator(
+                  &dof_handler.get_triangulation(),
+                  found.first->level(),
+                  found.first->index(),
+                  &dof_handler),
+                found.second};
       }
 
       /**
@@ -522,10 +531,25 @@ namespace igabde
 
 
     template <int dim>
+    const GridTools::Cache<dim> &
+    LagrangeBody<dim>::point_cache() const
+    {
+      // Built once, on first use; its own data structures fill lazily, so
+      // every search holds the lock (point searches run from threads).
+      std::lock_guard<std::mutex> lock(cache_mutex);
+      if (!cache)
+        cache =
+          std::make_unique<GridTools::Cache<dim>>(triangulation, *mapping);
+      return *cache;
+    }
+
+
+
+    template <int dim>
     PointOperator<dim>
     LagrangeBody<dim>::point_operator(const Point<dim> &location) const
     {
-      const auto  cell_and_point = locate(*mapping, dof_handler, location);
+      const auto  cell_and_point = locate(point_cache(), dof_handler, location);
       const auto &cell           = cell_and_point.first;
       Point<dim>  unit           = cell_and_point.second;
       for (unsigned int d = 0; d < dim; ++d)
@@ -738,18 +762,32 @@ namespace igabde
     LagrangeBody<dim>::stress(const Vector<double> &u,
                               const Point<dim>     &location) const
     {
-      const auto cell_and_point = locate(*mapping, dof_handler, location);
-      const Quadrature<dim> quadrature(
-        std::vector<Point<dim>>(1, cell_and_point.second));
-      elasticity::FEValuesEvaluator<dim> values(*mapping,
-                                                fe,
-                                                quadrature,
-                                                update_gradients);
-      values.reinit(cell_and_point.first);
-      std::vector<double> local_u;
-      elasticity::get_local_values(values, u, local_u);
-      return elasticity::stress(elasticity::strain<dim>(values, local_u, 0),
-                                this->material());
+      // The FE_Q stress jumps across cells: at a point on a face, edge or
+      // vertex it is the mean over the cells that hold the point, so that
+      // the value does not depend on which of them a search meets first.
+      const auto first = locate(point_cache(), dof_handler, location);
+      const auto cells =
+        GridTools::find_all_active_cells_around_point(*mapping,
+                                                      dof_handler,
+                                                      location,
+                                                      1e-8,
+                                                      first);
+      SymmetricTensor<2, dim> sum;
+      for (const auto &[cell, unit] : cells)
+        {
+          const Quadrature<dim> quadrature(std::vector<Point<dim>>(1, unit));
+          elasticity::FEValuesEvaluator<dim> values(*mapping,
+                                                    fe,
+                                                    quadrature,
+                                                    update_gradients);
+          values.reinit(cell);
+          std::vector<double> local_u;
+          elasticity::get_local_values(values, u, local_u);
+          sum += elasticity::stress(elasticity::strain<dim>(values, local_u, 0),
+                                    this->material());
+        }
+      AssertThrow(!cells.empty(), ExcInternalError());
+      return sum / static_cast<double>(cells.size());
     }
 
 

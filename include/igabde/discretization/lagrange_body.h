@@ -6,6 +6,7 @@
 #include <igabde/discretization/body.h>
 #include <igabde/discretization/body_description.h>
 
+#include <deal.II/grid/grid_tools_cache.h>
 #include <deal.II/grid/tria.h>
 
 #include <deal.II/dofs/dof_handler.h>
@@ -16,6 +17,7 @@
 #include <array>
 #include <map>
 #include <memory>
+#include <mutex>
 #include <utility>
 #include <vector>
 
@@ -117,6 +119,14 @@ namespace igabde
       /// Physical position of every support point (the MappingFEField data).
       Vector<double>                            euler_vector;
       std::unique_ptr<MappingFEField<dim, dim>> mapping;
+      /// Point location (GridTools::Cache on the mapping), built on first
+      /// use by point_cache().
+      mutable std::unique_ptr<GridTools::Cache<dim>> cache;
+      mutable std::mutex                             cache_mutex;
+
+      /// The point-location cache.
+      const GridTools::Cache<dim> &
+      point_cache() const;
       /// Whether the mesh runs the patch's last parametric direction
       /// backwards (a left-handed patch).
       bool reflect = false;
