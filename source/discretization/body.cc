@@ -225,8 +225,14 @@ namespace igabde
               interface_dofs.push_back(i);
         }
       factorize_matrix(interface_dofs);
-      held_response = held_loads;
-      solve_pinned(held_response);
+      // The pinned responses K^+ C_h serve the Schur-complement
+      // flexibility's correction only (correct_for_held_modes()).
+      held_response.clear();
+      if (has_schur_complement() && !held_loads.empty())
+        {
+          held_response = held_loads;
+          solve_pinned(held_response);
+        }
 
       // Superposition: one load case per load history (history 0 the
       // external loads of the load factors, 1 the prescribed displacements
@@ -976,18 +982,29 @@ namespace igabde
 
 
     template <int dim>
+    Vector<double>
+    Body<dim>::held_multipliers(const Vector<double> &f) const
+    {
+      // S^-1 R_h^T f: the amounts of the loads C_h that the held modes'
+      // reaction removes from f.
+      const unsigned int r = held_modes.size();
+      Vector<double>     rf(r), lambda(r);
+      for (unsigned int k = 0; k < r; ++k)
+        rf[k] = held_modes[k] * f;
+      if (r > 0)
+        held_inverse.vmult(lambda, rf);
+      return lambda;
+    }
+
+
+
+    template <int dim>
     void
     Body<dim>::balance_held_modes(Vector<double> &f) const
     {
       // f <- P^T f = f - C_h S^-1 R_h^T f: the held modes' reactions added.
-      const unsigned int r = held_modes.size();
-      if (r == 0)
-        return;
-      Vector<double> rf(r), lambda(r);
-      for (unsigned int k = 0; k < r; ++k)
-        rf[k] = held_modes[k] * f;
-      held_inverse.vmult(lambda, rf);
-      for (unsigned int k = 0; k < r; ++k)
+      const Vector<double> lambda = held_multipliers(f);
+      for (unsigned int k = 0; k < lambda.size(); ++k)
         f.add(-lambda[k], held_loads[k]);
     }
 
@@ -1015,17 +1032,10 @@ namespace igabde
     std::vector<double>
     Body<dim>::held_moment(const Vector<double> &f) const
     {
-      // lambda = -S^-1 R_h^T f on the loads c_h; their moment about the
-      // face's centroid.
-      const unsigned int  r = held_modes.size();
-      std::vector<double> moment(dim == 2 ? 1 : 3, 0.);
-      if (r == 0)
-        return moment;
-      Vector<double> rf(r), lambda(r);
-      for (unsigned int k = 0; k < r; ++k)
-        rf[k] = held_modes[k] * f;
-      held_inverse.vmult(lambda, rf);
-      for (unsigned int k = 0; k < r; ++k)
+      // The reaction -lambda C_h; its moment about the face's centroid.
+      const Vector<double> lambda = held_multipliers(f);
+      std::vector<double>  moment(dim == 2 ? 1 : 3, 0.);
+      for (unsigned int k = 0; k < lambda.size(); ++k)
         for (unsigned int b = 0; b < moment.size(); ++b)
           moment[b] -= lambda[k] * held_moments[k][b];
       return moment;

@@ -213,7 +213,8 @@ namespace igabde
         {
           std::ostringstream w;
           w << "Hertz check: Body 1's elements under the contact are "
-            << element_depth << " deep, more than the contact half-width " << a
+            << element_depth << " deep, more than twice the contact half-width "
+            << a
             << " (Johnson): the stress under the contact changes within one "
                "element across the depth, so the pressure comes out "
                "flattened. Grade Body 1's spans toward the contact face "

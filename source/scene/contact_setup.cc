@@ -1,14 +1,14 @@
 #include <igabde/scene/contact_setup.h>
-#include <igabde/scene/size_estimate.h>
 
 namespace igabde
 {
   namespace scene
   {
     contact::ContactSettings
-    make_contact_settings(const AllParameters &parameters,
-                          const std::string   &scene_file,
-                          std::ostream        &log)
+    make_contact_settings(const AllParameters       &parameters,
+                          const std::string         &scene_file,
+                          const std::vector<double> &factor_entries,
+                          std::ostream              &log)
     {
       contact::ContactSettings cs;
       const auto              &c = parameters.contact;
@@ -32,9 +32,8 @@ namespace igabde
       cs.context                          = scene_file;
       cs.progress                         = parameters.output.progress;
       cs.log_solves                       = parameters.output.solver_details;
-      for (const auto &b : estimate_size(parameters, scene_file).bodies)
-        cs.factor_entries.push_back(b.factor_entries);
-      cs.n_load_steps = parameters.load_path.steps().size();
+      cs.factor_entries                   = factor_entries;
+      cs.n_load_steps                     = parameters.load_path.steps().size();
       return cs;
     }
 

@@ -77,20 +77,13 @@ namespace igabde
 
       // Under MPI each body is assembled and factorised by its own group of
       // ranks (the groups at the same time); the others receive its loads.
-      {
-        std::vector<double> factor_entries;
-        if (bodies.size() == 2 &&
-            Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1)
-          for (const auto &body : estimate_size(parameters, scene_file).bodies)
-            factor_entries.push_back(body.factor_entries);
-        factorised_here = split_ranks_among_bodies<dim>(
-          bodies,
-          factor_entries,
-          parameters.discretization.linear_solver ==
-            discretization::LinearSolver::direct,
-          body_groups,
-          pcout);
-      }
+      factorised_here =
+        split_ranks_among_bodies<dim>(bodies,
+                                      estimated_factor_entries,
+                                      parameters.discretization.linear_solver ==
+                                        discretization::LinearSolver::direct,
+                                      body_groups,
+                                      pcout);
       std::vector<double> seconds(bodies.size(), 0.);
       for (unsigned int b = 0; b < bodies.size(); ++b)
         {
@@ -124,16 +117,14 @@ namespace igabde
           for (const auto &name : body->free_rigid_mode_names())
             pcout << "    free rigid mode left by the supports: " << name
                   << " (closed by the contact equilibrium)" << std::endl;
+          std::string held;
           for (const auto &name : body->held_rigid_mode_names())
-            pcout << "    rigid mode held by Hold rotation (face "
-                  << body->description().hold_rotation_face << "): " << name
-                  << std::endl;
-          if (body->description().hold_rotation_face >= 0 &&
-              body->held_rigid_mode_names().empty())
+            held += (held.empty() ? "" : ", ") + name;
+          if (body->description().hold_rotation_face >= 0)
             pcout << "    Hold rotation (face "
-                  << body->description().hold_rotation_face
-                  << "): the supports hold every rotation already; nothing "
-                     "more is held"
+                  << body->description().hold_rotation_face << "): "
+                  << (held.empty() ? "the supports hold every rotation" :
+                                     held + " held")
                   << std::endl;
         }
       check_probe_points<dim>(parameters, scene_file, bodies);
@@ -245,7 +236,10 @@ namespace igabde
           return;
         }
       contact_stage = std::make_unique<contact::ContactStage<dim>>(
-        make_contact_settings(parameters, scene_file, contact_log()),
+        make_contact_settings(parameters,
+                              scene_file,
+                              estimated_factor_entries,
+                              contact_log()),
         bodies,
         create_obstacle<dim>(parameters, scene_file),
         contact_log(),
@@ -458,6 +452,9 @@ namespace igabde
       {
         const SizeEstimate size   = estimate_size(parameters, scene_file);
         run_summary.size_estimate = size.to_json();
+        estimated_factor_entries.clear();
+        for (const auto &body : size.bodies)
+          estimated_factor_entries.push_back(body.factor_entries);
         if (parameters.output.progress)
           pcout << "  [progress] size estimate: " << size.describe() << " ("
                 << std::setprecision(3)

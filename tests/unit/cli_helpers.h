@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -103,6 +104,40 @@ namespace cli
   join(const std::string &folder, const std::string &relative)
   {
     return (std::filesystem::path(folder) / relative).string();
+  }
+
+  /// What a run of a scene left: exit status, output and summary.json
+  /// (null when the run wrote none).
+  struct SceneRun
+  {
+    int            status = -1;
+    std::string    output;
+    nlohmann::json summary;
+  };
+
+  /**
+   * Runs the scene prm/@p scene of the source tree in @p folder, quiet,
+   * its output in @p folder/out without VTU files or the timing table,
+   * with the further arguments @p sets (e.g. "--set 'Body 1/...'").
+   */
+  inline SceneRun
+  run_prm_scene(const std::string &folder,
+                const std::string &scene,
+                const std::string &sets = "")
+  {
+    const RunResult result = run_igabde(
+      "'" + join(std::string(IGABDE_SOURCE_DIR), "prm/" + scene) +
+        "' --quiet --set 'Output/Directory=out' --set 'Output/Write vtu=false' "
+        "--set 'Output/Print timing=false' " +
+        sets,
+      folder);
+    SceneRun run;
+    run.status = result.status;
+    run.output = result.output;
+    std::ifstream in(join(folder, "out/summary.json"));
+    if (in)
+      run.summary = nlohmann::json::parse(in, nullptr, false);
+    return run;
   }
 
   inline std::string

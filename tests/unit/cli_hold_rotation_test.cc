@@ -19,30 +19,12 @@ namespace
 {
   using nlohmann::json;
 
-  struct SceneRun
-  {
-    int         status = -1;
-    std::string output;
-    json        summary;
-  };
+  using cli::SceneRun;
 
   SceneRun
   run_partial_slip(const cli::ScratchFolder &scratch, const std::string &sets)
   {
-    const auto result = cli::run_igabde(
-      "'" +
-        cli::join(std::string(IGABDE_SOURCE_DIR),
-                  "prm/v6-partial-slip-force.prm") +
-        "' --quiet --set 'Output/Directory=out' --set 'Output/Write vtu=false' " +
-        sets,
-      scratch.path);
-    SceneRun run;
-    run.status = result.status;
-    run.output = result.output;
-    std::ifstream in(cli::join(scratch.path, "out/summary.json"));
-    if (in)
-      run.summary = json::parse(in, nullptr, false);
-    return run;
+    return cli::run_prm_scene(scratch.path, "v6-partial-slip-force.prm", sets);
   }
 
   struct PairRow

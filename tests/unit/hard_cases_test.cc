@@ -28,34 +28,17 @@ namespace
   /// of the condensed system, at most 1e2 on these scenes).
   constexpr double solver_tolerance = 1e-8;
 
-  struct SceneRun
-  {
-    int         status = -1;
-    std::string output;
-    json        summary;
-  };
+  using cli::SceneRun;
 
-  /// Runs @p scene (a file of prm/) with the overrides @p sets and returns
-  /// its summary.json.
+  /// Runs @p scene (a file of prm/) with the overrides @p sets in a
+  /// scratch folder named after @p name.
   SceneRun
   run_scene(const std::string &name,
             const std::string &scene,
             const std::string &sets)
   {
     const cli::ScratchFolder scratch(name, "hard");
-    const std::string        arguments =
-      "'" + cli::join(std::string(IGABDE_SOURCE_DIR), "prm/" + scene) +
-      "' --quiet --set 'Output/Directory=out' --set 'Output/Write vtu=false' "
-      "--set 'Output/Print timing=false' " +
-      sets;
-    const auto result = cli::run_igabde(arguments, scratch.path);
-    SceneRun   run;
-    run.status = result.status;
-    run.output = result.output;
-    std::ifstream in(cli::join(scratch.path, "out/summary.json"));
-    if (in)
-      run.summary = json::parse(in, nullptr, false);
-    return run;
+    return cli::run_prm_scene(scratch.path, scene, sets);
   }
 
   std::vector<double>
@@ -75,6 +58,19 @@ namespace
                 solver_tolerance)
         << "step " << step.at("step");
   }
+
+
+  /// Converged (expect_converged()), and its warnings as one text (empty
+  /// when there are none).
+  std::string
+  warnings(const SceneRun &run)
+  {
+    expect_converged(run);
+    return run.summary.contains("warnings") ?
+             run.summary.at("warnings").dump() :
+             std::string();
+  }
+
 
   /// The contact patch's closed form: pressure 1 at every pair, no
   /// tangential force.
@@ -476,12 +472,6 @@ TEST(HardCase, DraggedBlocksEndWithAWarning)
   // beyond the small-strain model). Each converges and says that it left
   // the model's range; V3 and V4 as given (no slide; slip 0.05, strain
   // about 3 %) do not.
-  const auto warnings = [](const SceneRun &run) {
-    expect_converged(run);
-    return run.summary.contains("warnings") ?
-             run.summary.at("warnings").dump() :
-             std::string();
-  };
   const SceneRun slides = run_scene("dragslide",
                                     "v3-contact-patch-2d.prm",
                                     "--set 'Body 1/Supports=3: x=0.3' "
@@ -646,12 +636,6 @@ TEST(HardCase, ContactOnElementsDeeperThanItsZoneWarns)
   // disc's own distance from Johnson is about 1 %); the run converges and
   // says that the depth is under-resolved. V5 as given (elements 0.46
   // deep) does not.
-  const auto warnings = [](const SceneRun &run) {
-    expect_converged(run);
-    return run.summary.contains("warnings") ?
-             run.summary.at("warnings").dump() :
-             std::string();
-  };
   const SceneRun shallow =
     run_scene("deep", "v5-hertz-2d.prm", "--set 'Body 1/Subdivisions=64, 2'");
   EXPECT_NE(warnings(shallow).find("elements under the contact are"),

@@ -13,12 +13,7 @@ namespace
 {
   using nlohmann::json;
 
-  struct TutorialRun
-  {
-    int         status = -1;
-    std::string output;
-    json        summary;
-  };
+  using TutorialRun = cli::SceneRun;
 
   TutorialRun
   run_tutorial(const std::string &name,
@@ -26,18 +21,7 @@ namespace
                const std::string &sets = "")
   {
     const cli::ScratchFolder scratch(name, "tutorial");
-    const auto               result = cli::run_igabde(
-      "'" + cli::join(std::string(IGABDE_SOURCE_DIR), "prm/" + scene) +
-        "' --quiet --set 'Output/Directory=out' --set 'Output/Write vtu=false' " +
-        sets,
-      scratch.path);
-    TutorialRun run;
-    run.status = result.status;
-    run.output = result.output;
-    std::ifstream in(cli::join(scratch.path, "out/summary.json"));
-    if (in)
-      run.summary = json::parse(in, nullptr, false);
-    return run;
+    return cli::run_prm_scene(scratch.path, scene, sets);
   }
 
   double

@@ -603,6 +603,11 @@ namespace igabde
                              const std::vector<Tensor<1, dim>>     &directions,
                              FullMatrix<double>                    &F) const;
 
+      /// S^-1 R_h^T f: the multipliers of the held modes' loads C_h that
+      /// balance @p f in the held modes (see hold_rotations()).
+      Vector<double>
+      held_multipliers(const Vector<double> &f) const;
+
       /// f <- P^T f (see hold_rotations()).
       void
       balance_held_modes(Vector<double> &f) const;

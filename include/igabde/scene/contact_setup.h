@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <ostream>
 #include <string>
+#include <vector>
 
 namespace igabde
 {
@@ -16,13 +17,15 @@ namespace igabde
     /**
      * @brief The contact layer's settings from the scene: faces, pairing,
      * algorithm and path, the solvers' tolerances, the bodies' estimated
-     * factor sizes (for Contact/Path = auto), with @p log for the solver's
-     * lines and @p scene_file for messages.
+     * factor entries @p factor_entries (for Contact/Path = auto, from the
+     * run's size estimate), with @p log for the solver's lines and
+     * @p scene_file for messages.
      */
     contact::ContactSettings
-    make_contact_settings(const AllParameters &parameters,
-                          const std::string   &scene_file,
-                          std::ostream        &log);
+    make_contact_settings(const AllParameters       &parameters,
+                          const std::string         &scene_file,
+                          const std::vector<double> &factor_entries,
+                          std::ostream              &log);
 
     /**
      * @brief What summary.json says of the scene's physics and, with

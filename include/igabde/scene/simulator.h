@@ -126,6 +126,9 @@ namespace igabde
       Communicators body_groups;
       /// Names of the bodies this rank factorises.
       std::vector<std::string> factorised_here;
+      /// Factor entries of each body from the run's size estimate (the
+      /// rank split and Contact/Path = auto use them).
+      std::vector<double> estimated_factor_entries;
       /// The timing written by write_summary() once gather_rank_figures()
       /// has run (the largest seconds per phase over the ranks).
       std::optional<std::map<std::string, double>> final_timing;
