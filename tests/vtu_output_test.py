@@ -13,8 +13,8 @@ folder that is removed afterwards, and checks for each run:
   - the point and cell data fields each file must have are there, with the
     right number of components, and finite;
   - the point and cell counts: a body VTU has one patch per element, each
-    with (s + 1)^3 points and s^3 hexahedra (s = Output subdivisions, 4,
-    at least the FE_Q degree), the element count derived from the mesh
+    with (s + 1)^3 points and s^3 hexahedra (s = Output subdivisions: auto
+    gives 4 on 2 x 2 x 2 cells; at least the FE_Q degree), the element count derived from the mesh
     (2 x 2 x 2) and equal to summary.json's; a contact VTU has one vertex
     per pair, the pair count derived from the mesh (NURBS: Greville points
     of Body 1's face r = 5, (2 + 2) x (2 + 2); FE_Q(2): face nodes,
@@ -71,7 +71,7 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 SCENE = os.path.join(ROOT, "prm", "b2-curved-beams.prm")
 
 SPANS = (2, 2, 2)         # radial x circumferential x width, per beam
-OUTPUT_SUBDIVISIONS = 4   # the scene's default Output subdivisions
+OUTPUT_SUBDIVISIONS = 4   # Output subdivisions = auto on 8 cells per body
 DEGREE = 2
 RADIUS = 5.0              # the contact surface of both beams
 VTK_HEXAHEDRON = 12

@@ -1,6 +1,9 @@
 #include <igabde/base/files.h>
 
+#include <algorithm>
+#include <chrono>
 #include <cstdio>
+#include <exception>
 #include <filesystem>
 #include <fstream>
 
@@ -43,6 +46,107 @@ namespace igabde
         out << text;
       }
       std::filesystem::rename(part, path);
+    }
+
+
+
+    BackgroundWriter::~BackgroundWriter()
+    {
+      for (auto &job : jobs)
+        try
+          {
+            job.second.join();
+          }
+        catch (...)
+          {}
+    }
+
+
+
+    void
+    BackgroundWriter::begin_group()
+    {
+      ++group;
+    }
+
+
+
+    void
+    BackgroundWriter::add(std::function<void()> job)
+    {
+      jobs.emplace_back(group, dealii::Threads::new_task([this, job]() {
+                          const auto start = std::chrono::steady_clock::now();
+                          job();
+                          const std::chrono::duration<double> taken =
+                            std::chrono::steady_clock::now() - start;
+                          std::lock_guard<std::mutex> lock(mutex);
+                          job_seconds += taken.count();
+                        }));
+    }
+
+
+
+    void
+    BackgroundWriter::wait_all_but_last_group()
+    {
+      std::exception_ptr                                                first;
+      std::vector<std::pair<unsigned int, dealii::Threads::Task<void>>> kept;
+      for (auto &job : jobs)
+        if (job.first + 2 > group)
+          kept.push_back(std::move(job));
+        else
+          try
+            {
+              job.second.join();
+            }
+          catch (...)
+            {
+              if (!first)
+                first = std::current_exception();
+            }
+      jobs.swap(kept);
+      joined_through = std::max(joined_through, group < 2 ? 0u : group - 2);
+      if (first)
+        std::rethrow_exception(first);
+    }
+
+
+
+    void
+    BackgroundWriter::wait()
+    {
+      std::exception_ptr first;
+      for (auto &job : jobs)
+        try
+          {
+            job.second.join();
+          }
+        catch (...)
+          {
+            if (!first)
+              first = std::current_exception();
+          }
+      jobs.clear();
+      joined_through = group;
+      if (first)
+        std::rethrow_exception(first);
+    }
+
+
+
+    unsigned int
+    BackgroundWriter::finished_groups() const
+    {
+      return joined_through;
+    }
+
+
+
+    double
+    BackgroundWriter::seconds() const
+    {
+      std::lock_guard<std::mutex> lock(mutex);
+      return job_seconds;
     }
   } // namespace base
 } // namespace igabde

@@ -738,7 +738,8 @@ namespace igabde
     {
       AssertDimension(u.size(), this->n_unknowns);
       const unsigned int n_sub =
-        std::max(1u, this->settings.output_subdivisions);
+        output_subdivisions_for<dim>(this->settings.output_subdivisions,
+                                     parametric_mesh.n_active_cells());
       const auto &material = this->material();
 
       // Output points: lexicographic (n+1)^dim grid on [0, 1]^dim.

@@ -351,8 +351,10 @@ namespace igabde
       // probes and output without any other sign (deal.II only checks in
       // Debug builds): check it at the quadrature and output points.
       {
-        const unsigned int n_sub =
-          std::max(fe.degree, this->settings.output_subdivisions);
+        const unsigned int n_sub = std::max(
+          fe.degree,
+          output_subdivisions_for<dim>(this->settings.output_subdivisions,
+                                       triangulation.n_active_cells()));
         std::vector<Point<dim>> points =
           QIterated<dim>(QTrapezoid<1>(), n_sub).get_points();
         const auto gauss = QGauss<dim>(fe.degree + 1).get_points();
@@ -531,8 +533,8 @@ namespace igabde
 
 
     template <int dim>
-    const GridTools::Cache<dim> &
-    LagrangeBody<dim>::point_cache() const
+    std::pair<typename DoFHandler<dim>::active_cell_iterator, Point<dim>>
+    LagrangeBody<dim>::find_cell(const Point<dim> &location) const
     {
       // Built once, on first use; its own data structures fill lazily, so
       // every search holds the lock (point searches run from threads).
@@ -540,7 +542,7 @@ namespace igabde
       if (!cache)
         cache =
           std::make_unique<GridTools::Cache<dim>>(triangulation, *mapping);
-      return *cache;
+      return locate(*cache, dof_handler, location);
     }
 
 
@@ -549,7 +551,7 @@ namespace igabde
     PointOperator<dim>
     LagrangeBody<dim>::point_operator(const Point<dim> &location) const
     {
-      const auto  cell_and_point = locate(point_cache(), dof_handler, location);
+      const auto  cell_and_point = find_cell(location);
       const auto &cell           = cell_and_point.first;
       Point<dim>  unit           = cell_and_point.second;
       for (unsigned int d = 0; d < dim; ++d)
@@ -765,7 +767,7 @@ namespace igabde
       // The FE_Q stress jumps across cells: at a point on a face, edge or
       // vertex it is the mean over the cells that hold the point, so that
       // the value does not depend on which of them a search meets first.
-      const auto first = locate(point_cache(), dof_handler, location);
+      const auto first = find_cell(location);
       const auto cells =
         GridTools::find_all_active_cells_around_point(*mapping,
                                                       dof_handler,
@@ -811,7 +813,9 @@ namespace igabde
       data_out.add_data_vector(u, postprocessor);
       data_out.build_patches(*mapping,
                              std::max(fe.degree,
-                                      this->settings.output_subdivisions),
+                                      output_subdivisions_for<dim>(
+                                        this->settings.output_subdivisions,
+                                        triangulation.n_active_cells())),
                              DataOut<dim>::curved_inner_cells);
       // zlib's fastest level: the best level took 9 times as long for 2 %
       // smaller files (V5, 2026-11-25).

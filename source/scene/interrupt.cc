@@ -29,11 +29,14 @@ namespace igabde
         /// signals.
         bool        enabled = false;
         std::string summary_path;
+        std::string steps_path;
         std::string log_path;
         /// [buffer][0: SIGINT, 1: SIGTERM]: the summary and the screen line.
         std::array<std::array<std::string, 2>, 2> summary;
         std::array<std::array<std::string, 2>, 2> line;
-        std::atomic<int>                          published{-1};
+        /// [buffer]: steps.csv with the same steps as the summary.
+        std::array<std::string, 2> steps;
+        std::atomic<int>           published{-1};
       };
 
       InterruptRecord interrupt_record;
@@ -45,16 +48,20 @@ namespace igabde
         const int s = (signal == SIGINT ? 0 : 1);
         if (b >= 0)
           {
-            const std::string &text = interrupt_record.summary[b][s];
-            const int fd = ::open(interrupt_record.summary_path.c_str(),
-                                  O_WRONLY | O_CREAT | O_TRUNC,
-                                  0644);
-            if (fd >= 0)
-              {
-                [[maybe_unused]] const auto n =
-                  ::write(fd, text.data(), text.size());
-                ::close(fd);
-              }
+            const auto write_out = [](const std::string &path,
+                                      const std::string &text) {
+              const int fd =
+                ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+              if (fd >= 0)
+                {
+                  [[maybe_unused]] const auto n =
+                    ::write(fd, text.data(), text.size());
+                  ::close(fd);
+                }
+            };
+            write_out(interrupt_record.summary_path,
+                      interrupt_record.summary[b][s]);
+            write_out(interrupt_record.steps_path, interrupt_record.steps[b]);
             const std::string          &line = interrupt_record.line[b][s];
             [[maybe_unused]] const auto n =
               ::write(STDERR_FILENO, line.data(), line.size());
@@ -92,6 +99,7 @@ namespace igabde
       sigaction(SIGTERM, &previous_term, nullptr);
       interrupt_record.enabled = false;
       interrupt_record.summary_path.clear();
+      interrupt_record.steps_path.clear();
       interrupt_record.log_path.clear();
     }
 
@@ -107,6 +115,7 @@ namespace igabde
 
     void
     publish_interrupted_summary(const nlohmann::json &summary,
+                                const std::string    &steps_csv,
                                 const std::string    &output_directory,
                                 const std::string    &run_phase)
     {
@@ -130,8 +139,10 @@ namespace igabde
       if (interrupt_record.summary_path.empty())
         {
           interrupt_record.summary_path = output_directory + "/summary.json";
+          interrupt_record.steps_path   = output_directory + "/steps.csv";
           interrupt_record.log_path     = output_directory + "/log.txt";
         }
+      interrupt_record.steps[b] = steps_csv;
       interrupt_record.published.store(b);
     }
 

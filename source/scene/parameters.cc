@@ -1383,11 +1383,17 @@ namespace igabde
                           "1e-12",
                           Patterns::Double(0.),
                           "cg-amg: relative residual at which CG stops.");
-        prm.declare_entry("Output subdivisions",
-                          "4",
-                          Patterns::Integer(1, 16),
-                          "Subdivisions per element and direction in VTU "
-                          "output, so that curved boundaries look curved.");
+        prm.declare_entry(
+          "Output subdivisions",
+          "auto",
+          Patterns::Anything(),
+          "Subdivisions per element and direction in VTU output (1 to 16), "
+          "so that curved boundaries and the fields inside an element look "
+          "curved; FE_Q uses at least its degree. 'auto': the largest "
+          "number up to 4 that keeps each body's output at most 8192 "
+          "sub-cells per step (4 on coarse meshes, 1 on fine ones, where the "
+          "elements are small on the screen anyway), so that writing the "
+          "fields never costs more than solving.");
       }
       prm.leave_subsection();
     }
@@ -1412,8 +1418,31 @@ namespace igabde
           {discretization::LinearSolver::direct,
            discretization::LinearSolver::umfpack,
            discretization::LinearSolver::cg_amg});
-        settings.linear_tolerance    = prm.get_double("Linear tolerance");
-        settings.output_subdivisions = prm.get_integer("Output subdivisions");
+        settings.linear_tolerance      = prm.get_double("Linear tolerance");
+        const std::string subdivisions = prm.get("Output subdivisions");
+        if (subdivisions == "auto")
+          settings.output_subdivisions = 0;
+        else
+          {
+            std::size_t end   = 0;
+            int         value = 0;
+            try
+              {
+                value = std::stoi(subdivisions, &end);
+              }
+            catch (const std::exception &)
+              {
+                end = 0;
+              }
+            AssertThrow(
+              end > 0 &&
+                subdivisions.find_first_not_of(" ", end) == std::string::npos &&
+                value >= 1 && value <= 16,
+              base::ExcInput("Discretization/Output subdivisions = '" +
+                             subdivisions +
+                             "': write 'auto' or a whole number from 1 to 16"));
+            settings.output_subdivisions = value;
+          }
       }
       prm.leave_subsection();
     }

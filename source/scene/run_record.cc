@@ -112,7 +112,8 @@ namespace igabde
         j["point_stresses"] = *s.point_stresses;
       if (s.timing)
         j["timing"] = *s.timing;
-      j["mpi_ranks"] = s.mpi_ranks;
+      j["output_background_seconds"] = s.output_background_seconds;
+      j["mpi_ranks"]                 = s.mpi_ranks;
       if (s.ranks)
         j["ranks"] = *s.ranks;
       return j;

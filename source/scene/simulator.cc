@@ -300,15 +300,14 @@ namespace igabde
         {
           const auto [load_factor, displacement_factor] = steps[s];
           const std::vector<double> &factors            = history_factors[s];
-          // Steps 1..s are written: summary.json, steps.csv and the fields
-          // stay with them if this step fails or the run is killed.
+          // The finished steps stay with their files if this step fails
+          // or the run is killed (write_summary()).
           run_phase = "load step " + std::to_string(s + 1) + " of " +
-                      std::to_string(steps.size()) + " (" +
-                      (s == 0 ? std::string("no step finished") :
-                                "steps 1.." + std::to_string(s) +
-                                  " finished and written") +
-                      ")";
-          write_summary("running", "");
+                      std::to_string(steps.size());
+          {
+            TimerOutput::Scope t(timer, "output");
+            write_summary("running", "");
+          }
           pcout << "Load step " << s + 1 << "/" << steps.size()
                 << ": load factor " << load_factor << ", displacement factor "
                 << displacement_factor;
@@ -376,7 +375,8 @@ namespace igabde
                                      bodies,
                                      u,
                                      pairs ? &*pairs : nullptr,
-                                     pvd_records);
+                                     pvd_records,
+                                     writer);
           }
           if (s + 1 == steps.size())
             {
@@ -408,18 +408,63 @@ namespace igabde
       std::vector<std::string> histories;
       for (const auto &h : parameters.load_path.histories)
         histories.push_back(h.first);
+      const auto steps_csv = [&](const std::vector<StepRecord> &records) {
+        return step_table(records, histories, contact_stage != nullptr, dim);
+      };
+      // What an interruption now would leave: the steps whose files are
+      // all written, in summary.json and steps.csv.
+      const auto publish = [&](const RunSummary &summary) {
+        const std::size_t k = summary.load_steps.size();
+        publish_interrupted_summary(
+          to_json(summary),
+          steps_csv(summary.load_steps),
+          output_directory,
+          run_phase + (run_phase.rfind("load step", 0) != 0 ? "" :
+                       k == 0 ? " (no step finished and written)" :
+                                " (steps 1.." + std::to_string(k) +
+                                  " finished and written)"));
+      };
+
+      // While the run goes on, the files are refreshed at most once a
+      // second (a scene of many millisecond steps spent more time creating
+      // them than solving; the fields of the last steps may still be
+      // being written in the background); the run's end, failed or not,
+      // writes everything.
+      if (status == "running" && written_once && since_written.wall_time() < 1.)
+        {
+          RunSummary written = run_summary;
+          written.load_steps.resize(
+            std::min<std::size_t>(written.load_steps.size(),
+                                  writer.finished_groups()));
+          written.timing = timing_seconds(timer);
+          publish(written);
+          return;
+        }
+      since_written.restart();
+      written_once = true;
+      // The series name finished files only. An error of a file job ends
+      // the run (the failed summary's call finds no job left to wait for).
+      try
+        {
+          writer.wait();
+        }
+      catch (...)
+        {
+          // A failed run keeps its own error; otherwise this one ends it.
+          if (status != "failed")
+            throw;
+        }
+      run_summary.output_background_seconds = writer.seconds();
+      write_pvd_series<dim>(output_directory, bodies, pvd_records);
       base::write_file_atomically(output_directory + "/steps.csv",
-                                  step_table(run_summary.load_steps,
-                                             histories,
-                                             contact_stage != nullptr,
-                                             dim));
+                                  steps_csv(run_summary.load_steps));
 
       run_summary.timing = final_timing ? *final_timing : timing_seconds(timer);
       const nlohmann::json json = to_json(run_summary);
       base::write_file_atomically(output_directory + "/summary.json",
                                   json.dump(2) + "\n");
       if (status == "running")
-        publish_interrupted_summary(json, output_directory, run_phase);
+        publish(run_summary);
       else
         withdraw_interrupted_summary();
 
@@ -464,6 +509,11 @@ namespace igabde
       setup_bodies();
       setup_contact();
       solve_load_steps();
+      {
+        // The last files: the run waits for them, and that is output time.
+        TimerOutput::Scope t(timer, "output");
+        writer.wait();
+      }
       std::tie(final_timing, run_summary.ranks) =
         gather_rank_figures(timer, factorised_here);
       write_summary("ok", "");

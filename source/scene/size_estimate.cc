@@ -179,14 +179,19 @@ namespace igabde
             // Patches of (s+1)^dim points per cell with the coordinates,
             // displacement, strain, stress and von Mises stress, and the
             // writer's copy.
-            const double points = std::pow(
-              std::max(1u, parameters.discretization.output_subdivisions) + 1.,
-              dim);
             const double fields = dim + dim + dim * (dim + 1) + 1;
             for (const auto &b : e.bodies)
-              e.bytes_output =
-                std::max(e.bytes_output,
-                         2. * 8. * fields * points * b.n_elements);
+              {
+                const double points =
+                  std::pow(discretization::output_subdivisions_for<dim>(
+                             parameters.discretization.output_subdivisions,
+                             b.n_elements) +
+                             1.,
+                           dim);
+                e.bytes_output =
+                  std::max(e.bytes_output,
+                           2. * 8. * fields * points * b.n_elements);
+              }
           }
         return e;
       }

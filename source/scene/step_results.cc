@@ -287,30 +287,43 @@ namespace igabde
       const std::vector<std::unique_ptr<discretization::Body<dim>>> &bodies,
       const std::vector<Vector<double>>                             &u,
       const std::vector<contact::PairState<dim>>                    *pairs,
-      std::vector<std::vector<std::pair<double, std::string>>> &pvd_records)
+      std::vector<std::vector<std::pair<double, std::string>>> &pvd_records,
+      base::BackgroundWriter                                   &writer)
     {
+      // The files of the step before the previous one first: at most two
+      // steps in flight.
+      writer.begin_group();
+      writer.wait_all_but_last_group();
       std::ostringstream number;
       number << std::setw(4) << std::setfill('0') << step;
-      // The pair table every step; fields only with Write vtu.
+      // The pair table every step; fields only with Write vtu. Each file is
+      // a job of its own, on copies of the step's results.
       if (pairs != nullptr)
         {
-          const std::vector<double> recovered =
-            postprocess::recovered_pressures<dim>(*bodies[0], u[0], *pairs);
-          postprocess::write_pair_csv<dim>(*pairs,
-                                           recovered,
-                                           directory + "/contact-" +
-                                             number.str() + ".csv");
+          const std::string name = "contact-" + number.str();
+          // The recovered pressure reads Body 1's stress field, which the
+          // next step does not change (the displacement is a copy).
+          writer.add([directory,
+                      name,
+                      write_vtu,
+                      body  = bodies[0].get(),
+                      u0    = u[0],
+                      pairs = *pairs]() {
+            const std::vector<double> recovered =
+              postprocess::recovered_pressures<dim>(*body, u0, pairs);
+            postprocess::write_pair_csv<dim>(pairs,
+                                             recovered,
+                                             directory + "/" + name + ".csv");
+            if (write_vtu)
+              postprocess::write_pair_vtu<dim>(pairs,
+                                               recovered,
+                                               directory + "/" + name + ".vtu");
+          });
           if (write_vtu)
             {
-              const std::string name = "contact-" + number.str() + ".vtu";
-              postprocess::write_pair_vtu<dim>(*pairs,
-                                               recovered,
-                                               directory + "/" + name);
               // The pairs' series after the bodies' (contact.pvd).
               pvd_records.resize(bodies.size() + 1);
-              pvd_records.back().emplace_back(double(step), name);
-              std::ofstream pvd(directory + "/contact.pvd");
-              DataOutBase::write_pvd_record(pvd, pvd_records.back());
+              pvd_records.back().emplace_back(double(step), name + ".vtu");
             }
         }
       if (!write_vtu)
@@ -319,12 +332,35 @@ namespace igabde
         {
           const std::string name =
             "solution-" + bodies[b]->name() + "-" + number.str() + ".vtu";
-          bodies[b]->write_vtu(u[b], directory + "/" + name);
+          writer.add([body = bodies[b].get(),
+                      ub   = u[b],
+                      path = directory + "/" + name]() {
+            body->write_vtu(ub, path);
+          });
           pvd_records[b].emplace_back(double(step), name);
-          std::ofstream pvd(directory + "/solution-" + bodies[b]->name() +
-                            ".pvd");
-          DataOutBase::write_pvd_record(pvd, pvd_records[b]);
         }
+    }
+
+
+
+    template <int dim>
+    void
+    write_pvd_series(
+      const std::string                                             &directory,
+      const std::vector<std::unique_ptr<discretization::Body<dim>>> &bodies,
+      const std::vector<std::vector<std::pair<double, std::string>>>
+        &pvd_records)
+    {
+      for (unsigned int b = 0; b < pvd_records.size(); ++b)
+        if (!pvd_records[b].empty())
+          {
+            std::ofstream pvd(directory + "/" +
+                              (b < bodies.size() ?
+                                 "solution-" + bodies[b]->name() :
+                                 std::string("contact")) +
+                              ".pvd");
+            DataOutBase::write_pvd_record(pvd, pvd_records[b]);
+          }
     }
 
 
@@ -522,7 +558,13 @@ namespace igabde
       const std::vector<std::unique_ptr<discretization::Body<2>>> &,
       const std::vector<Vector<double>> &,
       const std::vector<contact::PairState<2>> *,
-      std::vector<std::vector<std::pair<double, std::string>>> &);
+      std::vector<std::vector<std::pair<double, std::string>>> &,
+      base::BackgroundWriter &);
+    template void
+    write_pvd_series<2>(
+      const std::string &,
+      const std::vector<std::unique_ptr<discretization::Body<2>>> &,
+      const std::vector<std::vector<std::pair<double, std::string>>> &);
     template void
     record_contact_outcome<3>(const LoadController<3>::Outcome &,
                               const contact::Algorithm,
@@ -561,7 +603,13 @@ namespace igabde
       const std::vector<std::unique_ptr<discretization::Body<3>>> &,
       const std::vector<Vector<double>> &,
       const std::vector<contact::PairState<3>> *,
-      std::vector<std::vector<std::pair<double, std::string>>> &);
+      std::vector<std::vector<std::pair<double, std::string>>> &,
+      base::BackgroundWriter &);
+    template void
+    write_pvd_series<3>(
+      const std::string &,
+      const std::vector<std::unique_ptr<discretization::Body<3>>> &,
+      const std::vector<std::vector<std::pair<double, std::string>>> &);
     template void
     evaluate_final_results<2>(
       const AllParameters &,

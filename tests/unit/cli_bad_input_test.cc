@@ -229,6 +229,18 @@ TEST(CliBadInput, SubdivisionsOutOfRange)
 
 
 
+TEST(CliBadInput, OutputSubdivisionsNeitherAutoNorOneToSixteen)
+{
+  for (const char *value : {"0", "17", "four", "2.5"})
+    expect_refused_at_parse_time(
+      "output-subdivisions",
+      std::string("Discretization/Output subdivisions=") + value,
+      "Output subdivisions = '" + std::string(value) +
+        "': write 'auto' or a whole number");
+}
+
+
+
 TEST(CliBadInput, UnwritableOutputDirectory)
 {
   // A folder below a regular file cannot be created.

@@ -157,6 +157,15 @@ TEST(Cli, LateFailureKeepsFinishedResults)
     std::filesystem::exists(cli::join(folder, "out/solution-body1-0001.vtu")));
   EXPECT_FALSE(
     std::filesystem::exists(cli::join(folder, "out/contact-0002.csv")));
+  // The series are written when the run ends, failed or not, and name the
+  // finished step's files only.
+  for (const std::string series : {"solution-body1", "contact"})
+    {
+      const std::string pvd =
+        read_file(cli::join(folder, "out/" + series + ".pvd"));
+      EXPECT_NE(pvd.find(series + "-0001.vtu"), std::string::npos) << pvd;
+      EXPECT_EQ(pvd.find("-0002.vtu"), std::string::npos) << pvd;
+    }
   // The failed step is recorded with its iterations and residual.
   EXPECT_NE(summary.find("\"status\": \"failed\"", summary.find("load_steps")),
             std::string::npos);

@@ -397,7 +397,32 @@ TEST(NurbsIgaBody, WritesVtu)
   content << in.rdbuf();
   EXPECT_NE(content.str().find("displacement"), std::string::npos);
   EXPECT_NE(content.str().find("von_mises"), std::string::npos);
+  // Output subdivisions = auto on this coarse mesh (at most 8192 / 64
+  // cells): 4 per direction, one patch of 4^3 hexahedra per element.
+  ASSERT_LE(body.n_elements() * 64, 8192u);
+  EXPECT_NE(content.str().find("NumberOfCells=\"" +
+                               std::to_string(body.n_elements() * 64) + "\""),
+            std::string::npos)
+    << body.n_elements();
   std::remove(name.c_str());
+}
+
+
+
+TEST(DiscretizationSettings, AutoOutputSubdivisions)
+{
+  // The largest s <= 4 with n s^dim <= 8192; a set value is kept.
+  EXPECT_EQ(output_subdivisions_for<2>(0, 32), 4u);   // 512
+  EXPECT_EQ(output_subdivisions_for<2>(0, 1024), 2u); // 9216 > 8192 at 3
+  EXPECT_EQ(output_subdivisions_for<2>(0, 2048), 2u); // exactly 8192
+  EXPECT_EQ(output_subdivisions_for<2>(0, 2049), 1u);
+  EXPECT_EQ(output_subdivisions_for<2>(0, 1e6), 1u);
+  EXPECT_EQ(output_subdivisions_for<2>(3, 1e6), 3u);
+  EXPECT_EQ(output_subdivisions_for<3>(0, 128), 4u); // exactly 8192
+  EXPECT_EQ(output_subdivisions_for<3>(0, 129), 3u);
+  EXPECT_EQ(output_subdivisions_for<3>(0, 304), 2u); // 8208 > 8192 at 3
+  EXPECT_EQ(output_subdivisions_for<3>(0, 1025), 1u);
+  EXPECT_EQ(output_subdivisions_for<3>(16, 8), 16u);
 }
 
 

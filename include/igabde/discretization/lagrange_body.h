@@ -120,13 +120,16 @@ namespace igabde
       Vector<double>                            euler_vector;
       std::unique_ptr<MappingFEField<dim, dim>> mapping;
       /// Point location (GridTools::Cache on the mapping), built on first
-      /// use by point_cache().
+      /// use by find_cell().
       mutable std::unique_ptr<GridTools::Cache<dim>> cache;
       mutable std::mutex                             cache_mutex;
 
-      /// The point-location cache.
-      const GridTools::Cache<dim> &
-      point_cache() const;
+      /// The cell holding @p location and the point's unit coordinates in
+      /// it; throws for a point outside the body. Thread-safe: the cache's
+      /// own data fill lazily, so each search holds the lock (the output's
+      /// recovered pressures search in a background thread).
+      std::pair<typename DoFHandler<dim>::active_cell_iterator, Point<dim>>
+      find_cell(const Point<dim> &location) const;
       /// Whether the mesh runs the patch's last parametric direction
       /// backwards (a left-handed patch).
       bool reflect = false;

@@ -1,6 +1,7 @@
 #ifndef igabde_discretization_settings_h
 #define igabde_discretization_settings_h
 
+#include <cmath>
 #include <string>
 
 namespace igabde
@@ -64,10 +65,28 @@ namespace igabde
       LinearSolver linear_solver = LinearSolver::direct;
       /// Relative tolerance of the iterative solver.
       double linear_tolerance = 1e-12;
-      /// Subdivisions per cell and direction in the VTU output.
-      unsigned int  output_subdivisions = 4;
+      /// Subdivisions per cell and direction in the VTU output; 0: auto
+      /// (output_subdivisions_for()).
+      unsigned int  output_subdivisions = 0;
       PairPlacement pair_placement      = PairPlacement::greville;
     };
+
+    /**
+     * @brief The VTU output's subdivisions per cell and direction for a
+     * body of @p n_cells cells: @p setting where it is set (not 0), else
+     * the largest number up to 4 with at most 8192 sub-cells per body.
+     */
+    template <int dim>
+    unsigned int
+    output_subdivisions_for(const unsigned int setting, const double n_cells)
+    {
+      if (setting > 0)
+        return setting;
+      unsigned int s = 4;
+      while (s > 1 && n_cells * std::pow(s, dim) > 8192.)
+        --s;
+      return s;
+    }
   } // namespace discretization
 } // namespace igabde
 

@@ -13,6 +13,7 @@ namespace igabde
      * @brief While it lives, a SIGINT or SIGTERM ends the process with
      * 128 + the signal, leaving behind the summary.json last published
      * with publish_interrupted_summary() (status 'interrupted' and why) and
+     * its steps.csv, and
      * one line on the screen and in log.txt. Only the command-line run
      * (run_scene) creates one; the previous handlers come back with its
      * destruction.
@@ -38,6 +39,7 @@ namespace igabde
      */
     void
     publish_interrupted_summary(const nlohmann::json &summary,
+                                const std::string    &steps_csv,
                                 const std::string    &output_directory,
                                 const std::string    &run_phase);
 

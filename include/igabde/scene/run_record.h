@@ -116,6 +116,10 @@ namespace igabde
       std::optional<nlohmann::json> point_stresses;
       /// Seconds per timer phase and "total" (the largest over the ranks).
       std::optional<std::map<std::string, double>> timing;
+      /// Wall seconds the background threads spent writing step files,
+      /// summed over files (they overlap the run; timing's "output" is
+      /// what the run waited).
+      double output_background_seconds = 0.;
       /// Processes the run used (mpirun -np N).
       unsigned int mpi_ranks = 1;
       /// Per rank: its peak memory and the bodies it factorised.

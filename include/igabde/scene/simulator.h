@@ -1,6 +1,8 @@
 #ifndef igabde_scene_simulator_h
 #define igabde_scene_simulator_h
 
+#include <igabde/base/files.h>
+
 #include <igabde/discretization/body.h>
 
 #include <igabde/scene/parameters.h>
@@ -95,7 +97,12 @@ namespace igabde
       void
       solve_load_steps();
 
-      /// Writes summary.json and steps.csv from run_summary, and timing.txt.
+      /**
+       * Writes summary.json and steps.csv from run_summary, timing.txt and
+       * the PVD series. With @p status "running" only if a second has
+       * passed since the last time (the summary is published to the signal
+       * handler either way); always otherwise.
+       */
       void
       write_summary(const std::string &status, const std::string &error);
 
@@ -137,6 +144,12 @@ namespace igabde
       std::vector<std::unique_ptr<discretization::Body<dim>>>  bodies;
       std::unique_ptr<contact::ContactStage<dim>>              contact_stage;
       std::vector<std::vector<std::pair<double, std::string>>> pvd_records;
+      /// Writes the step files while the next step runs; declared after the
+      /// bodies, so that it is destroyed (waits for its jobs) before them.
+      base::BackgroundWriter writer;
+      /// Time since write_summary() last wrote its files.
+      Timer since_written;
+      bool  written_once = false;
       /// Where the run is, for the reason an interrupted run gives.
       std::string run_phase;
     };

@@ -1,6 +1,8 @@
 #ifndef igabde_scene_step_results_h
 #define igabde_scene_step_results_h
 
+#include <igabde/base/files.h>
+
 #include <igabde/discretization/body.h>
 
 #include <igabde/contact/contact_stage.h>
@@ -94,9 +96,11 @@ namespace igabde
     /**
      * @brief The files of load step @p step in @p directory: the pair table
      * contact-NNNN.csv of @p pairs (nullptr without contact) and, with
-     * @p write_vtu, the pairs' and the bodies' VTU files, each body's PVD
-     * series and the pairs' contact.pvd (@p pvd_records, one per body and
-     * then one for the pairs, grows by this step).
+     * @p write_vtu, the pairs' and the bodies' VTU files, whose names
+     * @p pvd_records gains (one series per body, then one for the pairs);
+     * write_pvd_series() writes the series. The files are written by
+     * @p writer's threads while the run goes on, after the previous step's
+     * (this call waits for them first).
      */
     template <int dim>
     void
@@ -107,7 +111,21 @@ namespace igabde
       const std::vector<std::unique_ptr<discretization::Body<dim>>> &bodies,
       const std::vector<Vector<double>>                             &u,
       const std::vector<contact::PairState<dim>>                    *pairs,
-      std::vector<std::vector<std::pair<double, std::string>>> &pvd_records);
+      std::vector<std::vector<std::pair<double, std::string>>> &pvd_records,
+      base::BackgroundWriter                                   &writer);
+
+    /**
+     * @brief Each body's PVD series solution-<name>.pvd and, when it has
+     * entries, the pairs' contact.pvd, from @p pvd_records (see
+     * write_step_output()).
+     */
+    template <int dim>
+    void
+    write_pvd_series(
+      const std::string                                             &directory,
+      const std::vector<std::unique_ptr<discretization::Body<dim>>> &bodies,
+      const std::vector<std::vector<std::pair<double, std::string>>>
+        &pvd_records);
 
     /**
      * @brief The results of the last load step: error norms against the
