@@ -649,6 +649,25 @@ namespace igabde
           for (const auto &load : d.point_loads)
             if (load.history == h)
               point_load(load, history_rhs[h]);
+          // A moment M on a face: the loads sum_a alpha_a c_a of the
+          // tractions alpha_a e_a x (x - x_c), whose moment J alpha is M.
+          for (const auto &moment : d.moments)
+            if (moment.history == h)
+              {
+                std::vector<Vector<double>> c;
+                FullMatrix<double>          J, J_inverse;
+                face_rotation_loads(moment.boundary_id, c, J);
+                AssertDimension(moment.moment.size(), c.size());
+                J_inverse.reinit(J.m(), J.n());
+                J_inverse.invert(J);
+                for (unsigned int a = 0; a < c.size(); ++a)
+                  {
+                    double alpha = 0.;
+                    for (unsigned int b = 0; b < c.size(); ++b)
+                      alpha += J_inverse(a, b) * moment.moment[b];
+                    history_rhs[h].add(alpha, c[a]);
+                  }
+              }
         }
       load_rhs = history_rhs[0];
     }
@@ -825,17 +844,10 @@ namespace igabde
 
     template <int dim>
     void
-    Body<dim>::hold_rotations()
+    Body<dim>::face_rotation_loads(const types::boundary_id     face,
+                                   std::vector<Vector<double>> &c,
+                                   FullMatrix<double>          &J) const
     {
-      held_modes.clear();
-      held_loads.clear();
-      held_response.clear();
-      held_mode_names.clear();
-      held_moments.clear();
-      const int face = description().hold_rotation_face;
-      if (face < 0 || rigid_modes.empty())
-        return;
-
       // Gauss points of the face (two more per direction than its degree:
       // the tractions below are linear in x on a curved face too, up to
       // the geometry's rational factor).
@@ -872,16 +884,19 @@ namespace igabde
           centroid += weights[q] * points.back().location;
         }
       AssertThrow(area > 0.,
-                  ExcMessage("Hold rotation: the face has no area."));
+                  ExcMessage("Body '" + description().name + "': face " +
+                             std::to_string(face) +
+                             " has no area: no rotation or moment can act "
+                             "on it."));
       centroid /= area;
 
       // One traction per rotation axis, t_a = e_a x (x - centroid): a pure
       // moment (zero resultant) whose consistent loads c_a are the
       // constraint's direction; J_ab = int (|y|^2 delta_ab - y_a y_b) is the
       // moment of t_a about axis b.
-      const unsigned int          n_axes = (dim == 2 ? 1 : 3);
-      std::vector<Vector<double>> c(n_axes, Vector<double>(n_unknowns));
-      FullMatrix<double>          J(n_axes, n_axes);
+      const unsigned int n_axes = (dim == 2 ? 1 : 3);
+      c.assign(n_axes, Vector<double>(n_unknowns));
+      J.reinit(n_axes, n_axes);
       for (unsigned int q = 0; q < points.size(); ++q)
         {
           const Tensor<1, dim> y = points[q].location - centroid;
@@ -907,6 +922,26 @@ namespace igabde
         }
       for (auto &v : c)
         constraints.set_zero(v);
+    }
+
+
+
+    template <int dim>
+    void
+    Body<dim>::hold_rotations()
+    {
+      held_modes.clear();
+      held_loads.clear();
+      held_response.clear();
+      held_mode_names.clear();
+      held_moments.clear();
+      const int face = description().hold_rotation_face;
+      if (face < 0 || rigid_modes.empty())
+        return;
+      std::vector<Vector<double>> c;
+      FullMatrix<double>          J;
+      face_rotation_loads(face, c, J);
+      const unsigned int n_axes = c.size();
 
       // The free modes the constraints c_a^T u = 0 hold: A = C^T R on the
       // free modes, A = U Sigma V^T; the first r right singular vectors are

@@ -170,6 +170,11 @@ namespace igabde
             parameters.load_path.history_index(load.history, 0);
           d.point_loads.push_back(point_load);
         }
+      for (const MomentParameters &moment : body.moments)
+        d.moments.push_back(
+          {static_cast<types::boundary_id>(moment.face),
+           moment.moment,
+           parameters.load_path.history_index(moment.history, 0)});
       d.body_force = tensor(body.body_force);
       if (!body.body_force_expressions.empty())
         {

@@ -420,6 +420,18 @@ namespace igabde
                           "scaled by the load factor, or by the load history "
                           "'name' of Load path/Histories when the entry ends "
                           "in '@ name'.");
+        prm.declare_entry(
+          "Moments",
+          "",
+          Patterns::Anything(),
+          "Moments on patch faces about each face's centroid, scaled by the "
+          "load factor (or by the load history 'name' when the entry ends "
+          "in '@ name'): 'face: M' in 2D (N m/m, about z, counterclockwise "
+          "positive), 'face: Mx, My, Mz' in 3D (N m); separated by ';'. "
+          "Spread over the face as a distributing coupling spreads a "
+          "moment: a traction linear in the position, zero resultant force "
+          "(for a straight beam end, the bending stress My/I). E.g. "
+          "'1: 20' on a cantilever's end face.");
         prm.declare_entry("Body force",
                           "0, 0, 0",
                           Patterns::Anything(),
@@ -531,8 +543,8 @@ namespace igabde
                                      const std::string &context)
     {
       std::string supports_text, tractions_text, point_loads_text, hold_text,
-        body_force_text, lower_text, upper_text, centre_text, subdivisions_text,
-        grading_text, point_text, normal_text;
+        moments_text, body_force_text, lower_text, upper_text, centre_text,
+        subdivisions_text, grading_text, point_text, normal_text;
       prm.enter_subsection(name);
       {
         type              = parse_choice<BodyType>(prm.get("Type"),
@@ -568,6 +580,7 @@ namespace igabde
         hold_text         = prm.get("Hold rotation");
         tractions_text    = prm.get("Tractions");
         point_loads_text  = prm.get("Point loads");
+        moments_text      = prm.get("Moments");
         body_force_text   = prm.get("Body force");
         point_text        = prm.get("Plane point");
         normal_text       = prm.get("Plane normal");
@@ -577,6 +590,7 @@ namespace igabde
       supports.clear();
       tractions.clear();
       point_loads.clear();
+      moments.clear();
       body_force.assign(dimension, 0.);
       const std::string where = context + name + "/";
       if (type == BodyType::rigid_plane)
@@ -862,6 +876,31 @@ namespace igabde
             {read_vector(location, dimension, where + "Point loads"),
              read_vector(force, dimension, where + "Point loads"),
              history});
+        }
+      // Moments: "face: M" (2D), "face: Mx, My, Mz" (3D).
+      for (const std::string &entry : base::split(moments_text, ';'))
+        {
+          const auto [item, history] = split_history(entry);
+          const auto [key, rest] =
+            base::split_entry(item,
+                              where + "Moments",
+                              dimension == 2 ? "'face: M'" :
+                                               "'face: Mx, My, Mz'");
+          MomentParameters moment;
+          moment.face =
+            read_face(key, faces, geometry, where + "Moments", item);
+          moment.moment = base::parse_doubles(rest, where + "Moments");
+          const unsigned int n_axes = (dimension == 2 ? 1 : 3);
+          AssertThrow(moment.moment.size() == n_axes,
+                      base::ExcInput(
+                        where + "Moments: '" + item + "' must give " +
+                        (dimension == 2 ? std::string("one value (the "
+                                                      "moment about z)") :
+                                          std::string("three values (Mx, "
+                                                      "My, Mz)")) +
+                        " in this " + std::to_string(dimension) + "D scene."));
+          moment.history = history;
+          moments.push_back(moment);
         }
       body_force_expressions.clear();
       if (base::trim(body_force_text).rfind("function", 0) == 0)
@@ -1716,6 +1755,8 @@ namespace igabde
             known(t.history);
           for (const auto &l : body->point_loads)
             known(l.history);
+          for (const auto &m : body->moments)
+            known(m.history);
         }
       // A traction that depends on t gets one history per step: factor 1
       // at its step, 0 elsewhere, the expression evaluated at that step's

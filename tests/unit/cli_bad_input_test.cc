@@ -241,6 +241,18 @@ TEST(CliBadInput, OutputSubdivisionsNeitherAutoNorOneToSixteen)
 
 
 
+TEST(CliBadInput, MomentWithTheWrongNumberOfComponentsOrFace)
+{
+  expect_refused_at_parse_time("moment-components",
+                               "Body 1/Moments=1: 1, 2",
+                               "Moments: '1: 1, 2' must give one value");
+  expect_refused_at_parse_time("moment-face",
+                               "Body 1/Moments=7: 1",
+                               "Moments: face in '7: 1' must be a patch face");
+}
+
+
+
 TEST(CliBadInput, UnwritableOutputDirectory)
 {
   // A folder below a regular file cannot be created.

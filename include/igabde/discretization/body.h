@@ -579,6 +579,19 @@ namespace igabde
       find_free_rigid_modes();
 
       /**
+       * @brief The consistent loads @p c (one per rotation axis: z in 2D;
+       * x, y, z in 3D) of the tractions t_a = e_a x (x - x_c) on @p face,
+       * x_c its centroid, zero on constrained unknowns, and their moments
+       * @p J (J_ab = int (|y|^2 delta_ab - y_a y_b), y = x - x_c): pure
+       * moments, the linear tractions a distributing coupling spreads a
+       * moment or a rotation constraint as.
+       */
+      void
+      face_rotation_loads(const types::boundary_id     face,
+                          std::vector<Vector<double>> &c,
+                          FullMatrix<double>          &J) const;
+
+      /**
        * @brief Holds the rotations BodyDescription::hold_rotation_face
        * names: the free rigid modes R_h that the constraints C_h^T u = 0
        * (the consistent loads of linear tractions t = e_a x (x - x_c) on

@@ -79,6 +79,21 @@ namespace igabde
     };
 
     /**
+     * @brief A moment on a patch face about its centroid, spread as a
+     * distributing coupling spreads it (Body::face_rotation_loads()),
+     * scaled by the load factor.
+     */
+    struct FaceMoment
+    {
+      /// Patch face (deal.II colorized boundary id 0..2dim-1).
+      types::boundary_id boundary_id = 0;
+      /// Components about the axes (z only in 2D; x, y, z in 3D), N m.
+      std::vector<double> moment;
+      /// Load history scaling the moment (0: the load factors).
+      unsigned int history = 0;
+    };
+
+    /**
      * @brief Everything the scene says about one deformable body,
      * independent of how it is discretised.
      */
@@ -100,6 +115,8 @@ namespace igabde
       std::vector<NeumannCondition<dim>> tractions;
       /// Point loads.
       std::vector<PointLoad<dim>> point_loads;
+      /// Moments on faces.
+      std::vector<FaceMoment> moments;
       /// Body force per unit volume (N/m^3), on history 0.
       Tensor<1, dim> body_force;
       /// A body force that varies in space (N/m^3), on history 0; when set
@@ -118,6 +135,8 @@ namespace igabde
           n = std::max(n, t.history + 1);
         for (const auto &p : point_loads)
           n = std::max(n, p.history + 1);
+        for (const auto &m : moments)
+          n = std::max(n, m.history + 1);
         return n;
       }
     };

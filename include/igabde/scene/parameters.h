@@ -195,6 +195,21 @@ namespace igabde
     };
 
     /**
+     * @brief One entry of Body n/Moments: a moment on a patch face, spread
+     * over it as a distributing coupling spreads it.
+     */
+    struct MomentParameters
+    {
+      /// The patch face.
+      unsigned int face = 0;
+      /// The moment about the face's centroid (N m; N m/m in 2D): one value
+      /// (about z) in 2D, three in 3D.
+      std::vector<double> moment;
+      /// Load history scaling the moment ('@ name'; empty: Load factors).
+      std::string history;
+    };
+
+    /**
      * @brief One deformable body (or, for Body 2, a rigid plane) as the
      * scene file writes it; turned into a BodyDescription by the simulator.
      */
@@ -252,6 +267,9 @@ namespace igabde
       std::vector<TractionParameters> tractions;
       /// Point loads, read from "x, y[, z] : fx, fy[, fz]; ...".
       std::vector<PointLoadParameters> point_loads;
+      /// Moments on faces, read from "face: M; ..." (2D) or "face: Mx, My,
+      /// Mz; ..." (3D).
+      std::vector<MomentParameters> moments;
       /// Body force per volume (N/m^3), dimension values.
       std::vector<double> body_force;
       /// 'function fx; fy[; fz]': the body force's expressions of x, y[, z]

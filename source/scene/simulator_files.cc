@@ -1,0 +1,106 @@
+#include <igabde/base/files.h>
+
+#include <igabde/scene/interrupt.h>
+#include <igabde/scene/simulator.h>
+#include <igabde/scene/step_results.h>
+
+#include <algorithm>
+#include <fstream>
+
+// What the run writes besides each step's files: summary.json, steps.csv,
+// timing.txt and the .pvd series, and what an interruption would leave.
+
+namespace igabde
+{
+  namespace scene
+  {
+    template <int dim>
+    void
+    Simulator<dim>::write_summary(const std::string &status,
+                                  const std::string &error)
+    {
+      run_summary.status = status;
+      if (!error.empty())
+        run_summary.error = error;
+      if (!root)
+        return;
+      std::vector<std::string> histories;
+      for (const auto &h : parameters.load_path.histories)
+        histories.push_back(h.first);
+      const auto steps_csv = [&](const std::vector<StepRecord> &records) {
+        return step_table(records, histories, contact_stage != nullptr, dim);
+      };
+      // What an interruption now would leave: the steps whose files are
+      // all written, in summary.json and steps.csv.
+      const auto publish = [&](const RunSummary &summary) {
+        const std::size_t k = summary.load_steps.size();
+        publish_interrupted_summary(
+          to_json(summary),
+          steps_csv(summary.load_steps),
+          output_directory,
+          run_phase + (run_phase.rfind("load step", 0) != 0 ? "" :
+                       k == 0 ? " (no step finished and written)" :
+                                " (steps 1.." + std::to_string(k) +
+                                  " finished and written)"));
+      };
+
+      // While the run goes on, the files are refreshed at most once a
+      // second (a scene of many millisecond steps spent more time creating
+      // them than solving; the fields of the last steps may still be
+      // being written in the background); the run's end, failed or not,
+      // writes everything.
+      if (status == "running" && written_once && since_written.wall_time() < 1.)
+        {
+          RunSummary written = run_summary;
+          written.load_steps.resize(
+            std::min<std::size_t>(written.load_steps.size(),
+                                  writer.finished_groups()));
+          written.timing = timing_seconds(timer);
+          publish(written);
+          return;
+        }
+      since_written.restart();
+      written_once = true;
+      // The series name finished files only. An error of a file job ends
+      // the run (the failed summary's call finds no job left to wait for).
+      try
+        {
+          writer.wait();
+        }
+      catch (...)
+        {
+          // A failed run keeps its own error; otherwise this one ends it.
+          if (status != "failed")
+            throw;
+        }
+      run_summary.output_background_seconds = writer.seconds();
+      write_pvd_series<dim>(output_directory, bodies, pvd_records);
+      base::write_file_atomically(output_directory + "/steps.csv",
+                                  steps_csv(run_summary.load_steps));
+
+      run_summary.timing = final_timing ? *final_timing : timing_seconds(timer);
+      const nlohmann::json json = to_json(run_summary);
+      base::write_file_atomically(output_directory + "/summary.json",
+                                  json.dump(2) + "\n");
+      if (status == "running")
+        publish(run_summary);
+      else
+        withdraw_interrupted_summary();
+
+      // deal.II's timing table, to a file always and to the screen unless
+      // the scene switches it off.
+      timing_table.str("");
+      timer.print_summary();
+      std::ofstream(output_directory + "/timing.txt") << timing_table.str();
+      if (parameters.output.print_timing && status != "running")
+        pcout << timing_table.str() << std::flush;
+    }
+
+
+
+    template void
+    Simulator<2>::write_summary(const std::string &, const std::string &);
+    template void
+    Simulator<3>::write_summary(const std::string &, const std::string &);
+  } // namespace scene
+} // namespace igabde

@@ -1,0 +1,118 @@
+// Body n/Moments: a moment on a face, spread as a distributing coupling
+// spreads it. On a straight beam end the spread traction is the bending
+// stress -M y / I, so a beam with that moment at one end and the exact
+// displacements of pure bending on the other is in pure bending: the
+// quadratic exact solution lies in both discrete spaces (NURBS p = 2 and
+// FE_Q(2) on a box), and the computed tip displacement must equal the
+// closed form to round-off.
+
+#include <gtest/gtest.h>
+
+#include "cli_helpers.h"
+#include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+namespace
+{
+  constexpr double E = 1000., nu = 0.3, M = 2., L = 4., h = 1., w = 0.5;
+
+  /**
+   * Runs pure bending about z of the beam [0, L] x [-h/2, h/2] (x [-w/2,
+   * w/2] in 3D), E and nu as above (plane stress in 2D), with the moment
+   * M on the end x = L and the exact displacements on x = 0, and returns
+   * the displacement of the probe at (L, h/2[, w/2]).
+   */
+  std::vector<double>
+  tip_displacement(const unsigned int dim, const std::string &type)
+  {
+    SCOPED_TRACE(std::to_string(dim) + "D " + type);
+    const cli::ScratchFolder scratch("moment-" + std::to_string(dim) + type);
+    // Second moment of the section about z (per unit thickness in 2D).
+    const double       I = (dim == 2 ? 1. : w) * h * h * h / 12.;
+    std::ostringstream c;
+    c.precision(17);
+    c << nu * M / (2. * E * I);
+    const std::string k = c.str();
+    std::ofstream     scene(cli::join(scratch.path, "bending.prm"));
+    scene << "set Dimension = " << dim << "\n"
+          << "set Plane model = plane stress\n"
+          << "set Probe points = tip: " << L << ", " << h / 2
+          << (dim == 3 ? ", " + std::to_string(w / 2) : "") << "\n"
+          << "subsection Discretization\n  set Type = " << type
+          << "\n  set Degree = 2\nend\n"
+          << "subsection Body 1\n  set Geometry = box\n"
+          << "  set Lower corner = 0, " << -h / 2
+          << (dim == 3 ? ", " + std::to_string(-w / 2) : "") << "\n"
+          << "  set Upper corner = " << L << ", " << h / 2
+          << (dim == 3 ? ", " + std::to_string(w / 2) : "") << "\n"
+          << "  set Subdivisions = 4, 2" << (dim == 3 ? ", 1" : "") << "\n"
+          << "  set Young's modulus = " << E << "\n"
+          << "  set Poisson's ratio = " << nu
+          << "\n"
+          // u_y = nu M (y^2 - z^2) / (2 E I), u_z = nu M y z / (E I).
+          << "  set Supports = 0: x; 0: y = function " << k
+          << (dim == 3 ? "*(y^2-z^2); 0: z = function 2*" + k + "*y*z" : "*y^2")
+          << "\n"
+          << "  set Moments = 1: " << (dim == 3 ? "0, 0, " : "") << M << "\n"
+          << "end\n";
+    scene.close();
+    const auto result =
+      cli::run_igabde("bending.prm --quiet --set 'Output/Directory=out' "
+                      "--set 'Output/Write vtu=false'",
+                      scratch);
+    EXPECT_EQ(result.status, 0) << result.output;
+    std::ifstream  in(cli::join(scratch.path, "out/summary.json"));
+    nlohmann::json summary;
+    in >> summary;
+    return summary.at("points").at("tip").get<std::vector<double>>();
+  }
+
+  void
+  expect_pure_bending(const unsigned int dim, const std::string &type)
+  {
+    const double I = (dim == 2 ? 1. : w) * h * h * h / 12.;
+    const double y = h / 2, z = (dim == 3 ? w / 2 : 0.);
+    // u_x = -M x y / (E I), u_y = M x^2 / (2 E I) + nu M (y^2 - z^2) /
+    // (2 E I), u_z = nu M y z / (E I), at x = L.
+    const std::vector<double> exact = {-M * L * y / (E * I),
+                                       M * L * L / (2 * E * I) +
+                                         nu * M * (y * y - z * z) / (2 * E * I),
+                                       nu * M * y * z / (E * I)};
+    const auto                u     = tip_displacement(dim, type);
+    ASSERT_EQ(u.size(), dim);
+    for (unsigned int d = 0; d < dim; ++d)
+      EXPECT_NEAR(u[d], exact[d], 1e-8 * std::abs(exact[1]))
+        << dim << "D " << type << ", component " << d;
+  }
+} // namespace
+
+
+
+TEST(CliMoment, PureBendingOfANurbsBeam2D)
+{
+  expect_pure_bending(2, "nurbs");
+}
+
+
+
+TEST(CliMoment, PureBendingOfAnFeQBeam2D)
+{
+  expect_pure_bending(2, "lagrange");
+}
+
+
+
+TEST(CliMoment, PureBendingOfANurbsBeam3D)
+{
+  expect_pure_bending(3, "nurbs");
+}
+
+
+
+TEST(CliMoment, PureBendingOfAnFeQBeam3D)
+{
+  expect_pure_bending(3, "lagrange");
+}
