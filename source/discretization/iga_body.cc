@@ -19,6 +19,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <iterator>
 #include <limits>
 #include <map>
 #include <sstream>
@@ -267,6 +268,66 @@ namespace igabde
                   values[i]                   = value;
                   this->prescribed_history[i] = bc.history;
                 }
+        }
+      // Point supports: at a patch corner the corner control point's basis
+      // function is one and every other vanishes, so holding that control
+      // point holds the point.
+      for (const auto &support : this->description().point_supports)
+        {
+          std::vector<unsigned int> corners;
+          for (unsigned int v = 0; v < (1u << dim); ++v)
+            {
+              std::vector<unsigned int> common =
+                geometry.face_control_points((v & 1u) ? 1 : 0);
+              std::sort(common.begin(), common.end());
+              for (unsigned int d = 1; d < dim; ++d)
+                {
+                  std::vector<unsigned int> face =
+                    geometry.face_control_points(2 * d + ((v >> d) & 1u));
+                  std::sort(face.begin(), face.end());
+                  std::vector<unsigned int> both;
+                  std::set_intersection(common.begin(),
+                                        common.end(),
+                                        face.begin(),
+                                        face.end(),
+                                        std::back_inserter(both));
+                  common.swap(both);
+                }
+              corners.insert(corners.end(), common.begin(), common.end());
+            }
+          const auto at =
+            std::find_if(corners.begin(),
+                         corners.end(),
+                         [&](const unsigned int a) {
+                           return geometry.control_point(a).distance(
+                                    support.location) <= 1e-10 * diameter;
+                         });
+          std::string corner_list;
+          for (const unsigned int a : corners)
+            corner_list += std::string(a == corners.front() ? "" : ", ") + "(" +
+                           base::to_string(geometry.control_point(a)) + ")";
+          AssertThrow(at != corners.end(),
+                      ExcMessage("Body '" + name + "': the point support at (" +
+                                 base::to_string(support.location) +
+                                 ") is not a corner of the patch; a NURBS "
+                                 "body takes point supports at its corners " +
+                                 corner_list +
+                                 " (or use Discretization/Type = lagrange, "
+                                 "whose every mesh node can take one)."));
+          for (unsigned int c = 0; c < dim; ++c)
+            if (support.components[c])
+              {
+                const types::global_dof_index i = dim * (*at) + c;
+                AssertThrow(values.find(i) == values.end() || values[i] == 0.,
+                            ExcMessage("Body '" + name +
+                                       "': a point support holds component " +
+                                       std::to_string(c) +
+                                       " at a corner where a support "
+                                       "prescribes a non-zero value."));
+                if (values.find(i) == values.end())
+                  this->prescribed_history[i] = 1;
+                values[i] = 0.;
+              }
         }
       for (const auto &[i, v] : values)
         {

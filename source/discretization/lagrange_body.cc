@@ -1,3 +1,5 @@
+#include <igabde/base/utilities.h>
+
 #include <igabde/nurbs/parametric_mesh.h>
 
 #include <igabde/discretization/lagrange_body.h>
@@ -413,6 +415,45 @@ namespace igabde
                 i,
                 bc.field[c] ? bc.field[c](nodes.at(i)) : bc.value[c]);
               this->prescribed_history[i] = bc.history;
+            }
+        }
+      // Point supports: at a node its Lagrange function is one and every
+      // other vanishes, so holding the node's unknowns holds the point.
+      if (!this->description().point_supports.empty())
+        {
+          std::map<types::global_dof_index, Point<dim>> all_nodes;
+          DoFTools::map_dofs_to_support_points(*mapping,
+                                               dof_handler,
+                                               all_nodes);
+          const double size = GridTools::diameter(triangulation);
+          for (const auto &support : this->description().point_supports)
+            {
+              bool found = false;
+              for (const auto &[i, node] : all_nodes)
+                if (node.distance(support.location) <= 1e-10 * size &&
+                    support.components[this->dof_components[i]])
+                  {
+                    found = true;
+                    if (!this->constraints.is_constrained(i))
+                      this->constraints.add_line(i);
+                    if (!this->prescribed_constraints.is_constrained(i))
+                      {
+                        this->prescribed_constraints.add_line(i);
+                        this->prescribed_history[i] = 1;
+                      }
+                    AssertThrow(
+                      this->prescribed_constraints.get_inhomogeneity(i) == 0.,
+                      ExcMessage("Body '" + this->description().name +
+                                 "': a point support holds a node where a "
+                                 "support prescribes a non-zero value."));
+                  }
+              AssertThrow(found,
+                          ExcMessage("Body '" + this->description().name +
+                                     "': the point support at (" +
+                                     base::to_string(support.location) +
+                                     ") is not a node of the FE_Q(" +
+                                     std::to_string(fe.degree) +
+                                     ") mesh; put it at a vertex or node."));
             }
         }
       this->constraints.close();

@@ -170,6 +170,14 @@ namespace igabde
             parameters.load_path.history_index(load.history, 0);
           d.point_loads.push_back(point_load);
         }
+      for (const PointSupportParameters &support : body.point_supports)
+        {
+          discretization::PointSupport<dim> point_support;
+          point_support.location = Point<dim>(tensor(support.location));
+          for (unsigned int c = 0; c < dim; ++c)
+            point_support.components[c] = support.components[c];
+          d.point_supports.push_back(point_support);
+        }
       for (const MomentParameters &moment : body.moments)
         d.moments.push_back(
           {static_cast<types::boundary_id>(moment.face),

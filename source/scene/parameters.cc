@@ -421,6 +421,17 @@ namespace igabde
                           "'name' of Load path/Histories when the entry ends "
                           "in '@ name'.");
         prm.declare_entry(
+          "Point supports",
+          "",
+          Patterns::Anything(),
+          "Components held at zero at single points: 'x, y[, z] : "
+          "components; ...', e.g. '0, -0.5 : x y; 0, 0.5 : x' (a pin and a "
+          "roller). A point must be a node where one basis function is one "
+          "and the others vanish: a corner of the patch for NURBS, a mesh "
+          "node for FE_Q (refused otherwise). The support holds that node "
+          "only: its reaction is a point force, with the stress singularity "
+          "that brings.");
+        prm.declare_entry(
           "Moments",
           "",
           Patterns::Anything(),
@@ -543,47 +554,49 @@ namespace igabde
                                      const std::string &context)
     {
       std::string supports_text, tractions_text, point_loads_text, hold_text,
-        moments_text, body_force_text, lower_text, upper_text, centre_text,
-        subdivisions_text, grading_text, point_text, normal_text;
+        moments_text, point_supports_text, body_force_text, lower_text,
+        upper_text, centre_text, subdivisions_text, grading_text, point_text,
+        normal_text;
       prm.enter_subsection(name);
       {
-        type              = parse_choice<BodyType>(prm.get("Type"),
+        type                = parse_choice<BodyType>(prm.get("Type"),
                                       {BodyType::deformable,
-                                                    BodyType::rigid_plane,
-                                                    BodyType::none});
-        geometry          = parse_choice<Geometry>(prm.get("Geometry"),
+                                                      BodyType::rigid_plane,
+                                                      BodyType::none});
+        geometry            = parse_choice<Geometry>(prm.get("Geometry"),
                                           {Geometry::box,
-                                                    Geometry::quarter_annulus,
-                                                    Geometry::thick_cylinder,
-                                                    Geometry::plate_with_hole,
-                                                    Geometry::hertz_quarter_disc,
-                                                    Geometry::curved_beam,
-                                                    Geometry::full_disc,
-                                                    Geometry::half_disc,
-                                                    Geometry::full_cylinder,
-                                                    Geometry::half_cylinder,
-                                                    Geometry::file});
-        geometry_file     = base::trim(prm.get("Geometry file"));
-        lower_text        = prm.get("Lower corner");
-        upper_text        = prm.get("Upper corner");
-        inner_radius      = prm.get_double("Inner radius");
-        outer_radius      = prm.get_double("Outer radius");
-        radius            = prm.get_double("Radius");
-        centre_text       = prm.get("Centre");
-        width             = prm.get_double("Width");
-        plate_size        = prm.get_double("Plate size");
-        subdivisions_text = prm.get("Subdivisions");
-        grading_text      = prm.get("Grading");
-        youngs_modulus    = prm.get_double("Young's modulus");
-        poisson_ratio     = prm.get_double("Poisson's ratio");
-        supports_text     = prm.get("Supports");
-        hold_text         = prm.get("Hold rotation");
-        tractions_text    = prm.get("Tractions");
-        point_loads_text  = prm.get("Point loads");
-        moments_text      = prm.get("Moments");
-        body_force_text   = prm.get("Body force");
-        point_text        = prm.get("Plane point");
-        normal_text       = prm.get("Plane normal");
+                                                      Geometry::quarter_annulus,
+                                                      Geometry::thick_cylinder,
+                                                      Geometry::plate_with_hole,
+                                                      Geometry::hertz_quarter_disc,
+                                                      Geometry::curved_beam,
+                                                      Geometry::full_disc,
+                                                      Geometry::half_disc,
+                                                      Geometry::full_cylinder,
+                                                      Geometry::half_cylinder,
+                                                      Geometry::file});
+        geometry_file       = base::trim(prm.get("Geometry file"));
+        lower_text          = prm.get("Lower corner");
+        upper_text          = prm.get("Upper corner");
+        inner_radius        = prm.get_double("Inner radius");
+        outer_radius        = prm.get_double("Outer radius");
+        radius              = prm.get_double("Radius");
+        centre_text         = prm.get("Centre");
+        width               = prm.get_double("Width");
+        plate_size          = prm.get_double("Plate size");
+        subdivisions_text   = prm.get("Subdivisions");
+        grading_text        = prm.get("Grading");
+        youngs_modulus      = prm.get_double("Young's modulus");
+        poisson_ratio       = prm.get_double("Poisson's ratio");
+        supports_text       = prm.get("Supports");
+        hold_text           = prm.get("Hold rotation");
+        tractions_text      = prm.get("Tractions");
+        point_loads_text    = prm.get("Point loads");
+        moments_text        = prm.get("Moments");
+        point_supports_text = prm.get("Point supports");
+        body_force_text     = prm.get("Body force");
+        point_text          = prm.get("Plane point");
+        normal_text         = prm.get("Plane normal");
       }
       prm.leave_subsection();
 
@@ -591,6 +604,7 @@ namespace igabde
       tractions.clear();
       point_loads.clear();
       moments.clear();
+      point_supports.clear();
       body_force.assign(dimension, 0.);
       const std::string where = context + name + "/";
       if (type == BodyType::rigid_plane)
@@ -877,6 +891,40 @@ namespace igabde
              read_vector(force, dimension, where + "Point loads"),
              history});
         }
+      // Point supports: "x, y[, z] : x y".
+      for (const std::string &entry : base::split(point_supports_text, ';'))
+        {
+          const auto [location, names] =
+            base::split_entry(entry,
+                              where + "Point supports",
+                              "'x, y[, z] : components', e.g. '0, 0 : x y'");
+          PointSupportParameters support;
+          support.location =
+            read_vector(location, dimension, where + "Point supports");
+          std::istringstream in(names);
+          std::string        token;
+          bool               any = false;
+          while (in >> token)
+            {
+              const int c = (token == "x" ? 0 :
+                             token == "y" ? 1 :
+                             token == "z" ? 2 :
+                                            -1);
+              AssertThrow(c >= 0 && c < static_cast<int>(dimension),
+                          base::ExcInput(where + "Point supports: '" + token +
+                                         "' in '" + base::trim(entry) +
+                                         "' is not a component; use " +
+                                         component_names(dimension) + "."));
+              support.components[c] = true;
+              any                   = true;
+            }
+          AssertThrow(any,
+                      base::ExcInput(where + "Point supports: '" +
+                                     base::trim(entry) +
+                                     "' names no component."));
+          point_supports.push_back(support);
+        }
+
       // Moments: "face: M" (2D), "face: Mx, My, Mz" (3D).
       for (const std::string &entry : base::split(moments_text, ';'))
         {
@@ -1681,7 +1729,8 @@ namespace igabde
         {
           const std::string name = (body == &body1 ? "Body 1" : "Body 2");
           AssertThrow(body->type != BodyType::deformable ||
-                        !body->supports.empty() || contact.enabled,
+                        !body->supports.empty() ||
+                        !body->point_supports.empty() || contact.enabled,
                       base::ExcInput(
                         f + name +
                         "/Supports is empty and the scene has no contact "
@@ -1691,7 +1740,9 @@ namespace igabde
                         "'0: x; 2: y'."));
         }
       AssertThrow(!contact.enabled || body2.type != BodyType::deformable ||
-                    !body1.supports.empty() || !body2.supports.empty(),
+                    !body1.supports.empty() || !body2.supports.empty() ||
+                    !body1.point_supports.empty() ||
+                    !body2.point_supports.empty(),
                   base::ExcInput(
                     f + "Body 1/Supports and Body 2/Supports are both empty: "
                         "contact only acts between the two bodies, so "

@@ -1,10 +1,10 @@
 // Body n/Moments: a moment on a face, spread as a distributing coupling
-// spreads it. On a straight beam end the spread traction is the bending
-// stress -M y / I, so a beam with that moment at one end and the exact
-// displacements of pure bending on the other is in pure bending: the
-// quadratic exact solution lies in both discrete spaces (NURBS p = 2 and
-// FE_Q(2) on a box), and the computed tip displacement must equal the
-// closed form to round-off.
+// spreads it; Body n/Point supports: components held at single nodes. On a
+// straight beam end the spread traction is the bending stress -M y / I, so a
+// beam with that moment at one end and the exact displacements of pure bending
+// on the other is in pure bending: the quadratic exact solution lies in both
+// discrete spaces (NURBS p = 2 and FE_Q(2) on a box), and the computed tip
+// displacement must equal the closed form to round-off.
 
 #include <gtest/gtest.h>
 
@@ -115,4 +115,76 @@ TEST(CliMoment, PureBendingOfANurbsBeam3D)
 TEST(CliMoment, PureBendingOfAnFeQBeam3D)
 {
   expect_pure_bending(3, "lagrange");
+}
+
+
+
+namespace
+{
+  /**
+   * The 2D beam in pure bending between end moments -M (x = 0) and M
+   * (x = L), held only by a pin at (0, -h/2) and a roller (x) at (0, h/2):
+   * u_x = -M x y / (E I), u_y = M x^2 / (2 E I) + nu M (y^2 - h^2/4) /
+   * (2 E I) meets both point supports, so at the tip (L, h/2) u = (-M L h /
+   * (2 E I), M L^2 / (2 E I)), in both discrete spaces.
+   */
+  void
+  expect_point_supported_bending(const std::string &type)
+  {
+    SCOPED_TRACE(type);
+    const cli::ScratchFolder scratch("point-supports-" + type);
+    std::ofstream            scene(cli::join(scratch.path, "pinned.prm"));
+    scene << "set Dimension = 2\nset Plane model = plane stress\n"
+          << "set Probe points = tip: " << L << ", " << h / 2 << "\n"
+          << "subsection Discretization\n  set Type = " << type
+          << "\n  set Degree = 2\nend\n"
+          << "subsection Body 1\n  set Geometry = box\n"
+          << "  set Lower corner = 0, " << -h / 2 << "\n"
+          << "  set Upper corner = " << L << ", " << h / 2 << "\n"
+          << "  set Subdivisions = 4, 2\n"
+          << "  set Young's modulus = " << E << "\n"
+          << "  set Poisson's ratio = " << nu << "\n"
+          << "  set Point supports = 0, " << -h / 2 << " : x y; 0, " << h / 2
+          << " : x\n"
+          << "  set Moments = 0: " << -M << "; 1: " << M << "\n"
+          << "end\n";
+    scene.close();
+    const auto result =
+      cli::run_igabde("pinned.prm --quiet --set 'Output/Directory=out' "
+                      "--set 'Output/Write vtu=false'",
+                      scratch);
+    ASSERT_EQ(result.status, 0) << result.output;
+    std::ifstream  in(cli::join(scratch.path, "out/summary.json"));
+    nlohmann::json summary;
+    in >> summary;
+    const auto   u = summary.at("points").at("tip").get<std::vector<double>>();
+    const double I = h * h * h / 12.;
+    const double exact[2] = {-M * L * h / (2 * E * I), M * L * L / (2 * E * I)};
+    for (unsigned int d = 0; d < 2; ++d)
+      EXPECT_NEAR(u.at(d), exact[d], 1e-8 * exact[1]) << type << " " << d;
+  }
+} // namespace
+
+
+
+TEST(CliPointSupports, PinAndRollerHoldABeamInPureBending)
+{
+  expect_point_supported_bending("nurbs");
+  expect_point_supported_bending("lagrange");
+}
+
+
+
+TEST(CliPointSupports, NurbsPointSupportOffTheCornersIsRefused)
+{
+  // Only at a corner does one NURBS basis function reach one; the message
+  // names the corners.
+  const cli::ScratchFolder scratch("point-support-off-corner");
+  const auto               run =
+    cli::run_prm_scene(scratch.path,
+                       "v1-plate-with-hole.prm",
+                       "--set 'Body 1/Point supports=1.234, 0.5 : x'");
+  EXPECT_NE(run.status, 0) << run.output;
+  EXPECT_NE(run.output.find("is not a corner of the patch"), std::string::npos)
+    << run.output;
 }

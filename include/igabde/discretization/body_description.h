@@ -79,6 +79,19 @@ namespace igabde
     };
 
     /**
+     * @brief Components held at zero at one node of the body (a patch
+     * corner for NURBS, a mesh node for FE_Q).
+     */
+    template <int dim>
+    struct PointSupport
+    {
+      /// Where (m).
+      Point<dim> location;
+      /// Which displacement components are held.
+      std::array<bool, dim> components{};
+    };
+
+    /**
      * @brief A moment on a patch face about its centroid, spread as a
      * distributing coupling spreads it (Body::face_rotation_loads()),
      * scaled by the load factor.
@@ -108,6 +121,8 @@ namespace igabde
       elasticity::IsotropicMaterial<dim> material;
       /// Supports.
       std::vector<DirichletCondition<dim>> dirichlet;
+      /// Point supports.
+      std::vector<PointSupport<dim>> point_supports;
       /// The patch face whose mean rotation is held at zero (a
       /// distributing coupling's rotation constraint; -1: none).
       int hold_rotation_face = -1;

@@ -195,6 +195,19 @@ namespace igabde
     };
 
     /**
+     * @brief One entry of Body n/Point supports: components held at zero
+     * at one point of the body (a node: a patch corner for NURBS, a mesh
+     * node for FE_Q).
+     */
+    struct PointSupportParameters
+    {
+      /// Where (m), dimension values.
+      std::vector<double> location;
+      /// Held components x, y, z.
+      std::array<bool, 3> components = {{false, false, false}};
+    };
+
+    /**
      * @brief One entry of Body n/Moments: a moment on a patch face, spread
      * over it as a distributing coupling spreads it.
      */
@@ -260,6 +273,8 @@ namespace igabde
       double poisson_ratio = 0.3;
       /// Supports, read from "face: x y=0.1; face: z".
       std::vector<SupportParameters> supports;
+      /// Point supports, read from "x, y[, z] : components; ...".
+      std::vector<PointSupportParameters> point_supports;
       /// Hold rotation: the face whose mean rotation is held (-1: none).
       int hold_rotation_face = -1;
       /// Tractions, read from "face: pressure p; face: vector tx, ty;
