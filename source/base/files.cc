@@ -89,10 +89,26 @@ namespace igabde
     void
     BackgroundWriter::wait_all_but_last_group()
     {
+      join_through(group < 2 ? 0u : group - 2);
+    }
+
+
+
+    void
+    BackgroundWriter::wait()
+    {
+      join_through(group);
+    }
+
+
+
+    void
+    BackgroundWriter::join_through(const unsigned int last)
+    {
       std::exception_ptr                                                first;
       std::vector<std::pair<unsigned int, dealii::Threads::Task<void>>> kept;
       for (auto &job : jobs)
-        if (job.first + 2 > group)
+        if (job.first > last)
           kept.push_back(std::move(job));
         else
           try
@@ -105,29 +121,7 @@ namespace igabde
                 first = std::current_exception();
             }
       jobs.swap(kept);
-      joined_through = std::max(joined_through, group < 2 ? 0u : group - 2);
-      if (first)
-        std::rethrow_exception(first);
-    }
-
-
-
-    void
-    BackgroundWriter::wait()
-    {
-      std::exception_ptr first;
-      for (auto &job : jobs)
-        try
-          {
-            job.second.join();
-          }
-        catch (...)
-          {
-            if (!first)
-              first = std::current_exception();
-          }
-      jobs.clear();
-      joined_through = group;
+      joined_through = std::max(joined_through, last);
       if (first)
         std::rethrow_exception(first);
     }

@@ -543,6 +543,28 @@ namespace igabde
       {
         return dimension == 2 ? "x, y" : "x, y, z";
       }
+
+
+
+      /// The component 'x', 'y' or 'z' names (0, 1, 2), refused unless it
+      /// is one of the scene's; @p where and @p item say where it was read.
+      unsigned int
+      read_component(const std::string &name,
+                     const unsigned int dimension,
+                     const std::string &where,
+                     const std::string &item,
+                     const std::string &hint = "")
+      {
+        const int c = (name == "x" ? 0 :
+                       name == "y" ? 1 :
+                       name == "z" ? 2 :
+                                     -1);
+        AssertThrow(c >= 0 && c < static_cast<int>(dimension),
+                    base::ExcInput(where + ": '" + name + "' in '" + item +
+                                   "' is not a component; use " +
+                                   component_names(dimension) + hint + "."));
+        return c;
+      }
     } // namespace
 
 
@@ -781,18 +803,12 @@ namespace igabde
           bool               any = false;
           while (in >> token)
             {
-              const auto        eq   = token.find('=');
-              const std::string comp = token.substr(0, eq);
-              const int         c    = (comp == "x" ? 0 :
-                                        comp == "y" ? 1 :
-                                        comp == "z" ? 2 :
-                                                      -1);
-              AssertThrow(c >= 0 && c < static_cast<int>(dimension),
-                          base::ExcInput(where + "Supports: '" + token +
-                                         "' in '" + item +
-                                         "' is not a component; use " +
-                                         component_names(dimension) +
-                                         ", optionally with =value."));
+              const auto         eq = token.find('=');
+              const unsigned int c  = read_component(token.substr(0, eq),
+                                                    dimension,
+                                                    where + "Supports",
+                                                    item,
+                                                    ", optionally with =value");
               support.components[c] = true;
               if (eq != std::string::npos)
                 {
@@ -906,15 +922,10 @@ namespace igabde
           bool               any = false;
           while (in >> token)
             {
-              const int c = (token == "x" ? 0 :
-                             token == "y" ? 1 :
-                             token == "z" ? 2 :
-                                            -1);
-              AssertThrow(c >= 0 && c < static_cast<int>(dimension),
-                          base::ExcInput(where + "Point supports: '" + token +
-                                         "' in '" + base::trim(entry) +
-                                         "' is not a component; use " +
-                                         component_names(dimension) + "."));
+              const unsigned int c  = read_component(token,
+                                                    dimension,
+                                                    where + "Point supports",
+                                                    base::trim(entry));
               support.components[c] = true;
               any                   = true;
             }

@@ -19,6 +19,21 @@ namespace
 {
   constexpr double E = 1000., nu = 0.3, M = 2., L = 4., h = 1., w = 0.5;
 
+  /// Runs the scene @p file of @p scratch and returns its probe 'tip'.
+  std::vector<double>
+  run_for_tip(const cli::ScratchFolder &scratch, const std::string &file)
+  {
+    const auto result =
+      cli::run_igabde(file + " --quiet --set 'Output/Directory=out' "
+                             "--set 'Output/Write vtu=false'",
+                      scratch);
+    EXPECT_EQ(result.status, 0) << result.output;
+    std::ifstream  in(cli::join(scratch.path, "out/summary.json"));
+    nlohmann::json summary;
+    in >> summary;
+    return summary.at("points").at("tip").get<std::vector<double>>();
+  }
+
   /**
    * Runs pure bending about z of the beam [0, L] x [-h/2, h/2] (x [-w/2,
    * w/2] in 3D), E and nu as above (plane stress in 2D), with the moment
@@ -59,15 +74,7 @@ namespace
           << "  set Moments = 1: " << (dim == 3 ? "0, 0, " : "") << M << "\n"
           << "end\n";
     scene.close();
-    const auto result =
-      cli::run_igabde("bending.prm --quiet --set 'Output/Directory=out' "
-                      "--set 'Output/Write vtu=false'",
-                      scratch);
-    EXPECT_EQ(result.status, 0) << result.output;
-    std::ifstream  in(cli::join(scratch.path, "out/summary.json"));
-    nlohmann::json summary;
-    in >> summary;
-    return summary.at("points").at("tip").get<std::vector<double>>();
+    return run_for_tip(scratch, "bending.prm");
   }
 
   void
@@ -149,16 +156,8 @@ namespace
           << "  set Moments = 0: " << -M << "; 1: " << M << "\n"
           << "end\n";
     scene.close();
-    const auto result =
-      cli::run_igabde("pinned.prm --quiet --set 'Output/Directory=out' "
-                      "--set 'Output/Write vtu=false'",
-                      scratch);
-    ASSERT_EQ(result.status, 0) << result.output;
-    std::ifstream  in(cli::join(scratch.path, "out/summary.json"));
-    nlohmann::json summary;
-    in >> summary;
-    const auto   u = summary.at("points").at("tip").get<std::vector<double>>();
-    const double I = h * h * h / 12.;
+    const auto   u        = run_for_tip(scratch, "pinned.prm");
+    const double I        = h * h * h / 12.;
     const double exact[2] = {-M * L * h / (2 * E * I), M * L * L / (2 * E * I)};
     for (unsigned int d = 0; d < 2; ++d)
       EXPECT_NEAR(u.at(d), exact[d], 1e-8 * exact[1]) << type << " " << d;

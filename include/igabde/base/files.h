@@ -83,6 +83,11 @@ namespace igabde
       seconds() const;
 
     private:
+      /// Waits for the jobs of groups up to @p last; rethrows the first
+      /// error.
+      void
+      join_through(const unsigned int last);
+
       /// Each job with its group.
       std::vector<std::pair<unsigned int, dealii::Threads::Task<void>>> jobs;
       unsigned int       group          = 0;
