@@ -1,4 +1,5 @@
 #include <igabde/base/files.h>
+#include <igabde/base/utilities.h>
 
 #include <algorithm>
 #include <chrono>
@@ -11,6 +12,51 @@ namespace igabde
 {
   namespace base
   {
+    std::ofstream
+    open_for_writing(const std::string &path, const std::string &setting)
+    {
+      std::error_code ignored;
+      std::filesystem::remove(path, ignored);
+      std::ofstream out(path);
+      AssertThrow(out,
+                  ExcInput("cannot open '" + path + "' for writing; check " +
+                           setting + "."));
+      return out;
+    }
+
+
+
+    template <int dim, int spacedim>
+    dealii::DataOutBase::VtkFlags
+    vtu_flags(
+      const std::vector<dealii::DataOutBase::Patch<dim, spacedim>> &patches)
+    {
+      std::size_t values = 0;
+      for (const auto &patch : patches)
+        values += patch.data.n_elements() +
+                  spacedim * (patch.data.n_cols() > 0 ?
+                                patch.data.n_cols() :
+                                patch.reference_cell.n_vertices());
+      dealii::DataOutBase::VtkFlags flags;
+      flags.compression_level = (4 * values >= (std::size_t(1) << 20)) ?
+                                  dealii::DataOutBase::VtkFlags::best_speed :
+                                  dealii::DataOutBase::VtkFlags::no_compression;
+      return flags;
+    }
+
+
+
+    template dealii::DataOutBase::VtkFlags
+    vtu_flags(const std::vector<dealii::DataOutBase::Patch<2, 2>> &);
+    template dealii::DataOutBase::VtkFlags
+    vtu_flags(const std::vector<dealii::DataOutBase::Patch<3, 3>> &);
+    template dealii::DataOutBase::VtkFlags
+    vtu_flags(const std::vector<dealii::DataOutBase::Patch<0, 2>> &);
+    template dealii::DataOutBase::VtkFlags
+    vtu_flags(const std::vector<dealii::DataOutBase::Patch<0, 3>> &);
+
+
+
     TeeBuffer::TeeBuffer(std::streambuf *a, std::streambuf *b)
       : a(a)
       , b(b)

@@ -465,6 +465,49 @@ namespace igabde
 
 
     template <int dim>
+    std::vector<double>
+    Body<dim>::face_motion_reaction(const Vector<double> &u,
+                                    const Vector<double> &f,
+                                    const unsigned int    k) const
+    {
+      AssertIndexRange(k, description().face_motions.size());
+      const FaceMotion<dim> &motion = description().face_motions[k];
+      const unsigned int     n_axes = (dim == 2 ? 1 : 3);
+      std::vector<double>    result(dim + n_axes, 0.);
+      if (Utilities::MPI::this_mpi_process(layout.world) == layout.root)
+        {
+          AssertThrow(assembled, ExcInternalError());
+          Vector<double> r(n_unknowns);
+          system_matrix.vmult(r, u);
+          r -= f;
+          for (const types::global_dof_index i :
+               dirichlet_dofs.at(motion.condition))
+            {
+              const unsigned int   c = dof_components[i];
+              const Tensor<1, dim> y = dof_locations[i] - motion.centre;
+              result[c] += r[i];
+              // The moment of the force r_i e_c at y: (y x e_c) r_i.
+              if (dim == 2)
+                result[dim] += (c == 1 ? y[0] : -y[1]) * r[i];
+              else
+                for (unsigned int a = 0; a < 3; ++a)
+                  if (a != c)
+                    result[dim + a] +=
+                      ((c == (a + 2) % 3) ? y[(a + 1) % 3] : -y[(a + 2) % 3]) *
+                      r[i];
+            }
+        }
+      if (Utilities::MPI::n_mpi_processes(layout.world) > 1)
+        Utilities::MPI::broadcast(result.data(),
+                                  result.size(),
+                                  layout.root,
+                                  layout.world);
+      return result;
+    }
+
+
+
+    template <int dim>
     const SparseMatrix<double> &
     Body<dim>::stiffness_matrix() const
     {

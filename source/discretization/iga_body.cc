@@ -1,3 +1,4 @@
+#include <igabde/base/files.h>
 #include <igabde/base/utilities.h>
 
 #include <igabde/nurbs/geometry_builders.h>
@@ -209,8 +210,10 @@ namespace igabde
       this->prescribed_constraints.clear();
       this->prescribed_history.clear();
       std::map<types::global_dof_index, double> values;
-      for (const auto &bc : this->description().dirichlet)
+      this->dirichlet_dofs.assign(this->description().dirichlet.size(), {});
+      for (unsigned int b = 0; b < this->description().dirichlet.size(); ++b)
         {
+          const auto &bc = this->description().dirichlet[b];
           AssertThrow(bc.boundary_id < 2 * dim,
                       ExcMessage("Body '" + name + "': Dirichlet face " +
                                  std::to_string(bc.boundary_id) +
@@ -267,6 +270,7 @@ namespace igabde
                     }
                   values[i]                   = value;
                   this->prescribed_history[i] = bc.history;
+                  this->dirichlet_dofs[b].push_back(i);
                 }
         }
       // Point supports: at a patch corner the corner control point's basis
@@ -905,16 +909,12 @@ namespace igabde
         dim - 1,
         "displacement",
         DataComponentInterpretation::component_is_part_of_vector);
-      std::ofstream out(filename);
-      AssertThrow(out,
-                  ExcMessage("Body '" + this->description().name +
-                             "': cannot open '" + filename +
-                             "' for writing; does its directory exist?"));
-      // zlib's fastest level: the best level took 9 times as long for 2 %
-      // smaller files (V5, 2026-11-25).
-      DataOutBase::VtkFlags flags;
-      flags.compression_level = DataOutBase::VtkFlags::best_speed;
-      DataOutBase::write_vtu(patches, names, ranges, flags, out);
+      std::ofstream out = base::open_for_writing(filename);
+      DataOutBase::write_vtu(patches,
+                             names,
+                             ranges,
+                             base::vtu_flags(patches),
+                             out);
     }
 
 

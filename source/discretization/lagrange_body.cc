@@ -1,3 +1,4 @@
+#include <igabde/base/files.h>
 #include <igabde/base/utilities.h>
 
 #include <igabde/nurbs/parametric_mesh.h>
@@ -383,8 +384,10 @@ namespace igabde
         for (unsigned int c = 0; c < dim; ++c)
           if (bc.field[c] && nodes.empty())
             DoFTools::map_dofs_to_support_points(*mapping, dof_handler, nodes);
-      for (const auto &bc : this->description().dirichlet)
+      this->dirichlet_dofs.assign(this->description().dirichlet.size(), {});
+      for (unsigned int b = 0; b < this->description().dirichlet.size(); ++b)
         {
+          const auto       &bc = this->description().dirichlet[b];
           std::vector<bool> mask(bc.components.begin(), bc.components.end());
           const IndexSet    dofs =
             DoFTools::extract_boundary_dofs(dof_handler,
@@ -415,6 +418,7 @@ namespace igabde
                 i,
                 bc.field[c] ? bc.field[c](nodes.at(i)) : bc.value[c]);
               this->prescribed_history[i] = bc.history;
+              this->dirichlet_dofs[b].push_back(i);
             }
         }
       // Point supports: at a node its Lagrange function is one and every
@@ -858,13 +862,8 @@ namespace igabde
                                         this->settings.output_subdivisions,
                                         triangulation.n_active_cells())),
                              DataOut<dim>::curved_inner_cells);
-      // zlib's fastest level: the best level took 9 times as long for 2 %
-      // smaller files (V5, 2026-11-25).
-      DataOutBase::VtkFlags flags;
-      flags.compression_level = DataOutBase::VtkFlags::best_speed;
-      data_out.set_flags(flags);
-      std::ofstream out(filename);
-      AssertThrow(out, ExcMessage("Cannot write '" + filename + "'."));
+      data_out.set_flags(base::vtu_flags(data_out.get_patches()));
+      std::ofstream out = base::open_for_writing(filename);
       data_out.write_vtu(out);
     }
 

@@ -1,3 +1,4 @@
+#include <igabde/base/files.h>
 #include <igabde/base/utilities.h>
 
 #include <igabde/nurbs/geometry_file.h>
@@ -581,9 +582,11 @@ namespace igabde
               cells.push_back(cell);
             }
         }
-      DataOutBase::VtkFlags flags;
-      flags.compression_level = DataOutBase::VtkFlags::best_speed;
-      DataOutBase::write_vtu(cells, {"weight", "patch"}, {}, flags, out);
+      DataOutBase::write_vtu(cells,
+                             {"weight", "patch"},
+                             {},
+                             base::vtu_flags(cells),
+                             out);
     }
 
 

@@ -1,6 +1,7 @@
 #include <igabde/nurbs/nurbs_patch.h>
 
 #include <deal.II/base/exceptions.h>
+#include <deal.II/base/quadrature_lib.h>
 
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/lapack_full_matrix.h>
@@ -608,6 +609,59 @@ namespace igabde
                              " is undefined at this point (singular "
                              "parametrization, e.g. a collapsed corner)."));
       return n / length;
+    }
+
+
+
+    template <int dim>
+    Point<dim>
+    NurbsPatch<dim>::face_centroid(const unsigned int face) const
+    {
+      AssertThrow(face < 2 * dim,
+                  ExcMessage("NurbsPatch: face " + std::to_string(face) +
+                             " does not exist; faces are 0.." +
+                             std::to_string(2 * dim - 1) + "."));
+      const unsigned int normal = face / 2;
+      // The face's Gauss points, direction by direction: two more per span
+      // than the degree (the rational measure is not a polynomial).
+      std::vector<Point<dim>> xis(1);
+      std::vector<double>     weights(1, 1.);
+      xis[0][normal] =
+        (face % 2 == 0 ? knots[normal].front() : knots[normal].back());
+      for (unsigned int d = 0; d < dim; ++d)
+        if (d != normal)
+          {
+            const QGauss<1>         gauss(degree(d) + 2);
+            const auto              b = breakpoints(d);
+            std::vector<Point<dim>> next_xis;
+            std::vector<double>     next_weights;
+            for (unsigned int k = 0; k < xis.size(); ++k)
+              for (unsigned int e = 0; e + 1 < b.size(); ++e)
+                for (unsigned int q = 0; q < gauss.size(); ++q)
+                  {
+                    Point<dim> xi = xis[k];
+                    xi[d] = b[e] + (b[e + 1] - b[e]) * gauss.point(q)[0];
+                    next_xis.push_back(xi);
+                    next_weights.push_back(weights[k] * (b[e + 1] - b[e]) *
+                                           gauss.weight(q));
+                  }
+            xis.swap(next_xis);
+            weights.swap(next_weights);
+          }
+      double     area = 0.;
+      Point<dim> centroid;
+      for (unsigned int q = 0; q < xis.size(); ++q)
+        {
+          const double da =
+            weights[q] * cofactor_column(jacobian(xis[q]), normal).norm();
+          area += da;
+          centroid += da * value(xis[q]);
+        }
+      AssertThrow(area > 0.,
+                  ExcMessage("NurbsPatch: face " + std::to_string(face) +
+                             " has no area (a collapsed face): it has no "
+                             "centroid."));
+      return centroid / area;
     }
 
 

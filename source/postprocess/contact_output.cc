@@ -1,3 +1,4 @@
+#include <igabde/base/files.h>
 #include <igabde/base/utilities.h>
 
 #include <igabde/postprocess/contact_output.h>
@@ -15,21 +16,6 @@ namespace igabde
   namespace postprocess
   {
     using namespace dealii;
-
-    namespace
-    {
-      std::ofstream
-      open_for_writing(const std::string &filename)
-      {
-        std::ofstream out(filename);
-        AssertThrow(out,
-                    base::ExcInput("cannot open '" + filename +
-                                   "' for writing; check Output/Directory."));
-        return out;
-      }
-    } // namespace
-
-
 
     template <int dim>
     std::vector<double>
@@ -64,7 +50,7 @@ namespace igabde
                    const std::vector<double>                  &recovered,
                    const std::string                          &filename)
     {
-      std::ofstream      csv = open_for_writing(filename);
+      std::ofstream      csv = base::open_for_writing(filename);
       const unsigned int m =
         pairs.empty() ? 1 : pairs.front().force_local.size();
       csv << "pair";
@@ -150,10 +136,12 @@ namespace igabde
             for (unsigned int d = 0; d < dim; ++d)
               patch.data(row++, 0) = pair.slip[d];
         }
-      std::ofstream         out = open_for_writing(filename);
-      DataOutBase::VtkFlags flags;
-      flags.compression_level = DataOutBase::VtkFlags::best_speed;
-      DataOutBase::write_vtu(patches, names, vectors, flags, out);
+      std::ofstream out = base::open_for_writing(filename);
+      DataOutBase::write_vtu(patches,
+                             names,
+                             vectors,
+                             base::vtu_flags(patches),
+                             out);
     }
 
 

@@ -94,6 +94,47 @@ namespace igabde
           bc.history = parameters.load_path.history_index(support.history, 1);
           d.dirichlet.push_back(bc);
         }
+      // A face motion is a support whose components are the linear field
+      // u = d + r x (x - c) about the face's centroid c.
+      for (const FaceMotionParameters &motion : body.face_motions)
+        {
+          discretization::DirichletCondition<dim> bc;
+          bc.boundary_id = static_cast<types::boundary_id>(motion.face);
+          const Point<dim> centre = d.geometry.face_centroid(motion.face);
+          Tensor<1, dim>   displacement;
+          for (unsigned int c = 0; c < dim; ++c)
+            displacement[c] = motion.motion[c];
+          const std::vector<double> rotation(motion.motion.begin() + dim,
+                                             motion.motion.end());
+          const auto                field =
+            [displacement, rotation, centre](const Point<dim> &x) {
+              const Tensor<1, dim> y = x - centre;
+              Tensor<1, dim>       u = displacement;
+              if constexpr (dim == 2)
+                {
+                  u[0] -= rotation[0] * y[1];
+                  u[1] += rotation[0] * y[0];
+                }
+              else
+                for (unsigned int a = 0; a < 3; ++a)
+                  u[a] += rotation[(a + 1) % 3] * y[(a + 2) % 3] -
+                          rotation[(a + 2) % 3] * y[(a + 1) % 3];
+              return u;
+            };
+          for (unsigned int c = 0; c < dim; ++c)
+            {
+              bc.components[c] = true;
+              bc.field[c]      = [field, c](const Point<dim> &x) {
+                return field(x)[c];
+              };
+            }
+          bc.history = parameters.load_path.history_index(motion.history, 1);
+          d.face_motions.push_back(
+            {bc.boundary_id,
+             centre,
+             static_cast<unsigned int>(d.dirichlet.size())});
+          d.dirichlet.push_back(bc);
+        }
       d.hold_rotation_face = body.hold_rotation_face;
       for (const TractionParameters &traction : body.tractions)
         {

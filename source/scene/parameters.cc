@@ -443,6 +443,23 @@ namespace igabde
           "moment: a traction linear in the position, zero resultant force "
           "(for a straight beam end, the bending stress My/I). E.g. "
           "'1: 20' on a cantilever's end face.");
+        prm.declare_entry(
+          "Face motions",
+          "",
+          Patterns::Anything(),
+          "Patch faces moved rigidly, as a kinematic coupling moves them: "
+          "'face: ux, uy, rz' in 2D, 'face: ux, uy, uz, rx, ry, rz' in 3D; "
+          "every point x of the face takes u = d + r x (x - c), d the "
+          "displacement (m) of the face's centroid c and r the rotation "
+          "(rad, small: the rotation is linearised, as the small-strain "
+          "model requires), scaled by the step's displacement factor (or by "
+          "the load history 'name' when the entry ends in '@ name'); "
+          "separated by ';'. Every component is prescribed (a face whose "
+          "motion is partly free is not modelled: hold what is known with "
+          "Supports, and load the face with Tractions and Moments). The "
+          "reaction force and the moment about c are reported per step "
+          "(summary.json, steps.csv). E.g. '1: 0, 0, 0.01' turns a "
+          "cantilever's end by 0.01 rad.");
         prm.declare_entry("Body force",
                           "0, 0, 0",
                           Patterns::Anything(),
@@ -576,9 +593,9 @@ namespace igabde
                                      const std::string &context)
     {
       std::string supports_text, tractions_text, point_loads_text, hold_text,
-        moments_text, point_supports_text, body_force_text, lower_text,
-        upper_text, centre_text, subdivisions_text, grading_text, point_text,
-        normal_text;
+        moments_text, point_supports_text, face_motions_text, body_force_text,
+        lower_text, upper_text, centre_text, subdivisions_text, grading_text,
+        point_text, normal_text;
       prm.enter_subsection(name);
       {
         type                = parse_choice<BodyType>(prm.get("Type"),
@@ -616,6 +633,7 @@ namespace igabde
         point_loads_text    = prm.get("Point loads");
         moments_text        = prm.get("Moments");
         point_supports_text = prm.get("Point supports");
+        face_motions_text   = prm.get("Face motions");
         body_force_text     = prm.get("Body force");
         point_text          = prm.get("Plane point");
         normal_text         = prm.get("Plane normal");
@@ -626,6 +644,7 @@ namespace igabde
       tractions.clear();
       point_loads.clear();
       moments.clear();
+      face_motions.clear();
       point_supports.clear();
       body_force.assign(dimension, 0.);
       const std::string where = context + name + "/";
@@ -960,6 +979,52 @@ namespace igabde
                         " in this " + std::to_string(dimension) + "D scene."));
           moment.history = history;
           moments.push_back(moment);
+        }
+      // Face motions: "face: ux, uy, rz" (2D), "face: ux, uy, uz, rx, ry,
+      // rz" (3D).
+      for (const std::string &entry : base::split(face_motions_text, ';'))
+        {
+          const auto [item, history] = split_history(entry);
+          const std::string form     = dimension == 2 ?
+                                         "'face: ux, uy, rz'" :
+                                         "'face: ux, uy, uz, rx, ry, rz'";
+          const auto [key, rest] =
+            base::split_entry(item, where + "Face motions", form);
+          FaceMotionParameters motion;
+          motion.face =
+            read_face(key, faces, geometry, where + "Face motions", item);
+          motion.motion = base::parse_doubles(rest, where + "Face motions");
+          AssertThrow(motion.motion.size() == (dimension == 2 ? 3u : 6u),
+                      base::ExcInput(where + "Face motions: '" +
+                                     base::trim(item) + "' must give " +
+                                     (dimension == 2 ? "three" : "six") +
+                                     " values, " + form + ", in this " +
+                                     std::to_string(dimension) +
+                                     "D scene (every component of the "
+                                     "face's rigid motion)."));
+          for (const auto &support : supports)
+            AssertThrow(support.face != motion.face,
+                        base::ExcInput(
+                          where + "Face motions: face " +
+                          std::to_string(motion.face) +
+                          " is also in Supports; a face motion prescribes "
+                          "every component of the face, so remove the "
+                          "face from Supports (or from Face motions)."));
+          AssertThrow(hold_rotation_face != int(motion.face),
+                      base::ExcInput(where + "Face motions: face " +
+                                     std::to_string(motion.face) +
+                                     " is also the Hold rotation face; a "
+                                     "face motion prescribes its rotation "
+                                     "already, so leave Hold rotation "
+                                     "empty."));
+          for (const auto &other : face_motions)
+            AssertThrow(other.face != motion.face,
+                        base::ExcInput(where + "Face motions: face " +
+                                       std::to_string(motion.face) +
+                                       " is moved twice; give it one "
+                                       "entry."));
+          motion.history = history;
+          face_motions.push_back(motion);
         }
       body_force_expressions.clear();
       if (base::trim(body_force_text).rfind("function", 0) == 0)
@@ -1741,7 +1806,8 @@ namespace igabde
           const std::string name = (body == &body1 ? "Body 1" : "Body 2");
           AssertThrow(body->type != BodyType::deformable ||
                         !body->supports.empty() ||
-                        !body->point_supports.empty() || contact.enabled,
+                        !body->point_supports.empty() ||
+                        !body->face_motions.empty() || contact.enabled,
                       base::ExcInput(
                         f + name +
                         "/Supports is empty and the scene has no contact "
@@ -1753,7 +1819,8 @@ namespace igabde
       AssertThrow(!contact.enabled || body2.type != BodyType::deformable ||
                     !body1.supports.empty() || !body2.supports.empty() ||
                     !body1.point_supports.empty() ||
-                    !body2.point_supports.empty(),
+                    !body2.point_supports.empty() ||
+                    !body1.face_motions.empty() || !body2.face_motions.empty(),
                   base::ExcInput(
                     f + "Body 1/Supports and Body 2/Supports are both empty: "
                         "contact only acts between the two bodies, so "
@@ -1818,6 +1885,8 @@ namespace igabde
           for (const auto &l : body->point_loads)
             known(l.history);
           for (const auto &m : body->moments)
+            known(m.history);
+          for (const auto &m : body->face_motions)
             known(m.history);
         }
       // A traction that depends on t gets one history per step: factor 1

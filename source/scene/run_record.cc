@@ -64,6 +64,15 @@ namespace igabde
                 entry["support_reaction"] = *b.support_reaction;
               if (b.held_moment)
                 entry["held_moment"] = *b.held_moment;
+              if (!b.face_motion_reactions.empty())
+                {
+                  nlohmann::json reactions = nlohmann::json::array();
+                  for (const auto &m : b.face_motion_reactions)
+                    reactions.push_back({{"face", m.face},
+                                         {"force", m.force},
+                                         {"moment", m.moment}});
+                  entry["face_motion_reactions"] = reactions;
+                }
               per_body.push_back(entry);
             }
           j["bodies"] = per_body;
@@ -157,6 +166,28 @@ namespace igabde
             if (static_cast<unsigned int>(c[0] - 'x') < dim)
               csv << ",force_" << c;
         }
+      // The face motions' reactions (Body n/Face motions), named from the
+      // first finished step; a failed step has zeros.
+      std::vector<std::pair<unsigned int, unsigned int>> reactions;
+      for (const auto &r : records)
+        if (!r.bodies.empty())
+          {
+            for (unsigned int b = 0; b < r.bodies.size(); ++b)
+              for (unsigned int k = 0;
+                   k < r.bodies[b].face_motion_reactions.size();
+                   ++k)
+                {
+                  const auto       &m = r.bodies[b].face_motion_reactions[k];
+                  const std::string prefix = ",reaction_" + r.bodies[b].name +
+                                             "_face" + std::to_string(m.face);
+                  for (unsigned int c = 0; c < dim; ++c)
+                    csv << prefix << "_force_" << char('x' + c);
+                  for (unsigned int a = (dim == 2 ? 2 : 0); a < 3; ++a)
+                    csv << prefix << "_moment_" << char('x' + a);
+                  reactions.emplace_back(b, k);
+                }
+            break;
+          }
       csv << "\n" << std::setprecision(12);
       for (const auto &r : records)
         {
@@ -186,6 +217,19 @@ namespace igabde
                     << (r.total_contact_force ? (*r.total_contact_force)[c] :
                                                 0.);
             }
+          for (const auto &[b, k] : reactions)
+            if (b < r.bodies.size() &&
+                k < r.bodies[b].face_motion_reactions.size())
+              {
+                const auto &m = r.bodies[b].face_motion_reactions[k];
+                for (const double v : m.force)
+                  csv << "," << v;
+                for (const double v : m.moment)
+                  csv << "," << v;
+              }
+            else
+              for (unsigned int c = 0; c < dim + (dim == 2 ? 1 : 3); ++c)
+                csv << ",0";
           csv << "\n";
         }
       return csv.str();

@@ -2,6 +2,8 @@
 
 #include <igabde/nurbs/nurbs_patch.h>
 
+#include <igabde/discretization/body_description.h>
+
 #include <igabde/elasticity/stress_measures.h>
 
 #include <igabde/postprocess/contact_checks.h>
@@ -107,13 +109,25 @@ namespace igabde
             }
           if (b == 0)
             on_body1 = contact_force;
-          record.bodies.push_back(
-            {bodies[b]->name(),
-             to_vector(contact_force),
-             to_vector(bodies[b]->support_reaction(u[b], applied)),
-             std::nullopt});
+          BodyForceRecord forces;
+          forces.name          = bodies[b]->name();
+          forces.contact_force = to_vector(contact_force);
+          forces.support_reaction =
+            to_vector(bodies[b]->support_reaction(u[b], applied));
+          record.bodies.push_back(forces);
           if (!bodies[b]->held_rigid_mode_names().empty())
             record.bodies.back().held_moment = bodies[b]->held_moment(applied);
+          const auto &motions = bodies[b]->description().face_motions;
+          for (unsigned int k = 0; k < motions.size(); ++k)
+            {
+              const std::vector<double> r =
+                bodies[b]->face_motion_reaction(u[b], applied, k);
+              FaceMotionReaction reaction;
+              reaction.face   = motions[k].boundary_id;
+              reaction.force  = std::vector<double>(r.begin(), r.begin() + dim);
+              reaction.moment = std::vector<double>(r.begin() + dim, r.end());
+              record.bodies.back().face_motion_reactions.push_back(reaction);
+            }
         }
       if (stage != nullptr)
         {
@@ -126,8 +140,12 @@ namespace igabde
                       0.);
           log << std::endl;
           if (bodies.size() == 1)
-            record.bodies.push_back(
-              {"obstacle", to_vector(-on_body1), std::nullopt, std::nullopt});
+            {
+              BodyForceRecord obstacle;
+              obstacle.name          = "obstacle";
+              obstacle.contact_force = to_vector(-on_body1);
+              record.bodies.push_back(obstacle);
+            }
         }
     }
 
@@ -354,11 +372,11 @@ namespace igabde
       for (unsigned int b = 0; b < pvd_records.size(); ++b)
         if (!pvd_records[b].empty())
           {
-            std::ofstream pvd(directory + "/" +
-                              (b < bodies.size() ?
-                                 "solution-" + bodies[b]->name() :
-                                 std::string("contact")) +
-                              ".pvd");
+            std::ofstream pvd = base::open_for_writing(
+              directory + "/" +
+              (b < bodies.size() ? "solution-" + bodies[b]->name() :
+                                   std::string("contact")) +
+              ".pvd");
             DataOutBase::write_pvd_record(pvd, pvd_records[b]);
           }
     }

@@ -363,6 +363,21 @@ namespace igabde
       support_reaction(const Vector<double> &u, const Vector<double> &f) const;
 
       /**
+       * @brief The reaction of the face motion @p k
+       * (BodyDescription::face_motions[k]): the force (dim components) and
+       * then the moment about the face's centroid (z in 2D; x, y, z in 3D)
+       * that the kinematic coupling applies to the body, from (K u - f)_i
+       * over the unknowns its support prescribes, each acting at its
+       * control point or node (for a rigid virtual motion these are the
+       * work-conjugate points, exactly). An unknown the motion shares with
+       * a support of a neighbouring face counts for both.
+       */
+      std::vector<double>
+      face_motion_reaction(const Vector<double> &u,
+                           const Vector<double> &f,
+                           const unsigned int    k) const;
+
+      /**
        * @brief Candidate contact points on the patch face @p face, placed as
        * DiscretizationSettings::pair_placement says (NURBS) or at the face
        * nodes (Lagrange).
@@ -556,6 +571,8 @@ namespace igabde
       Vector<double> load_rhs;
       /// External loads of each load history at factor 1.
       std::vector<Vector<double>> history_rhs;
+      /// The unknowns each support (BodyDescription::dirichlet) prescribes.
+      std::vector<std::vector<types::global_dof_index>> dirichlet_dofs;
       /// Load history of each unknown with a prescribed value.
       std::map<types::global_dof_index, unsigned int> prescribed_history;
 

@@ -107,6 +107,26 @@ namespace igabde
     };
 
     /**
+     * @brief A patch face moved rigidly, as a kinematic coupling moves it
+     * (Body n/Face motions): u = d + r x (x - c) on the face. The motion
+     * itself is the support dirichlet[condition] of the body (its
+     * components as functions of the point, exact in the discrete space
+     * because a linear field is); this record keeps what its reaction
+     * needs (Body::face_motion_reaction()).
+     */
+    template <int dim>
+    struct FaceMotion
+    {
+      /// Patch face (deal.II colorized boundary id 0..2dim-1).
+      types::boundary_id boundary_id = 0;
+      /// The face's centroid c: the reference point of the motion and of
+      /// the reaction's moment.
+      Point<dim> centre;
+      /// Index of the motion's support in BodyDescription::dirichlet.
+      unsigned int condition = 0;
+    };
+
+    /**
      * @brief Everything the scene says about one deformable body,
      * independent of how it is discretised.
      */
@@ -132,6 +152,8 @@ namespace igabde
       std::vector<PointLoad<dim>> point_loads;
       /// Moments on faces.
       std::vector<FaceMoment> moments;
+      /// Faces moved rigidly (their motions are among the supports).
+      std::vector<FaceMotion<dim>> face_motions;
       /// Body force per unit volume (N/m^3), on history 0.
       Tensor<1, dim> body_force;
       /// A body force that varies in space (N/m^3), on history 0; when set

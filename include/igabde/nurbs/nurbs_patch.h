@@ -115,6 +115,13 @@ namespace igabde
       closest_point_on_face(const unsigned int face, const Point<dim> &x) const;
 
       /**
+       * @brief The centroid of the face @p face (its area-weighted mean
+       * point), by Gauss quadrature over the face's knot spans.
+       */
+      Point<dim>
+      face_centroid(const unsigned int face) const;
+
+      /**
        * @brief Outward unit normal of the body at the face @p face at @p xi.
        */
       Tensor<1, dim>

@@ -223,6 +223,23 @@ namespace igabde
     };
 
     /**
+     * @brief One entry of Body n/Face motions: a patch face moved rigidly,
+     * as a kinematic coupling moves it, by a displacement and a (small)
+     * rotation about the face's centroid.
+     */
+    struct FaceMotionParameters
+    {
+      /// The patch face.
+      unsigned int face = 0;
+      /// The displacement of the face's centroid (m), dimension values,
+      /// then the rotation (rad): one value (about z) in 2D, three in 3D.
+      std::vector<double> motion;
+      /// Load history scaling the motion ('@ name'; empty: Displacement
+      /// factors).
+      std::string history;
+    };
+
+    /**
      * @brief One deformable body (or, for Body 2, a rigid plane) as the
      * scene file writes it; turned into a BodyDescription by the simulator.
      */
@@ -285,6 +302,9 @@ namespace igabde
       /// Moments on faces, read from "face: M; ..." (2D) or "face: Mx, My,
       /// Mz; ..." (3D).
       std::vector<MomentParameters> moments;
+      /// Rigid face motions, read from "face: ux, uy, rz; ..." (2D) or
+      /// "face: ux, uy, uz, rx, ry, rz; ..." (3D).
+      std::vector<FaceMotionParameters> face_motions;
       /// Body force per volume (N/m^3), dimension values.
       std::vector<double> body_force;
       /// 'function fx; fy[; fz]': the body force's expressions of x, y[, z]

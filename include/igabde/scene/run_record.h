@@ -15,6 +15,19 @@ namespace igabde
   namespace scene
   {
     /**
+     * @brief The reaction of one face motion (Body n/Face motions): the
+     * force and the moment about the face's centroid that the coupling
+     * applies to the body.
+     */
+    struct FaceMotionReaction
+    {
+      unsigned int        face = 0;
+      std::vector<double> force;
+      /// z in 2D; x, y, z in 3D.
+      std::vector<double> moment;
+    };
+
+    /**
      * @brief The forces of one body (or of the rigid obstacle) at the end of
      * a load step.
      */
@@ -29,6 +42,8 @@ namespace igabde
       /// Moment of the held rotations' reaction (Hold rotation; z in 2D,
       /// x y z in 3D), about the held face's centroid.
       std::optional<std::vector<double>> held_moment;
+      /// One per face motion of the body, in the scene's order.
+      std::vector<FaceMotionReaction> face_motion_reactions;
     };
 
     /**
