@@ -5,6 +5,7 @@
 #include <igabde/base/utilities.h>
 
 #include <igabde/scene/parameters.h>
+#include <igabde/scene/run_fclib.h>
 #include <igabde/scene/simulator.h>
 
 #include <deal.II/base/mpi.h>
@@ -37,6 +38,8 @@ namespace
     out
       << "Usage: igabde SCENE.prm [--quiet] [--force] [--export-geometry] "
          "[--set \"Section/Name=value\"]...\n"
+         "       igabde --fclib PROBLEM [--quiet] [--set "
+         "\"Section/Name=value\"]...\n"
          "       igabde --print-parameters [prm|json]\n"
          "       igabde --help\n\n"
          "Runs the scene SCENE.prm and writes summary.json, tables, the "
@@ -51,6 +54,12 @@ namespace
          "estimate is held against.\n"
          "SIGINT or SIGTERM ends a run with the finished load steps written "
          "and\nsummary.json marked 'interrupted'.\n"
+         "--fclib solves an FCLIB problem (.hdf5, local or global) or a "
+         "Siconos\nnumerics .dat local problem with the contact solver and "
+         "writes\nsummary.json (checks.fclib_error) and solution.csv "
+         "(Output/Directory,\ndefault output/<problem name>/; --set "
+         "Contact/Tolerance, default 1e-8,\nContact/Max iterations, default "
+         "300).\n"
          "Scenes live in prm/; doc/ explains every study.\n";
   }
 } // namespace
@@ -82,6 +91,7 @@ main(int argc, char **argv)
   std::string                                      scene_file;
   std::vector<std::pair<std::string, std::string>> overrides;
   bool                                             force = false;
+  std::string                                      fclib_file;
   for (int i = 1; i < argc; ++i)
     {
       const std::string arg = argv[i];
@@ -108,6 +118,17 @@ main(int argc, char **argv)
                                format == "json" ? ParameterHandler::JSON :
                                                   ParameterHandler::PRM);
           return 0;
+        }
+      else if (arg == "--fclib")
+        {
+          if (i + 1 >= argc)
+            {
+              err << "igabde: error: --fclib needs a problem file (.hdf5 "
+                     "or .dat)."
+                  << std::endl;
+              return 2;
+            }
+          fclib_file = argv[++i];
         }
       else if (arg == "--force")
         force = true;
@@ -150,6 +171,18 @@ main(int argc, char **argv)
               << "', '" << arg << "'); run one scene at a time." << std::endl;
           return 2;
         }
+    }
+  if (!fclib_file.empty())
+    {
+      if (!scene_file.empty() || force)
+        {
+          err << "igabde: error: --fclib solves a problem file without a "
+                 "scene; leave out '"
+              << (scene_file.empty() ? std::string("--force") : scene_file)
+              << "'." << std::endl;
+          return 2;
+        }
+      return igabde::scene::run_fclib(fclib_file, overrides);
     }
   if (scene_file.empty())
     {

@@ -464,6 +464,8 @@ namespace igabde
           rec.h_norm            = std::sqrt(2. * theta);
           rec.residual          = err;
           rec.balanced_residual = balanced;
+          if (settings.on_iteration)
+            settings.on_iteration(result.iterations, err);
           {
             result.status.resize(pieces.size());
             for (unsigned int c = 0; c < pieces.size(); ++c)

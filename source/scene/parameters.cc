@@ -230,6 +230,19 @@ namespace igabde
                           "tests switch it off, so that their reference "
                           "output holds physical figures only; summary.json "
                           "always has these figures.");
+        prm.declare_entry(
+          "FCLIB export",
+          "false",
+          Patterns::Bool(),
+          "Write each load step's condensed contact problem (W, q, mu in "
+          "the pairs' local frames) with the step's solution as an FCLIB "
+          "local problem, fclib-NNNN.hdf5, so that another solver (or "
+          "igabde --fclib) can solve exactly the problem this run solved. "
+          "Needs contact with friction (FCLIB's problems have two or three "
+          "components per contact) on the condensed path (Contact/Algorithm "
+          "= bde, Path = condensed or auto); a step whose bodies float "
+          "(held by contact only) is not an FCLIB local problem and is left "
+          "out, with a line in the log.");
         prm.declare_entry("Export geometry",
                           "false",
                           Patterns::Bool(),
@@ -256,6 +269,7 @@ namespace igabde
         progress        = prm.get_bool("Progress");
         solver_details  = prm.get_bool("Solver details");
         export_geometry = prm.get_bool("Export geometry");
+        fclib_export    = prm.get_bool("FCLIB export");
       }
       prm.leave_subsection();
     }
@@ -1707,6 +1721,17 @@ namespace igabde
       AssertThrow(body1.type == BodyType::deformable,
                   base::ExcInput(f + "Body 1/Type must be 'deformable'; only "
                                      "Body 2 may be a rigid plane."));
+      AssertThrow(!output.fclib_export ||
+                    (contact.enabled && contact.friction_coefficient > 0. &&
+                     contact.algorithm == contact::Algorithm::bde &&
+                     contact.path != contact::Path::full),
+                  base::ExcInput(
+                    f + "Output/FCLIB export = true needs a contact problem "
+                        "with friction on the condensed path (Contact/Enabled "
+                        "= true, Friction coefficient > 0, Algorithm = bde, "
+                        "Path = condensed or auto): FCLIB's local problems "
+                        "have two or three components per contact and a "
+                        "flexibility W; set it to false for this scene."));
       AssertThrow(contact.friction_coefficient >= 0.,
                   base::ExcInput(
                     f + "Contact/Friction coefficient = " +

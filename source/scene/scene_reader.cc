@@ -130,42 +130,39 @@ namespace igabde
 
 
 
-    namespace
-    {
-      void
-      set_override(ParameterHandler  &prm,
+    void
+    apply_override(ParameterHandler  &prm,
                    const std::string &path,
                    const std::string &value)
-      {
-        const std::vector<std::string> parts = base::split(path, '/');
-        AssertThrow(!parts.empty(),
-                    base::ExcInput("--set: '" + path +
-                                   "' is not of the form "
-                                   "'Section/Name=value'."));
-        for (unsigned int i = 0; i + 1 < parts.size(); ++i)
-          prm.enter_subsection(parts[i]);
-        try
-          {
-            prm.set(parts.back(), value);
-          }
-        catch (const ExceptionBase &e)
-          {
-            for (unsigned int i = 0; i + 1 < parts.size(); ++i)
-              prm.leave_subsection();
-            std::string message = base::exception_message(e);
-            // An entry deal.II does not know: name the nearest declared one.
-            if (message.find("not yet declared") != std::string::npos ||
-                message.find("No entry with name") != std::string::npos)
-              message =
-                "'" + path + "' is not a parameter." + suggest_path(prm, path);
-            AssertThrow(false,
-                        base::ExcInput("--set " + path + "=" + value + ": " +
-                                       message));
-          }
-        for (unsigned int i = 0; i + 1 < parts.size(); ++i)
-          prm.leave_subsection();
-      }
-    } // namespace
+    {
+      const std::vector<std::string> parts = base::split(path, '/');
+      AssertThrow(!parts.empty(),
+                  base::ExcInput("--set: '" + path +
+                                 "' is not of the form "
+                                 "'Section/Name=value'."));
+      for (unsigned int i = 0; i + 1 < parts.size(); ++i)
+        prm.enter_subsection(parts[i]);
+      try
+        {
+          prm.set(parts.back(), value);
+        }
+      catch (const ExceptionBase &e)
+        {
+          for (unsigned int i = 0; i + 1 < parts.size(); ++i)
+            prm.leave_subsection();
+          std::string message = base::exception_message(e);
+          // An entry deal.II does not know: name the nearest declared one.
+          if (message.find("not yet declared") != std::string::npos ||
+              message.find("No entry with name") != std::string::npos)
+            message =
+              "'" + path + "' is not a parameter." + suggest_path(prm, path);
+          AssertThrow(false,
+                      base::ExcInput("--set " + path + "=" + value + ": " +
+                                     message));
+        }
+      for (unsigned int i = 0; i + 1 < parts.size(); ++i)
+        prm.leave_subsection();
+    }
 
 
 
@@ -307,7 +304,7 @@ namespace igabde
                             format + "' does."));
             }
           for (const auto &[path, value] : overrides)
-            set_override(prm, path, value);
+            apply_override(prm, path, value);
           parameters.parse_parameters(prm, scene_file);
         }
       catch (const ExceptionBase &e)

@@ -344,6 +344,14 @@ namespace igabde
                 }
             }
           check_finite_displacements<dim>(bodies, u, s + 1);
+          if (parameters.output.fclib_export && contact_stage && root)
+            {
+              TimerOutput::Scope t(timer, "output");
+              write_fclib_step<dim>(output_directory,
+                                    s + 1,
+                                    *contact_stage,
+                                    contact_log());
+            }
           {
             TimerOutput::Scope t(timer, "postprocess");
             check_model_range<dim>(bodies,

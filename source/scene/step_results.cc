@@ -8,6 +8,7 @@
 
 #include <igabde/postprocess/contact_checks.h>
 #include <igabde/postprocess/contact_output.h>
+#include <igabde/postprocess/fclib_writer.h>
 #include <igabde/scene/step_results.h>
 
 #include <deal.II/base/data_out_base.h>
@@ -363,6 +364,42 @@ namespace igabde
 
     template <int dim>
     void
+    write_fclib_step(const std::string                &directory,
+                     const unsigned int                step,
+                     const contact::ContactStage<dim> &stage,
+                     std::ostream                     &log)
+    {
+      const contact::ContactProblem &problem = stage.condensed_problem();
+      std::ostringstream             name;
+      name << "fclib-" << std::setw(4) << std::setfill('0') << step << ".hdf5";
+      if (problem.W.rows() != problem.n_rows() || problem.n_rows() == 0)
+        {
+          log << "  FCLIB export: step " << step
+              << " left out: the full path forms no flexibility W" << std::endl;
+          return;
+        }
+      if (problem.n_alpha() > 0)
+        {
+          log << "  FCLIB export: step " << step
+              << " left out: a body is held by contact only (its rigid "
+                 "modes join the problem, which FCLIB's local problems "
+                 "cannot hold)"
+              << std::endl;
+          return;
+        }
+      contact::ContactSolverResult solution;
+      solution.p         = stage.forces();
+      solution.u         = problem.relative_displacement(solution.p);
+      solution.converged = true;
+      postprocess::write_fclib_local(problem,
+                                     &solution,
+                                     directory + "/" + name.str());
+    }
+
+
+
+    template <int dim>
+    void
     write_pvd_series(
       const std::string                                             &directory,
       const std::vector<std::unique_ptr<discretization::Body<dim>>> &bodies,
@@ -578,6 +615,16 @@ namespace igabde
       const std::vector<contact::PairState<2>> *,
       std::vector<std::vector<std::pair<double, std::string>>> &,
       base::BackgroundWriter &);
+    template void
+    write_fclib_step<2>(const std::string &,
+                        const unsigned int,
+                        const contact::ContactStage<2> &,
+                        std::ostream &);
+    template void
+    write_fclib_step<3>(const std::string &,
+                        const unsigned int,
+                        const contact::ContactStage<3> &,
+                        std::ostream &);
     template void
     write_pvd_series<2>(
       const std::string &,

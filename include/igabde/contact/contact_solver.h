@@ -8,6 +8,7 @@
 
 #include <Eigen/Dense>
 
+#include <functional>
 #include <iosfwd>
 #include <memory>
 #include <string>
@@ -211,6 +212,13 @@ namespace igabde
 
       /** @brief Stream for the log (nullptr: std::cout). */
       std::ostream *log_stream = nullptr;
+
+      /**
+       * @brief Called after every iteration with the iterations so far
+       * (all phases) and the relative natural-map residual: a caller's
+       * progress report (empty: none).
+       */
+      std::function<void(unsigned int, double)> on_iteration;
     };
 
     /**

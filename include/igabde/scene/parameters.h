@@ -111,6 +111,9 @@ namespace igabde
       /// Write each body's geometry after refinement as a G+Smo XML file
       /// and its control net as VTU (--export-geometry).
       bool export_geometry = false;
+      /// Write each load step's condensed contact problem, with the
+      /// step's solution, as an FCLIB local problem (fclib-NNNN.hdf5).
+      bool fclib_export = false;
 
       /// Declares the "Output" subsection.
       static void

@@ -23,6 +23,17 @@ namespace igabde
      * every value check of the parameters. It needs no body, solver or
      * output (the fuzz target of contrib/fuzz links it alone).
      */
+    /**
+     * @brief Sets the parameter @p path ("Section/Name") of @p prm, whose
+     * parameters are declared, to @p value (a `--set`); throws
+     * base::ExcInput naming the nearest declared parameter when @p path is
+     * not one, or the pattern when @p value does not match it.
+     */
+    void
+    apply_override(ParameterHandler  &prm,
+                   const std::string &path,
+                   const std::string &value);
+
     AllParameters
     parse_scene(
       ParameterHandler                                       &prm,

@@ -115,6 +115,21 @@ namespace igabde
       base::BackgroundWriter                                   &writer);
 
     /**
+     * @brief Output/FCLIB export: the condensed contact problem @p stage
+     * solved last (the step's W, q, mu; the tangential rows are the
+     * step's increments) with its solution p, u = W p + q, written as the
+     * FCLIB local problem fclib-NNNN.hdf5 of @p step in @p directory. A
+     * problem that is not an FCLIB local problem (no W: the full path;
+     * floating bodies) is left out with a line in @p log.
+     */
+    template <int dim>
+    void
+    write_fclib_step(const std::string                &directory,
+                     const unsigned int                step,
+                     const contact::ContactStage<dim> &stage,
+                     std::ostream                     &log);
+
+    /**
      * @brief Each body's PVD series solution-<name>.pvd and, when it has
      * entries, the pairs' contact.pvd, from @p pvd_records (see
      * write_step_output()).

@@ -1,0 +1,291 @@
+// igabde's B-Newton beside Siconos' FCLIB solvers, in one process and run,
+// on every local/global 2D and 3D problem under a folder (FCLIB HDF5 and
+// Siconos numerics .dat), every answer judged by the same measure.
+//
+// Usage: siconos_comparison [--only TEXT] [--max-rows N] [--max-iterations N]
+//                           [folder]
+//   folder            default $IGABDE_FCLIB_DIR, else ../shared/fclib/data
+//   --only TEXT       only the problems whose file name contains TEXT
+//   --max-rows N      larger problems (rows of the condensed W) are left
+//                     out (default 6000: our dense W)
+//   --max-iterations  Siconos' iteration budget (default 1000 for the
+//                     Newton and proximal solvers, 10 times that for NSGS)
+//
+// Each problem is read once, by igabde's reader (a global problem condensed
+// through its sparse M, W = H^T M^-1 H), and handed to both: igabde's
+// B-Newton works on the dense W, Siconos' solvers on the same W in their
+// sparse-block storage (blocks of the contact's size, exact zeros left
+// out), the storage they are written for. (Debian's Siconos is built
+// without FCLIB, so it cannot read the HDF5 files itself.) Every answer r
+// is judged on that problem by FCLIB's relative natural-map error
+// |r - P_K(r - (W r + q + mu |u_t| e_n))| / |q| (not by Siconos' own
+// measure, which divides by max(|q|, |r|, |u|)); "solved" is an error
+// <= 1e-8. Siconos' internal tolerance starts at 1e-8 and is tightened
+// (1e-10, 1e-12, 1e-14) until its answer passes or its solver stops
+// converging; the time is that of the run whose answer is reported. Times
+// are the solve alone (reading and conversion excluded), milliseconds.
+
+#include <igabde/contact/bnewton.h>
+#include <igabde/contact/contact_law.h>
+#include <igabde/contact/contact_problem.h>
+#include <igabde/contact/fclib_reader.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+#include <siconos/numerics/FrictionContactProblem.h>
+#include <siconos/numerics/Friction_cst.h>
+#include <siconos/numerics/NonSmoothDrivers.h>
+#include <siconos/numerics/NumericsMatrix.h>
+#include <siconos/numerics/SolverOptions.h>
+#include <siconos/numerics/SparseBlockMatrix.h>
+#include <sstream>
+#include <string>
+#include <vector>
+
+using namespace igabde::contact;
+
+namespace
+{
+  using Clock = std::chrono::steady_clock;
+
+  double
+  milliseconds_since(const Clock::time_point start)
+  {
+    return std::chrono::duration<double, std::milli>(Clock::now() - start)
+      .count();
+  }
+
+  struct Outcome
+  {
+    bool        ran        = false;
+    double      error      = 1.;
+    double      ms         = 0.;
+    int         iterations = 0;
+    double      tolerance  = 0.;
+    std::string note;
+  };
+
+  /// FCLIB's measure of @p r on igabde's copy of the problem.
+  double
+  fclib_error(const ContactProblem &problem, const Eigen::VectorXd &r)
+  {
+    if (!r.allFinite())
+      return 1.;
+    return relative_natural_map_error(problem,
+                                      r,
+                                      problem.relative_displacement(r));
+  }
+
+  long
+  W_nonzeros(const Eigen::MatrixXd &W)
+  {
+    return std::max<long>(1, (W.array() != 0.).count());
+  }
+
+  /// The problem in Siconos' sparse-block storage (blocks of the
+  /// contact's size, the exact zeros of W left out): the storage its local
+  /// solvers are written for.
+  FrictionContactProblem *
+  siconos_problem(const ContactProblem &problem)
+  {
+    const int       d = problem.n_components, n = problem.n_rows();
+    NumericsMatrix *triplets = NM_create(NM_SPARSE, n, n);
+    NM_triplet_alloc(triplets, (W_nonzeros(problem.W)));
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i)
+        if (problem.W(i, j) != 0.)
+          NM_entry(triplets, i, j, problem.W(i, j));
+    SparseBlockStructuredMatrix *blocks = SBM_new();
+    SBM_from_csparse(d, NM_csc(triplets), blocks);
+    NM_free(triplets);
+    auto *q = static_cast<double *>(malloc(n * sizeof(double)));
+    auto *mu =
+      static_cast<double *>(malloc(problem.n_contacts * sizeof(double)));
+    std::copy(problem.q.data(), problem.q.data() + n, q);
+    std::copy(problem.mu.begin(), problem.mu.end(), mu);
+    return frictionContactProblem_new_with_data(d,
+                                                problem.n_contacts,
+                                                NM_new_SBM(n, n, blocks),
+                                                q,
+                                                mu);
+  }
+
+  /// One Siconos solver on @p fcp, its tolerance tightened until our
+  /// measure passes.
+  Outcome
+  run_siconos(FrictionContactProblem *fcp,
+              const ContactProblem   &problem,
+              const int               solver_id,
+              const int               max_iterations)
+  {
+    Outcome   best;
+    const int n = fcp->dimension * fcp->numberOfContacts;
+    for (const double tolerance : {1e-8, 1e-10, 1e-12, 1e-14})
+      {
+        std::vector<double> r(n, 0.), u(n, 0.);
+        SolverOptions      *options = solver_options_create(solver_id);
+        options->iparam[SICONOS_IPARAM_MAX_ITER] = max_iterations;
+        options->dparam[SICONOS_DPARAM_TOL]      = tolerance;
+        const auto start                         = Clock::now();
+        const int  info                          = fcp->dimension == 3 ?
+                                                     fc3d_driver(fcp, r.data(), u.data(), options) :
+                                                     fc2d_driver(fcp, r.data(), u.data(), options);
+        Outcome    outcome;
+        outcome.ms         = milliseconds_since(start);
+        outcome.ran        = true;
+        outcome.iterations = options->iparam[SICONOS_IPARAM_ITER_DONE];
+        outcome.tolerance  = tolerance;
+        outcome.error =
+          fclib_error(problem, Eigen::Map<const Eigen::VectorXd>(r.data(), n));
+        outcome.note = info == 0 ? "" : "info " + std::to_string(info);
+        solver_options_delete(options);
+        if (!best.ran || outcome.error < best.error)
+          best = outcome;
+        // Passed, or the solver no longer claims convergence.
+        if (outcome.error <= 1e-8 || info != 0)
+          break;
+      }
+    return best;
+  }
+
+  std::string
+  cell(const Outcome &o)
+  {
+    if (!o.ran)
+      return "— | — | —";
+    std::ostringstream s;
+    s << (o.error <= 1e-8 ? "yes" : "no") << " (" << std::scientific
+      << std::setprecision(0) << o.error << ") | " << o.iterations << " | "
+      << std::fixed << std::setprecision(o.ms < 10 ? 2 : 0) << o.ms;
+    return s.str();
+  }
+} // namespace
+
+
+
+int
+main(int argc, char **argv)
+{
+  std::string folder = "../shared/fclib/data";
+  if (const char *env = std::getenv("IGABDE_FCLIB_DIR"))
+    folder = env;
+  std::string only;
+  long        max_rows       = 6000;
+  int         max_iterations = 1000;
+  for (int i = 1; i < argc; ++i)
+    {
+      const std::string a = argv[i];
+      if (a == "--only" && i + 1 < argc)
+        only = argv[++i];
+      else if (a == "--max-rows" && i + 1 < argc)
+        max_rows = std::stol(argv[++i]);
+      else if (a == "--max-iterations" && i + 1 < argc)
+        max_iterations = std::stoi(argv[++i]);
+      else
+        folder = a;
+    }
+  if (!std::filesystem::is_directory(folder))
+    {
+      std::cerr << "siconos_comparison: no folder '" << folder << "'\n";
+      return 1;
+    }
+  std::vector<std::filesystem::path> files;
+  for (const auto &entry :
+       std::filesystem::recursive_directory_iterator(folder))
+    if (entry.is_regular_file())
+      files.push_back(entry.path());
+  std::sort(files.begin(), files.end(), [](const auto &a, const auto &b) {
+    return a.filename().string() < b.filename().string();
+  });
+
+  BNewtonSolver::Settings settings;
+  settings.tolerance      = 1e-8;
+  settings.max_iterations = 300;
+  const BNewtonSolver solver(settings);
+
+  std::cout << "| problem | d | nc | igabde B-Newton: solved (error) | it | "
+               "ms | Siconos NSN-AC | it | ms | Siconos NSGS | it | ms | "
+               "Siconos PROX | it | ms |\n"
+            << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
+               "---|\n";
+  unsigned int             solved[4] = {0, 0, 0, 0}, attempted = 0;
+  std::vector<std::string> skipped;
+  for (const auto &path : files)
+    {
+      const std::string name = path.filename().string();
+      if (!only.empty() && name.find(only) == std::string::npos)
+        continue;
+      const FclibFileKind kind = classify_fclib_file(path.string());
+      if (kind != FclibFileKind::hdf5_local &&
+          kind != FclibFileKind::hdf5_global &&
+          kind != FclibFileKind::siconos_local_dat)
+        {
+          skipped.push_back(name + " (not a local/global Coulomb problem)");
+          continue;
+        }
+      ContactProblem problem;
+      try
+        {
+          problem = read_fclib_problem(path.string());
+        }
+      catch (const std::exception &)
+        {
+          skipped.push_back(name + " (unreadable by igabde)");
+          continue;
+        }
+      if (problem.n_components < 2 ||
+          static_cast<long>(problem.n_rows()) > max_rows)
+        {
+          skipped.push_back(name + " (" + std::to_string(problem.n_rows()) +
+                            " rows, " + std::to_string(problem.n_components) +
+                            " components)");
+          continue;
+        }
+      FrictionContactProblem *fcp = siconos_problem(problem);
+      ++attempted;
+
+      Outcome                     ours;
+      const auto                  start = Clock::now();
+      const BNewtonSolver::Result r     = solver.solve(problem);
+      ours.ms                           = milliseconds_since(start);
+      ours.ran                          = true;
+      ours.iterations                   = r.iterations;
+      ours.error                        = fclib_error(problem, r.p);
+
+      const bool    three = problem.n_components == 3;
+      const Outcome nsn   = three ? run_siconos(fcp,
+                                              problem,
+                                              SICONOS_FRICTION_3D_NSN_AC,
+                                              max_iterations) :
+                                    Outcome();
+      const Outcome nsgs =
+        run_siconos(fcp,
+                    problem,
+                    three ? SICONOS_FRICTION_3D_NSGS : SICONOS_FRICTION_2D_NSGS,
+                    10 * max_iterations);
+      const Outcome prox =
+        three ?
+          run_siconos(fcp, problem, SICONOS_FRICTION_3D_PROX, max_iterations) :
+          Outcome();
+      frictionContactProblem_free(fcp);
+
+      solved[0] += ours.error <= 1e-8;
+      solved[1] += nsn.error <= 1e-8;
+      solved[2] += nsgs.error <= 1e-8;
+      solved[3] += prox.error <= 1e-8;
+      std::cout << "| " << name << " | " << problem.n_components << " | "
+                << problem.n_contacts << " | " << cell(ours) << " | "
+                << cell(nsn) << " | " << cell(nsgs) << " | " << cell(prox)
+                << " |" << std::endl;
+    }
+  std::cout << "\nsolved (FCLIB error <= 1e-8) of " << attempted << ": igabde "
+            << solved[0] << ", NSN-AC " << solved[1] << " (3D only), NSGS "
+            << solved[2] << ", PROX " << solved[3] << " (3D only)\nleft out:\n";
+  for (const std::string &s : skipped)
+    std::cout << "  " << s << '\n';
+  return 0;
+}
