@@ -32,6 +32,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <csignal>
 #include <cstdlib>
 #include <filesystem>
 #include <iomanip>
@@ -44,6 +45,9 @@
 #include <siconos/numerics/SparseBlockMatrix.h>
 #include <sstream>
 #include <string>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
 #include <vector>
 
 using namespace igabde::contact;
@@ -114,6 +118,80 @@ namespace
                                                 mu);
   }
 
+  /// What a solve in the child process reports to the parent.
+  struct Report
+  {
+    double error      = 1.;
+    double ms         = 0.;
+    int    iterations = 0;
+    int    info       = -1;
+  };
+
+  /**
+   * One Siconos solve at @p tolerance, in a child process with at most
+   * 8 GiB of address space and 120 s: some solvers exhaust the memory
+   * on some problems (NSN-AC on RockPile_tob1 took 24 GB) or abort, and
+   * the table must go on. Returns false if the child did not report.
+   */
+  bool
+  solve_isolated(FrictionContactProblem *fcp,
+                 const ContactProblem   &problem,
+                 const int               solver_id,
+                 const int               max_iterations,
+                 const double            tolerance,
+                 Report                 &report,
+                 std::string            &why)
+  {
+    int channel[2];
+    if (pipe(channel) != 0)
+      {
+        why = "no pipe";
+        return false;
+      }
+    std::cout.flush();
+    const pid_t child = fork();
+    if (child == 0)
+      {
+        close(channel[0]);
+        const rlimit memory = {8ul << 30, 8ul << 30};
+        setrlimit(RLIMIT_AS, &memory);
+        alarm(120);
+        const int           n = fcp->dimension * fcp->numberOfContacts;
+        std::vector<double> r(n, 0.), u(n, 0.);
+        SolverOptions      *options = solver_options_create(solver_id);
+        options->iparam[SICONOS_IPARAM_MAX_ITER] = max_iterations;
+        options->dparam[SICONOS_DPARAM_TOL]      = tolerance;
+        Report     out;
+        const auto start = Clock::now();
+        out.info         = fcp->dimension == 3 ?
+                             fc3d_driver(fcp, r.data(), u.data(), options) :
+                             fc2d_driver(fcp, r.data(), u.data(), options);
+        out.ms           = milliseconds_since(start);
+        out.iterations   = options->iparam[SICONOS_IPARAM_ITER_DONE];
+        out.error =
+          fclib_error(problem, Eigen::Map<const Eigen::VectorXd>(r.data(), n));
+        const ssize_t written = write(channel[1], &out, sizeof(out));
+        _exit(written == sizeof(out) ? 0 : 1);
+      }
+    close(channel[1]);
+    const bool read_all =
+      child > 0 && read(channel[0], &report, sizeof(report)) ==
+                     static_cast<ssize_t>(sizeof(report));
+    close(channel[0]);
+    int status = 0;
+    if (child > 0)
+      waitpid(child, &status, 0);
+    if (!read_all)
+      why = WIFSIGNALED(status) ?
+              (WTERMSIG(status) == SIGALRM ?
+                 "time limit (120 s)" :
+               WTERMSIG(status) == SIGABRT ?
+                 "aborted (memory?)" :
+                 "killed by signal " + std::to_string(WTERMSIG(status))) :
+              "no answer";
+    return read_all;
+  }
+
   /// One Siconos solver on @p fcp, its tolerance tightened until our
   /// measure passes.
   Outcome
@@ -122,31 +200,38 @@ namespace
               const int               solver_id,
               const int               max_iterations)
   {
-    Outcome   best;
-    const int n = fcp->dimension * fcp->numberOfContacts;
+    Outcome best;
     for (const double tolerance : {1e-8, 1e-10, 1e-12, 1e-14})
       {
-        std::vector<double> r(n, 0.), u(n, 0.);
-        SolverOptions      *options = solver_options_create(solver_id);
-        options->iparam[SICONOS_IPARAM_MAX_ITER] = max_iterations;
-        options->dparam[SICONOS_DPARAM_TOL]      = tolerance;
-        const auto start                         = Clock::now();
-        const int  info                          = fcp->dimension == 3 ?
-                                                     fc3d_driver(fcp, r.data(), u.data(), options) :
-                                                     fc2d_driver(fcp, r.data(), u.data(), options);
-        Outcome    outcome;
-        outcome.ms         = milliseconds_since(start);
+        Report      report;
+        std::string why;
+        if (!solve_isolated(fcp,
+                            problem,
+                            solver_id,
+                            max_iterations,
+                            tolerance,
+                            report,
+                            why))
+          {
+            if (!best.ran)
+              {
+                best.ran  = true;
+                best.note = why;
+              }
+            break;
+          }
+        Outcome outcome;
         outcome.ran        = true;
-        outcome.iterations = options->iparam[SICONOS_IPARAM_ITER_DONE];
+        outcome.ms         = report.ms;
+        outcome.iterations = report.iterations;
         outcome.tolerance  = tolerance;
-        outcome.error =
-          fclib_error(problem, Eigen::Map<const Eigen::VectorXd>(r.data(), n));
-        outcome.note = info == 0 ? "" : "info " + std::to_string(info);
-        solver_options_delete(options);
-        if (!best.ran || outcome.error < best.error)
+        outcome.error      = report.error;
+        outcome.note =
+          report.info == 0 ? "" : "info " + std::to_string(report.info);
+        if (!best.ran || !best.note.empty() || outcome.error < best.error)
           best = outcome;
         // Passed, or the solver no longer claims convergence.
-        if (outcome.error <= 1e-8 || info != 0)
+        if (outcome.error <= 1e-8 || report.info != 0)
           break;
       }
     return best;
@@ -157,6 +242,8 @@ namespace
   {
     if (!o.ran)
       return "— | — | —";
+    if (o.iterations == 0 && o.ms == 0. && !o.note.empty())
+      return "no: " + o.note + " | — | —";
     std::ostringstream s;
     s << (o.error <= 1e-8 ? "yes" : "no") << " (" << std::scientific
       << std::setprecision(0) << o.error << ") | " << o.iterations << " | "
