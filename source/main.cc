@@ -55,7 +55,7 @@ namespace
          "SIGINT or SIGTERM ends a run with the finished load steps written "
          "and\nsummary.json marked 'interrupted'.\n"
          "--fclib solves an FCLIB problem (.hdf5, local or global) or a "
-         "Siconos\nnumerics .dat local problem with the contact solver and "
+         "Siconos\nnumerics .dat local or global problem with the contact solver and "
          "writes\nsummary.json (checks.fclib_error) and solution.csv "
          "(Output/Directory,\ndefault output/<problem name>/; --set "
          "Contact/Tolerance, default 1e-8,\nContact/Max iterations, default "

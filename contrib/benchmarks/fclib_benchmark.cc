@@ -90,7 +90,6 @@ main(int argc, char **argv)
         continue;
       const FclibFileKind kind = classify_fclib_file(path.string());
       if (kind == FclibFileKind::unknown ||
-          kind == FclibFileKind::siconos_global_dat ||
           kind == FclibFileKind::hdf5_global_rolling)
         {
           skipped.push_back(name + " (not a local/global FCLIB problem)");

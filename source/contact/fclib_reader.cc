@@ -297,6 +297,20 @@ namespace igabde
           return static_cast<long>(v);
         }
 
+        /// Whether the next token is written as an integer (a matrix
+        /// header), not as a floating-point value; nothing is consumed.
+        bool
+        next_is_integer()
+        {
+          const auto  position = in.tellg();
+          std::string token;
+          in >> token;
+          in.clear();
+          in.seekg(position);
+          return !token.empty() &&
+                 token.find_first_not_of("+-0123456789") == std::string::npos;
+        }
+
         bool
         line(std::string &l)
         {
@@ -363,6 +377,169 @@ namespace igabde
         SparseMatrix A(rows, cols);
         A.setFromTriplets(entries.begin(), entries.end());
         return A;
+      }
+
+
+      /**
+       * A NumericsMatrix as Siconos prints it (NM_write_in_file): the
+       * storage type, the two sizes, then the dense matrix column by column
+       * (0, after the sizes again), the sparse-block matrix (1) or the
+       * CSparse text print (2). @p what names it in messages.
+       */
+      SparseMatrix
+      read_numerics_matrix(DatStream &s, const std::string &what)
+      {
+        const std::string where   = "Siconos reader: '" + s.filename + "': ";
+        const long        storage = s.integer("the storage type of " + what);
+        const long        rows    = s.integer("the size of " + what);
+        const long        cols    = s.integer("the size of " + what);
+        AssertThrow(rows >= 0 && cols >= 0 && rows < 100000000 &&
+                      cols < 100000000,
+                    dealii::ExcMessage(where + "bad sizes of " + what));
+        std::vector<Eigen::Triplet<double>> entries;
+        const auto add = [&](const long i, const long j, const double v) {
+          if (v != 0.)
+            entries.emplace_back(i, j, v);
+        };
+        if (storage == 0)
+          {
+            const long r = s.integer("the dense size of " + what),
+                       c = s.integer("the dense size of " + what);
+            AssertThrow(r == rows && c == cols,
+                        dealii::ExcMessage(where + "dense sizes of " + what +
+                                           " disagree"));
+            for (long j = 0; j < cols; ++j) // column major
+              for (long i = 0; i < rows; ++i)
+                add(i, j, s.number("an entry of " + what));
+          }
+        else if (storage == 1)
+          {
+            const long nbblocks = s.integer("the number of blocks");
+            if (nbblocks > 0)
+              {
+                const long bn0 = s.integer("blocknumber0");
+                const long bn1 = s.integer("blocknumber1");
+                AssertThrow(bn0 > 0 && bn1 > 0 && bn0 <= rows && bn1 <= cols,
+                            dealii::ExcMessage(where + "bad block counts of " +
+                                               what));
+                std::vector<long> bs0(bn0), bs1(bn1);
+                for (auto &v : bs0)
+                  v = s.integer("blocksize0");
+                for (auto &v : bs1)
+                  v = s.integer("blocksize1");
+                AssertThrow(bs0.back() == rows && bs1.back() == cols,
+                            dealii::ExcMessage(where + "the block sizes of " +
+                                               what +
+                                               " do not add up to its "
+                                               "size"));
+                const long filled1 = s.integer("filled1");
+                const long filled2 = s.integer("filled2");
+                AssertThrow(filled1 == bn0 + 1 && filled2 == nbblocks,
+                            dealii::ExcMessage(where +
+                                               "bad sparse-block index sizes "
+                                               "of " +
+                                               what));
+                std::vector<long> index1(filled1), index2(filled2);
+                for (auto &v : index1)
+                  v = s.integer("index1_data");
+                for (auto &v : index2)
+                  v = s.integer("index2_data");
+                for (long row = 0; row + 1 < filled1; ++row)
+                  for (long blk = index1[row]; blk < index1[row + 1]; ++blk)
+                    {
+                      AssertThrow(blk >= 0 && blk < filled2,
+                                  dealii::ExcMessage(where +
+                                                     "bad block index"));
+                      const long col = index2[blk];
+                      AssertThrow(col >= 0 && col < bn1,
+                                  dealii::ExcMessage(where +
+                                                     "bad block column"));
+                      const long r0 = row == 0 ? 0 : bs0[row - 1];
+                      const long c0 = col == 0 ? 0 : bs1[col - 1];
+                      const long nr = bs0[row] - r0, ncol = bs1[col] - c0;
+                      const long number = s.integer("the block number");
+                      AssertThrow(number == blk,
+                                  dealii::ExcMessage(where +
+                                                     "block numbering"));
+                      for (long j = 0; j < ncol; ++j) // column major
+                        for (long i = 0; i < nr; ++i)
+                          add(r0 + i, c0 + j, s.number("a block entry"));
+                    }
+              }
+          }
+        else if (storage == 2)
+          return read_csparse_print(s, rows, cols);
+        else
+          AssertThrow(false,
+                      dealii::ExcMessage(where + "unknown storage " +
+                                         std::to_string(storage) + " of " +
+                                         what));
+        SparseMatrix A(rows, cols);
+        A.setFromTriplets(entries.begin(), entries.end());
+        return A;
+      }
+
+
+
+      /**
+       * The local problem of the global one M v = H r + f, u = H^T v + w:
+       * W = H^T M^-1 H, q = H^T M^-1 f + w (sparse LDL^T of M, LU if that
+       * fails), with d components per contact.
+       */
+      ContactProblem
+      condense_global(SparseMatrix           M,
+                      const SparseMatrix    &H,
+                      const Eigen::VectorXd &fv,
+                      const Eigen::VectorXd &w,
+                      const int              d,
+                      const std::string     &where)
+      {
+        AssertThrow(M.rows() == M.cols() && H.rows() == M.rows() &&
+                      fv.size() == M.rows() && w.size() == H.cols() &&
+                      H.cols() % d == 0,
+                    dealii::ExcMessage(where + "inconsistent sizes of M (" +
+                                       std::to_string(M.rows()) + "x" +
+                                       std::to_string(M.cols()) + "), H (" +
+                                       std::to_string(H.rows()) + "x" +
+                                       std::to_string(H.cols()) + "), f, w"));
+        // M may be stored as one triangle only: symmetrise.
+        {
+          const SparseMatrix L = M.triangularView<Eigen::StrictlyLower>();
+          const SparseMatrix U = M.triangularView<Eigen::StrictlyUpper>();
+          if (L.nonZeros() == 0 && U.nonZeros() > 0)
+            M = M + SparseMatrix(U.transpose());
+          else if (U.nonZeros() == 0 && L.nonZeros() > 0)
+            M = M + SparseMatrix(L.transpose());
+        }
+        M.makeCompressed();
+        SparseMatrix Hc = H;
+        Hc.makeCompressed();
+
+        Eigen::MatrixXd                     MinvH;
+        Eigen::VectorXd                     Minvf;
+        Eigen::SimplicialLDLT<SparseMatrix> ldlt(M);
+        if (ldlt.info() == Eigen::Success)
+          {
+            const SparseMatrix X = ldlt.solve(Hc);
+            Minvf                = ldlt.solve(fv);
+            MinvH                = Eigen::MatrixXd(X);
+          }
+        if (ldlt.info() != Eigen::Success || !MinvH.allFinite() ||
+            !Minvf.allFinite())
+          {
+            Eigen::SparseLU<SparseMatrix> lu(M);
+            AssertThrow(lu.info() == Eigen::Success,
+                        dealii::ExcMessage(where + "M is singular"));
+            MinvH = lu.solve(Eigen::MatrixXd(Hc));
+            Minvf = lu.solve(fv);
+          }
+        ContactProblem problem;
+        problem.n_components = d;
+        problem.n_contacts   = H.cols() / d;
+        problem.W            = Hc.transpose() * MinvH;
+        problem.W            = 0.5 * (problem.W + problem.W.transpose()).eval();
+        problem.q            = Hc.transpose() * Minvf + w;
+        return problem;
       }
     } // namespace
 
@@ -448,56 +625,12 @@ namespace igabde
                   dealii::ExcMessage("FCLIB reader: '" + filename +
                                      "': spacedim must be 2 or 3, is " +
                                      std::to_string(d)));
-      SparseMatrix          M  = f.read_sparse("/fclib_global/M");
+      const SparseMatrix    M  = f.read_sparse("/fclib_global/M");
       const SparseMatrix    H  = f.read_sparse("/fclib_global/H");
       const Eigen::VectorXd fv = f.read_eigen_vector("/fclib_global/vectors/f");
       const Eigen::VectorXd w  = f.read_eigen_vector("/fclib_global/vectors/w");
-      const std::string     where = "FCLIB reader: '" + filename + "': ";
-      AssertThrow(M.rows() == M.cols() && H.rows() == M.rows() &&
-                    fv.size() == M.rows() && w.size() == H.cols() &&
-                    H.cols() % d == 0,
-                  dealii::ExcMessage(where + "inconsistent sizes of M (" +
-                                     std::to_string(M.rows()) + "x" +
-                                     std::to_string(M.cols()) + "), H (" +
-                                     std::to_string(H.rows()) + "x" +
-                                     std::to_string(H.cols()) + "), f, w"));
-      // M may be stored as one triangle only: symmetrise.
-      {
-        const SparseMatrix L = M.triangularView<Eigen::StrictlyLower>();
-        const SparseMatrix U = M.triangularView<Eigen::StrictlyUpper>();
-        if (L.nonZeros() == 0 && U.nonZeros() > 0)
-          M = M + SparseMatrix(U.transpose());
-        else if (U.nonZeros() == 0 && L.nonZeros() > 0)
-          M = M + SparseMatrix(L.transpose());
-      }
-      M.makeCompressed();
-      SparseMatrix Hc = H;
-      Hc.makeCompressed();
-
-      Eigen::MatrixXd                     MinvH;
-      Eigen::VectorXd                     Minvf;
-      Eigen::SimplicialLDLT<SparseMatrix> ldlt(M);
-      if (ldlt.info() == Eigen::Success)
-        {
-          const SparseMatrix X = ldlt.solve(Hc);
-          Minvf                = ldlt.solve(fv);
-          MinvH                = Eigen::MatrixXd(X);
-        }
-      if (ldlt.info() != Eigen::Success || !MinvH.allFinite() ||
-          !Minvf.allFinite())
-        {
-          Eigen::SparseLU<SparseMatrix> lu(M);
-          AssertThrow(lu.info() == Eigen::Success,
-                      dealii::ExcMessage(where + "M is singular"));
-          MinvH = lu.solve(Eigen::MatrixXd(Hc));
-          Minvf = lu.solve(fv);
-        }
-      ContactProblem problem;
-      problem.n_components = d;
-      problem.n_contacts   = H.cols() / d;
-      problem.W            = Hc.transpose() * MinvH;
-      problem.W            = 0.5 * (problem.W + problem.W.transpose()).eval();
-      problem.q            = Hc.transpose() * Minvf + w;
+      ContactProblem        problem =
+        condense_global(M, H, fv, w, d, "FCLIB reader: '" + filename + "': ");
       set_mu(problem,
              f.read_eigen_vector("/fclib_global/vectors/mu"),
              filename);
@@ -521,94 +654,19 @@ namespace igabde
                   dealii::ExcMessage("Siconos reader: '" + filename +
                                      "': bad number of contacts " +
                                      std::to_string(nc)));
-      const long storage = s.integer("the matrix storage type");
-      const long size0   = s.integer("the matrix size");
-      const long size1   = s.integer("the matrix size");
-      const long n       = d * nc;
-      AssertThrow(size0 == n && size1 == n,
+      const long         n = d * nc;
+      const SparseMatrix W = read_numerics_matrix(s, "the matrix W");
+      AssertThrow(W.rows() == n && W.cols() == n,
                   dealii::ExcMessage(
                     "Siconos reader: '" + filename + "': matrix is " +
-                    std::to_string(size0) + " x " + std::to_string(size1) +
-                    ", expected " + std::to_string(n) + " x " +
-                    std::to_string(n) + " (dimension x contacts)"));
+                    std::to_string(W.rows()) + " x " +
+                    std::to_string(W.cols()) + ", expected " +
+                    std::to_string(n) + " x " + std::to_string(n) +
+                    " (dimension x contacts)"));
       ContactProblem problem;
       problem.n_components = d;
       problem.n_contacts   = nc;
-      problem.W.setZero(n, n);
-      if (storage == 0)
-        {
-          const long r = s.integer("the dense size"),
-                     c = s.integer("the dense size");
-          AssertThrow(r == n && c == n,
-                      dealii::ExcMessage("Siconos reader: '" + filename +
-                                         "': dense sizes disagree"));
-          for (long j = 0; j < n; ++j) // column major
-            for (long i = 0; i < n; ++i)
-              problem.W(i, j) = s.number("a dense matrix entry");
-        }
-      else if (storage == 1)
-        {
-          const long nbblocks = s.integer("the number of blocks");
-          if (nbblocks > 0)
-            {
-              const long bn0 = s.integer("blocknumber0");
-              const long bn1 = s.integer("blocknumber1");
-              AssertThrow(bn0 > 0 && bn1 > 0 && bn0 <= n && bn1 <= n,
-                          dealii::ExcMessage("Siconos reader: '" + filename +
-                                             "': bad block counts"));
-              std::vector<long> bs0(bn0), bs1(bn1);
-              for (auto &v : bs0)
-                v = s.integer("blocksize0");
-              for (auto &v : bs1)
-                v = s.integer("blocksize1");
-              AssertThrow(bs0.back() == n && bs1.back() == n,
-                          dealii::ExcMessage("Siconos reader: '" + filename +
-                                             "': block sizes do not add up "
-                                             "to the matrix size"));
-              const long filled1 = s.integer("filled1");
-              const long filled2 = s.integer("filled2");
-              AssertThrow(filled1 == bn0 + 1 && filled2 == nbblocks,
-                          dealii::ExcMessage("Siconos reader: '" + filename +
-                                             "': bad sparse-block index "
-                                             "sizes"));
-              std::vector<long> index1(filled1), index2(filled2);
-              for (auto &v : index1)
-                v = s.integer("index1_data");
-              for (auto &v : index2)
-                v = s.integer("index2_data");
-              for (long row = 0; row + 1 < filled1; ++row)
-                for (long blk = index1[row]; blk < index1[row + 1]; ++blk)
-                  {
-                    AssertThrow(blk >= 0 && blk < filled2,
-                                dealii::ExcMessage("Siconos reader: '" +
-                                                   filename +
-                                                   "': bad block index"));
-                    const long col = index2[blk];
-                    AssertThrow(col >= 0 && col < bn1,
-                                dealii::ExcMessage("Siconos reader: '" +
-                                                   filename +
-                                                   "': bad block column"));
-                    const long r0 = row == 0 ? 0 : bs0[row - 1];
-                    const long c0 = col == 0 ? 0 : bs1[col - 1];
-                    const long nr = bs0[row] - r0, ncol = bs1[col] - c0;
-                    const long number = s.integer("the block number");
-                    AssertThrow(number == blk,
-                                dealii::ExcMessage("Siconos reader: '" +
-                                                   filename +
-                                                   "': block numbering"));
-                    for (long j = 0; j < ncol; ++j) // column major
-                      for (long i = 0; i < nr; ++i)
-                        problem.W(r0 + i, c0 + j) = s.number("a block entry");
-                  }
-            }
-        }
-      else if (storage == 2)
-        problem.W = Eigen::MatrixXd(read_csparse_print(s, n, n));
-      else
-        AssertThrow(false,
-                    dealii::ExcMessage("Siconos reader: '" + filename +
-                                       "': unknown matrix storage " +
-                                       std::to_string(storage)));
+      problem.W            = Eigen::MatrixXd(W);
       problem.q.resize(n);
       for (long i = 0; i < n; ++i)
         problem.q[i] = s.number("q");
@@ -617,6 +675,66 @@ namespace igabde
         mu[c] = s.number("mu");
       if (d > 1)
         set_mu(problem, mu, filename);
+      finish(problem, filename);
+      return problem;
+    }
+
+
+
+    ContactProblem
+    read_siconos_global_dat(const std::string &filename)
+    {
+      DatStream         s(filename);
+      const std::string where = "Siconos reader: '" + filename + "': ";
+      const long        d     = s.integer("the dimension");
+      const long        nc    = s.integer("the number of contacts");
+      AssertThrow(d == 2 || d == 3,
+                  dealii::ExcMessage(where + "dimension must be 2 or 3, is " +
+                                     std::to_string(d)));
+      AssertThrow(nc >= 0 && nc < 10000000,
+                  dealii::ExcMessage(where + "bad number of contacts " +
+                                     std::to_string(nc)));
+      const SparseMatrix M = read_numerics_matrix(s, "the mass matrix M");
+      if (!s.next_is_integer())
+        {
+          // No H: a local problem under a global problem's name (e.g.
+          // GFC3D_TwoRods1-condensed.dat); the matrix is W.
+          const long n = d * nc;
+          AssertThrow(M.rows() == n && M.cols() == n,
+                      dealii::ExcMessage(where + "neither a global problem "
+                                                 "(no matrix H follows M) "
+                                                 "nor a local one (W is not "
+                                                 "dimension x contacts "
+                                                 "square)"));
+          ContactProblem problem;
+          problem.n_components = d;
+          problem.n_contacts   = nc;
+          problem.W            = Eigen::MatrixXd(M);
+          problem.q.resize(n);
+          for (long i = 0; i < n; ++i)
+            problem.q[i] = s.number("q");
+          Eigen::VectorXd mu(nc);
+          for (long c = 0; c < nc; ++c)
+            mu[c] = s.number("mu");
+          set_mu(problem, mu, filename);
+          finish(problem, filename);
+          return problem;
+        }
+      const SparseMatrix H = read_numerics_matrix(s, "the matrix H");
+      AssertThrow(H.cols() == d * nc,
+                  dealii::ExcMessage(
+                    where + "H has " + std::to_string(H.cols()) +
+                    " columns for " + std::to_string(nc) +
+                    " contacts of dimension " + std::to_string(d)));
+      Eigen::VectorXd fv(M.rows()), w(H.cols()), mu(nc);
+      for (long i = 0; i < fv.size(); ++i)
+        fv[i] = s.number("q (the load f)");
+      for (long i = 0; i < w.size(); ++i)
+        w[i] = s.number("b (the offset w)");
+      for (long c = 0; c < nc; ++c)
+        mu[c] = s.number("mu");
+      ContactProblem problem = condense_global(M, H, fv, w, d, where);
+      set_mu(problem, mu, filename);
       finish(problem, filename);
       return problem;
     }
@@ -641,11 +759,7 @@ namespace igabde
                                            "(not supported)"));
             break;
           case FclibFileKind::siconos_global_dat:
-            AssertThrow(false,
-                        dealii::ExcMessage("FCLIB reader: '" + filename +
-                                           "' is a Siconos global problem "
-                                           "(not supported)"));
-            break;
+            return read_siconos_global_dat(filename);
           case FclibFileKind::unknown:
             AssertThrow(false,
                         dealii::ExcMessage("FCLIB reader: '" + filename +

@@ -20,6 +20,7 @@ extern "C" {
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -387,4 +388,89 @@ TEST(ContactFclib, WriterRefusesWhatFclibCannotHold)
                   "igabde-no-such-folder" / "problem.hdf5")
                    .string(),
                  "create");
+}
+
+
+
+TEST(ContactFclib, SiconosGlobalDatIsCondensedThroughM)
+{
+  // A 2D global problem written as Siconos prints it
+  // (globalFrictionContact_printInFile): M dense (storage 0), H in sparse
+  // blocks (storage 1), then q (the load f), b (the offset w) and mu. The
+  // reader must give W = H^T M^-1 H and q = H^T M^-1 f + w, here computed
+  // with a dense inverse instead of the reader's sparse LDL^T.
+  Eigen::MatrixXd M(3, 3), H = Eigen::MatrixXd::Zero(3, 4);
+  M << 4., 1., 0., 1., 3., 0.5, 0., 0.5, 2.;
+  H(0, 0) = 1.;
+  H(1, 1) = 0.5;
+  H(1, 2) = 2.;
+  H(2, 3) = -1.;
+  Eigen::VectorXd f(3), w(4);
+  f << 0.3, -1., 0.2;
+  w << -0.1, 0.05, 0.4, 0.;
+  const ScratchFile  file("GFC2D_igabde_test.dat");
+  std::ostringstream text;
+  text.precision(17);
+  text << "2\n2\n0\n3\n3\n3 3\n";
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 3; ++i)
+      text << M(i, j) << " ";
+  // H: one row of blocks (3 rows) and two block columns (2 + 2 columns),
+  // both blocks stored.
+  text << "\n1\n3\n4\n2\n1\n2\n3\n2\n4\n2\n2\n0 2\n0 1\n";
+  for (int b = 0; b < 2; ++b)
+    {
+      text << b << "\n";
+      for (int j = 2 * b; j < 2 * b + 2; ++j)
+        for (int i = 0; i < 3; ++i)
+          text << H(i, j) << " ";
+      text << "\n";
+    }
+  for (int i = 0; i < 3; ++i)
+    text << f[i] << " ";
+  text << "\n";
+  for (int i = 0; i < 4; ++i)
+    text << w[i] << " ";
+  text << "\n0.3 0.6\n";
+  std::ofstream(file.path) << text.str();
+
+  EXPECT_EQ(classify_fclib_file(file.path), FclibFileKind::siconos_global_dat);
+  const ContactProblem  problem = read_fclib_problem(file.path);
+  const Eigen::MatrixXd Minv    = M.inverse();
+  EXPECT_EQ(problem.n_contacts, 2u);
+  EXPECT_EQ(problem.n_components, 2u);
+  EXPECT_EQ(problem.mu, (std::vector<double>{0.3, 0.6}));
+  EXPECT_LE((problem.W - H.transpose() * Minv * H).norm(), 1e-14);
+  EXPECT_LE((problem.q - (H.transpose() * Minv * f + w)).norm(), 1e-14);
+
+  // GFC3D_TwoRods1 and GFC3D_TwoRods1-condensed: a global problem and,
+  // under a global problem's name, the local problem Siconos condensed
+  // from it (printed with 7 digits): the reader's condensation must give
+  // that W and q to the print's precision.
+  if (std::filesystem::is_directory(fclib_dir()))
+    {
+      const ContactProblem global =
+        read_fclib_problem(fclib_file("siconos_dat/GFC3D_TwoRods1.dat"));
+      const ContactProblem local = read_fclib_problem(
+        fclib_file("siconos_dat/GFC3D_TwoRods1-condensed.dat"));
+      ASSERT_EQ(global.n_rows(), local.n_rows());
+      EXPECT_LE((global.W - local.W).norm(), 1e-6 * local.W.norm())
+        << global.W << "\n\n"
+        << local.W;
+      EXPECT_LE((global.q - local.q).norm(), 1e-6 * local.q.norm())
+        << global.q.transpose() << "\n"
+        << local.q.transpose();
+    }
+
+  // The corpus' global .dat problems read and solve.
+  if (std::filesystem::is_directory(fclib_dir()))
+    for (const std::string name :
+         {"siconos_dat/GFC3D_Example1.dat", "siconos_dat/GFC3D_TwoRods1.dat"})
+      {
+        SCOPED_TRACE(name);
+        const ContactProblem corpus   = read_fclib_problem(fclib_file(name));
+        const BNewtonSolver::Result r = BNewtonSolver().solve(corpus);
+        EXPECT_TRUE(r.converged) << r.summary();
+        EXPECT_LE(r.residual, 1e-8) << r.summary();
+      }
 }

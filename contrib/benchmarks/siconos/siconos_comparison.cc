@@ -309,7 +309,8 @@ main(int argc, char **argv)
       const FclibFileKind kind = classify_fclib_file(path.string());
       if (kind != FclibFileKind::hdf5_local &&
           kind != FclibFileKind::hdf5_global &&
-          kind != FclibFileKind::siconos_local_dat)
+          kind != FclibFileKind::siconos_local_dat &&
+          kind != FclibFileKind::siconos_global_dat)
         {
           skipped.push_back(name + " (not a local/global Coulomb problem)");
           continue;
@@ -322,6 +323,11 @@ main(int argc, char **argv)
       catch (const std::exception &)
         {
           skipped.push_back(name + " (unreadable by igabde)");
+          continue;
+        }
+      if (problem.n_contacts == 0)
+        {
+          skipped.push_back(name + " (no contacts: nothing to solve)");
           continue;
         }
       if (problem.n_components < 2 ||

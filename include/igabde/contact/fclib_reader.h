@@ -24,7 +24,8 @@ namespace igabde
       hdf5_global_rolling,
       /** Siconos numerics .dat local friction-contact problem. */
       siconos_local_dat,
-      /** Siconos .dat global problem (GFC3D_*, gfc2d_*; not supported). */
+      /** Siconos .dat global problem (GFC3D_*, gfc2d_*); condensed on
+       * reading. */
       siconos_global_dat,
       /** Anything else. */
       unknown
@@ -68,6 +69,19 @@ namespace igabde
      */
     ContactProblem
     read_siconos_dat(const std::string &filename);
+
+    /**
+     * @brief Read a Siconos numerics .dat global friction-contact problem
+     * (as globalFrictionContact_printInFile writes it: dimension, number
+     * of contacts, M, H as NumericsMatrix prints, q, b, mu, where
+     * M v = H r + q and u = H^T v + b) and condense it as
+     * read_fclib_global() does: W = H^T M^{-1} H, q = H^T M^{-1} q + b.
+     * A file named like a global problem that holds a local one (no H
+     * after the first matrix: GFC3D_TwoRods1-condensed.dat) is read as
+     * the local problem it is.
+     */
+    ContactProblem
+    read_siconos_global_dat(const std::string &filename);
 
     /**
      * @brief Read any supported problem file (dispatch on

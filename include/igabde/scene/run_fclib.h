@@ -17,13 +17,13 @@ namespace igabde
      *
      * FILE is an FCLIB HDF5 local problem (W, q, mu), an FCLIB HDF5 global
      * problem (condensed through its sparse M on reading) or a Siconos
-     * numerics `.dat` local problem. The output folder (Output/Directory,
-     * default `output/<file stem>`) receives summary.json (the problem's
-     * sizes, the solver's outcome, `checks.fclib_error` = |r - P_K(r -
-     * (W r + q + mu |u_t| e_n))| / |q|, the condition check, the distance
-     * to a reference solution stored in the file, seconds per phase),
-     * solution.csv (per contact its status, force r and relative velocity
-     * u in the contact's local frame) and log.txt.
+     * numerics `.dat` local or global problem (the same condensation). The
+     * output folder (Output/Directory, default `output/<file stem>`) receives
+     * summary.json (the problem's sizes, the solver's outcome,
+     * `checks.fclib_error` = |r - P_K(r - (W r + q + mu |u_t| e_n))| / |q|, the
+     * condition check, the distance to a reference solution stored in the file,
+     * seconds per phase), solution.csv (per contact its status, force r and
+     * relative velocity u in the contact's local frame) and log.txt.
      *
      * Of the parameters, the solver's are read from @p overrides
      * (`--set`): Contact/Tolerance (default 1e-8, the FCLIB measure's
