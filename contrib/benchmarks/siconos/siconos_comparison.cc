@@ -10,6 +10,14 @@
 //                     out (default 6000: our dense W)
 //   --max-iterations  Siconos' iteration budget (default 1000 for the
 //                     Newton and proximal solvers, 10 times that for NSGS)
+//   --verify FILE     instead of the table: hand the FCLIB local problem
+//                     FILE (e.g. a scene's Output/FCLIB export) to Siconos'
+//                     PROX and NSN-AC at internal tolerance 1e-14 and
+//                     compare their forces with the solution stored in the
+//                     file; exit status 0 if PROX's answer meets FCLIB's
+//                     measure at 1e-8 and lies within the distance the two
+//                     answers' FCLIB errors allow (the natural-map error
+//                     bound; a ctest with a scene from prm/)
 //
 // Each problem is read once, by igabde's reader (a global problem condensed
 // through its sparse M, W = H^T M^-1 H), and handed to both: igabde's
@@ -30,6 +38,8 @@
 #include <igabde/contact/contact_problem.h>
 #include <igabde/contact/fclib_reader.h>
 
+#include <Eigen/Eigenvalues>
+
 #include <algorithm>
 #include <chrono>
 #include <csignal>
@@ -48,6 +58,7 @@
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
+#include <utility>
 #include <vector>
 
 using namespace igabde::contact;
@@ -254,6 +265,76 @@ namespace
 
 
 
+namespace
+{
+  /// --verify: Siconos on a problem whose solution the file stores.
+  int
+  verify(const std::string &file)
+  {
+    const ContactProblem problem   = read_fclib_problem(file);
+    const FclibSolution  reference = read_fclib_solution(file);
+    if (!reference.available || reference.r.size() != problem.n_rows())
+      {
+        std::cerr << "siconos_comparison: " << file
+                  << " stores no solution to compare with\n";
+        return 2;
+      }
+    FrictionContactProblem *fcp    = siconos_problem(problem);
+    const int               n      = problem.n_rows();
+    bool                    passed = false;
+    // How far two answers may lie apart given their FCLIB errors: for a
+    // strongly monotone problem the natural map bounds the distance to the
+    // solution, |r - r*| <= (1 + lambda_max) / lambda_min |F_nat(r)|
+    // (lambda of the symmetric part of W), and |F_nat(r)| is the FCLIB error
+    // times |q|. (With friction the problem is not monotone; the bound is
+    // then an estimate, exact in the frictionless limit.)
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(
+      0.5 * (problem.W + problem.W.transpose()),
+      Eigen::EigenvaluesOnly);
+    const double lambda_min      = eigen.eigenvalues().minCoeff(),
+                 lambda_max      = eigen.eigenvalues().maxCoeff();
+    const double reference_error = fclib_error(problem, reference.r);
+    const double amplification   = (1. + lambda_max) / lambda_min *
+                                 problem.q.norm() /
+                                 std::max(reference.r.norm(), 1e-300);
+    std::cout << "stored solution: FCLIB error " << std::scientific
+              << std::setprecision(2) << reference_error
+              << "; |r - r*| / |r| <= " << amplification
+              << " x (the FCLIB error)" << std::defaultfloat << '\n';
+    for (const auto &[id, label] :
+         {std::pair<int, const char *>{SICONOS_FRICTION_3D_PROX, "PROX"},
+          std::pair<int, const char *>{SICONOS_FRICTION_3D_NSN_AC, "NSN-AC"}})
+      {
+        if (problem.n_components != 3)
+          break;
+        std::vector<double> r(n, 0.), u(n, 0.);
+        SolverOptions      *options              = solver_options_create(id);
+        options->iparam[SICONOS_IPARAM_MAX_ITER] = 10000;
+        options->dparam[SICONOS_DPARAM_TOL]      = 1e-14;
+        const int info = fc3d_driver(fcp, r.data(), u.data(), options);
+        solver_options_delete(options);
+        const Eigen::Map<const Eigen::VectorXd> rs(r.data(), n);
+        const double error = fclib_error(problem, rs);
+        const double difference =
+          (rs - reference.r).norm() / std::max(reference.r.norm(), 1e-300);
+        std::cout << label << ": info " << info << ", FCLIB error "
+                  << std::scientific << std::setprecision(2) << error
+                  << ", |r - r_file| / |r_file| " << difference
+                  << std::defaultfloat << '\n';
+        const double bound = amplification * (error + reference_error);
+        std::cout << "    allowed by the two errors: " << std::scientific
+                  << std::setprecision(2) << bound << std::defaultfloat << '\n';
+        if (id == SICONOS_FRICTION_3D_PROX)
+          passed = lambda_min > 0. && error <= 1e-8 && difference <= bound;
+      }
+    frictionContactProblem_free(fcp);
+    std::cout << (passed ? "same answer" : "DIFFERENT answer") << '\n';
+    return passed ? 0 : 1;
+  }
+} // namespace
+
+
+
 int
 main(int argc, char **argv)
 {
@@ -272,6 +353,8 @@ main(int argc, char **argv)
         max_rows = std::stol(argv[++i]);
       else if (a == "--max-iterations" && i + 1 < argc)
         max_iterations = std::stoi(argv[++i]);
+      else if (a == "--verify" && i + 1 < argc)
+        return verify(argv[++i]);
       else
         folder = a;
     }
