@@ -321,16 +321,24 @@ namespace igabde
           for (unsigned int c = 0; c < dim; ++c)
             if (support.components[c])
               {
-                const types::global_dof_index i = dim * (*at) + c;
-                AssertThrow(values.find(i) == values.end() || values[i] == 0.,
+                const types::global_dof_index i     = dim * (*at) + c;
+                const double                  value = support.value[c];
+                // A support already there must agree, on the same history
+                // where the value is not zero.
+                AssertThrow(values.find(i) == values.end() ||
+                              (values[i] == value &&
+                               (value == 0. || this->prescribed_history[i] ==
+                                                 support.history)),
                             ExcMessage("Body '" + name +
-                                       "': a point support holds component " +
+                                       "': a point support prescribes "
+                                       "component " +
                                        std::to_string(c) +
                                        " at a corner where a support "
-                                       "prescribes a non-zero value."));
-                if (values.find(i) == values.end())
-                  this->prescribed_history[i] = 1;
-                values[i] = 0.;
+                                       "prescribes another value (or the "
+                                       "same on another history)."));
+                if (values.find(i) == values.end() || value != 0.)
+                  this->prescribed_history[i] = support.history;
+                values[i] = value;
               }
         }
       for (const auto &[i, v] : values)

@@ -440,16 +440,25 @@ namespace igabde
                     found = true;
                     if (!this->constraints.is_constrained(i))
                       this->constraints.add_line(i);
+                    const double value = support.value[this->dof_components[i]];
                     if (!this->prescribed_constraints.is_constrained(i))
                       {
                         this->prescribed_constraints.add_line(i);
-                        this->prescribed_history[i] = 1;
+                        this->prescribed_constraints.set_inhomogeneity(i,
+                                                                       value);
+                        this->prescribed_history[i] = support.history;
                       }
-                    AssertThrow(
-                      this->prescribed_constraints.get_inhomogeneity(i) == 0.,
-                      ExcMessage("Body '" + this->description().name +
-                                 "': a point support holds a node where a "
-                                 "support prescribes a non-zero value."));
+                    // A support already there must agree, on the same
+                    // history where the value is not zero.
+                    AssertThrow(this->prescribed_constraints.get_inhomogeneity(
+                                  i) == value &&
+                                  (value == 0. || this->prescribed_history[i] ==
+                                                    support.history),
+                                ExcMessage(
+                                  "Body '" + this->description().name +
+                                  "': a point support prescribes a node "
+                                  "where a support prescribes another value "
+                                  "(or the same on another history)."));
                   }
               AssertThrow(found,
                           ExcMessage("Body '" + this->description().name +

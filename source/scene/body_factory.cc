@@ -216,7 +216,12 @@ namespace igabde
           discretization::PointSupport<dim> point_support;
           point_support.location = Point<dim>(tensor(support.location));
           for (unsigned int c = 0; c < dim; ++c)
-            point_support.components[c] = support.components[c];
+            {
+              point_support.components[c] = support.components[c];
+              point_support.value[c]      = support.values[c];
+            }
+          point_support.history =
+            parameters.load_path.history_index(support.history, 1);
           d.point_supports.push_back(point_support);
         }
       for (const MomentParameters &moment : body.moments)

@@ -438,9 +438,11 @@ namespace igabde
           "Point supports",
           "",
           Patterns::Anything(),
-          "Components held at zero at single points: 'x, y[, z] : "
-          "components; ...', e.g. '0, -0.5 : x y; 0, 0.5 : x' (a pin and a "
-          "roller). A point must be a node where one basis function is one "
+          "Components held at single points: 'x, y[, z] : components; "
+          "...', e.g. '0, -0.5 : x y; 0, 0.5 : x' (a pin and a roller); a "
+          "component may carry a value, 'x=0.01' (m), scaled by the step's "
+          "displacement factor (or by the load history 'name' when the "
+          "entry ends in '@ name'); without one it is held at zero. A point must be a node where one basis function is one "
           "and the others vanish: a corner of the patch for NURBS, a mesh "
           "node for FE_Q (refused otherwise). The support holds that node "
           "only: its reaction is a point force, with the stress singularity "
@@ -940,9 +942,12 @@ namespace igabde
              read_vector(force, dimension, where + "Point loads"),
              history});
         }
-      // Point supports: "x, y[, z] : x y".
-      for (const std::string &entry : base::split(point_supports_text, ';'))
+      // Point supports: "x, y[, z] : x y", a component optionally with a
+      // value ("x=0.01").
+      for (const std::string &full_entry :
+           base::split(point_supports_text, ';'))
         {
+          const auto [entry, history] = split_history(full_entry);
           const auto [location, names] =
             base::split_entry(entry,
                               where + "Point supports",
@@ -955,17 +960,29 @@ namespace igabde
           bool               any = false;
           while (in >> token)
             {
-              const unsigned int c  = read_component(token,
+              const auto         eq = token.find('=');
+              const unsigned int c  = read_component(token.substr(0, eq),
                                                     dimension,
                                                     where + "Point supports",
-                                                    base::trim(entry));
+                                                    base::trim(entry),
+                                                    ", optionally with =value");
               support.components[c] = true;
-              any                   = true;
+              if (eq != std::string::npos)
+                {
+                  const auto v = base::parse_doubles(token.substr(eq + 1),
+                                                     where + "Point supports");
+                  AssertThrow(v.size() == 1,
+                              base::ExcInput(where + "Point supports: '" +
+                                             token + "' needs one value."));
+                  support.values[c] = v[0];
+                }
+              any = true;
             }
           AssertThrow(any,
                       base::ExcInput(where + "Point supports: '" +
                                      base::trim(entry) +
                                      "' names no component."));
+          support.history = history;
           point_supports.push_back(support);
         }
 
@@ -1913,6 +1930,8 @@ namespace igabde
             known(m.history);
           for (const auto &m : body->face_motions)
             known(m.history);
+          for (const auto &p : body->point_supports)
+            known(p.history);
         }
       // A traction that depends on t gets one history per step: factor 1
       // at its step, 0 elsewhere, the expression evaluated at that step's

@@ -1,5 +1,6 @@
 // Body n/Moments: a moment on a face, spread as a distributing coupling
-// spreads it; Body n/Point supports: components held at single nodes. On a
+// spreads it; Body n/Point supports: components held (or moved) at single
+// nodes. On a
 // straight beam end the spread traction is the bending stress -M y / I, so a
 // beam with that moment at one end and the exact displacements of pure bending
 // on the other is in pure bending: the quadratic exact solution lies in both
@@ -21,7 +22,9 @@ namespace
 
   /// Runs the scene @p file of @p scratch and returns its probe 'tip'.
   std::vector<double>
-  run_for_tip(const cli::ScratchFolder &scratch, const std::string &file)
+  run_for_tip(const cli::ScratchFolder &scratch,
+              const std::string        &file,
+              const std::string        &probe = "tip")
   {
     const auto result =
       cli::run_igabde(file + " --quiet --set 'Output/Directory=out' "
@@ -31,7 +34,7 @@ namespace
     std::ifstream  in(cli::join(scratch.path, "out/summary.json"));
     nlohmann::json summary;
     in >> summary;
-    return summary.at("points").at("tip").get<std::vector<double>>();
+    return summary.at("points").at(probe).get<std::vector<double>>();
   }
 
   /**
@@ -186,4 +189,64 @@ TEST(CliPointSupports, NurbsPointSupportOffTheCornersIsRefused)
   EXPECT_NE(run.status, 0) << run.output;
   EXPECT_NE(run.output.find("is not a corner of the patch"), std::string::npos)
     << run.output;
+}
+
+
+
+namespace
+{
+  /**
+   * Point supports with values and nothing else: a pin at the origin
+   * (x = a, y = b[, z = c]) and rollers at (L, 0[, 0]) (y = b + theta L[,
+   * z = c]) and, in 3D, at (0, h, 0) (z = c) prescribe the rigid motion
+   * u = d + theta e_z x x of the box [0, L] x [0, h][ x [0, w]]: the body
+   * follows it without strain, in both discrete spaces, and the far corner
+   * (L, h[, w]) moves by (a - theta h, b + theta L[, c]).
+   */
+  void
+  expect_rigid_point_supported_motion(const unsigned int dim,
+                                      const std::string &type)
+  {
+    SCOPED_TRACE(std::to_string(dim) + "D " + type);
+    const cli::ScratchFolder scratch("point-supports-values-" +
+                                     std::to_string(dim) + type);
+    const double             a = 0.01, b = -0.02, c = 0.005, theta = 0.003;
+    std::ostringstream       scene;
+    scene.precision(17);
+    const std::string z0 = (dim == 3 ? ", 0" : "");
+    scene << "set Dimension = " << dim << "\n"
+          << "set Probe points = far: " << L << ", " << h
+          << (dim == 3 ? ", " + std::to_string(w) : "") << "\n"
+          << "subsection Discretization\n  set Type = " << type
+          << "\n  set Degree = 2\nend\n"
+          << "subsection Body 1\n  set Geometry = box\n"
+          << "  set Lower corner = 0, 0" << z0 << "\n"
+          << "  set Upper corner = " << L << ", " << h
+          << (dim == 3 ? ", " + std::to_string(w) : "") << "\n"
+          << "  set Subdivisions = 4, 2" << (dim == 3 ? ", 1" : "") << "\n"
+          << "  set Young's modulus = " << E << "\n"
+          << "  set Poisson's ratio = " << nu << "\n"
+          << "  set Point supports = 0, 0" << z0 << " : x=" << a << " y=" << b
+          << (dim == 3 ? " z=" + std::to_string(c) : "") << "; " << L << ", 0"
+          << z0 << " : y=" << b + theta * L
+          << (dim == 3 ? " z=" + std::to_string(c) : "");
+    if (dim == 3)
+      scene << "; 0, " << h << ", 0 : z=" << c;
+    scene << "\nend\n";
+    std::ofstream(cli::join(scratch.path, "rigid.prm")) << scene.str();
+    const auto   u        = run_for_tip(scratch, "rigid.prm", "far");
+    const double exact[3] = {a - theta * h, b + theta * L, c};
+    ASSERT_EQ(u.size(), dim);
+    for (unsigned int d = 0; d < dim; ++d)
+      EXPECT_NEAR(u[d], exact[d], 1e-12) << "component " << d;
+  }
+} // namespace
+
+
+
+TEST(CliPointSupports, PrescribedValuesMoveABodyRigidly)
+{
+  for (const unsigned int dim : {2u, 3u})
+    for (const std::string type : {"nurbs", "lagrange"})
+      expect_rigid_point_supported_motion(dim, type);
 }

@@ -79,8 +79,8 @@ namespace igabde
     };
 
     /**
-     * @brief Components held at zero at one node of the body (a patch
-     * corner for NURBS, a mesh node for FE_Q).
+     * @brief Components prescribed at one node of the body (a patch corner
+     * for NURBS, a mesh node for FE_Q).
      */
     template <int dim>
     struct PointSupport
@@ -89,6 +89,10 @@ namespace igabde
       Point<dim> location;
       /// Which displacement components are held.
       std::array<bool, dim> components{};
+      /// Their values (m) at factor 1 (zero: held in place).
+      Tensor<1, dim> value;
+      /// Load history scaling the values (1: the displacement factors).
+      unsigned int history = 1;
     };
 
     /**
@@ -174,6 +178,8 @@ namespace igabde
           n = std::max(n, p.history + 1);
         for (const auto &m : moments)
           n = std::max(n, m.history + 1);
+        for (const auto &p : point_supports)
+          n = std::max(n, p.history + 1);
         return n;
       }
     };

@@ -208,6 +208,12 @@ namespace igabde
       std::vector<double> location;
       /// Held components x, y, z.
       std::array<bool, 3> components = {{false, false, false}};
+      /// Prescribed values of the held components (m; 'x=0.01'), scaled
+      /// by the step's displacement factor or the load history.
+      std::array<double, 3> values = {{0., 0., 0.}};
+      /// Load history scaling the values ('@ name'; empty: Displacement
+      /// factors).
+      std::string history;
     };
 
     /**
