@@ -541,6 +541,41 @@ namespace igabde
         problem.q            = Hc.transpose() * Minvf + w;
         return problem;
       }
+
+
+      /**
+       * The rest of a local .dat problem once its matrix @p W is read:
+       * q, then mu (dimension 1: frictionless, mu ignored).
+       */
+      ContactProblem
+      read_local_tail(DatStream          &s,
+                      const SparseMatrix &W,
+                      const long          d,
+                      const long          nc)
+      {
+        const long n = d * nc;
+        AssertThrow(W.rows() == n && W.cols() == n,
+                    dealii::ExcMessage(
+                      "Siconos reader: '" + s.filename + "': matrix is " +
+                      std::to_string(W.rows()) + " x " +
+                      std::to_string(W.cols()) + ", expected " +
+                      std::to_string(n) + " x " + std::to_string(n) +
+                      " (dimension x contacts)"));
+        ContactProblem problem;
+        problem.n_components = d;
+        problem.n_contacts   = nc;
+        problem.W            = Eigen::MatrixXd(W);
+        problem.q.resize(n);
+        for (long i = 0; i < n; ++i)
+          problem.q[i] = s.number("q");
+        Eigen::VectorXd mu(nc);
+        for (long c = 0; c < nc; ++c)
+          mu[c] = s.number("mu");
+        if (d > 1)
+          set_mu(problem, mu, s.filename);
+        finish(problem, s.filename);
+        return problem;
+      }
     } // namespace
 
 
@@ -654,29 +689,7 @@ namespace igabde
                   dealii::ExcMessage("Siconos reader: '" + filename +
                                      "': bad number of contacts " +
                                      std::to_string(nc)));
-      const long         n = d * nc;
-      const SparseMatrix W = read_numerics_matrix(s, "the matrix W");
-      AssertThrow(W.rows() == n && W.cols() == n,
-                  dealii::ExcMessage(
-                    "Siconos reader: '" + filename + "': matrix is " +
-                    std::to_string(W.rows()) + " x " +
-                    std::to_string(W.cols()) + ", expected " +
-                    std::to_string(n) + " x " + std::to_string(n) +
-                    " (dimension x contacts)"));
-      ContactProblem problem;
-      problem.n_components = d;
-      problem.n_contacts   = nc;
-      problem.W            = Eigen::MatrixXd(W);
-      problem.q.resize(n);
-      for (long i = 0; i < n; ++i)
-        problem.q[i] = s.number("q");
-      Eigen::VectorXd mu(nc);
-      for (long c = 0; c < nc; ++c)
-        mu[c] = s.number("mu");
-      if (d > 1)
-        set_mu(problem, mu, filename);
-      finish(problem, filename);
-      return problem;
+      return read_local_tail(s, read_numerics_matrix(s, "the matrix W"), d, nc);
     }
 
 
@@ -699,26 +712,7 @@ namespace igabde
         {
           // No H: a local problem under a global problem's name (e.g.
           // GFC3D_TwoRods1-condensed.dat); the matrix is W.
-          const long n = d * nc;
-          AssertThrow(M.rows() == n && M.cols() == n,
-                      dealii::ExcMessage(where + "neither a global problem "
-                                                 "(no matrix H follows M) "
-                                                 "nor a local one (W is not "
-                                                 "dimension x contacts "
-                                                 "square)"));
-          ContactProblem problem;
-          problem.n_components = d;
-          problem.n_contacts   = nc;
-          problem.W            = Eigen::MatrixXd(M);
-          problem.q.resize(n);
-          for (long i = 0; i < n; ++i)
-            problem.q[i] = s.number("q");
-          Eigen::VectorXd mu(nc);
-          for (long c = 0; c < nc; ++c)
-            mu[c] = s.number("mu");
-          set_mu(problem, mu, filename);
-          finish(problem, filename);
-          return problem;
+          return read_local_tail(s, M, d, nc);
         }
       const SparseMatrix H = read_numerics_matrix(s, "the matrix H");
       AssertThrow(H.cols() == d * nc,
