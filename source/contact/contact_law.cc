@@ -50,31 +50,32 @@ namespace igabde
 
 
     PairWeights
-    pair_weights(const ContactProblem &problem, const double factor)
+    pair_weights(const Eigen::MatrixXd &W,
+                 const unsigned int     n_components,
+                 const double           factor)
     {
-      const unsigned int nc = problem.n_contacts, d = problem.n_components;
+      const unsigned int d  = n_components;
+      const unsigned int nc = d > 0 ? W.rows() / d : 0;
       PairWeights        w;
       w.r_n.resize(nc);
       w.r_t.resize(nc);
       double max_diag = 0.;
-      if (problem.n_rows() > 0)
-        max_diag = problem.W.diagonal().maxCoeff();
+      if (W.rows() > 0)
+        max_diag = W.diagonal().maxCoeff();
       const double fallback = max_diag > 0. ? factor / max_diag : factor;
       for (unsigned int c = 0; c < nc; ++c)
         {
           const unsigned int o   = c * d;
-          const double       wnn = problem.W(o, o);
+          const double       wnn = W(o, o);
           w.r_n[c] =
             (wnn > 1e-14 * max_diag && wnn > 0.) ? factor / wnn : fallback;
           double lmax = 0.;
           if (d == 2)
-            lmax = problem.W(o + 1, o + 1);
+            lmax = W(o + 1, o + 1);
           else if (d == 3)
             {
-              const double a = problem.W(o + 1, o + 1),
-                           b = problem.W(o + 2, o + 2),
-                           e = 0.5 * (problem.W(o + 1, o + 2) +
-                                      problem.W(o + 2, o + 1));
+              const double a = W(o + 1, o + 1), b = W(o + 2, o + 2),
+                           e = 0.5 * (W(o + 1, o + 2) + W(o + 2, o + 1));
               lmax =
                 0.5 * (a + b) + std::sqrt(0.25 * (a - b) * (a - b) + e * e);
             }
@@ -316,7 +317,9 @@ namespace igabde
                                const Eigen::VectorXd &u)
     {
       return balanced_natural_map_error(problem,
-                                        pair_weights(problem, 1.),
+                                        pair_weights(problem.W,
+                                                     problem.n_components,
+                                                     1.),
                                         p,
                                         u);
     }

@@ -49,7 +49,8 @@ namespace igabde
     /**
      * @brief The per-pair weights r_n, r_t of the B-differentiable
      * equations: r_n = c / W_nn and r_t = c / lambda_max(W_tt) per contact
-     * (W_tt the tangential diagonal block), c = @p factor. A non-positive
+     * (W_tt the tangential diagonal block, @p n_components rows per
+     * contact), c = @p factor. A non-positive
      * diagonal entry falls back to c / max_i W_ii (and to c if W = 0).
      * On the full path (no W, a CoupledOperator) r_n = r_t = c k_i with
      * k_i the operator's pair stiffness.
@@ -60,7 +61,9 @@ namespace igabde
     };
 
     PairWeights
-    pair_weights(const ContactProblem &problem, const double factor);
+    pair_weights(const Eigen::MatrixXd &W,
+                 const unsigned int     n_components,
+                 const double           factor);
 
     /**
      * @brief The piece of the contact law one pair is on, and the element of
