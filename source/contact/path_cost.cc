@@ -11,16 +11,16 @@ namespace igabde
     PathCostConstants
     PathCostConstants::measured()
     {
-      // contrib/benchmarks/path-cost, 2026-11-23 (doc/performance.md),
+      // contrib/benchmarks/path-cost, 2026-11-25 (doc/performance.md),
       // from the largest case measured, B2 FE_Q(2) 8x32x8: the B-Newton
       // phase over 10 m^3/3, the condensation and the Schur part of the
       // factorisation over the face term, MUMPS' 10 factorisations of the
       // coupled matrix over 10 sum L^1.5. Newton iterations per step: 8
       // to 10 on B2.
       PathCostConstants c;
-      c.dense               = 1.8e-10;
-      c.schur               = 4.2e-11;
-      c.sparse              = 4.2e-12;
+      c.dense               = 1.1e-11;
+      c.schur               = 4.8e-11;
+      c.sparse              = 5.2e-12;
       c.iterations_per_step = 8.;
       return c;
     }
