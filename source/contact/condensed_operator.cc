@@ -156,15 +156,36 @@ namespace igabde
         Vec
         W_times(const Vec &v) const
         {
-          return sparse ? Vec(Ws * v) : Vec(problem.W * v);
+          return sparse ? Vec(Ws * v) : dense_times(problem.W, v);
         }
 
         // W^T v
         Vec
         WT_times(const Vec &v) const
         {
-          return sparse ? Vec(Ws.transpose() * v) :
-                          Vec(problem.W.transpose() * v);
+          if (sparse)
+            return Ws.transpose() * v;
+          return symmetric ? dense_times(problem.W, v) :
+                             Vec(problem.W.transpose() * v);
+        }
+
+        // A v for a dense A, reading only the columns of the non-zero
+        // entries of v: the forces of open pairs are zero, and on large
+        // problems (10 000 rows: 800 MB of W) reading W is the cost of a
+        // product, not its flops.
+        static Vec
+        dense_times(const Mat &A, const Vec &v)
+        {
+          Eigen::Index nonzero = 0;
+          for (Eigen::Index j = 0; j < v.size(); ++j)
+            nonzero += (v[j] != 0.);
+          if (4 * nonzero > 3 * v.size())
+            return A * v;
+          Vec out = Vec::Zero(A.rows());
+          for (Eigen::Index j = 0; j < v.size(); ++j)
+            if (v[j] != 0.)
+              out.noalias() += v[j] * A.col(j);
+          return out;
         }
 
         ProblemView        problem;
