@@ -1,3 +1,5 @@
+#include <igabde/linear_algebra/dense_lu.h>
+
 #include <igabde/contact/contact_operator.h>
 
 #include <deal.II/base/exceptions.h>
@@ -26,67 +28,6 @@ namespace igabde
       using Branch         = PairPiece;
 
       using dealii::types::blas_int;
-
-      // The reciprocal condition number in the 1-norm of the matrix whose
-      // LU factors (without the row permutation, which leaves the 1-norm
-      // alone) @p LU holds, with |A|_1 = @p anorm: LAPACK's dgecon
-      // (deal.II 9.4 wraps no gecon), that is Higham's estimate of
-      // |A^-1|_1 (dlacn2: Hager's method with at most five sweeps and the
-      // alternating-sign test vector), by triangular solves.
-      double
-      lu_rcond(const Mat &LU, const double anorm)
-      {
-        const Eigen::Index n = LU.rows();
-        if (n == 0 || anorm == 0.)
-          return 0.;
-        const auto solve = [&](Vec &x) {
-          LU.triangularView<Eigen::UnitLower>().solveInPlace(x);
-          LU.triangularView<Eigen::Upper>().solveInPlace(x);
-        };
-        const auto solve_transposed = [&](Vec &x) {
-          LU.transpose().triangularView<Eigen::Lower>().solveInPlace(x);
-          LU.transpose().triangularView<Eigen::UnitUpper>().solveInPlace(x);
-        };
-        const auto sign = [](const double v) {
-          return v >= 0. ? 1. : -1.;
-        };
-        Vec x = Vec::Constant(n, 1. / n);
-        solve(x);
-        double est = x.lpNorm<1>();
-        if (n > 1)
-          {
-            Vec isgn = x.unaryExpr(sign);
-            x        = isgn;
-            solve_transposed(x);
-            Eigen::Index j;
-            x.cwiseAbs().maxCoeff(&j);
-            for (unsigned int iter = 2;; ++iter)
-              {
-                x.setZero();
-                x[j] = 1.;
-                solve(x);
-                const double old = est;
-                est              = x.lpNorm<1>();
-                const Vec s      = x.unaryExpr(sign);
-                if (s == isgn || est <= old)
-                  break;
-                isgn = s;
-                x    = s;
-                solve_transposed(x);
-                const Eigen::Index last = j;
-                x.cwiseAbs().maxCoeff(&j);
-                if (x[last] == std::abs(x[j]) || iter >= 5)
-                  break;
-              }
-            for (Eigen::Index i = 0; i < n; ++i)
-              x[i] = (i % 2 == 0 ? 1. : -1.) * (1. + double(i) / (n - 1));
-            solve(x);
-            est = std::max(est, 2. * x.lpNorm<1>() / (3. * n));
-          }
-        return est > 0. && std::isfinite(est) ? (1. / est) / anorm : 0.;
-      }
-
-
 
       // What the Newton matrix reads of the problem: W (shifted in the
       // proximal phase) and G.
@@ -455,31 +396,11 @@ namespace igabde
         bool
         dense_lu(const Vec &rhs, Vec &dN) const
         {
-          const blas_int nN    = others.size();
-          Mat            K     = dense_matrix();
-          double         anorm = 0.;
-          for (int b = 0; b < nN; ++b)
-            anorm = std::max(anorm, K.col(b).cwiseAbs().sum());
-          std::vector<blas_int> pivots(nN);
-          blas_int              info = 0;
-          dealii::getrf(&nN, &nN, K.data(), &nN, pivots.data(), &info);
-          if (info != 0)
+          const linear_algebra::DenseLU lu(dense_matrix());
+          if (!(lu.rcond() > min_rcond))
             return false;
-          const double rcond = lu_rcond(K, anorm);
-          if (!(rcond > min_rcond))
-            return false;
-          dN                  = rhs;
-          const blas_int nrhs = 1;
-          dealii::getrs("N",
-                        &nN,
-                        &nrhs,
-                        K.data(),
-                        &nN,
-                        pivots.data(),
-                        dN.data(),
-                        &nN,
-                        &info);
-          return info == 0 && dN.allFinite();
+          dN = rhs;
+          return lu.solve_in_place(dN);
         }
 
         // Levenberg-Marquardt: (K^T K + lambda I) d = K^T rhs.
@@ -870,30 +791,8 @@ namespace igabde
       // mesh: 3 492 rows) in a fraction of a second.
       Vec solution = rhs;
       {
-        const blas_int n     = A.rows();
-        Mat            LU    = A;
-        double         anorm = 0.;
-        for (blas_int b = 0; b < n; ++b)
-          anorm = std::max(anorm, LU.col(b).cwiseAbs().sum());
-        std::vector<blas_int> pivots(n);
-        blas_int              info = 0;
-        dealii::getrf(&n, &n, LU.data(), &n, pivots.data(), &info);
-        bool regular = info == 0 && lu_rcond(LU, anorm) > 1e-12;
-        if (regular)
-          {
-            const blas_int nrhs = 1;
-            dealii::getrs("N",
-                          &n,
-                          &nrhs,
-                          LU.data(),
-                          &n,
-                          pivots.data(),
-                          solution.data(),
-                          &n,
-                          &info);
-            regular = info == 0;
-          }
-        if (!regular)
+        const linear_algebra::DenseLU lu(A);
+        if (!(lu.rcond() > 1e-12) || !lu.solve_in_place(solution))
           {
             Eigen::CompleteOrthogonalDecomposition<Mat> cod(A);
             cod.setThreshold(1e-12);

@@ -1,5 +1,6 @@
 #include <igabde/base/files.h>
 #include <igabde/base/utilities.h>
+#include <igabde/linear_algebra/dense_lu.h>
 
 #include <igabde/nurbs/geometry_builders.h>
 #include <igabde/nurbs/parametric_mesh.h>
@@ -616,13 +617,15 @@ namespace igabde
       Eigen::VectorXd areas;
       if (placement == PairPlacement::greville)
         {
-          Eigen::FullPivLU<Eigen::MatrixXd> lu(M);
-          AssertThrow(lu.isInvertible(),
+          // LAPACK's blocked LU: the face of B2 16x64x16 has 1 188
+          // control points, a second with Eigen's full pivoting.
+          const linear_algebra::DenseLU lu(M);
+          areas = integrals;
+          AssertThrow(lu.rcond() > 1e-12 && lu.solve_in_place(areas),
                       ExcMessage("Body '" + this->description().name +
                                  "': the Greville collocation matrix of face " +
                                  std::to_string(face) +
                                  " is singular; this should not happen."));
-          areas = lu.solve(integrals);
         }
       else
         areas = M.completeOrthogonalDecomposition().solve(integrals);
