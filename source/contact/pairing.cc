@@ -459,6 +459,9 @@ namespace igabde
 
       std::map<types::global_dof_index, WeightedIntegrals<dim>> integrals;
       const bool dual_basis = dual;
+      // The smallest gap at the quadrature points: the bodies overlap
+      // where it is negative.
+      double min_pointwise_gap = std::numeric_limits<double>::max();
       std::map<types::global_dof_index,
                std::array<types::global_dof_index, dim>>
         dofs1, dofs2;
@@ -652,8 +655,9 @@ namespace igabde
                 AssertThrow(s.normal * m.normal < 0.,
                             base::ExcInput(
                               not_facing(context, s.location, master)));
-                const double dA = weight * s.measure;
-                const double g  = (s.location - m.location) * m.normal;
+                const double dA   = weight * s.measure;
+                const double g    = (s.location - m.location) * m.normal;
+                min_pointwise_gap = std::min(min_pointwise_gap, g);
                 if (!dual_basis)
                   {
                     for (unsigned int a = 0; a < s.op.weights.size(); ++a)
@@ -782,12 +786,21 @@ namespace igabde
       double size = 0.;
       for (const auto &pair : pairs)
         size = std::max(size, (pair.x1 - pairs[0].x1).norm());
+      // Overlap is judged on the pointwise gap. A dual-weighted gap
+      // int psi_j g / int N_j may be negative where the bodies do not
+      // overlap: psi_j has negative lobes, and a curved face touching the
+      // other in the middle of a knot span has a gap that grows
+      // quadratically from zero there, whose dual-weighted mean on the
+      // span's middle function is negative, of order h^2 / R (the half
+      // disc of V6 on 29 spans: -0.0033 with R = 8). It is the mortar
+      // discretisation's gap, consistent to that order, and is kept: the
+      // contact pushes that pair open. Only round-off is cut to zero.
+      AssertThrow(min_pointwise_gap >= -1e-10 * size,
+                  base::ExcInput(
+                    penetrates(context, master, min_pointwise_gap)));
       for (auto &pair : pairs)
-        {
-          AssertThrow(pair.gap >= -1e-10 * size,
-                      base::ExcInput(penetrates(context, master, pair.gap)));
+        if (pair.gap >= -1e-10 * size)
           pair.gap = std::max(pair.gap, 0.);
-        }
       return pairs;
     }
 

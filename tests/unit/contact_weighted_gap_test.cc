@@ -282,3 +282,45 @@ TEST(ContactWeightedGap, PatchTestFromTheSceneFile)
                 c.type == "nurbs" ? 4u : 25u);
     }
 }
+
+// The dual-weighted gap int psi_j g / int N_j of a curved face touching the
+// other in the middle of a knot span is negative though the bodies do not
+// overlap (psi_j has negative lobes; V6's half disc on 29 spans: -0.0033).
+// Overlap is judged on the pointwise gap: that run goes on, and its contact
+// force balances the load (60 on the disc's diameter); a disc moved 0.01
+// into the block is refused with its pointwise gap.
+TEST(ContactWeightedGap, CurvedFaceTouchingMidSpanIsNotAnOverlap)
+{
+  const std::string scene =
+    cli::join(std::string(IGABDE_SOURCE_DIR), "prm/v6-cylinder-on-block.prm");
+  const std::string coarse = "' --quiet --set 'Body 1/Subdivisions=29, 4'"
+                             " --set 'Body 2/Subdivisions=35, 8'"
+                             " --set 'Output/Directory=out'";
+  {
+    const cli::ScratchFolder scratch("weighted-gap", "midspan");
+    const auto run = cli::run_igabde("'" + scene + coarse, scratch.path);
+    ASSERT_EQ(run.status, 0) << run.output;
+    const auto summary = nlohmann::json::parse(
+      cli::read_file(cli::join(scratch.path, "out/summary.json")));
+    EXPECT_EQ(summary.at("status").get<std::string>(), "ok");
+    const auto force = summary.at("total_contact_force");
+    EXPECT_NEAR(force.at(1).get<double>(), 60., 60. * 1e-8);
+    EXPECT_NEAR(force.at(0).get<double>(), 0., 60. * 1e-8);
+  }
+  {
+    const cli::ScratchFolder scratch("weighted-gap", "overlap");
+    const auto               run =
+      cli::run_igabde("'" + scene + coarse + " --set 'Body 1/Centre=0, 7.99'",
+                      scratch.path);
+    EXPECT_EQ(run.status, 2) << run.output;
+    // The pointwise gap at the quadrature points: negative, and no deeper
+    // than the 0.01 the disc was moved (its lowest point, x = 0, need not
+    // be a quadrature point).
+    const std::string message = "initially penetrates body2's face 3 (gap ";
+    const auto        at      = run.output.find(message);
+    ASSERT_NE(at, std::string::npos) << run.output;
+    const double gap = std::stod(run.output.substr(at + message.size()));
+    EXPECT_LT(gap, 0.);
+    EXPECT_GE(gap, -0.01 * (1. + 1e-9));
+  }
+}
