@@ -395,6 +395,16 @@ namespace igabde
 
 
     template <int dim>
+    double
+    Body<dim>::factor_flops() const
+    {
+      return (
+        linear_solver->cholesky ? linear_solver->cholesky->factor_flops() : 0.);
+    }
+
+
+
+    template <int dim>
     bool
     Body<dim>::contains(const Point<dim> &location) const
     {

@@ -174,7 +174,7 @@ namespace igabde
       TimerOutput::Scope t(timer, "factorization");
       // Each group factorises its body (the groups at the same time), then
       // every rank receives what it did not compute.
-      std::vector<double> seconds(bodies.size(), 0.);
+      std::vector<double> seconds(bodies.size(), 0.), flops(bodies.size(), 0.);
       for (unsigned int b = 0; b < bodies.size(); ++b)
         if (bodies[b]->factorizes_here())
           {
@@ -186,6 +186,7 @@ namespace igabde
                 stage->factorization_interface(b) :
                 std::vector<discretization::PointOperator<dim>>());
             seconds[b] = clock.wall_time();
+            flops[b]   = bodies[b]->factor_flops();
           }
       for (auto &body : bodies)
         body->share_factorization();
@@ -193,28 +194,36 @@ namespace igabde
         std::vector<double> largest(seconds.size());
         Utilities::MPI::max(seconds, MPI_COMM_WORLD, largest);
         seconds = largest;
+        Utilities::MPI::max(flops, MPI_COMM_WORLD, largest);
+        flops = largest;
       }
       for (unsigned int b = 0; b < bodies.size(); ++b)
         {
           if (bodies[b]->factor_entries() > 0. && summary.contains("bodies") &&
               b < summary["bodies"].size())
-            summary["bodies"][b]["factor_entries"] =
-              bodies[b]->factor_entries();
+            {
+              summary["bodies"][b]["factor_entries"] =
+                bodies[b]->factor_entries();
+              summary["bodies"][b]["factorization_flops"] = flops[b];
+            }
           if (parameters.output.progress)
             {
               pcout << "  [progress] " << bodies[b]->name()
                     << ": factorisation";
               if (bodies[b]->factor_entries() > 0.)
                 pcout << " (" << std::setprecision(3)
-                      << bodies[b]->factor_entries() << " factor entries"
+                      << bodies[b]->factor_entries() << " factor entries, "
+                      << flops[b] << " flops"
                       << (bodies[b]->has_schur_complement() ?
                             ", Schur complement on " +
                               std::to_string(bodies[b]->n_interface_dofs()) +
                               " face unknowns" :
                             std::string())
                       << ")";
-              pcout << ", " << std::setprecision(3) << seconds[b] << " s"
-                    << std::setprecision(6) << std::endl;
+              pcout << ", " << std::setprecision(3) << seconds[b] << " s";
+              if (flops[b] > 0. && seconds[b] > 0.)
+                pcout << " (" << flops[b] / seconds[b] / 1e9 << " GFlop/s)";
+              pcout << std::setprecision(6) << std::endl;
             }
         }
     }

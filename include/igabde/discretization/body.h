@@ -306,6 +306,14 @@ namespace igabde
       double
       factor_entries() const;
 
+      /**
+       * Floating-point operations of the sparse factorisation (MUMPS'
+       * count, RINFOG(3)) on the ranks that factorised this body; 0
+       * elsewhere and without the direct solver.
+       */
+      double
+      factor_flops() const;
+
       /// "nurbs" or "lagrange".
       virtual std::string
       discretization_name() const = 0;
