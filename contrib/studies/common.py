@@ -95,7 +95,7 @@ class Runner:
         with open(os.path.join(run_dir, "screen.txt"), "w") as f:
             f.write(output)
 
-        row = {"label": label, "process_s": seconds}
+        row = {"label": label, "process_s": seconds, "folder": run_dir}
         summary = None
         if os.path.exists(summary_file):
             try:

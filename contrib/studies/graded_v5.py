@@ -12,12 +12,13 @@ tributary areas: sqrt(sum a_i (p_i - p_ref(x_i))^2 / sum a_i p_ref(x_i)^2),
 over the pairs with x below twice the reference half-width (beyond, both
 are zero)."""
 
-import csv
 import json
-import math
 import os
 import subprocess
 import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from pressure_reference import Reference, read_pairs  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(
     os.path.abspath(__file__))))
@@ -71,36 +72,18 @@ def run(igabde, out, label, degree, mesh, grading, lagrange=False):
                    check=True, stdout=subprocess.DEVNULL)
     with open(os.path.join(folder, "summary.json")) as f:
         summary = json.load(f)
-    with open(os.path.join(folder, "contact-0001.csv")) as f:
-        pairs = [(float(r["x"]), float(r["area"]), float(r["pressure"]))
-                 for r in csv.DictReader(f)]
-    pairs.sort()
-    return summary, pairs
-
-
-def interpolate(profile, x):
-    for (x0, _, p0), (x1, _, p1) in zip(profile, profile[1:]):
-        if x0 <= x <= x1:
-            return p0 + (p1 - p0) * (x - x0) / (x1 - x0) if x1 > x0 else p0
-    return 0.
+    return summary, read_pairs(folder)
 
 
 def main():
     igabde, out = sys.argv[1], sys.argv[2]
     os.makedirs(out, exist_ok=True)
-    ref_summary, ref = run(igabde, out, *REFERENCE)
-    a_ref = max(x for x, _, p in ref if p > 0.)
+    ref_summary, ref_pairs = run(igabde, out, *REFERENCE)
+    reference = Reference(ref_pairs)
     rows = []
     for label, degree, mesh, grading in RUNS:
         summary, pairs = run(igabde, out, label, degree, mesh, grading)
-        num = den = 0.
-        for x, area, p in pairs:
-            if x > 2. * a_ref:
-                continue
-            q = interpolate(ref, x)
-            num += area * (p - q) ** 2
-            den += area * q ** 2
-        rows.append((label, summary["n_dofs"], math.sqrt(num / den),
+        rows.append((label, summary["n_dofs"], reference.errors(pairs)[0],
                      summary["timing"]["total"]))
     with open(os.path.join(out, "graded_v5.md"), "w") as f:
         f.write("| mesh | unknowns | pressure error vs reference | "
@@ -110,7 +93,8 @@ def main():
                     % (label, n, 100. * err, seconds))
         f.write("\nreference: %d unknowns, %.2f s, last loaded pair at "
                 "x = %.4f\n" % (ref_summary["n_dofs"],
-                                ref_summary["timing"]["total"], a_ref))
+                                ref_summary["timing"]["total"],
+                                reference.half_width))
     print(open(os.path.join(out, "graded_v5.md")).read())
 
 

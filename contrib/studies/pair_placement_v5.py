@@ -7,7 +7,7 @@ Greville), with the pairs, unknowns and seconds of each run.
 
 usage: pair_placement_v5.py IGABDE OUTDIR
 
-Errors as in recovered_pressure_v5.py (area-weighted relative L2 over x
+Errors as in pressure_reference.py (area-weighted relative L2 over x
 below twice the reference half-width, largest single-pair deviation in %
 of the reference peak), of the pair pressures p_n / area."""
 
@@ -17,8 +17,8 @@ import subprocess
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from recovered_pressure_v5 import (errors, folder_of,  # noqa: E402
-                                   reference_run, run)
+from recovered_pressure_v5 import (folder_of, reference_run,  # noqa: E402
+                                   run)
 
 PLACEMENTS = [("Greville", ["Contact/Pairing=node-to-surface",
                             "Contact/Pair placement=greville"]),
@@ -33,7 +33,7 @@ PLACEMENTS = [("Greville", ["Contact/Pairing=node-to-surface",
 def main():
     igabde, out = sys.argv[1], sys.argv[2]
     os.makedirs(out, exist_ok=True)
-    _, _, reference, a_ref, p_peak = reference_run(igabde, out)
+    _, _, reference = reference_run(igabde, out)
     rows = []
     for degree in (2, 3):
         for mesh in ("64, 16", "128, 32"):
@@ -52,7 +52,7 @@ def main():
                                  failed.get("n_dofs", 0), None, None,
                                  failed.get("error", "failed")))
                     continue
-                l2, largest = errors(pairs, 2, reference, a_ref, p_peak)
+                l2, largest = reference.errors(pairs, 2)
                 rows.append((label, len(pairs), summary["n_dofs"],
                              summary["timing"]["total"], l2, largest))
     path = os.path.join(out, "pair_placement_v5.md")

@@ -7,18 +7,19 @@ with the unknowns and seconds of each run.
 
 usage: recovered_pressure_v5.py IGABDE OUTDIR
 
-Errors as in graded_v5.py: the relative L2 distance from the reference
-profile interpolated at the pairs' x, weighted by the tributary areas,
-over the pairs with x below twice the reference half-width; and the
+Errors (pressure_reference.py): the relative L2 distance from the
+reference profile interpolated at the pairs' x, weighted by the tributary
+areas, over the pairs with x below twice the reference half-width; and the
 largest single-pair deviation over the same pairs, in % of the
 reference's peak pressure."""
 
-import csv
 import json
-import math
 import os
 import subprocess
 import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from pressure_reference import Reference, read_pairs  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(
     os.path.abspath(__file__))))
@@ -55,56 +56,26 @@ def run(igabde, out, label, kind, degree, mesh, settings=()):
     subprocess.run(command, check=True, stdout=subprocess.DEVNULL)
     with open(os.path.join(folder, "summary.json")) as f:
         summary = json.load(f)
-    with open(os.path.join(folder, "contact-0001.csv")) as f:
-        pairs = [(float(r["x"]), float(r["area"]), float(r["pressure"]),
-                  float(r["recovered_pressure"]))
-                 for r in csv.DictReader(f)]
-    pairs.sort()
-    return summary, pairs
-
-
-def interpolate(profile, x):
-    for (x0, p0), (x1, p1) in zip(profile, profile[1:]):
-        if x0 <= x <= x1:
-            return p0 + (p1 - p0) * (x - x0) / (x1 - x0) if x1 > x0 else p0
-    return 0.
-
-
-def errors(pairs, column, reference, a_ref, p_peak):
-    num = den = largest = 0.
-    for pair in pairs:
-        x, area, p = pair[0], pair[1], pair[column]
-        if x > 2. * a_ref:
-            continue
-        q = interpolate(reference, x)
-        num += area * (p - q) ** 2
-        den += area * q ** 2
-        largest = max(largest, abs(p - q))
-    return math.sqrt(num / den), largest / p_peak
+    return summary, read_pairs(folder)
 
 
 def reference_run(igabde, out):
-    """The converged model: its summary, its pairs, its pressure profile
-    (x, p), the last loaded pair's x and the peak pressure."""
+    """The converged model: its summary, its pairs and its Reference."""
     ref_summary, ref_pairs = run(igabde, out, *REFERENCE)
-    reference = [(x, p) for x, _, p, _ in ref_pairs]
-    a_ref = max(x for x, p in reference if p > 0.)
-    p_peak = max(p for _, p in reference)
-    return ref_summary, ref_pairs, reference, a_ref, p_peak
+    return ref_summary, ref_pairs, Reference(ref_pairs)
 
 
 def main():
     igabde, out = sys.argv[1], sys.argv[2]
     os.makedirs(out, exist_ok=True)
-    ref_summary, ref_pairs, reference, a_ref, p_peak = reference_run(igabde,
-                                                                     out)
-    _, ref_recovered = errors(ref_pairs, 3, reference, a_ref, p_peak)
+    ref_summary, ref_pairs, reference = reference_run(igabde, out)
+    _, ref_recovered = reference.errors(ref_pairs, 3)
     rows = []
     for label, kind, degree, mesh in RUNS:
         summary, pairs = run(igabde, out, label, kind, degree, mesh)
         rows.append((label, summary["n_dofs"], summary["timing"]["total"],
-                     errors(pairs, 2, reference, a_ref, p_peak),
-                     errors(pairs, 3, reference, a_ref, p_peak)))
+                     reference.errors(pairs, 2),
+                     reference.errors(pairs, 3)))
     path = os.path.join(out, "recovered_pressure_v5.md")
     with open(path, "w") as f:
         f.write("| mesh | unknowns | seconds | pair pressure L2 | "
@@ -118,7 +89,8 @@ def main():
                 "x = %.4f, peak %.4f; its own recovered pressure's largest "
                 "deviation from its pair pressures: %.2f %% of the peak\n"
                 % (ref_summary["n_dofs"], ref_summary["timing"]["total"],
-                   a_ref, p_peak, 100. * ref_recovered))
+                   reference.half_width, reference.peak,
+                   100. * ref_recovered))
     print(open(path).read())
 
 
