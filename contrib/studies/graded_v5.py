@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
-"""Graded meshes on V5: the pair pressures of the scene's uniform 64 x 16
-mesh and of coarser meshes graded toward the contact point, each against
+"""Graded meshes on V5: the pair pressures of the uniform 64 x 16 mesh, of
+the scene's graded one and of coarser meshes graded toward the contact
+point or a band over the contact zone, each against
 a converged model of the same disc (NURBS p = 3 on 512 x 128), with the
 unknowns and the seconds of each run.
 
@@ -25,7 +26,7 @@ ROOT = os.path.dirname(os.path.dirname(os.path.dirname(
 SCENE = os.path.join(ROOT, "prm", "v5-hertz-2d.prm")
 
 REFERENCE = ("reference NURBS p=3 512x128", 3, "512, 128", "")
-RUNS = [("scene NURBS p=2 64x16", 2, "64, 16", ""),
+RUNS = [("NURBS p=2 64x16 uniform", 2, "64, 16", ""),
         ("NURBS p=2 32x8", 2, "32, 8", ""),
         ("NURBS p=2 24x8", 2, "24, 8", "")]
 # Every grading tried (arc spans x depth spans, the ratio toward the
@@ -59,8 +60,30 @@ for mesh, band in [("24, 8", "0, 0.16, 8"), ("24, 8", "0, 0.16, 16"),
                  2, mesh, "band 0: %s; 2: 16" % band))
 
 
+# The scene's mesh since 2026-11-26 (64 x 16, spans 4 times smaller over the
+# first 0.3 of the arc and toward the contact face), its neighbours in span
+# count and ratio, each half of it alone, and the same grading for p = 3 and
+# FE_Q(2).
+SCENE_GRADING = "band 0: 0, 0.3, 4; 2: 4"
+for mesh in ["64, 16", "56, 16", "60, 16", "62, 16", "66, 16", "68, 16",
+             "72, 16", "64, 12", "48, 12"]:
+    RUNS.append(("NURBS p=2 %s %s%s" % (mesh.replace(", ", "x"),
+                                        SCENE_GRADING,
+                                        " (scene)" if mesh == "64, 16"
+                                        else ""),
+                 2, mesh, SCENE_GRADING))
+for grading in ["band 0: 0, 0.3, 2; 2: 4", "band 0: 0, 0.3, 8; 2: 4",
+                "band 0: 0, 0.3, 4", "2: 4"]:
+    RUNS.append(("NURBS p=2 64x16 " + grading, 2, "64, 16", grading))
+RUNS.append(("NURBS p=3 64x16 " + SCENE_GRADING, 3, "64, 16", SCENE_GRADING))
+RUNS.append(("FE_Q(2) 64x16 uniform", 2, "64, 16", "", True))
+RUNS.append(("FE_Q(2) 64x16 " + SCENE_GRADING, 2, "64, 16", SCENE_GRADING,
+             True))
+
+
 def run(igabde, out, label, degree, mesh, grading, lagrange=False):
-    folder = os.path.join(out, label.replace(" ", "_").replace("=", ""))
+    folder = os.path.join(out, "".join(c if c.isalnum() else "_"
+                                       for c in label))
     subprocess.run([igabde, SCENE, "--quiet",
                     "--set", "Discretization/Degree=%d" % degree,
                     "--set", "Discretization/Type=%s" %
@@ -81,8 +104,9 @@ def main():
     ref_summary, ref_pairs = run(igabde, out, *REFERENCE)
     reference = Reference(ref_pairs)
     rows = []
-    for label, degree, mesh, grading in RUNS:
-        summary, pairs = run(igabde, out, label, degree, mesh, grading)
+    for label, degree, mesh, grading, *lagrange in RUNS:
+        summary, pairs = run(igabde, out, label, degree, mesh, grading,
+                             *lagrange)
         rows.append((label, summary["n_dofs"], reference.errors(pairs)[0],
                      summary["timing"]["total"]))
     with open(os.path.join(out, "graded_v5.md"), "w") as f:

@@ -137,7 +137,8 @@ def accuracy_cost(args, runner):
     v5_meshes = V5_MESHES[:2] if args.quick else V5_MESHES
     v5_rows, v5_ref_row, v5_ref = pressure_rows(
         args, runner, V5, "V5", v5_meshes, V5_LAST,
-        lambda mesh: {"Body 1/Subdivisions": "%d, %d" % mesh},
+        lambda mesh: {"Body 1/Subdivisions": "%d, %d" % mesh,
+                      "Body 1/Grading": ""},
         common.mesh_label, V5_MESHES[2] if args.quick else V5_REFERENCE_MESH)
     rows += v5_rows
     v6_scales = V6_SCALES[:1] if args.quick else V6_SCALES

@@ -630,14 +630,16 @@ TEST(HardCase, BeamScenesThroughTheHardList)
 
 TEST(HardCase, ContactOnElementsDeeperThanItsZoneWarns)
 {
-  // V5 with 2 spans across the radius instead of 16: the elements under
-  // the contact are 3.7 deep, 5 times Johnson's half-width 0.746, and the
-  // peak pressure comes out several per cent off Johnson (the finite
-  // disc's own distance from Johnson is about 1 %); the run converges and
-  // says that the depth is under-resolved. V5 as given (elements 0.46
-  // deep) does not.
+  // V5 with 2 uniform spans across the radius instead of its 16 graded
+  // toward the contact face: the elements under the contact are 3.7 deep,
+  // 5 times Johnson's half-width 0.746, and the peak pressure comes out
+  // several per cent off Johnson (the finite disc's own distance from
+  // Johnson is about 1 %); the run converges and says that the depth is
+  // under-resolved. V5 as given (elements under 0.5 deep) does not.
   const SceneRun shallow =
-    run_scene("deep", "v5-hertz-2d.prm", "--set 'Body 1/Subdivisions=64, 2'");
+    run_scene("deep",
+              "v5-hertz-2d.prm",
+              "--set 'Body 1/Subdivisions=64, 2' --set 'Body 1/Grading='");
   EXPECT_NE(warnings(shallow).find("elements under the contact are"),
             std::string::npos)
     << shallow.output;
