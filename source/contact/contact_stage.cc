@@ -1,8 +1,8 @@
+#include <igabde/base/nearest_points.h>
 #include <igabde/base/utilities.h>
 
 #include <igabde/contact/condition_check.h>
 #include <igabde/contact/contact_stage.h>
-#include <igabde/contact/nearest_points.h>
 
 #include <algorithm>
 #include <cmath>
@@ -271,7 +271,7 @@ namespace igabde
         std::vector<Point<dim>> points;
         for (const auto &pair : pair_list)
           points.push_back(pair.x1);
-        const NearestPoints<dim> nearest(std::move(points));
+        const base::NearestPoints<dim> nearest(std::move(points));
         pair_spacing.resize(pair_list.size());
         for (unsigned int i = 0; i < pair_list.size(); ++i)
           pair_spacing[i] = nearest.spacing(i);

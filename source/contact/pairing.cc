@@ -1,6 +1,6 @@
+#include <igabde/base/nearest_points.h>
 #include <igabde/base/utilities.h>
 
-#include <igabde/contact/nearest_points.h>
 #include <igabde/contact/pairing.h>
 
 #include <deal.II/base/quadrature_lib.h>
@@ -66,14 +66,14 @@ namespace igabde
 
       /// The R-tree over the locations of @p samples.
       template <int dim>
-      std::unique_ptr<NearestPoints<dim>>
+      std::unique_ptr<base::NearestPoints<dim>>
       index_samples(
         const std::vector<discretization::SurfacePoint<dim>> &samples)
       {
         std::vector<Point<dim>> locations;
         for (const auto &s : samples)
           locations.push_back(s.location);
-        return std::make_unique<NearestPoints<dim>>(std::move(locations));
+        return std::make_unique<base::NearestPoints<dim>>(std::move(locations));
       }
 
 
@@ -310,7 +310,8 @@ namespace igabde
               sample_eta.push_back(eta);
               sample_x.push_back(master.face_point(eta).location);
             }
-          index = std::make_unique<NearestPoints<dim>>(std::move(sample_x));
+          index =
+            std::make_unique<base::NearestPoints<dim>>(std::move(sample_x));
         }
 
         /// The face coordinates of the point of the face closest to @p x.
@@ -359,10 +360,10 @@ namespace igabde
         const discretization::FaceGrid<dim> grid;
 
       private:
-        const std::string                   context;
-        double                              extent = 0.;
-        std::vector<Point<dim - 1>>         sample_eta;
-        std::unique_ptr<NearestPoints<dim>> index;
+        const std::string                         context;
+        double                                    extent = 0.;
+        std::vector<Point<dim - 1>>               sample_eta;
+        std::unique_ptr<base::NearestPoints<dim>> index;
       };
 
 

@@ -95,8 +95,8 @@ namespace igabde
           samples[d].push_back(breaks[d].back());
           n_samples *= samples[d].size();
         }
+      sample_coordinates = samples;
       sample_parametric.resize(n_samples);
-      sample_physical.resize(n_samples);
       for (unsigned int s = 0; s < n_samples; ++s)
         {
           unsigned int rest = s;
@@ -105,7 +105,6 @@ namespace igabde
               sample_parametric[s][d] = samples[d][rest % samples[d].size()];
               rest /= samples[d].size();
             }
-          sample_physical[s] = geometry.value(sample_parametric[s]);
         }
     }
 
@@ -448,19 +447,14 @@ namespace igabde
     Point<dim>
     IgaBody<dim>::parametric_point(const Point<dim> &location) const
     {
-      unsigned int best   = 0;
-      double       best_d = std::numeric_limits<double>::max();
-      for (unsigned int s = 0; s < sample_physical.size(); ++s)
-        {
-          const double d = (sample_physical[s] - location).norm_square();
-          if (d < best_d)
-            {
-              best_d = d;
-              best   = s;
-            }
-        }
-      double           distance = 0.;
-      const Point<dim> xi =
+      std::call_once(index_built, [this]() {
+        sample_index = std::make_unique<base::NearestPoints<dim>>(
+          geometry.values_on_grid(sample_coordinates));
+      });
+      // The nearest sample, ties to the first (as a scan would).
+      const unsigned int best     = sample_index->nearest(location);
+      double             distance = 0.;
+      const Point<dim>   xi =
         geometry.closest_parametric_point(location,
                                           &sample_parametric[best],
                                           &distance);

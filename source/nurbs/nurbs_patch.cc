@@ -289,6 +289,67 @@ namespace igabde
 
 
     template <int dim>
+    std::vector<Point<dim>>
+    NurbsPatch<dim>::values_on_grid(
+      const std::array<std::vector<double>, dim> &coordinates) const
+    {
+      // Per direction and coordinate: the span and its p+1 basis values.
+      std::array<std::vector<unsigned int>, dim>        spans;
+      std::array<std::vector<std::vector<double>>, dim> values;
+      std::size_t                                       n_points = 1;
+      unsigned int                                      n_local  = 1;
+      for (unsigned int d = 0; d < dim; ++d)
+        {
+          AssertThrow(!knots[d].knots().empty(),
+                      ExcMessage("NurbsPatch: evaluating an empty patch."));
+          for (const double u : coordinates[d])
+            {
+              const double x = std::clamp(u, knots[d].front(), knots[d].back());
+              spans[d].push_back(knots[d].find_span(x));
+              values[d].emplace_back();
+              knots[d].basis_functions(x, spans[d].back(), values[d].back());
+            }
+          n_points *= coordinates[d].size();
+          n_local *= knots[d].degree() + 1;
+        }
+      std::vector<Point<dim>> result(n_points);
+      for (std::size_t q = 0; q < n_points; ++q)
+        {
+          std::array<unsigned int, dim> at;
+          std::size_t                   rest = q;
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              at[d] = rest % coordinates[d].size();
+              rest /= coordinates[d].size();
+            }
+          Point<dim> x;
+          double     W = 0.;
+          for (unsigned int l = 0; l < n_local; ++l)
+            {
+              std::array<unsigned int, dim> global;
+              unsigned int                  local = l;
+              double                        N     = 1.;
+              for (unsigned int d = 0; d < dim; ++d)
+                {
+                  const unsigned int p = knots[d].degree();
+                  const unsigned int j = local % (p + 1);
+                  local /= p + 1;
+                  global[d] = spans[d][at[d]] - p + j;
+                  N *= values[d][at[d]][j];
+                }
+              const unsigned int a  = control_point_index(global);
+              const double       wN = weights[a] * N;
+              x += wN * points[a];
+              W += wN;
+            }
+          result[q] = x / W;
+        }
+      return result;
+    }
+
+
+
+    template <int dim>
     Tensor<2, dim>
     NurbsPatch<dim>::jacobian(const Point<dim> &xi) const
     {

@@ -421,3 +421,48 @@ TEST(NurbsParametricMesh, CellsAreKnotSpans)
     }
   EXPECT_EQ(seen.size(), 4u);
 }
+
+
+
+// The tensor-grid evaluation against value() point by point, on rational
+// patches of both dimensions (the plate with a hole, the curved beam) and
+// at knots, span midpoints and the ends (where the spans switch): the same
+// sums in another order, so equal to round-off.
+TEST(NurbsPatch, ValuesOnGridEqualPointwiseValues)
+{
+  const auto check = [](const auto &patch) {
+    constexpr int dim = std::decay_t<decltype(patch)>::dimension;
+    std::array<std::vector<double>, dim> coordinates;
+    for (int d = 0; d < dim; ++d)
+      {
+        const auto breaks = patch.breakpoints(d);
+        for (unsigned int e = 0; e + 1 < breaks.size(); ++e)
+          {
+            coordinates[d].push_back(breaks[e]);
+            coordinates[d].push_back(0.3 * breaks[e] + 0.7 * breaks[e + 1]);
+          }
+        coordinates[d].push_back(breaks.back());
+      }
+    const auto grid = patch.values_on_grid(coordinates);
+    double     size = 0.;
+    for (const auto &x : grid)
+      size = std::max(size, x.norm());
+    std::size_t q = 0;
+    for (std::size_t k = 0; k < (dim == 3 ? coordinates[2].size() : 1); ++k)
+      for (std::size_t j = 0; j < coordinates[1].size(); ++j)
+        for (std::size_t i = 0; i < coordinates[0].size(); ++i, ++q)
+          {
+            Point<dim> xi;
+            xi[0] = coordinates[0][i];
+            xi[1] = coordinates[1][j];
+            if constexpr (dim == 3)
+              xi[2] = coordinates[2][k];
+            EXPECT_LE(grid[q].distance(patch.value(xi)), 1e-14 * size);
+          }
+    EXPECT_EQ(q, grid.size());
+  };
+  NurbsPatch<2> plate = make_plate_with_hole(1., 4.);
+  plate.refine_uniformly(2);
+  check(plate);
+  check(make_curved_beam(4., 5., 1.));
+}

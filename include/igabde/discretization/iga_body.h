@@ -1,6 +1,8 @@
 #ifndef igabde_discretization_iga_body_h
 #define igabde_discretization_iga_body_h
 
+#include <igabde/base/nearest_points.h>
+
 #include <igabde/nurbs/nurbs_patch.h>
 #include <igabde/nurbs/nurbs_values.h>
 
@@ -12,6 +14,8 @@
 #include <deal.II/grid/tria.h>
 
 #include <array>
+#include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -217,9 +221,18 @@ namespace igabde
       double orientation = 1.;
       /// Size of the body (bounding-box diagonal of the control net).
       double diameter = 0.;
-      /// Samples for the Newton start of the point inversion.
+      /// Samples for the Newton start of the point inversion (knots and
+      /// span midpoints, tensorised).
       std::vector<Point<dim>> sample_parametric;
-      std::vector<Point<dim>> sample_physical;
+      /// The samples' coordinates per direction (sample_parametric is
+      /// their tensor grid, direction 0 fastest).
+      std::array<std::vector<double>, dim> sample_coordinates;
+      /// Their images, indexed by an R-tree built at the first inversion
+      /// (most runs invert no point; V5 with 4 refinements has a million
+      /// samples and inverts a thousand pair points, which a scan took a
+      /// second for).
+      mutable std::once_flag                            index_built;
+      mutable std::unique_ptr<base::NearestPoints<dim>> sample_index;
     };
   } // namespace discretization
 } // namespace igabde

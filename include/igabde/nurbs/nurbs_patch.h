@@ -75,6 +75,17 @@ namespace igabde
       Point<dim>
       value(const Point<dim> &xi) const;
 
+      /**
+       * @brief x(xi) at every point of the tensor grid @p coordinates
+       * (one list of parametric coordinates per direction), direction 0
+       * fastest: the basis functions are evaluated once per coordinate and
+       * direction, so a point costs (p+1)^dim multiply-adds instead of a
+       * basis evaluation of its own.
+       */
+      std::vector<Point<dim>>
+      values_on_grid(
+        const std::array<std::vector<double>, dim> &coordinates) const;
+
       /// Jacobian dx/dxi at xi (row i: component i, column j: d/dxi_j).
       Tensor<2, dim>
       jacobian(const Point<dim> &xi) const;

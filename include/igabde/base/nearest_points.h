@@ -1,5 +1,5 @@
-#ifndef igabde_contact_nearest_points_h
-#define igabde_contact_nearest_points_h
+#ifndef igabde_base_nearest_points_h
+#define igabde_base_nearest_points_h
 
 #include <deal.II/base/point.h>
 
@@ -12,14 +12,16 @@
 
 namespace igabde
 {
-  namespace contact
+  namespace base
   {
     using namespace dealii;
 
     /**
-     * @brief The samples of a contact surface with an R-tree over them
-     * (deal.II's pack_rtree_of_indices(), Boost.Geometry): the start of
-     * every closest-point search, in O(log n) per query instead of a scan.
+     * @brief Sample points with an R-tree over them (deal.II's
+     * pack_rtree_of_indices(), Boost.Geometry): the start of every
+     * closest-point search (a contact surface's samples, a patch's samples
+     * for the inversion of its map), in O(log n) per query instead of a
+     * scan.
      */
     template <int dim>
     class NearestPoints
@@ -92,7 +94,7 @@ namespace igabde
       const decltype(pack_rtree_of_indices(
         std::declval<const std::vector<Point<dim>> &>())) tree;
     };
-  } // namespace contact
+  } // namespace base
 } // namespace igabde
 
 #endif
