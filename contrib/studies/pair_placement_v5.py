@@ -30,6 +30,30 @@ PLACEMENTS = [("Greville", ["Contact/Pairing=node-to-surface",
                                 "Contact/Pair placement=greville"])]
 
 
+def failure_reason(error):
+    """A table cell for a run that failed, from its summary.json error."""
+    return ("Newton matrix singular: redundant pairs" if "singular" in error
+            else "see its summary.json")
+
+
+def write_table(path, rows, footer=""):
+    """The placement table: rows (label, pairs, unknowns, seconds, L2,
+    largest), with L2 None and the error in place of largest for a run that
+    failed."""
+    with open(path, "w") as f:
+        f.write("| run | pairs | unknowns | seconds | L2 | largest |\n"
+                "|---|---|---|---|---|---|\n")
+        for label, n_pairs, n, seconds, l2, largest in rows:
+            if l2 is None:
+                f.write("| %s | %d | %d | | did not converge | %s |\n"
+                        % (label, n_pairs, n, failure_reason(largest)))
+                continue
+            f.write("| %s | %d | %d | %.2f | %.2f %% | %.2f %% |\n"
+                    % (label, n_pairs, n, seconds, 100. * l2,
+                       100. * largest))
+        f.write(footer)
+
+
 def main():
     igabde, out = sys.argv[1], sys.argv[2]
     os.makedirs(out, exist_ok=True)
@@ -56,19 +80,7 @@ def main():
                 rows.append((label, len(pairs), summary["n_dofs"],
                              summary["timing"]["total"], l2, largest))
     path = os.path.join(out, "pair_placement_v5.md")
-    with open(path, "w") as f:
-        f.write("| run | pairs | unknowns | seconds | L2 | largest |\n"
-                "|---|---|---|---|---|---|\n")
-        for label, n_pairs, n, seconds, l2, largest in rows:
-            if l2 is None:
-                why = ("Newton matrix singular: redundant pairs"
-                       if "singular" in largest else "see its summary.json")
-                f.write("| %s | %d | %d | | did not converge | %s |\n"
-                        % (label, n_pairs, n, why))
-                continue
-            f.write("| %s | %d | %d | %.2f | %.2f %% | %.2f %% |\n"
-                    % (label, n_pairs, n, seconds, 100. * l2,
-                       100. * largest))
+    write_table(path, rows)
     print(open(path).read())
 
 

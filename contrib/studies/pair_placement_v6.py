@@ -16,26 +16,16 @@ of the reference peak), of the pair pressures p_n / area."""
 
 import json
 import os
-import re
 import subprocess
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from pair_placement_v5 import PLACEMENTS, write_table  # noqa: E402
 from pressure_reference import Reference, read_pairs  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(
     os.path.abspath(__file__))))
 SCENE = os.path.join(ROOT, "prm", "v6-cylinder-on-block.prm")
-
-PLACEMENTS = [("Greville", ["Contact/Pairing=node-to-surface",
-                            "Contact/Pair placement=greville"]),
-              ("knots", ["Contact/Pairing=node-to-surface",
-                         "Contact/Pair placement=knots"]),
-              ("Gauss", ["Contact/Pairing=node-to-surface",
-                         "Contact/Pair placement=gauss"]),
-              ("weighted gap", ["Contact/Pairing=weighted-gap",
-                                "Contact/Pair placement=greville"])]
-
 
 def meshes(scale):
     """--set values of the disc's and the block's spans at @p scale of the
@@ -90,26 +80,8 @@ def main():
                 rows.append((label, len(pairs), summary["n_dofs"],
                              summary["timing"]["total"], l2, largest))
     path = os.path.join(out, "pair_placement_v6.md")
-    with open(path, "w") as f:
-        f.write("| run | pairs | unknowns | seconds | L2 | largest |\n"
-                "|---|---|---|---|---|---|\n")
-        for label, n_pairs, n, seconds, l2, largest in rows:
-            if l2 is None:
-                # The solver's diagnosis, without the scene's path and the
-                # pair locations.
-                singular = re.search(r"singular in (\d+) of (\d+) iterations",
-                                     largest)
-                why = ("Newton matrix singular in %s of %s iterations: "
-                       "redundant pairs" % singular.groups() if singular else
-                       largest.split("did not converge: ")[-1]
-                       .split("; where:")[0].replace("|", "‖"))
-                f.write("| %s | %d | %d | | did not converge | %s |\n"
-                        % (label, n_pairs, n, why))
-                continue
-            f.write("| %s | %d | %d | %.2f | %.2f %% | %.2f %% |\n"
-                    % (label, n_pairs, n, seconds, 100. * l2,
-                       100. * largest))
-        f.write("\nreference: %d unknowns, %.2f s, half-width %.4f\n"
+    write_table(path, rows,
+                "\nreference: %d unknowns, %.2f s, half-width %.4f\n"
                 % (ref_summary["n_dofs"], ref_summary["timing"]["total"],
                    reference.half_width))
     print(open(path).read())

@@ -82,29 +82,17 @@ namespace igabde
       diameter = (hi - lo).norm();
 
       // Newton starts for the point inversion: breakpoints and span
-      // midpoints, cell by cell so that the samples are cheap to evaluate.
-      std::array<std::vector<double>, dim> samples;
-      unsigned int                         n_samples = 1;
+      // midpoints per direction; their tensor grid is evaluated and indexed
+      // at the first inversion.
       for (unsigned int d = 0; d < dim; ++d)
         {
           for (unsigned int e = 0; e + 1 < breaks[d].size(); ++e)
             {
-              samples[d].push_back(breaks[d][e]);
-              samples[d].push_back(0.5 * (breaks[d][e] + breaks[d][e + 1]));
+              sample_coordinates[d].push_back(breaks[d][e]);
+              sample_coordinates[d].push_back(
+                0.5 * (breaks[d][e] + breaks[d][e + 1]));
             }
-          samples[d].push_back(breaks[d].back());
-          n_samples *= samples[d].size();
-        }
-      sample_coordinates = samples;
-      sample_parametric.resize(n_samples);
-      for (unsigned int s = 0; s < n_samples; ++s)
-        {
-          unsigned int rest = s;
-          for (unsigned int d = 0; d < dim; ++d)
-            {
-              sample_parametric[s][d] = samples[d][rest % samples[d].size()];
-              rest /= samples[d].size();
-            }
+          sample_coordinates[d].push_back(breaks[d].back());
         }
     }
 
@@ -452,12 +440,17 @@ namespace igabde
           geometry.values_on_grid(sample_coordinates));
       });
       // The nearest sample, ties to the first (as a scan would).
-      const unsigned int best     = sample_index->nearest(location);
-      double             distance = 0.;
-      const Point<dim>   xi =
-        geometry.closest_parametric_point(location,
-                                          &sample_parametric[best],
-                                          &distance);
+      // Its parametric point: the grid index, direction 0 fastest.
+      unsigned int rest = sample_index->nearest(location);
+      Point<dim>   start;
+      for (unsigned int d = 0; d < dim; ++d)
+        {
+          start[d] = sample_coordinates[d][rest % sample_coordinates[d].size()];
+          rest /= sample_coordinates[d].size();
+        }
+      double           distance = 0.;
+      const Point<dim> xi =
+        geometry.closest_parametric_point(location, &start, &distance);
       if (distance > 1e-8 * diameter)
         {
           std::ostringstream s;

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include "cli_helpers.h"
 #include <cfloat>
 #include <cmath>
 #include <cstdlib>
@@ -39,4 +40,21 @@ TEST(SummaryJson, NonFiniteIsNull)
                          std::numeric_limits<double>::quiet_NaN()})
     EXPECT_TRUE(
       nlohmann::json::parse(nlohmann::json{{"v", x}}.dump()).at("v").is_null());
+}
+
+// bodies[].factorization_flops against bounds that hold for any sparse
+// LDL^T of an n x n matrix: each off-diagonal factor entry takes at least
+// one operation (so at least half the factor entries, the diagonal
+// included), and no order does more than the dense n^3/3 + n^2.
+TEST(SummaryJson, FactorizationFlopsWithinTheBoundsOfAnyOrder)
+{
+  const cli::ScratchFolder scratch("summary-json", "flops");
+  const auto run = cli::run_prm_scene(scratch.path, "v5-hertz-2d.prm");
+  ASSERT_EQ(run.status, 0) << run.output;
+  const auto  &body    = run.summary.at("bodies").at(0);
+  const double flops   = body.at("factorization_flops").get<double>();
+  const double entries = body.at("factor_entries").get<double>();
+  const double n       = body.at("n_dofs").get<double>();
+  EXPECT_GE(flops, 0.5 * entries);
+  EXPECT_LE(flops, n * n * n / 3. + n * n);
 }

@@ -221,11 +221,9 @@ namespace igabde
       double orientation = 1.;
       /// Size of the body (bounding-box diagonal of the control net).
       double diameter = 0.;
-      /// Samples for the Newton start of the point inversion (knots and
-      /// span midpoints, tensorised).
-      std::vector<Point<dim>> sample_parametric;
-      /// The samples' coordinates per direction (sample_parametric is
-      /// their tensor grid, direction 0 fastest).
+      /// Samples for the Newton start of the point inversion: their
+      /// coordinates per direction (the samples are the tensor grid,
+      /// direction 0 fastest).
       std::array<std::vector<double>, dim> sample_coordinates;
       /// Their images, indexed by an R-tree built at the first inversion
       /// (most runs invert no point; V5 with 4 refinements has a million
