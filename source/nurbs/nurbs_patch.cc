@@ -447,6 +447,16 @@ namespace igabde
           qw[b] = q;
         }
 
+      // A polynomial patch (all weights equal) stays polynomial: the rows
+      // of T sum to one, but in floating point only to round-off, and a
+      // weight of 1 - 1e-16 would make the patch count as rational (more
+      // quadrature points in every cell).
+      const bool polynomial =
+        std::all_of(weights.begin(), weights.end(), [&](const double w) {
+          return w == weights[0];
+        });
+      const double common_weight = weights[0];
+
       knots[d] = new_kv;
       points.resize(n_total_new);
       weights.resize(n_total_new);
@@ -456,7 +466,7 @@ namespace igabde
                       ExcMessage("NurbsPatch: refinement produced a "
                                  "non-positive weight; this cannot happen "
                                  "for a valid patch."));
-          weights[b] = qw[b][dim];
+          weights[b] = (polynomial ? common_weight : qw[b][dim]);
           for (unsigned int c = 0; c < dim; ++c)
             points[b][c] = qw[b][c] / qw[b][dim];
         }

@@ -85,6 +85,26 @@ TEST(NurbsIgaBody, MeasureIsExactOnCurvedGeometry)
 
 
 
+TEST(NurbsIgaBody, PolynomialGeometryTakesTheGaussRuleOfItsDegree)
+{
+  // A box is a polynomial map: p+1 Gauss points per direction integrate
+  // its stiffness exactly; only rational geometries take p+2.
+  for (unsigned int p = 2; p <= 3; ++p)
+    {
+      IgaBody<3> box(describe<3>(nurbs::make_box(Point<3>(0., 0., 0.),
+                                                 Point<3>(2., 1., 0.5))),
+                     settings(p, 2));
+      EXPECT_EQ(box.n_quadrature_points_1d(), p + 1);
+      // Round-off of a sum of 64 cells times (p+1)^3 points: n eps.
+      EXPECT_NEAR(box.measure(), 1., 64. * 64. * 1e-16);
+      IgaBody<3> beam(describe<3>(nurbs::make_curved_beam(4., 5., 1.)),
+                      settings(p, 2));
+      EXPECT_EQ(beam.n_quadrature_points_1d(), p + 2);
+    }
+}
+
+
+
 TEST(NurbsIgaBody, PointLoadDistribution)
 {
   auto desc = describe<2>(nurbs::make_quarter_annulus(1., 2.));

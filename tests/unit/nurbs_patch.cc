@@ -150,6 +150,36 @@ TEST(NurbsPatch, KnotInsertionAndElevationKeepTheMap)
 
 
 
+TEST(NurbsPatch, PolynomialPatchStaysPolynomial)
+{
+  // Elevation and knot insertion act on the homogeneous points (w P, w);
+  // the new weights are sums of old ones with coefficients that add up to
+  // one only to round-off. A patch whose weights are all equal must keep
+  // them exactly equal: a weight of 1 - 1e-16 makes a box count as
+  // rational, with its p+2 Gauss points per direction in every cell and
+  // its 12-point measure rule.
+  NurbsPatch<3> box = make_box(Point<3>(0., 0., 0.), Point<3>(1., 1., 0.1));
+  elevate_to_degree(box, 3);
+  subdivide(box, {{7, 5, 3}});
+  box.refine_uniformly(2);
+  for (unsigned int a = 0; a < box.n_control_points(); ++a)
+    ASSERT_EQ(box.weight(a), 1.) << "control point " << a;
+  expect_same_map(make_box(Point<3>(0., 0., 0.), Point<3>(1., 1., 0.1)),
+                  box,
+                  1e-13);
+
+  // A rational patch keeps its varying weights.
+  NurbsPatch<2> plate = make_plate_with_hole(1., 4.);
+  elevate_to_degree(plate, 3);
+  plate.refine_uniformly(1);
+  bool varying = false;
+  for (unsigned int a = 1; a < plate.n_control_points(); ++a)
+    varying = varying || std::abs(plate.weight(a) - plate.weight(0)) > 1e-3;
+  EXPECT_TRUE(varying);
+}
+
+
+
 TEST(NurbsPatch, GradedSubdivisionIsGeometricAndKeepsTheMap)
 {
   // Four parts graded 8 toward the low end: q = 8^(1/3) = 2, parts h, 2h,
@@ -216,7 +246,9 @@ TEST(NurbsPatch, BandGradedSubdivisionRefinesTheBandAndKeepsTheMap)
     {
       const double end = start + parts[k];
       if (start >= 0.45 && end <= 0.55)
-        EXPECT_NEAR(parts[k], smallest, 1e-3 * smallest);
+        {
+          EXPECT_NEAR(parts[k], smallest, 1e-3 * smallest);
+        }
       if (k + 1 < parts.size())
         {
           const double ratio = parts[k + 1] / parts[k];
