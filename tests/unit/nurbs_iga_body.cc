@@ -303,6 +303,43 @@ namespace
 
 
 
+TEST(NurbsIgaBody, GrevilleAreasReproduceAUniformPressureIn3D)
+{
+  // The Greville areas of a 3D face are found direction by direction (the
+  // collocation matrix is a Kronecker product scaled by the weights). On
+  // the flat, rational end face 4 of the curved beam, a unit pressure
+  // spread by the pair points with those areas must equal the consistent
+  // load of the same pressure assembled by quadrature.
+  for (unsigned int p = 2; p <= 3; ++p)
+    {
+      auto       desc = describe<3>(nurbs::make_curved_beam(4., 5., 1.));
+      IgaBody<3> body(desc, settings(p, 2));
+      body.setup();
+      const auto points = body.surface_points(4, PairPlacement::greville);
+      ASSERT_EQ(points.size(),
+                body.patch().n_control_points(0) *
+                  body.patch().n_control_points(1));
+      Vector<double> f(body.n_dofs());
+      for (const auto &sp : points)
+        sp.op.distribute(sp.tributary_area * sp.normal, f);
+
+      NeumannCondition<3> pressure;
+      pressure.boundary_id = 4;
+      pressure.traction    = [](const Point<3> &, const Tensor<1, 3> &n) {
+        return n;
+      };
+      desc.tractions.push_back(pressure);
+      IgaBody<3> loaded(desc, settings(p, 2));
+      loaded.setup();
+      Vector<double> diff = loaded.load_vector();
+      diff -= f;
+      EXPECT_LT(diff.linfty_norm(), 1e-13 * loaded.load_vector().linfty_norm())
+        << "degree " << p;
+    }
+}
+
+
+
 TEST(NurbsIgaBody, PatchTestBox)
 {
   run_patch_test<2>(nurbs::make_box(Point<2>(0., 0.), Point<2>(2., 1.)),

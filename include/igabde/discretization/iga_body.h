@@ -13,6 +13,8 @@
 
 #include <deal.II/grid/tria.h>
 
+#include <Eigen/Dense>
+
 #include <array>
 #include <memory>
 #include <mutex>
@@ -207,6 +209,14 @@ namespace igabde
       std::pair<double, Tensor<1, dim>>
       face_measure_and_normal(const unsigned int    face,
                               const Tensor<2, dim> &J) const;
+
+      /// Tributary areas of the Greville points of face @p face: the
+      /// collocation system sum_i R_A(xi_i) A_i = @p integrals (one entry
+      /// per control point of @p face_cps), solved direction by direction.
+      Eigen::VectorXd
+      greville_tributary_areas(const types::boundary_id         face,
+                               const std::vector<unsigned int> &face_cps,
+                               const Eigen::VectorXd &integrals) const;
 
       /// Largest degree over the directions.
       unsigned int
