@@ -145,6 +145,11 @@ namespace igabde
           path_why = "a body holds a rotation (Hold rotation), which only "
                      "the condensed path models";
         }
+      else if (path == Path::automatic && !settings.memory_path_reason.empty())
+        {
+          path     = Path::full;
+          path_why = settings.memory_path_reason;
+        }
       else if (path == Path::automatic)
         {
           const PathCostEstimate e =

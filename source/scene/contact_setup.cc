@@ -8,6 +8,7 @@ namespace igabde
     make_contact_settings(const AllParameters       &parameters,
                           const std::string         &scene_file,
                           const std::vector<double> &factor_entries,
+                          const std::string         &memory_path_reason,
                           std::ostream              &log)
     {
       contact::ContactSettings cs;
@@ -33,6 +34,7 @@ namespace igabde
       cs.progress                         = parameters.output.progress;
       cs.log_solves                       = parameters.output.solver_details;
       cs.factor_entries                   = factor_entries;
+      cs.memory_path_reason               = memory_path_reason;
       cs.n_load_steps                     = parameters.load_path.steps().size();
       return cs;
     }

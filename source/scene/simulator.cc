@@ -248,6 +248,7 @@ namespace igabde
         make_contact_settings(parameters,
                               scene_file,
                               estimated_factor_entries,
+                              memory_path_reason,
                               contact_log()),
         bodies,
         create_obstacle<dim>(parameters, scene_file),
@@ -428,7 +429,9 @@ namespace igabde
       run_phase = "the set-up (no load step finished)";
       write_summary("running", "");
       {
-        const SizeEstimate size   = estimate_size(parameters, scene_file);
+        SizeEstimate size = estimate_size(parameters, scene_file);
+        memory_path_reason =
+          size.choose_path_for_memory(available_memory_bytes());
         run_summary.size_estimate = size.to_json();
         estimated_factor_entries.clear();
         for (const auto &body : size.bodies)

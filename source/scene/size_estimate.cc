@@ -4,9 +4,11 @@
 #include <igabde/scene/size_estimate.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <functional>
 #include <iomanip>
 #include <limits>
 #include <sstream>
@@ -29,6 +31,41 @@ namespace igabde
        */
       constexpr double factor_constant_2d = 3.;
       constexpr double factor_constant_3d = 10.;
+
+      /**
+       * Factor entries of a nested dissection of an n[0] x n[1] x n[2]
+       * node grid with k unknowns per node and separators w node layers
+       * wide: cut the longest direction, count the separator's front (its
+       * unknowns times themselves and the rim of the ancestors' separators
+       * around it), recurse into the halves. Unlike k^2 w^2 n^{4/3}, it
+       * sees that a thin slab factorises like a 2D grid of columns.
+       */
+      double
+      bisection_factor_entries(std::array<double, 3> n,
+                               const double          k,
+                               const double          w)
+      {
+        std::sort(n.begin(), n.end(), std::greater<double>());
+        if (n[0] <= 2. * w + 1.)
+          {
+            const double u = k * n[0] * n[1] * n[2];
+            return u * u / 2.;
+          }
+        const double separator = k * w * n[1] * n[2];
+        const double rim       = k * w * 2. * (n[1] * w + n[2] * w);
+        return separator * (separator / 2. + rim) +
+               2. * bisection_factor_entries({{(n[0] - w) / 2., n[1], n[2]}},
+                                             k,
+                                             w);
+      }
+
+      /**
+       * MUMPS' factor entries over bisection_factor_entries(), the largest
+       * seen (B2's beam at 16x64x16, NURBS p = 2; the others 1.0 to 2.7:
+       * boxes and slabs from 10x10x10 to 80x80x1 spans, NURBS p = 2, 3 and
+       * FE_Q(2); doc/robustness.md).
+       */
+      constexpr double bisection_constant = 3.7;
 
       /// Bytes per sparse-matrix entry: the value and column index of the
       /// assembled matrix (12) and the solver's copy of its upper triangle
@@ -106,6 +143,15 @@ namespace igabde
         size.factor_entries =
           (dim == 2 ? factor_constant_2d : factor_constant_3d) * k * k * width *
           width * growth;
+        if (dim == 3)
+          size.factor_entries =
+            std::min(size.factor_entries,
+                     bisection_constant *
+                       bisection_factor_entries({{nodes[0],
+                                                  nodes[dim > 1 ? 1 : 0],
+                                                  nodes[dim > 2 ? 2 : 0]}},
+                                                k,
+                                                width));
         size.factor_entries =
           std::min(size.factor_entries, size.n_unknowns * size.n_unknowns / 2.);
         if (contact)
@@ -173,6 +219,28 @@ namespace igabde
               e.bytes_dense += 8. * (b.face_unknowns * b.face_unknowns +
                                      b.face_unknowns * n_c);
             e.bytes_dense += 8. * 3. * n_c * n_c;
+            // The coupled system: both bodies' matrices again (Trilinos'
+            // copy) and, direct, MUMPS' LU of the whole: L and U, of the
+            // bodies pressed face to face and factorised as one: three
+            // times the bodies' estimated factors together (the 3D
+            // contact-patch family's peak memory against this estimate:
+            // doc/performance.md).
+            double matrix = 0., factor = 0.;
+            for (const auto &b : e.bodies)
+              {
+                matrix += b.matrix_entries;
+                factor += b.factor_entries;
+              }
+            e.bytes_coupled =
+              bytes_per_matrix_entry * matrix +
+              (c.full_system_solver == coupled::Solver::gmres_amg ?
+                 12. * matrix :
+                 bytes_per_factor_entry * 3. * factor);
+            e.automatic_path = (c.path == contact::Path::automatic &&
+                                c.algorithm == contact::Algorithm::bde);
+            if (c.path == contact::Path::full ||
+                c.algorithm != contact::Algorithm::bde)
+              e.path = contact::Path::full;
           }
         if (parameters.output.write_vtu)
           {
@@ -202,8 +270,37 @@ namespace igabde
     double
     SizeEstimate::total_bytes() const
     {
-      return bytes_process + bytes_matrix + bytes_factor + bytes_dense +
-             bytes_output;
+      return total_bytes(path);
+    }
+
+
+
+    double
+    SizeEstimate::total_bytes(const contact::Path p) const
+    {
+      return bytes_process + bytes_matrix + bytes_factor + bytes_output +
+             (p == contact::Path::full ? bytes_coupled : bytes_dense);
+    }
+
+
+
+    std::string
+    SizeEstimate::choose_path_for_memory(const double available)
+    {
+      if (!automatic_path || path != contact::Path::condensed ||
+          total_bytes(contact::Path::condensed) <= available ||
+          total_bytes(contact::Path::full) > available)
+        return "";
+      path = contact::Path::full;
+      std::ostringstream s;
+      const double       gib = std::pow(2., 30);
+      s << std::setprecision(3) << "auto: the condensed path needs about "
+        << total_bytes(contact::Path::condensed) / gib << " GiB (dense blocks "
+        << bytes_dense / gib << " GiB for " << contact_unknowns
+        << " contact unknowns), more than the " << available / gib
+        << " GiB free; the full path about "
+        << total_bytes(contact::Path::full) / gib << " GiB";
+      return s.str();
     }
 
 
@@ -249,9 +346,11 @@ namespace igabde
                             {"face_unknowns", b.face_unknowns}});
       j["bodies"]           = per_body;
       j["contact_unknowns"] = contact_unknowns;
+      j["path"]             = contact::to_string(path);
       j["bytes"]            = {{"matrix", bytes_matrix},
                                {"factor", bytes_factor},
                                {"dense", bytes_dense},
+                               {"coupled", bytes_coupled},
                                {"output", bytes_output},
                                {"process", bytes_process},
                                {"total", total_bytes()}};
@@ -318,12 +417,18 @@ namespace igabde
                const std::string   &scene_file,
                const double         available)
     {
-      const SizeEstimate e    = estimate_size(parameters, scene_file);
-      const double       need = e.total_bytes();
+      SizeEstimate e = estimate_size(parameters, scene_file);
+      e.choose_path_for_memory(available);
+      const double need = e.total_bytes();
       if (std::isfinite(need) && need <= available)
         return e;
 
-      const double       gib = std::pow(2., 30);
+      const double gib      = std::pow(2., 30);
+      const auto   bytes_at = [&](const int r) {
+        SizeEstimate smaller = estimate_size(parameters, scene_file, r);
+        smaller.choose_path_for_memory(available);
+        return smaller.total_bytes();
+      };
       std::ostringstream m;
       m << std::setprecision(3) << scene_file
         << ": this scene needs more memory than the machine has free: "
@@ -332,15 +437,14 @@ namespace igabde
       for (int r = static_cast<int>(parameters.discretization.refinements) - 1;
            r >= 0;
            --r)
-        if (estimate_size(parameters, scene_file, r).total_bytes() <= available)
+        if (bytes_at(r) <= available)
           {
             fits = r;
             break;
           }
       if (fits >= 0)
         m << "Discretization/Refinements = " << fits << " fits (about "
-          << estimate_size(parameters, scene_file, fits).total_bytes() / gib
-          << " GiB); ";
+          << bytes_at(fits) / gib << " GiB); ";
       else
         m << "Even Discretization/Refinements = 0 does not fit: use fewer "
              "Subdivisions; ";

@@ -72,6 +72,18 @@ TEST(SizeGuard, EstimateAgainstTheBuiltScene)
      "v3-contact-patch-3d.prm",
      "--set Discretization/Type=lagrange --set Discretization/Refinements=0",
      3},
+    {"v3-3d-nurbs-slab",
+     "v3-contact-patch-3d.prm",
+     "--set Discretization/Refinements=0 "
+     "--set 'Body 1/Subdivisions=24,24,1' --set 'Body 2/Subdivisions=24,24,1' "
+     "--set 'Body 1/Upper corner=1,1,0.1' --set 'Body 2/Lower corner=0,0,-0.1'",
+     3},
+    {"v3-3d-lagrange-slab",
+     "v3-contact-patch-3d.prm",
+     "--set Discretization/Type=lagrange --set Discretization/Refinements=0 "
+     "--set 'Body 1/Subdivisions=12,12,1' --set 'Body 2/Subdivisions=12,12,1' "
+     "--set 'Body 1/Upper corner=1,1,0.1' --set 'Body 2/Lower corner=0,0,-0.1'",
+     3},
     {"b2-nurbs", "b2-curved-beams.prm", "", 3},
     {"b2-lagrange",
      "b2-curved-beams.prm",
@@ -159,6 +171,81 @@ TEST(SizeGuard, NamesTheLargestRefinementThatFits)
                 std::string::npos)
         << e.what();
     }
+}
+
+
+
+TEST(SizeGuard, AutoTakesTheFullPathWhenTheCondensedDoesNotFit)
+{
+  // A 3D contact patch of 5 184 pairs (plates of 70x70x1 spans): the
+  // condensed path's dense blocks (Schur complements of 15 552 face
+  // unknowns per plate) outweigh the full path's sparse LU. With Contact/Path = full the estimate counts no dense
+  // block; with auto and a memory between the two paths' needs, the run
+  // takes the full path and says why; below both, it is refused.
+  dealii::ParameterHandler                               prm;
+  const std::vector<std::pair<std::string, std::string>> slab = {
+    {"Discretization/Refinements", "0"},
+    {"Body 1/Subdivisions", "70,70,1"},
+    {"Body 2/Subdivisions", "70,70,1"},
+    {"Body 1/Upper corner", "1,1,0.2"},
+    {"Body 2/Lower corner", "0,0,-0.2"}};
+  const auto parameters =
+    igabde::scene::parse_scene(prm, scene("v3-contact-patch-3d.prm"), slab);
+  const auto e =
+    igabde::scene::estimate_size(parameters, "v3-contact-patch-3d.prm");
+  EXPECT_EQ(e.path, igabde::contact::Path::condensed);
+  const double condensed = e.total_bytes(igabde::contact::Path::condensed);
+  const double full      = e.total_bytes(igabde::contact::Path::full);
+  ASSERT_LT(full, condensed);
+  EXPECT_GT(e.bytes_dense, 0.);
+  EXPECT_GT(e.bytes_coupled, 0.);
+
+  auto full_only = slab;
+  full_only.emplace_back("Contact/Path", "full");
+  dealii::ParameterHandler prm_full;
+  const auto               parameters_full =
+    igabde::scene::parse_scene(prm_full,
+                               scene("v3-contact-patch-3d.prm"),
+                               full_only);
+  const auto f =
+    igabde::scene::estimate_size(parameters_full, "v3-contact-patch-3d.prm");
+  EXPECT_EQ(f.path, igabde::contact::Path::full);
+  EXPECT_DOUBLE_EQ(f.total_bytes(), full);
+
+  // Between the two: accepted, on the full path, in the run too.
+  const double between = 0.5 * (full + condensed);
+  EXPECT_EQ(igabde::scene::check_size(parameters,
+                                      "v3-contact-patch-3d.prm",
+                                      between)
+              .path,
+            igabde::contact::Path::full);
+  EXPECT_THROW(igabde::scene::check_size(parameters,
+                                         "v3-contact-patch-3d.prm",
+                                         0.9 * full),
+               dealii::ExceptionBase);
+  const cli::ScratchFolder folder("auto-full", "size");
+  std::string              sets;
+  for (const auto &[key, value] : slab)
+    sets += " --set '" + key + "=" + value + "'";
+  const auto result = cli::run_in(
+    folder,
+    "IGABDE_MEMORY_LIMIT=" + std::to_string(between / std::pow(2., 30)) + " " +
+      cli::executable() + " '" + scene("v3-contact-patch-3d.prm") + "'" + sets +
+      " --quiet --set 'Output/Write vtu=false'"
+      " --set 'Output/Directory=out'");
+  ASSERT_EQ(result.status, 0) << result.output;
+  const nlohmann::json summary = nlohmann::json::parse(
+    cli::read_file(cli::join(folder.path, "out/summary.json")));
+  EXPECT_EQ(summary.at("contact_path"), "full");
+  EXPECT_NE(summary.at("contact_path_reason")
+              .get<std::string>()
+              .find("the condensed path needs about"),
+            std::string::npos)
+    << summary.at("contact_path_reason");
+  // The exact answer of the patch test: pressure 1 on every pair, to the
+  // 1e-6 of the contact-patch family (thinner plates lose digits to the
+  // coupled system's conditioning: doc/performance.md).
+  EXPECT_LT(summary.at("checks").at("pressure_uniformity").get<double>(), 1e-6);
 }
 
 

@@ -60,6 +60,10 @@ namespace igabde
       /// auto (path_cost.h).
       std::vector<double> factor_entries;
       unsigned int        n_load_steps = 1;
+      /// Non-empty: Contact/Path = auto takes the full path for this
+      /// reason (the condensed path's dense blocks would not fit in
+      /// memory; scene::SizeEstimate::choose_path_for_memory()).
+      std::string memory_path_reason;
     };
 
     /**

@@ -18,13 +18,16 @@ namespace igabde
      * @brief The contact layer's settings from the scene: faces, pairing,
      * algorithm and path, the solvers' tolerances, the bodies' estimated
      * factor entries @p factor_entries (for Contact/Path = auto, from the
-     * run's size estimate), with @p log for the solver's lines and
+     * run's size estimate), @p memory_path_reason (non-empty: auto takes
+     * the full path, the condensed one would not fit in memory), with
+     * @p log for the solver's lines and
      * @p scene_file for messages.
      */
     contact::ContactSettings
     make_contact_settings(const AllParameters       &parameters,
                           const std::string         &scene_file,
                           const std::vector<double> &factor_entries,
+                          const std::string         &memory_path_reason,
                           std::ostream              &log);
 
     /**

@@ -136,6 +136,8 @@ namespace igabde
       /// Factor entries of each body from the run's size estimate (the
       /// rank split and Contact/Path = auto use them).
       std::vector<double> estimated_factor_entries;
+      /// Why Contact/Path = auto must take the full path (memory), or "".
+      std::string memory_path_reason;
       /// The timing written by write_summary() once gather_rank_figures()
       /// has run (the largest seconds per phase over the ranks).
       std::optional<std::map<std::string, double>> final_timing;

@@ -45,8 +45,17 @@ namespace igabde
       double bytes_matrix = 0.;
       /// Sparse factors (direct solvers) or the multigrid hierarchy.
       double bytes_factor = 0.;
-      /// Dense contact blocks: Schur complements, flexibility, Newton matrix.
+      /// Dense contact blocks of the condensed path: Schur complements,
+      /// flexibility, Newton matrix.
       double bytes_dense = 0.;
+      /// The full path's coupled system: its matrix and its sparse LU
+      /// (direct) or its multigrid hierarchy (gmres-amg).
+      double bytes_coupled = 0.;
+      /// The contact path whose blocks the total counts (condensed when
+      /// there is no contact): the scene's Contact/Path, the full path for
+      /// penalty and augmented Lagrange, and for Contact/Path = auto the
+      /// condensed one unless choose_path_for_memory() chose full.
+      contact::Path path = contact::Path::condensed;
       /// VTU output fields (when written).
       double bytes_output = 0.;
       /// The process before any of the above: code and data of the
@@ -55,6 +64,22 @@ namespace igabde
 
       double
       total_bytes() const;
+
+      /// total_bytes() if the contact blocks were those of @p p.
+      double
+      total_bytes(const contact::Path p) const;
+
+      /**
+       * @brief Contact/Path = auto and the condensed path's dense blocks
+       * do not fit in @p available bytes while the full path does: counts
+       * the full path from now on and returns why (the contact stage then
+       * takes the full path whatever its cost model says); else "".
+       */
+      std::string
+      choose_path_for_memory(const double available);
+
+      /// Whether the scene's Contact/Path is auto (set by estimate_size()).
+      bool automatic_path = false;
 
       double
       total_unknowns() const;
