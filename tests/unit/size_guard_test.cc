@@ -179,9 +179,10 @@ TEST(SizeGuard, AutoTakesTheFullPathWhenTheCondensedDoesNotFit)
 {
   // A 3D contact patch of 5 184 pairs (plates of 70x70x1 spans): the
   // condensed path's dense blocks (Schur complements of 15 552 face
-  // unknowns per plate) outweigh the full path's sparse LU. With Contact/Path = full the estimate counts no dense
-  // block; with auto and a memory between the two paths' needs, the run
-  // takes the full path and says why; below both, it is refused.
+  // unknowns per plate) outweigh the full path's sparse LU. With Contact/Path =
+  // full the estimate counts no dense block; with auto and a memory between the
+  // two paths' needs, the run takes the full path and says why; below both, it
+  // is refused.
   dealii::ParameterHandler                               prm;
   const std::vector<std::pair<std::string, std::string>> slab = {
     {"Discretization/Refinements", "0"},
