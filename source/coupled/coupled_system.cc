@@ -2,6 +2,8 @@
 
 #include <igabde/coupled/coupled_system.h>
 
+#include <deal.II/base/timer.h>
+
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 #include <deal.II/lac/solver_control.h>
 #include <deal.II/lac/solver_gmres.h>
@@ -9,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <sstream>
 
 namespace igabde
@@ -511,6 +514,16 @@ namespace igabde
       // Amesos prints its solver's error codes to the terminal itself;
       // they are caught here and their code joins the one message the
       // contact solver gives.
+      // A factorisation that may take more than a second says so first
+      // (about 2e6 nonzeros on this project's machine).
+      const bool report =
+        progress != nullptr && matrix.n_nonzero_elements() > 2000000;
+      Timer clock;
+      if (report)
+        *progress << "  [progress] coupled system: " << solver_type
+                  << " factorisation of " << n_total << " unknowns ("
+                  << matrix.n_nonzero_elements() << " nonzeros) ..."
+                  << std::flush;
       std::ostringstream captured;
       std::streambuf    *out = std::cout.rdbuf(captured.rdbuf());
       std::streambuf    *err = std::cerr.rdbuf(captured.rdbuf());
@@ -531,6 +544,18 @@ namespace igabde
         }
       std::cout.rdbuf(out);
       std::cerr.rdbuf(err);
+      if (report)
+        *progress << " " << std::setprecision(3) << clock.wall_time() << " s"
+                  << std::setprecision(6) << std::endl;
+    }
+
+
+
+    template <int dim>
+    void
+    CoupledSystem<dim>::report_progress_to(std::ostream *stream)
+    {
+      progress = stream;
     }
 
 
@@ -711,30 +736,36 @@ namespace igabde
     template <int dim>
     contact::CoupledFactory<dim>
     coupled_factory(const Solver       solver,
-                    const unsigned int krylov_max_iterations)
+                    const unsigned int krylov_max_iterations,
+                    std::ostream      *progress)
     {
-      return [solver, krylov_max_iterations](
-               const std::vector<const discretization::Body<dim> *> &bodies,
-               const std::vector<contact::ContactPair<dim>>         &pairs,
-               const unsigned int     n_components,
-               const Eigen::MatrixXd &G,
-               const bool             obstacle) {
-        return std::make_unique<CoupledSystem<dim>>(bodies,
-                                                    pairs,
-                                                    n_components,
-                                                    G,
-                                                    obstacle,
-                                                    solver,
-                                                    krylov_max_iterations);
-      };
+      return
+        [solver,
+         krylov_max_iterations,
+         progress](const std::vector<const discretization::Body<dim> *> &bodies,
+                   const std::vector<contact::ContactPair<dim>>         &pairs,
+                   const unsigned int     n_components,
+                   const Eigen::MatrixXd &G,
+                   const bool             obstacle) {
+          auto system =
+            std::make_unique<CoupledSystem<dim>>(bodies,
+                                                 pairs,
+                                                 n_components,
+                                                 G,
+                                                 obstacle,
+                                                 solver,
+                                                 krylov_max_iterations);
+          system->report_progress_to(progress);
+          return system;
+        };
     }
 
 
 
     template contact::CoupledFactory<2>
-    coupled_factory<2>(const Solver, const unsigned int);
+    coupled_factory<2>(const Solver, const unsigned int, std::ostream *);
     template contact::CoupledFactory<3>
-    coupled_factory<3>(const Solver, const unsigned int);
+    coupled_factory<3>(const Solver, const unsigned int, std::ostream *);
     template class CoupledSystem<2>;
     template class CoupledSystem<3>;
   } // namespace coupled

@@ -253,9 +253,12 @@ namespace igabde
         bodies,
         create_obstacle<dim>(parameters, scene_file),
         contact_log(),
-        coupled::coupled_factory<dim>(
-          parameters.contact.full_system_solver,
-          parameters.contact.krylov_max_iterations));
+        coupled::coupled_factory<dim>(parameters.contact.full_system_solver,
+                                      parameters.contact.krylov_max_iterations,
+                                      parameters.output.progress &&
+                                          pcout.is_active() ?
+                                        &pcout.get_stream() :
+                                        nullptr));
       contact_stage->build_pairs(timer);
       // The coupled system reads every body's K on every rank.
       if (contact_stage->path() == contact::Path::full)

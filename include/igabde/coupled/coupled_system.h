@@ -132,6 +132,13 @@ namespace igabde
       double
       n_nonzeros() const override;
 
+      /**
+       * @brief Progress lines of factorisations that may take more than a
+       * second go to @p stream (nullptr: none).
+       */
+      void
+      report_progress_to(std::ostream *stream);
+
       /** @brief First unknown of body @p b in w. */
       unsigned int
       offset(const unsigned int b) const;
@@ -165,6 +172,8 @@ namespace igabde
       std::unique_ptr<TrilinosWrappers::SolverDirect> direct;
       /// Why the last factorisation failed (empty if it did not).
       std::string factorization_error;
+      /// Where progress lines go (nullptr: nowhere).
+      std::ostream *progress = nullptr;
 
       /// gmres-amg: the iteration limit, the displacement block K (held
       /// rows: scale times identity) and its AMG, D^-1 C^T of the Schur
@@ -193,12 +202,14 @@ namespace igabde
      * @brief The factory of the full contact path's coupled system that
      * the contact stage calls once the pairs are formed: CoupledSystem
      * with the linear solver @p solver and
-     * the GMRES iteration limit @p krylov_max_iterations.
+     * the GMRES iteration limit @p krylov_max_iterations, its progress
+     * lines to @p progress (nullptr: none).
      */
     template <int dim>
     contact::CoupledFactory<dim>
     coupled_factory(const Solver       solver,
-                    const unsigned int krylov_max_iterations);
+                    const unsigned int krylov_max_iterations,
+                    std::ostream      *progress = nullptr);
   } // namespace coupled
 } // namespace igabde
 
