@@ -20,9 +20,12 @@ namespace igabde
      * The counts of elements, unknowns, face unknowns and matrix entries
      * follow from the knot vectors (exact for a single patch). The factor
      * entries follow the growth of a nested-dissection factorisation (2D:
-     * n log n, 3D: n^{4/3}, times the square of the unknowns per separator
-     * node), with one constant per dimension measured on MUMPS' own counts
-     * (doc/robustness.md states how close the estimate comes). All sizes are
+     * n log n; 3D: the smaller of n^{4/3} and a recursive-bisection count
+     * that sees plates; times the square of the unknowns per separator
+     * node), with constants measured on MUMPS' own counts (doc/robustness.md
+     * states how close the estimate comes). The contact blocks are those of
+     * the path the run takes (dense on the condensed path, the coupled
+     * system's LU or AMG on the full one). All sizes are
      * doubles: a scene far beyond any machine must not overflow the count.
      */
     struct SizeEstimate
