@@ -2,6 +2,9 @@
 
 #include <deal.II/base/exceptions.h>
 
+#include <Eigen/QR>
+
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -187,6 +190,112 @@ namespace igabde
       return alpha;
     }
 
+
+
+    bool
+    resting_alpha(const ContactData         &problem,
+                  const Eigen::VectorXd     &alpha0,
+                  Eigen::VectorXd           &alpha,
+                  std::vector<unsigned int> &active)
+    {
+      using Mat             = Eigen::MatrixXd;
+      using Vec             = Eigen::VectorXd;
+      const unsigned int na = problem.n_alpha();
+      const unsigned int nc = problem.n_components;
+      const unsigned int n  = problem.n_contacts;
+      AssertThrow(na > 0,
+                  dealii::ExcMessage(
+                    "resting_alpha: the problem has no floating bodies"));
+      const Vec &b = problem.b;
+      if (!(b.norm() > 0.) || n == 0)
+        return false;
+      Vec x = alpha0.size() > 0 ? alpha0 : Vec::Zero(na);
+      AssertThrow(x.size() == na,
+                  dealii::ExcMessage("resting_alpha: alpha0 has the wrong "
+                                     "size"));
+
+      // Constraint rows a_i = G_n row i, values c_i = q_n + a_i^T x, bounds.
+      Mat A(n, na);
+      Vec c(n), lower(n), row_norm(n);
+      for (unsigned int i = 0; i < n; ++i)
+        {
+          A.row(i)    = problem.G.row(i * nc);
+          row_norm(i) = A.row(i).norm();
+        }
+      c = A * x;
+      for (unsigned int i = 0; i < n; ++i)
+        {
+          c(i) += problem.q(i * nc);
+          lower(i) = std::min(0., c(i));
+        }
+      const double a_max = row_norm.maxCoeff();
+      if (!(a_max > 0.))
+        return false;
+
+      std::vector<unsigned int> set;
+      std::vector<bool>         in_set(n, false);
+      // A curved surface rolls over one pair per entering constraint
+      // (observed: a half disc whose first touch is 136 pairs from its
+      // rest position takes 272 iterations).
+      const unsigned int limit = 50 + 10 * na + 2 * n;
+      for (unsigned int it = 0; it < limit; ++it)
+        {
+          // The steepest descent of b^T alpha along the active constraints.
+          Mat As(set.size(), na);
+          for (unsigned int k = 0; k < set.size(); ++k)
+            As.row(k) = A.row(set[k]);
+          Vec                       d = -b;
+          Eigen::HouseholderQR<Mat> qr;
+          if (!set.empty())
+            {
+              qr.compute(As.transpose());
+              const Mat Q =
+                qr.householderQ() *
+                Mat::Identity(na, static_cast<Eigen::Index>(set.size()));
+              d -= Q * (Q.transpose() * d);
+            }
+          if (d.norm() <= 1e-10 * b.norm())
+            {
+              // b in the span of the active rows: the multipliers (the
+              // rigid contact forces) decide.
+              const Vec lambda = As.transpose().colPivHouseholderQr().solve(b);
+              Eigen::Index k;
+              const double smallest = lambda.minCoeff(&k);
+              if (smallest >= -1e-10 * lambda.cwiseAbs().maxCoeff())
+                {
+                  alpha  = x;
+                  active = set;
+                  std::sort(active.begin(), active.end());
+                  return x.allFinite();
+                }
+              in_set[set[k]] = false;
+              set.erase(set.begin() + k);
+              continue;
+            }
+          // The ratio test: the first pair that the move closes.
+          const Vec    s      = A * d;
+          double       t      = std::numeric_limits<double>::infinity();
+          unsigned int enter  = n;
+          const double d_norm = d.norm();
+          for (unsigned int i = 0; i < n; ++i)
+            if (!in_set[i] && s(i) < -1e-12 * row_norm(i) * d_norm)
+              {
+                const double ti = std::max(0., c(i) - lower(i)) / -s(i);
+                if (ti < t)
+                  {
+                    t     = ti;
+                    enter = i;
+                  }
+              }
+          if (enter == n || set.size() >= na)
+            return false; // unbounded: the normal rows do not hold b
+          x += t * d;
+          c += t * s;
+          set.push_back(enter);
+          in_set[enter] = true;
+        }
+      return false;
+    }
 
 
   } // namespace contact

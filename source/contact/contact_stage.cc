@@ -376,12 +376,23 @@ namespace igabde
       // rigid-mode amplitudes and contact displacement (warm start).
       const ContactProblem &problem = contact.problem;
       ContactOperator      &op      = contact_path->op();
-      ContactIterate        x0;
-      x0.p     = has_previous ? x.p : Eigen::VectorXd::Zero(problem.n_rows());
-      x0.alpha = has_previous          ? x.alpha :
-                 problem.n_alpha() > 0 ? touching_alpha(problem) :
-                                         Eigen::VectorXd::Zero(0);
-      x0.w     = has_previous ? x.w : Eigen::VectorXd::Zero(op.n_dofs());
+      // First step with floating bodies: the rigid bodies' rest position
+      // (resting_alpha()), else the closest pair just touching.
+      ContactIterate            x0;
+      std::vector<bool>         closed = expected_closed();
+      std::vector<unsigned int> resting;
+      x0.p = has_previous ? x.p : Eigen::VectorXd::Zero(problem.n_rows());
+      if (has_previous)
+        x0.alpha = x.alpha;
+      else if (problem.n_alpha() > 0 &&
+               !resting_alpha(problem, {}, x0.alpha, resting))
+        x0.alpha = touching_alpha(problem);
+      x0.w = has_previous ? x.w : Eigen::VectorXd::Zero(op.n_dofs());
+      // Nothing touches in the undeformed geometry: the pairs on which the
+      // rigid bodies rest are the ones expected closed.
+      if (std::find(closed.begin(), closed.end(), true) == closed.end())
+        for (const unsigned int i : resting)
+          closed[i] = true;
 
       // Candidate 2: the path's bilateral solve over the pairs expected
       // closed and sticking: in the first step those that touch in the
@@ -393,7 +404,7 @@ namespace igabde
       // exact when the contact state does not change. The better candidate
       // by natural-map plus equilibrium residual is used.
       ContactIterate x1;
-      if (!op.bilateral_start(problem, expected_closed(), x1))
+      if (!op.bilateral_start(problem, closed, x1))
         return x0;
 
       // Natural-map residual plus the equilibrium of floating bodies (the

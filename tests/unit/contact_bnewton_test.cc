@@ -305,6 +305,58 @@ TEST(ContactBNewton, WarmStart)
 
 
 
+// A rigid circle of radius 1 over the plane, its pairs at
+// x_i = -0.35 + 0.1 i (i = 0..7) with the exact gaps g_i = 1 - sqrt(1 - x_i^2),
+// loaded by a unit vertical force along the line x = 0.12. Modes: a vertical
+// translation and a small rotation theta about the point x = c, so
+// u_i = g_i + t + theta (x_i - c) and b = (1, 0.12 - c). By hand: the circle
+// rests on the two pairs that bracket the load line, x_a = 0.05 and
+// x_b = 0.15 (g convex: every other pair lies above the chord through
+// them), with theta = (g_a - g_b) / (x_b - x_a) and t + theta (x_a - c) =
+// -g_a; their forces 0.3 and 0.7 balance the load. The rest position does
+// not depend on where the rotation is taken (c = 0 or c = 0.3), unlike the
+// first touch along -b; a load pulling the circle away has no rest.
+TEST(ContactBNewton, RestingAlphaFindsTheRigidRestPositionByHand)
+{
+  for (const double c : {0., 0.3})
+    {
+      SCOPED_TRACE("rotation about x = " + std::to_string(c));
+      ContactData problem;
+      problem.n_components = 1;
+      problem.n_contacts   = 8;
+      problem.q.resize(8);
+      problem.G.resize(8, 2);
+      problem.mu.assign(8, 0.);
+      for (unsigned int i = 0; i < 8; ++i)
+        {
+          const double x  = -0.35 + 0.1 * i;
+          problem.q(i)    = 1. - std::sqrt(1. - x * x);
+          problem.G(i, 0) = 1.;
+          problem.G(i, 1) = x - c;
+        }
+      problem.b = Eigen::Vector2d(1., 0.12 - c);
+
+      Eigen::VectorXd           alpha;
+      std::vector<unsigned int> active;
+      ASSERT_TRUE(resting_alpha(problem, {}, alpha, active));
+      EXPECT_EQ(active, (std::vector<unsigned int>{4, 5}));
+      const double ga    = 1. - std::sqrt(1. - 0.05 * 0.05);
+      const double gb    = 1. - std::sqrt(1. - 0.15 * 0.15);
+      const double theta = (ga - gb) / 0.1;
+      EXPECT_NEAR(alpha(1), theta, 1e-12);
+      EXPECT_NEAR(alpha(0), -ga - theta * (0.05 - c), 1e-12);
+      const Eigen::VectorXd u = problem.q + problem.G * alpha;
+      EXPECT_GE(u.minCoeff(), -1e-14);
+
+      problem.b            = Eigen::Vector2d(-1., 0.);
+      Eigen::VectorXd away = alpha;
+      EXPECT_FALSE(resting_alpha(problem, {}, away, active));
+      EXPECT_EQ(away, alpha);
+    }
+}
+
+
+
 // A floating body pressed by the force b = 50 against two springs in
 // series (k1 = 100 for the body, k2 = 400 for the support), initial gap
 // g0 = 0.01, its rigid translation alpha along +n (opening). Flexibility

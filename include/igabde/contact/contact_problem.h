@@ -157,6 +157,42 @@ namespace igabde
                    const Eigen::VectorXd &direction = {});
 
 
+
+    /**
+     * @brief Floating-body start: where the rigid bodies come to rest.
+     *
+     * The rigid limit of the contact problem: with the contact forces p
+     * on the normal rows only, the linear program
+     * @code
+     *   minimise b^T alpha  subject to  u_n(alpha) = q_n + G_n alpha >= l_n
+     * @endcode
+     * (the potential energy of the loads b on the rigid modes, the pairs
+     * kept out of the obstacle; l_n = min(0, u_n(alpha0)), so that pairs
+     * penetrating at the start do not make it infeasible), whose dual is
+     * G_n^T p = b, p >= 0: the rigid bodies' equilibrium. Solved by a
+     * primal active-set method (one constraint enters or leaves per
+     * iteration, at most n_alpha() active; each iteration O(n_rows()
+     * n_alpha())). Unlike touching_alpha(), the answer does not depend on
+     * how the rigid modes are parametrised, and the pairs it leaves active
+     * span the load with compressive forces (a half disc comes to rest on
+     * the pairs either side of its lowest point, not on two pairs beside
+     * it about which it would roll).
+     *
+     * @param problem The problem (must have n_alpha() > 0).
+     * @param alpha0 Starting alpha (size n_alpha(), or empty for zero).
+     * @param alpha On success the resting alpha; unchanged otherwise.
+     * @param active On success the pairs that hold the rest position.
+     * @return false if the normal rows cannot hold the load (the program is
+     * unbounded: a load held only by friction, or not at all), if b is
+     * zero, or if the iteration limit is reached (degenerate ties).
+     */
+    bool
+    resting_alpha(const ContactData         &problem,
+                  const Eigen::VectorXd     &alpha0,
+                  Eigen::VectorXd           &alpha,
+                  std::vector<unsigned int> &active);
+
+
   } // namespace contact
 } // namespace igabde
 
