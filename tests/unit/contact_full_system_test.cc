@@ -185,6 +185,42 @@ TEST(FullSystem, AugmentedLagrangeReachesTheBdeAnswer)
 
 
 
+// V6 on its coarsest study mesh (disc 29 x 4 spans, block 35 x 8): the disc
+// is held by contact alone. Penalty and augmented Lagrange stopped at their
+// first Newton step there (every pair open, the coupled matrix singular);
+// they start now, like the BDE, from the pairs on which the rigid disc
+// rests. The augmented Lagrangian must reach the condensed BDE's pressure
+// profile (peak and half-width of the pair pressures; the resultant equals
+// the load for any answer of a floating body), the penalty must converge.
+TEST(FullSystem, FloatingDiscStartsFromItsRestingPairsOnEveryAlgorithm)
+{
+  const std::string  scene  = "v6-cylinder-on-block";
+  const std::string  coarse = "--set 'Body 1/Subdivisions=29, 4' "
+                              "--set 'Body 2/Subdivisions=35, 8' ";
+  cli::ScratchFolder folder(scene, "floating");
+  const SceneRun     bde = run_scene(scene,
+                                 coarse + "--set Contact/Path=condensed",
+                                 cli::join(folder.path, "c"));
+  const SceneRun     al =
+    run_scene(scene,
+              coarse + "--set Contact/Algorithm=augmented-lagrange",
+              cli::join(folder.path, "a"));
+  const SceneRun penalty = run_scene(scene,
+                                     coarse + "--set Contact/Algorithm=penalty",
+                                     cli::join(folder.path, "p"));
+  ASSERT_EQ(bde.summary["status"], "ok");
+  ASSERT_EQ(al.summary["status"], "ok");
+  EXPECT_EQ(penalty.summary["status"], "ok");
+  for (const char *check : {"hertz_peak_pressure", "hertz_half_width_moment"})
+    {
+      const double b = bde.summary["checks"][check];
+      const double a = al.summary["checks"][check];
+      EXPECT_NEAR(a, b, 1e-6 * std::abs(b)) << check;
+    }
+}
+
+
+
 // Penalty: the answer penetrates by about p / k_n, so the deviation from
 // the BDE answer and the penetration both fall as FKN grows (B2, where the
 // contact force itself depends on the compliance of the interface; V4,
