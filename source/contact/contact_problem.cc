@@ -228,9 +228,6 @@ namespace igabde
           c(i) += problem.q(i * nc);
           lower(i) = std::min(0., c(i));
         }
-      const double a_max = row_norm.maxCoeff();
-      if (!(a_max > 0.))
-        return false;
 
       std::vector<unsigned int> set;
       std::vector<bool>         in_set(n, false);
@@ -244,12 +241,11 @@ namespace igabde
           Mat As(set.size(), na);
           for (unsigned int k = 0; k < set.size(); ++k)
             As.row(k) = A.row(set[k]);
-          Vec                       d = -b;
-          Eigen::HouseholderQR<Mat> qr;
+          Vec d = -b;
           if (!set.empty())
             {
-              qr.compute(As.transpose());
-              const Mat Q =
+              const Eigen::HouseholderQR<Mat> qr(As.transpose());
+              const Mat                       Q =
                 qr.householderQ() *
                 Mat::Identity(na, static_cast<Eigen::Index>(set.size()));
               d -= Q * (Q.transpose() * d);
