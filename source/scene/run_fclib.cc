@@ -152,7 +152,7 @@ namespace igabde
       }
 
       std::string
-      number(const double x, const int digits = 3)
+      rounded(const double x, const int digits = 3)
       {
         std::ostringstream s;
         s << std::setprecision(digits) << x;
@@ -224,8 +224,8 @@ namespace igabde
         }
       log << "FCLIB problem " << file << " (" << kind << "): " << d
           << " components per contact, " << problem.n_contacts << " contacts, "
-          << problem.n_rows() << " rows, mu " << number(mu_min)
-          << (mu_max > mu_min ? "-" + number(mu_max) : "") << std::endl;
+          << problem.n_rows() << " rows, mu " << rounded(mu_min)
+          << (mu_max > mu_min ? "-" + rounded(mu_max) : "") << std::endl;
 
       contact::BNewtonSolver::Settings solver_settings;
       solver_settings.tolerance      = settings.tolerance;
@@ -308,9 +308,9 @@ namespace igabde
                                                 problem.relative_displacement(
                                                   reference.r));
           log << "  the file's reference solution: |r - r_ref| / |r_ref| = "
-              << number(checks["reference_relative_difference"].get<double>())
+              << rounded(checks["reference_relative_difference"].get<double>())
               << ", its FCLIB error "
-              << number(checks["reference_fclib_error"].get<double>())
+              << rounded(checks["reference_fclib_error"].get<double>())
               << std::endl;
         }
       summary["checks"] = checks;
@@ -349,7 +349,7 @@ namespace igabde
       if (!solved)
         {
           err << "igabde: error: " << file << ": not solved to the FCLIB error "
-              << number(settings.tolerance) << " (reached " << number(error)
+              << rounded(settings.tolerance) << " (reached " << rounded(error)
               << " after " << result.iterations
               << " iterations): " << result.diagnosis
               << ". Try a larger Contact/Max iterations, or a looser "

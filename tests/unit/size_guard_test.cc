@@ -22,7 +22,7 @@
 namespace
 {
   std::string
-  scene(const std::string &name)
+  scene_path(const std::string &name)
   {
     return cli::join(cli::join(std::string(IGABDE_SOURCE_DIR), "prm"), name);
   }
@@ -95,7 +95,7 @@ TEST(SizeGuard, EstimateAgainstTheBuiltScene)
       SCOPED_TRACE(c.name);
       const cli::ScratchFolder folder(c.name, "size");
       const auto               result =
-        cli::run_igabde("'" + scene(c.scene) + "' " + c.settings +
+        cli::run_igabde("'" + scene_path(c.scene) + "' " + c.settings +
                           " --quiet --set 'Output/Write vtu=false'"
                           " --set 'Output/Directory=out'",
                         folder);
@@ -132,7 +132,7 @@ TEST(SizeGuard, NamesTheLargestRefinementThatFits)
   dealii::ParameterHandler prm;
   const auto               parameters =
     igabde::scene::parse_scene(prm,
-                               scene("v5-hertz-2d.prm"),
+                               scene_path("v5-hertz-2d.prm"),
                                {{"Discretization/Refinements", "3"}});
   std::vector<double> bytes;
   for (int r = 0; r <= 3; ++r)
@@ -191,7 +191,9 @@ TEST(SizeGuard, AutoTakesTheFullPathWhenTheCondensedDoesNotFit)
     {"Body 1/Upper corner", "1,1,0.2"},
     {"Body 2/Lower corner", "0,0,-0.2"}};
   const auto parameters =
-    igabde::scene::parse_scene(prm, scene("v3-contact-patch-3d.prm"), slab);
+    igabde::scene::parse_scene(prm,
+                               scene_path("v3-contact-patch-3d.prm"),
+                               slab);
   const auto e =
     igabde::scene::estimate_size(parameters, "v3-contact-patch-3d.prm");
   EXPECT_EQ(e.path, igabde::contact::Path::condensed);
@@ -206,7 +208,7 @@ TEST(SizeGuard, AutoTakesTheFullPathWhenTheCondensedDoesNotFit)
   dealii::ParameterHandler prm_full;
   const auto               parameters_full =
     igabde::scene::parse_scene(prm_full,
-                               scene("v3-contact-patch-3d.prm"),
+                               scene_path("v3-contact-patch-3d.prm"),
                                full_only);
   const auto f =
     igabde::scene::estimate_size(parameters_full, "v3-contact-patch-3d.prm");
@@ -228,12 +230,14 @@ TEST(SizeGuard, AutoTakesTheFullPathWhenTheCondensedDoesNotFit)
   std::string              sets;
   for (const auto &[key, value] : slab)
     sets += " --set '" + key + "=" + value + "'";
-  const auto result = cli::run_in(
-    folder,
-    "IGABDE_MEMORY_LIMIT=" + std::to_string(between / std::pow(2., 30)) + " " +
-      cli::executable() + " '" + scene("v3-contact-patch-3d.prm") + "'" + sets +
-      " --quiet --set 'Output/Write vtu=false'"
-      " --set 'Output/Directory=out'");
+  const auto result =
+    cli::run_in(folder,
+                "IGABDE_MEMORY_LIMIT=" +
+                  std::to_string(between / std::pow(2., 30)) + " " +
+                  cli::executable() + " '" +
+                  scene_path("v3-contact-patch-3d.prm") + "'" + sets +
+                  " --quiet --set 'Output/Write vtu=false'"
+                  " --set 'Output/Directory=out'");
   ASSERT_EQ(result.status, 0) << result.output;
   const nlohmann::json summary = nlohmann::json::parse(
     cli::read_file(cli::join(folder.path, "out/summary.json")));
@@ -258,7 +262,7 @@ TEST(SizeGuard, MemoryLimitAndForce)
   const cli::ScratchFolder folder("force", "size");
   const std::string        run =
     "IGABDE_MEMORY_LIMIT=0.01 " + cli::executable() + " '" +
-    scene("v3-contact-patch-2d.prm") +
+    scene_path("v3-contact-patch-2d.prm") +
     "' --quiet --set 'Output/Write vtu=false' --set 'Output/Directory=out'";
   const auto refused = cli::run_in(folder, run);
   EXPECT_EQ(refused.status, 2) << refused.output;
@@ -275,7 +279,7 @@ TEST(SizeGuard, MemoryLimitAndForce)
   const auto bad_limit =
     cli::run_in(folder,
                 "IGABDE_MEMORY_LIMIT=lots " + cli::executable() + " '" +
-                  scene("v3-contact-patch-2d.prm") + "' --quiet");
+                  scene_path("v3-contact-patch-2d.prm") + "' --quiet");
   EXPECT_EQ(bad_limit.status, 2) << bad_limit.output;
   EXPECT_NE(bad_limit.output.find("IGABDE_MEMORY_LIMIT"), std::string::npos)
     << bad_limit.output;
@@ -297,7 +301,7 @@ TEST(SizeGuard, InterruptedRunKeepsTheFinishedSteps)
         std::string(i ? ", " : "") + std::to_string(i / 199.).substr(0, 8);
     }
   const std::string command =
-    cli::executable() + " '" + scene("v4-sliding-block.prm") +
+    cli::executable() + " '" + scene_path("v4-sliding-block.prm") +
     "' --set Discretization/Refinements=3 --set 'Load path/Load factors=" +
     loads + "' --set 'Load path/Displacement factors=" + displacements +
     "' --set 'Output/Directory=out' > screen.txt 2>&1 & pid=$!;"
