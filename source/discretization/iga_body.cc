@@ -890,10 +890,59 @@ namespace igabde
 
 
 
+    namespace
+    {
+      /// The symmetric tensor components written: (i, i), then (i, j), i < j.
+      template <int dim>
+      std::vector<std::pair<unsigned int, unsigned int>>
+      iga_output_components()
+      {
+        std::vector<std::pair<unsigned int, unsigned int>> comps;
+        for (unsigned int i = 0; i < dim; ++i)
+          comps.emplace_back(i, i);
+        for (unsigned int i = 0; i < dim; ++i)
+          for (unsigned int j = i + 1; j < dim; ++j)
+            comps.emplace_back(i, j);
+        return comps;
+      }
+
+
+
+      /// The fields of IgaBody::write_vtu(), in their order: displacement,
+      /// strain and stress components (xx, yy[, zz], then the pairs i < j),
+      /// von Mises; and the displacement as one vector.
+      template <int dim>
+      std::pair<std::vector<std::string>,
+                std::vector<std::tuple<
+                  unsigned int,
+                  unsigned int,
+                  std::string,
+                  DataComponentInterpretation::DataComponentInterpretation>>>
+      iga_output_fields()
+      {
+        static const char       *axis = "xyz";
+        std::vector<std::string> names(dim, "displacement");
+        for (const auto &[i, j] : iga_output_components<dim>())
+          names.push_back(std::string("strain_") + axis[i] + axis[j]);
+        for (const auto &[i, j] : iga_output_components<dim>())
+          names.push_back(std::string("stress_") + axis[i] + axis[j]);
+        names.emplace_back("von_mises");
+        return {names,
+                {{0,
+                  dim - 1,
+                  "displacement",
+                  DataComponentInterpretation::component_is_part_of_vector}}};
+      }
+    } // namespace
+
+
+
     template <int dim>
     void
     IgaBody<dim>::write_vtu(const Vector<double> &u,
-                            const std::string    &filename) const
+                            const std::string    &filename,
+                            const unsigned int    piece,
+                            const unsigned int    n_pieces) const
     {
       AssertDimension(u.size(), this->n_unknowns);
       const unsigned int n_sub =
@@ -920,22 +969,10 @@ namespace igabde
           }
       }
 
-      static const char       *axis = "xyz";
-      std::vector<std::string> names;
-      for (unsigned int c = 0; c < dim; ++c)
-        names.emplace_back("displacement");
-      std::vector<std::pair<unsigned int, unsigned int>> comps;
-      for (unsigned int i = 0; i < dim; ++i)
-        comps.emplace_back(i, i);
-      for (unsigned int i = 0; i < dim; ++i)
-        for (unsigned int j = i + 1; j < dim; ++j)
-          comps.emplace_back(i, j);
-      for (const auto &[i, j] : comps)
-        names.push_back(std::string("strain_") + axis[i] + axis[j]);
-      for (const auto &[i, j] : comps)
-        names.push_back(std::string("stress_") + axis[i] + axis[j]);
-      names.emplace_back("von_mises");
-      const unsigned int n_data = names.size();
+      const auto comps           = iga_output_components<dim>();
+      const auto [names, ranges] = iga_output_fields<dim>();
+      const unsigned int n_data  = names.size();
+      const auto [first, end]    = this->output_cells(piece, n_pieces);
 
       std::vector<DataOutBase::Patch<dim, dim>> patches;
       nurbs::NurbsValues<dim>                   ev(geometry,
@@ -946,6 +983,9 @@ namespace igabde
       unsigned int                              index = 0;
       for (const auto &cell : parametric_mesh.active_cell_iterators())
         {
+          if (cell->active_cell_index() < first ||
+              cell->active_cell_index() >= end)
+            continue;
           ev.reinit(cell);
           elasticity::get_local_values(ev, u, local_u);
           DataOutBase::Patch<dim, dim> patch;
@@ -992,23 +1032,29 @@ namespace igabde
           patches.push_back(std::move(patch));
         }
 
-      std::vector<
-        std::tuple<unsigned int,
-                   unsigned int,
-                   std::string,
-                   DataComponentInterpretation::DataComponentInterpretation>>
-        ranges;
-      ranges.emplace_back(
-        0,
-        dim - 1,
-        "displacement",
-        DataComponentInterpretation::component_is_part_of_vector);
       std::ofstream out = base::open_for_writing(filename);
       DataOutBase::write_vtu(patches,
                              names,
                              ranges,
                              base::vtu_flags(patches),
                              out);
+    }
+
+
+
+    template <int dim>
+    void
+    IgaBody<dim>::write_pvtu_record(
+      const std::string              &filename,
+      const std::vector<std::string> &piece_files) const
+    {
+      const auto [names, ranges] = iga_output_fields<dim>();
+      std::ofstream out          = base::open_for_writing(filename);
+      DataOutBase::write_pvtu_record(out,
+                                     piece_files,
+                                     names,
+                                     ranges,
+                                     DataOutBase::VtkFlags());
     }
 
 

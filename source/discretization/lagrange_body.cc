@@ -848,23 +848,64 @@ namespace igabde
 
 
 
+    namespace
+    {
+      /// The fields of LagrangeBody::write_vtu(): the displacement (a
+      /// vector) and @p stresses' strain, stress and von Mises fields.
+      template <int dim>
+      void
+      attach_output_fields(DataOut<dim>                 &data_out,
+                           const DoFHandler<dim>        &dof_handler,
+                           const Vector<double>         &u,
+                           const DataPostprocessor<dim> &stresses)
+      {
+        data_out.attach_dof_handler(dof_handler);
+        std::vector<DataComponentInterpretation::DataComponentInterpretation>
+          interpretation(
+            dim,
+            DataComponentInterpretation::component_is_part_of_vector);
+        data_out.add_data_vector(u,
+                                 std::vector<std::string>(dim, "displacement"),
+                                 DataOut<dim>::type_dof_data,
+                                 interpretation);
+        data_out.add_data_vector(u, stresses);
+      }
+    } // namespace
+
+
+
     template <int dim>
     void
     LagrangeBody<dim>::write_vtu(const Vector<double> &u,
-                                 const std::string    &filename) const
+                                 const std::string    &filename,
+                                 const unsigned int    piece,
+                                 const unsigned int    n_pieces) const
     {
       StressPostprocessor<dim> postprocessor(this->material());
       DataOut<dim>             data_out;
-      data_out.attach_dof_handler(dof_handler);
-      std::vector<DataComponentInterpretation::DataComponentInterpretation>
-        interpretation(
-          dim,
-          DataComponentInterpretation::component_is_part_of_vector);
-      data_out.add_data_vector(u,
-                               std::vector<std::string>(dim, "displacement"),
-                               DataOut<dim>::type_dof_data,
-                               interpretation);
-      data_out.add_data_vector(u, postprocessor);
+      attach_output_fields(data_out, dof_handler, u, postprocessor);
+      // The active cells [first, end) in their order.
+      using cell_iterator   = typename Triangulation<dim>::cell_iterator;
+      using active_iterator = typename Triangulation<dim>::active_cell_iterator;
+      const auto [first, end] = this->output_cells(piece, n_pieces);
+      data_out.set_cell_selection(
+        [first = first, end = end](const Triangulation<dim> &tria) {
+          for (const auto &cell : tria.active_cell_iterators())
+            if (cell->active_cell_index() >= first)
+              {
+                if (cell->active_cell_index() < end)
+                  return cell_iterator(cell);
+                break;
+              }
+          return tria.end();
+        },
+        [end = end](const Triangulation<dim> &tria, const cell_iterator &cell) {
+          active_iterator next(cell);
+          ++next;
+          if (next == tria.end() || next->active_cell_index() >= end)
+            return tria.end();
+          return cell_iterator(next);
+        });
       data_out.build_patches(*mapping,
                              std::max(fe.degree,
                                       output_subdivisions_for<dim>(
@@ -874,6 +915,22 @@ namespace igabde
       data_out.set_flags(base::vtu_flags(data_out.get_patches()));
       std::ofstream out = base::open_for_writing(filename);
       data_out.write_vtu(out);
+    }
+
+
+
+    template <int dim>
+    void
+    LagrangeBody<dim>::write_pvtu_record(
+      const std::string              &filename,
+      const std::vector<std::string> &piece_files) const
+    {
+      StressPostprocessor<dim> postprocessor(this->material());
+      DataOut<dim>             data_out;
+      const Vector<double>     u(dof_handler.n_dofs());
+      attach_output_fields(data_out, dof_handler, u, postprocessor);
+      std::ofstream out = base::open_for_writing(filename);
+      data_out.write_pvtu_record(out, piece_files);
     }
 
 

@@ -389,15 +389,18 @@ namespace igabde
             TimerOutput::Scope t(timer, "output");
             if (contact_stage)
               pairs = contact_stage->pair_states();
-            if (root)
-              write_step_output<dim>(output_directory,
-                                     parameters.output.write_vtu,
-                                     s + 1,
-                                     bodies,
-                                     u,
-                                     pairs ? &*pairs : nullptr,
-                                     pvd_records,
-                                     writer);
+            // Every rank writes its piece of the bodies' fields.
+            write_step_output<dim>(
+              output_directory,
+              parameters.output.write_vtu,
+              s + 1,
+              Utilities::MPI::this_mpi_process(MPI_COMM_WORLD),
+              Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD),
+              bodies,
+              u,
+              pairs ? &*pairs : nullptr,
+              pvd_records,
+              writer);
           }
           if (s + 1 == steps.size())
             {

@@ -12,6 +12,7 @@
 #include <igabde/scene/step_results.h>
 
 #include <deal.II/base/data_out_base.h>
+#include <deal.II/base/utilities.h>
 
 #include <algorithm>
 #include <cmath>
@@ -303,6 +304,8 @@ namespace igabde
       const std::string                                             &directory,
       const bool                                                     write_vtu,
       const unsigned int                                             step,
+      const unsigned int                                             rank,
+      const unsigned int                                             n_ranks,
       const std::vector<std::unique_ptr<discretization::Body<dim>>> &bodies,
       const std::vector<Vector<double>>                             &u,
       const std::vector<contact::PairState<dim>>                    *pairs,
@@ -317,7 +320,7 @@ namespace igabde
       number << std::setw(4) << std::setfill('0') << step;
       // The pair table every step; fields only with Write vtu. Each file is
       // a job of its own, on copies of the step's results.
-      if (pairs != nullptr)
+      if (pairs != nullptr && rank == 0)
         {
           const std::string name = "contact-" + number.str();
           // The recovered pressure reads Body 1's stress field, which the
@@ -349,14 +352,44 @@ namespace igabde
         return;
       for (unsigned int b = 0; b < bodies.size(); ++b)
         {
+          // One piece per rank, as long as each has a cell to write.
+          const unsigned int n_pieces =
+            std::min(n_ranks, bodies[b]->n_elements());
           const std::string name =
-            "solution-" + bodies[b]->name() + "-" + number.str() + ".vtu";
-          writer.add([body = bodies[b].get(),
-                      ub   = u[b],
-                      path = directory + "/" + name]() {
-            body->write_vtu(ub, path);
-          });
-          pvd_records[b].emplace_back(double(step), name);
+            "solution-" + bodies[b]->name() + "-" + number.str();
+          if (n_pieces == 1)
+            {
+              if (rank == 0)
+                writer.add([body = bodies[b].get(),
+                            ub   = u[b],
+                            path = directory + "/" + name + ".vtu"]() {
+                  body->write_vtu(ub, path, 0, 1);
+                });
+              pvd_records[b].emplace_back(double(step), name + ".vtu");
+              continue;
+            }
+          std::vector<std::string> pieces;
+          for (unsigned int r = 0; r < n_pieces; ++r)
+            pieces.push_back(
+              name + "." +
+              Utilities::int_to_string(r,
+                                       Utilities::needed_digits(n_pieces - 1)) +
+              ".vtu");
+          if (rank < n_pieces)
+            writer.add([body = bodies[b].get(),
+                        ub   = u[b],
+                        path = directory + "/" + pieces[rank],
+                        rank,
+                        n_pieces]() {
+              body->write_vtu(ub, path, rank, n_pieces);
+            });
+          if (rank == 0)
+            writer.add([body = bodies[b].get(),
+                        path = directory + "/" + name + ".pvtu",
+                        pieces]() {
+              body->write_pvtu_record(path, pieces);
+            });
+          pvd_records[b].emplace_back(double(step), name + ".pvtu");
         }
     }
 
@@ -610,6 +643,8 @@ namespace igabde
       const std::string &,
       const bool,
       const unsigned int,
+      const unsigned int,
+      const unsigned int,
       const std::vector<std::unique_ptr<discretization::Body<2>>> &,
       const std::vector<Vector<double>> &,
       const std::vector<contact::PairState<2>> *,
@@ -664,6 +699,8 @@ namespace igabde
     write_step_output<3>(
       const std::string &,
       const bool,
+      const unsigned int,
+      const unsigned int,
       const unsigned int,
       const std::vector<std::unique_ptr<discretization::Body<3>>> &,
       const std::vector<Vector<double>> &,

@@ -448,7 +448,7 @@ TEST(NurbsIgaBody, WritesVtu)
   EXPECT_LT(tip.displacement(body.load_solution())[2], 0.);
 
   const std::string name = "nurbs_iga_body_test.vtu";
-  body.write_vtu(body.load_solution(), name);
+  body.write_vtu(body.load_solution(), name, 0, 1);
   std::ifstream     in(name);
   std::stringstream content;
   content << in.rdbuf();

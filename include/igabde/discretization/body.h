@@ -19,11 +19,13 @@
 #include <deal.II/lac/vector.h>
 
 #include <array>
+#include <cstdint>
 #include <functional>
 #include <map>
 #include <memory>
 #include <mpi.h>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace igabde
@@ -516,10 +518,35 @@ namespace igabde
 
       /**
        * @brief Writes displacement, strain, stress and von Mises on the exact
-       * geometry to @p filename (VTU).
+       * geometry to @p filename (VTU): the cells output_cells(@p piece,
+       * @p n_pieces) (all of them for one piece), so that ranks can write
+       * one piece each of a parallel VTU (write_pvtu_record()).
        */
       virtual void
-      write_vtu(const Vector<double> &u, const std::string &filename) const = 0;
+      write_vtu(const Vector<double> &u,
+                const std::string    &filename,
+                const unsigned int    piece,
+                const unsigned int    n_pieces) const = 0;
+
+      /**
+       * @brief Writes the .pvtu record @p filename that names the pieces
+       * @p piece_files written by write_vtu() (their fields, no data).
+       */
+      virtual void
+      write_pvtu_record(const std::string              &filename,
+                        const std::vector<std::string> &piece_files) const = 0;
+
+      /**
+       * @brief The active cells, in their order, that piece @p piece of
+       * @p n_pieces writes: [first, end), the counts equal within one.
+       */
+      std::pair<unsigned int, unsigned int>
+      output_cells(const unsigned int piece, const unsigned int n_pieces) const
+      {
+        const std::uint64_t n = n_elements();
+        return {static_cast<unsigned int>(n * piece / n_pieces),
+                static_cast<unsigned int>(n * (piece + 1) / n_pieces)};
+      }
 
       /**
        * @brief The largest principal strain in magnitude at the quadrature

@@ -79,7 +79,14 @@ namespace igabde
 
       void
       write_vtu(const Vector<double> &u,
-                const std::string    &filename) const override;
+                const std::string    &filename,
+                const unsigned int    piece,
+                const unsigned int    n_pieces) const override;
+
+      void
+      write_pvtu_record(
+        const std::string              &filename,
+        const std::vector<std::string> &piece_files) const override;
 
       double
       measure() const override;

@@ -101,6 +101,12 @@ namespace igabde
      * write_pvd_series() writes the series. The files are written by
      * @p writer's threads while the run goes on, after the previous step's
      * (this call waits for them first).
+     *
+     * Collective in spirit on @p n_ranks ranks: every rank calls it, rank
+     * @p rank writes piece @p rank of each body's VTU (with more than one
+     * rank and cell: solution-NAME-NNNN.R.vtu, and rank 0 the record
+     * solution-NAME-NNNN.pvtu that names them); rank 0 alone writes the
+     * pairs' files. No rank waits for another.
      */
     template <int dim>
     void
@@ -108,6 +114,8 @@ namespace igabde
       const std::string                                             &directory,
       const bool                                                     write_vtu,
       const unsigned int                                             step,
+      const unsigned int                                             rank,
+      const unsigned int                                             n_ranks,
       const std::vector<std::unique_ptr<discretization::Body<dim>>> &bodies,
       const std::vector<Vector<double>>                             &u,
       const std::vector<contact::PairState<dim>>                    *pairs,
