@@ -1,4 +1,5 @@
 #include <igabde/contact/bnewton.h>
+#include <igabde/contact/gauss_seidel.h>
 
 #include <deal.II/base/exceptions.h>
 
@@ -326,6 +327,28 @@ namespace igabde
               if (!outcome.converged)
                 outcome = prox;
               reasons += "; proximal: " + prox.reason;
+            }
+          // Phase 4: nonsmooth Gauss-Seidel, where its local problems are
+          // solved exactly (condensed path, 2D or frictionless, no
+          // floating bodies).
+          const Eigen::MatrixXd *W = op.dense_flexibility();
+          if (!outcome.converged && settings.gauss_seidel_sweeps > 0 &&
+              W != nullptr && na == 0 && data.n_components <= 2 &&
+              !driver.out_of_time())
+            {
+              op.set_proximal_shift(0.);
+              ContactIterate     xg     = driver.have_best ? driver.best_x : x;
+              unsigned int       sweeps = 0;
+              const PhaseOutcome gs     = gauss_seidel_phase(
+                driver,
+                data,
+                bde_law(op, data, settings.r_factor, settings.radius),
+                *W,
+                xg,
+                settings.gauss_seidel_sweeps,
+                sweeps);
+              outcome = gs;
+              reasons += "; gauss-seidel: " + gs.reason;
             }
         }
 

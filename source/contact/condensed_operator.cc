@@ -690,6 +690,14 @@ namespace igabde
 
 
 
+    const Eigen::MatrixXd *
+    CondensedOperator::dense_flexibility() const
+    {
+      return &storage->W;
+    }
+
+
+
     void
     CondensedOperator::set_proximal_shift(const double eps)
     {

@@ -172,6 +172,17 @@ namespace igabde
         return false;
       }
 
+      /**
+       * @brief The dense flexibility W of the condensed path, unshifted;
+       * nullptr on a path that forms none (the nonsmooth Gauss-Seidel
+       * phase sweeps over its columns).
+       */
+      virtual const Eigen::MatrixXd *
+      dense_flexibility() const
+      {
+        return nullptr;
+      }
+
       /** @brief Whether newton_step() is iterative (inexact Newton). */
       virtual bool
       iterative() const
@@ -299,6 +310,9 @@ namespace igabde
 
       double
       flexibility_scale() const override;
+
+      const Eigen::MatrixXd *
+      dense_flexibility() const override;
 
       void
       set_proximal_shift(const double eps) override;

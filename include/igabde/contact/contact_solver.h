@@ -186,6 +186,13 @@ namespace igabde
       /** @brief Proximal-point phase after failed Newton phases. */
       bool proximal = true;
 
+      /**
+       * @brief Sweeps of the nonsmooth Gauss-Seidel phase after the failed
+       * Newton and proximal phases (condensed path, 2D or frictionless, no
+       * floating bodies; 0: no such phase).
+       */
+      unsigned int gauss_seidel_sweeps = 2000;
+
       /** @brief Storage and factorisation of the Newton matrix. */
       NewtonLinearAlgebra linear_algebra = NewtonLinearAlgebra::automatic;
 

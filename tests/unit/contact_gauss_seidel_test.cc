@@ -1,0 +1,144 @@
+// The nonsmooth Gauss-Seidel phase: its exact local solver against hand-
+// derived pairs (each branch of the 2D Coulomb law and the frictionless
+// case), and the phase inside BNewtonSolver against the Newton answer of the
+// same problem.
+
+#include <igabde/contact/bnewton.h>
+#include <igabde/contact/condition_check.h>
+#include <igabde/contact/contact_problem.h>
+#include <igabde/contact/gauss_seidel.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+using namespace igabde::contact;
+
+namespace
+{
+  // u = A p + c of one 2D pair, and whether (p, u) obey the law: u_n >= 0,
+  // p_n >= 0, u_n p_n = 0, |p_t| <= mu p_n, p_t = -mu p_n sign(u_t) where
+  // u_t != 0.
+  void
+  expect_law(const double *A,
+             const double *c,
+             const double  mu,
+             const double *p,
+             const double  tol = 1e-12)
+  {
+    const double un = A[0] * p[0] + A[1] * p[1] + c[0];
+    const double ut = A[2] * p[0] + A[3] * p[1] + c[1];
+    EXPECT_GE(un, -tol);
+    EXPECT_GE(p[0], -tol);
+    EXPECT_NEAR(un * p[0], 0., tol);
+    EXPECT_LE(std::abs(p[1]), mu * p[0] + tol);
+    if (std::abs(ut) > tol)
+      EXPECT_NEAR(p[1], -mu * p[0] * (ut > 0. ? 1. : -1.), tol);
+  }
+} // namespace
+
+
+
+// A = [2 0.5; 0.5 1], mu = 0.5. Each c below is built from the answer:
+//  - open: c_n = 0.1 >= 0, so p = 0;
+//  - stick: p* = (1, 0.2), |0.2| <= 0.5, c = -A p* = (-2.1, -0.7);
+//  - slip, u_t > 0: p* = (1, -0.5); c_n = -(2 - 0.25) = -1.75 gives u_n = 0,
+//    c_t = 0.3 gives u_t = 0.5 - 0.5 + 0.3 = 0.3 > 0; the stick candidate
+//    -A^-1 c = (0.914, -0.843) is outside the cone (0.843 > 0.457);
+//  - slip, u_t < 0: p* = (1, 0.5); c_n = -(2 + 0.25) = -2.25 gives u_n = 0,
+//    c_t = -1.3 gives u_t = 0.5 + 0.5 - 1.3 = -0.3 < 0.
+// Each answer is also checked against the law itself (expect_law()).
+TEST(ContactGaussSeidel, LocalPairSolvesEachBranchByHand)
+{
+  const double A[4] = {2., 0.5, 0.5, 1.};
+  const double mu   = 0.5;
+  double       p[2] = {7., 7.};
+
+  const double open[2] = {0.1, 3.};
+  ASSERT_TRUE(solve_local_pair(2, A, open, mu, p));
+  EXPECT_EQ(p[0], 0.);
+  EXPECT_EQ(p[1], 0.);
+
+  const double stick[2] = {-2.1, -0.7};
+  ASSERT_TRUE(solve_local_pair(2, A, stick, mu, p));
+  EXPECT_NEAR(p[0], 1., 1e-14);
+  EXPECT_NEAR(p[1], 0.2, 1e-14);
+  expect_law(A, stick, mu, p);
+
+  const double slip[2] = {-1.75, 0.3};
+  ASSERT_TRUE(solve_local_pair(2, A, slip, mu, p));
+  EXPECT_NEAR(p[0], 1., 1e-14);
+  EXPECT_NEAR(p[1], -0.5, 1e-14);
+  expect_law(A, slip, mu, p);
+
+  const double back[2] = {-2.25, -1.3};
+  ASSERT_TRUE(solve_local_pair(2, A, back, mu, p));
+  EXPECT_NEAR(p[0], 1., 1e-14);
+  EXPECT_NEAR(p[1], 0.5, 1e-14);
+  expect_law(A, back, mu, p);
+
+  // Frictionless: p = -c / A where c < 0.
+  const double a1 = 3., c1 = -1.5;
+  double       p1 = 0.;
+  ASSERT_TRUE(solve_local_pair(1, &a1, &c1, 0., &p1));
+  EXPECT_NEAR(p1, 0.5, 1e-15);
+
+  // No branch holds for a pair whose normal flexibility is not positive.
+  const double bad[4] = {-1., 0., 0., 1.};
+  EXPECT_FALSE(solve_local_pair(2, bad, stick, mu, p));
+}
+
+
+
+// A 2D problem of 40 pairs (W = I + 0.5 B B^T / n with B uniform in
+// [-1, 1]: symmetric, eigenvalues between 1 and about 1.7; half the pairs
+// pressed in; mu = 0.3): BNewtonSolver with a budget of one Newton iteration
+// fails its Newton and proximal phases and ends in the Gauss-Seidel phase,
+// which must converge to the tolerance and give the answer of the
+// unrestricted Newton solve, an independent method. Both stop at a natural-
+// map error of 1e-10 relative; with W this well conditioned and mu this
+// small the solution is unique and the two answers can differ by a small
+// multiple of that; 1e-7 relative leaves three orders of margin.
+TEST(ContactGaussSeidel, PhaseGivesTheNewtonAnswerOnA2DProblem)
+{
+  const unsigned int                     nc = 40, n = 2 * nc;
+  std::mt19937                           gen(7);
+  std::uniform_real_distribution<double> dist(-1., 1.);
+  Eigen::MatrixXd                        B(n, n);
+  for (unsigned int i = 0; i < n; ++i)
+    for (unsigned int j = 0; j < n; ++j)
+      B(i, j) = dist(gen);
+  ContactProblem problem;
+  problem.n_components = 2;
+  problem.n_contacts   = nc;
+  problem.W = Eigen::MatrixXd::Identity(n, n) + 0.5 * B * B.transpose() / n;
+  problem.q.resize(n);
+  for (unsigned int i = 0; i < nc; ++i)
+    {
+      problem.q(2 * i)     = (i % 2 == 0 ? -1. : 0.2) + 0.1 * dist(gen);
+      problem.q(2 * i + 1) = dist(gen);
+    }
+  problem.mu.assign(nc, 0.3);
+
+  BNewtonSolver::Settings settings;
+  settings.tolerance            = 1e-10;
+  const BNewtonSolver::Result r = BNewtonSolver(settings).solve(problem);
+  ASSERT_TRUE(r.converged) << r.diagnosis;
+
+  settings.max_iterations       = 1;
+  const BNewtonSolver::Result g = BNewtonSolver(settings).solve(problem);
+  ASSERT_TRUE(g.converged) << g.diagnosis;
+  EXPECT_NE(g.diagnosis.find("gauss-seidel: converged"), std::string::npos)
+    << g.diagnosis;
+  EXPECT_LE(g.residual, 1e-10);
+  const ConditionReport report =
+    check_contact_conditions(problem, g.p, g.u, 1e-8);
+  EXPECT_TRUE(report.passed()) << report.first_violation();
+  EXPECT_LE((g.p - r.p).norm(), 1e-7 * r.p.norm());
+
+  // Without the phase the same budget fails: the phase is what solved it.
+  settings.gauss_seidel_sweeps   = 0;
+  const BNewtonSolver::Result no = BNewtonSolver(settings).solve(problem);
+  EXPECT_FALSE(no.converged) << no.diagnosis;
+}
