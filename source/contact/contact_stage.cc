@@ -235,6 +235,7 @@ namespace igabde
             std::count(touched.begin(), touched.end(), true));
         }
       inputs.factor_entries = settings.factor_entries;
+      inputs.dimension      = dim;
       inputs.newton_iterations =
         PathCostConstants::measured().iterations_per_step *
         std::max(1u, settings.n_load_steps);

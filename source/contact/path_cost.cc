@@ -11,16 +11,21 @@ namespace igabde
     PathCostConstants
     PathCostConstants::measured()
     {
-      // contrib/benchmarks/path-cost, 2026-11-25 (doc/performance.md),
-      // from the largest case measured, B2 FE_Q(2) 8x32x8: the B-Newton
-      // phase over 10 m^3/3, the condensation and the Schur part of the
-      // factorisation over the face term, MUMPS' 10 factorisations of the
-      // coupled matrix over 10 sum L^1.5. Newton iterations per step: 8
-      // to 10 on B2.
+      // contrib/benchmarks/path-cost, 2026-11-26 (doc/performance.md):
+      // dense and schur from the largest case, B2 FE_Q(2) 8x32x8 (the
+      // B-Newton phase over 10 m^3/3, the condensation and the Schur part
+      // of the factorisation over the face term); sparse_d the largest
+      // seconds per factor entry and Newton iteration of the full-system
+      // solve among the cases of each dimension (2D: the floating half
+      // disc at 1600 x 8 spans 3.2e-8, the V3 strips 3.4e-8; 3D: B2 NURBS
+      // 4x4x4 5.6e-8, 8x16x8 6.2e-8, FE_Q(2) 8x32x8 9.0e-8, the V3 slab's
+      // one factorisation 1.1e-7). Newton iterations per step: 8 to 10 on
+      // B2.
       PathCostConstants c;
       c.dense               = 1.1e-11;
       c.schur               = 4.8e-11;
-      c.sparse              = 5.2e-12;
+      c.sparse_2d           = 3.4e-8;
+      c.sparse_3d           = 1.1e-7;
       c.iterations_per_step = 8.;
       return c;
     }
@@ -37,12 +42,14 @@ namespace igabde
       for (const double n_I : inputs.face_unknowns)
         face += n_I * n_I * n_I / 3. + n_I * n_I * m + n_I * m * m;
       for (const double L : inputs.factor_entries)
-        factor += std::pow(L, 1.5);
+        factor += L;
       const double     condensation = constants.schur * face;
       const double     bnewton      = constants.dense * N * m * m * m / 3.;
       PathCostEstimate e;
       e.condensed_seconds = condensation + bnewton;
-      e.full_seconds      = constants.sparse * N * factor;
+      e.full_seconds =
+        (inputs.dimension == 2 ? constants.sparse_2d : constants.sparse_3d) *
+        N * factor;
       e.path =
         (e.full_seconds < e.condensed_seconds ? Path::full : Path::condensed);
       std::ostringstream s;

@@ -78,7 +78,8 @@ namespace igabde
         {"contact_unknowns", s.cost_inputs.contact_unknowns},
         {"face_unknowns", s.cost_inputs.face_unknowns},
         {"factor_entries", s.cost_inputs.factor_entries},
-        {"newton_iterations", s.cost_inputs.newton_iterations}};
+        {"newton_iterations", s.cost_inputs.newton_iterations},
+        {"dimension", s.cost_inputs.dimension}};
       const bool full = (s.path == contact::Path::full);
       if (c.full_system_solver != coupled::Solver::mumps && full)
         summary["full_system_solver"] = to_string(c.full_system_solver);

@@ -24,6 +24,9 @@ namespace igabde
       std::vector<double> factor_entries;
       /// Newton iterations expected over the whole load path.
       double newton_iterations = 0.;
+      /// Space dimension of the bodies (2 or 3): a factor entry costs
+      /// more in 3D (PathCostConstants::sparse_3d).
+      unsigned int dimension = 3;
     };
 
     /**
@@ -38,9 +41,14 @@ namespace igabde
       /// Condensation: seconds per (n_I^3/3 + n_I^2 m + n_I m^2) of each
       /// body (the Schur complement, its factorisation and C S^-1 C^T).
       double schur = 0.;
-      /// Sparse factorisation: seconds per (factor entries)^(3/2) (the
-      /// flops of a nested-dissection factor grow so with its size).
-      double sparse = 0.;
+      /// Sparse factorisation of the coupled matrix, 2D bodies: seconds
+      /// per factor entry and factorisation (measured: the cost per
+      /// iteration grows in proportion to the factor's entries over the
+      /// sizes this project runs, not as their 3/2 power).
+      double sparse_2d = 0.;
+      /// The same for 3D bodies (about three times the 2D figure: more
+      /// flops per entry in the larger fronts).
+      double sparse_3d = 0.;
       /// Newton iterations assumed per load step.
       double iterations_per_step = 0.;
 
@@ -84,8 +92,9 @@ namespace igabde
      * @code
      *   condensed = schur sum_b (n_I^3/3 + n_I^2 m + n_I m^2)
      *             + dense N m^3/3
-     *   full      = sparse N sum_b L_b^(3/2)
+     *   full      = sparse_d N sum_b L_b
      * @endcode
+     * with sparse_d the constant of the bodies' dimension.
      * The bodies' own factorisation is left out: both paths do it once (the
      * Schur complement rides on it). The full path is chosen when it is
      * estimated cheaper.
