@@ -318,19 +318,11 @@ namespace igabde
               reasons +=
                 "; " + phase_name("newton-r1", radius) + ": " + outcome.reason;
             }
-          // Phase 3: proximal point.
-          if (!outcome.converged && settings.proximal &&
-              !driver.out_of_iterations() && !driver.out_of_time())
-            {
-              const PhaseOutcome prox =
-                proximal_phase(driver, data, x, r_factor);
-              if (!outcome.converged)
-                outcome = prox;
-              reasons += "; proximal: " + prox.reason;
-            }
-          // Phase 4: nonsmooth Gauss-Seidel, where its local problems are
+          // Phase 3: nonsmooth Gauss-Seidel, where its local problems are
           // solved exactly (condensed path, 2D or frictionless, no
-          // floating bodies).
+          // floating bodies); before the proximal phase, which costs more
+          // where both apply (FrictionContactProblem00727: 0.47 s with
+          // the proximal phase first, 0.07 s without).
           const Eigen::MatrixXd *W = op.dense_flexibility();
           if (!outcome.converged && settings.gauss_seidel_sweeps > 0 &&
               W != nullptr && na == 0 && data.n_components <= 2 &&
@@ -349,6 +341,16 @@ namespace igabde
                 sweeps);
               outcome = gs;
               reasons += "; gauss-seidel: " + gs.reason;
+            }
+          // Phase 4: proximal point.
+          if (!outcome.converged && settings.proximal &&
+              !driver.out_of_iterations() && !driver.out_of_time())
+            {
+              const PhaseOutcome prox =
+                proximal_phase(driver, data, x, r_factor);
+              if (!outcome.converged)
+                outcome = prox;
+              reasons += "; proximal: " + prox.reason;
             }
         }
 

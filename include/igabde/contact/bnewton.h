@@ -81,19 +81,18 @@ namespace igabde
      * r_factor is more than ten times away from 1, Newton with r_factor = 1
      * (r from the flexibility alone; the solution does not depend on r, the
      * merit function does), from the best iterate; (3) if still not
-     * converged and
+     * converged, on the condensed path with 2D friction or none and no
+     * floating bodies: nonsmooth Gauss-Seidel sweeps from the best iterate
+     * (gauss_seidel_phase(), at most Settings::gauss_seidel_sweeps, a
+     * budget of its own), which converge where Newton's active sets cycle
+     * (FCLIB's FrictionContactProblem00727); (4) if still not converged and
      * Settings::proximal, proximal-point outer iterations (Acary et al.
      * 2018, PPA-NSN): the subproblem W + eps I, q - eps p_k (centred on the
      * current iterate, strongly monotone) is solved by Newton, eps starting
      * at max_i W_ii and divided by 10 after every outer step that halved
-     * the error, multiplied by 10 after a failed inner solve. All these
+     * the error, multiplied by 10 after a failed inner solve. The Newton
      * phases share the iteration budget Settings::max_iterations (inner
-     * iterations count). (4) If still not converged, on the condensed path
-     * with 2D friction or none and no floating bodies: nonsmooth
-     * Gauss-Seidel sweeps from the best iterate (gauss_seidel_phase(), at
-     * most Settings::gauss_seidel_sweeps, a budget of its own), which
-     * converge where Newton's active sets cycle (FCLIB's
-     * FrictionContactProblem00727).
+     * iterations count).
      *
      * <h3>Stopping</h3>
      * Converged when balanced_natural_map_error() <= tol and either

@@ -188,8 +188,8 @@ namespace igabde
 
       /**
        * @brief Sweeps of the nonsmooth Gauss-Seidel phase after the failed
-       * Newton and proximal phases (condensed path, 2D or frictionless, no
-       * floating bodies; 0: no such phase).
+       * Newton phases, before the proximal one (condensed path, 2D or
+       * frictionless, no floating bodies; 0: no such phase).
        */
       unsigned int gauss_seidel_sweeps = 2000;
 
