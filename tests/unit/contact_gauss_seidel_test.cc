@@ -94,12 +94,13 @@ TEST(ContactGaussSeidel, LocalPairSolvesEachBranchByHand)
 // A 2D problem of 40 pairs (W = I + 0.5 B B^T / n with B uniform in
 // [-1, 1]: symmetric, eigenvalues between 1 and about 1.7; half the pairs
 // pressed in; mu = 0.3): BNewtonSolver with a budget of one Newton iteration
-// fails its Newton and proximal phases and ends in the Gauss-Seidel phase,
-// which must converge to the tolerance and give the answer of the
-// unrestricted Newton solve, an independent method. Both stop at a natural-
-// map error of 1e-10 relative; with W this well conditioned and mu this
-// small the solution is unique and the two answers can differ by a small
-// multiple of that; 1e-7 relative leaves three orders of margin.
+// fails its Newton phases and goes on to the Gauss-Seidel phase (before the
+// proximal one, which finds no iteration left), which must converge to the
+// tolerance and give the answer of the unrestricted Newton solve, an
+// independent method. Both stop at a natural- map error of 1e-10 relative; with
+// W this well conditioned and mu this small the solution is unique and the two
+// answers can differ by a small multiple of that; 1e-7 relative leaves three
+// orders of margin.
 TEST(ContactGaussSeidel, PhaseGivesTheNewtonAnswerOnA2DProblem)
 {
   const unsigned int                     nc = 40, n = 2 * nc;
