@@ -13,7 +13,8 @@ namespace igabde
     template <int dim>
     void
     make_parametric_triangulation(const NurbsPatch<dim> &patch,
-                                  Triangulation<dim>    &triangulation)
+                                  Triangulation<dim>    &triangulation,
+                                  const bool             mirror_last)
     {
       std::vector<std::vector<double>> steps(dim);
       for (unsigned int d = 0; d < dim; ++d)
@@ -25,6 +26,8 @@ namespace igabde
           for (unsigned int e = 0; e + 1 < b.size(); ++e)
             steps[d].push_back(b[e + 1] - b[e]);
         }
+      if (mirror_last)
+        std::reverse(steps[dim - 1].begin(), steps[dim - 1].end());
       triangulation.clear();
       GridGenerator::subdivided_hyper_rectangle(triangulation,
                                                 steps,
@@ -68,9 +71,13 @@ namespace igabde
 
 
     template void
-    make_parametric_triangulation(const NurbsPatch<2> &, Triangulation<2> &);
+    make_parametric_triangulation(const NurbsPatch<2> &,
+                                  Triangulation<2> &,
+                                  const bool);
     template void
-    make_parametric_triangulation(const NurbsPatch<3> &, Triangulation<3> &);
+    make_parametric_triangulation(const NurbsPatch<3> &,
+                                  Triangulation<3> &,
+                                  const bool);
     template std::array<unsigned int, 2>
     span_of_point<2>(const std::array<std::vector<double>, 2> &,
                      const Point<2> &);

@@ -18,12 +18,17 @@ namespace igabde
      * knot span (GridGenerator::subdivided_hyper_rectangle with the
      * breakpoint differences as step sizes, colorized), so boundary id f of
      * a cell face is the patch face f (low/high end of direction f/2).
-     * @p triangulation is cleared first.
+     * @p triangulation is cleared first. With @p mirror_last the last
+     * direction's spans are laid out in reverse order: the mesh for a
+     * patch whose last direction is run backwards (xi' = lower + upper -
+     * xi), whose cells must still be the patch's knot spans when those are
+     * not uniform.
      */
     template <int dim>
     void
     make_parametric_triangulation(const NurbsPatch<dim> &patch,
-                                  Triangulation<dim>    &triangulation);
+                                  Triangulation<dim>    &triangulation,
+                                  const bool             mirror_last = false);
 
     /**
      * @brief Tensor index (e_0, .., e_{dim-1}) of the non-empty knot span a
