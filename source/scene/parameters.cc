@@ -1362,17 +1362,32 @@ namespace igabde
                           "Body 1/Radius) on a rigid flat: adds "
                           "checks.hertz_half_width, hertz_peak_pressure and "
                           "pressure_l2_rel_error. 0: no Hertz check.");
+        prm.declare_entry("Hertz point load",
+                          "0",
+                          Patterns::Double(0.),
+                          "Load P (N) of a Hertz sphere (radius Hertz "
+                          "radius) on a flat, 3D: adds "
+                          "checks.hertz_contact_radius, hertz_peak_pressure "
+                          "and pressure_l2_rel_error. P is the whole "
+                          "sphere's load also in a half or quarter model. 0: "
+                          "no such check.");
+        prm.declare_entry("Hertz radius",
+                          "0",
+                          Patterns::Double(0.),
+                          "Radius (m) of the Hertz cylinder or sphere; 0: "
+                          "Body 1/Radius.");
         prm.declare_entry("Hertz axis point",
-                          "0, 0",
+                          "",
                           Patterns::Anything(),
                           "A point (m) on the symmetry axis of the Hertz "
-                          "contact: pair pressures are plotted against the "
-                          "distance from this axis.");
+                          "contact: pair pressures are compared against the "
+                          "distance from this axis. Empty: the origin.");
         prm.declare_entry("Hertz axis direction",
-                          "0, 1",
+                          "",
                           Patterns::Anything(),
                           "Direction of the symmetry axis of the Hertz "
-                          "contact (the load direction).");
+                          "contact (the load direction). Empty: y in 2D, z "
+                          "in 3D.");
       }
       prm.leave_subsection();
     }
@@ -1386,6 +1401,8 @@ namespace igabde
       {
         uniform_pressure     = prm.get_double("Uniform pressure");
         hertz_line_load      = prm.get_double("Hertz line load");
+        hertz_point_load     = prm.get_double("Hertz point load");
+        hertz_radius         = prm.get_double("Hertz radius");
         hertz_axis_point     = prm.get("Hertz axis point");
         hertz_axis_direction = prm.get("Hertz axis direction");
       }
@@ -1868,19 +1885,50 @@ namespace igabde
                         "contact only acts between the two bodies, so "
                         "nothing holds them against rigid motion; add "
                         "Supports to Body 2, e.g. '2: x y'."));
-      if (checks.hertz_line_load > 0.)
+      AssertThrow(checks.hertz_line_load == 0. || dimension == 2,
+                  base::ExcInput(f + "Checks/Hertz line load is the 2D "
+                                     "line contact; in 3D set Checks/Hertz "
+                                     "point load (a sphere) instead."));
+      AssertThrow(checks.hertz_point_load == 0. || dimension == 3,
+                  base::ExcInput(f + "Checks/Hertz point load is the 3D "
+                                     "point contact of a sphere; in 2D set "
+                                     "Checks/Hertz line load instead."));
+      if (checks.hertz_line_load > 0. || checks.hertz_point_load > 0.)
         {
-          AssertThrow(dimension == 2,
-                      base::ExcInput(f + "Checks/Hertz line load is the 2D "
-                                         "line contact; set it to 0 in 3D."));
-          const auto e = base::parse_doubles(checks.hertz_axis_direction,
-                                             f + "Checks/Hertz axis direction");
-          AssertThrow(e.size() == 2 && std::hypot(e[0], e[1]) > 0.,
-                      base::ExcInput(f + "Checks/Hertz axis direction = '" +
-                                     checks.hertz_axis_direction +
-                                     "' must be a non-zero 2D vector."));
-          base::parse_point<2>(checks.hertz_axis_point,
-                               f + "Checks/Hertz axis point");
+          const std::string axis_hint =
+            (dimension == 2 ? "e.g. '0, 1'" : "e.g. '0, 0, 1'");
+          if (!checks.hertz_axis_direction.empty())
+            {
+              const auto e =
+                base::parse_doubles(checks.hertz_axis_direction,
+                                    f + "Checks/Hertz axis direction");
+              double norm = 0.;
+              for (const double v : e)
+                norm += v * v;
+              AssertThrow(e.size() == dimension && norm > 0.,
+                          base::ExcInput(f + "Checks/Hertz axis direction = '" +
+                                         checks.hertz_axis_direction +
+                                         "' must be a " + "non-zero " +
+                                         std::to_string(dimension) +
+                                         "D vector, " + axis_hint + "."));
+            }
+          if (!checks.hertz_axis_point.empty())
+            {
+              const auto x = base::parse_doubles(checks.hertz_axis_point,
+                                                 f + "Checks/Hertz axis point");
+              AssertThrow(x.size() == dimension,
+                          base::ExcInput(
+                            f + "Checks/Hertz axis point = '" +
+                            checks.hertz_axis_point + "' must be a " +
+                            std::to_string(dimension) + "D point."));
+            }
+          AssertThrow(checks.hertz_radius > 0. ||
+                        body1.geometry != Geometry::file,
+                      base::ExcInput(f + "Checks/Hertz radius = 0 takes "
+                                         "Body 1/Radius, which a geometry "
+                                         "file does not have; give the "
+                                         "radius of the contact surface, "
+                                         "e.g. 'set Hertz radius = 1'."));
         }
       AssertThrow(load_path.displacement_factors.empty() ||
                     load_path.load_factors.empty() ||

@@ -19,6 +19,7 @@
 #include <fstream>
 #include <iomanip>
 #include <sstream>
+#include <tuple>
 
 namespace igabde
 {
@@ -166,6 +167,29 @@ namespace igabde
           if (bodies[k]->contains(x))
             return k;
         return bodies.size();
+      }
+
+
+
+      /// The Hertz check's axis: Checks/Hertz axis point and direction,
+      /// empty ones the origin and the last coordinate direction.
+      template <int dim>
+      std::pair<Point<dim>, Tensor<1, dim>>
+      hertz_axis(const ChecksParameters &checks, const std::string &scene_file)
+      {
+        Point<dim>     point;
+        Tensor<1, dim> direction;
+        direction[dim - 1] = 1.;
+        if (!checks.hertz_axis_point.empty())
+          point =
+            base::parse_point<dim>(checks.hertz_axis_point,
+                                   scene_file + ": Checks/Hertz axis point");
+        if (!checks.hertz_axis_direction.empty())
+          direction =
+            base::parse_tensor<dim>(checks.hertz_axis_direction,
+                                    scene_file +
+                                      ": Checks/Hertz axis direction");
+        return {point, direction};
       }
 
 
@@ -501,23 +525,21 @@ namespace igabde
                 pcout << "= " << worst;
               pcout << std::defaultfloat << std::setprecision(6) << std::endl;
             }
+          const double hertz_radius = (parameters.checks.hertz_radius > 0. ?
+                                         parameters.checks.hertz_radius :
+                                         parameters.body1.radius);
           if (parameters.checks.hertz_line_load > 0.)
             {
               if constexpr (dim == 2)
                 {
                   postprocess::HertzCheck hertz;
                   hertz.line_load         = parameters.checks.hertz_line_load;
-                  hertz.radius            = parameters.body1.radius;
+                  hertz.radius            = hertz_radius;
                   hertz.effective_modulus = postprocess::effective_modulus<dim>(
                     bodies[0]->material(),
                     bodies.size() > 1 ? &bodies[1]->material() : nullptr);
-                  hertz.axis_point =
-                    base::parse_point<dim>(parameters.checks.hertz_axis_point,
-                                           scene_file +
-                                             ": Checks/Hertz axis point");
-                  hertz.axis_direction = base::parse_tensor<dim>(
-                    parameters.checks.hertz_axis_direction,
-                    scene_file + ": Checks/Hertz axis direction");
+                  std::tie(hertz.axis_point, hertz.axis_direction) =
+                    hertz_axis<dim>(parameters.checks, scene_file);
                   hertz.element_depth =
                     element_depth_under_contact(bodies[0]->geometry_patch(),
                                                 parameters.contact.slave_face,
@@ -544,6 +566,54 @@ namespace igabde
                         << "), profile L2 error " << std::setprecision(3)
                         << r.profile_l2_error << std::setprecision(6)
                         << std::endl;
+                  for (const std::string &w : r.warnings)
+                    {
+                      pcout << "  warning: " << w << std::endl;
+                      warnings.push_back(w);
+                    }
+                }
+            }
+          if (parameters.checks.hertz_point_load > 0.)
+            {
+              if constexpr (dim == 3)
+                {
+                  postprocess::HertzPointCheck hertz;
+                  hertz.load              = parameters.checks.hertz_point_load;
+                  hertz.radius            = hertz_radius;
+                  hertz.effective_modulus = postprocess::effective_modulus<dim>(
+                    bodies[0]->material(),
+                    bodies.size() > 1 ? &bodies[1]->material() : nullptr);
+                  std::tie(hertz.axis_point, hertz.axis_direction) =
+                    hertz_axis<dim>(parameters.checks, scene_file);
+                  hertz.element_depth =
+                    element_depth_under_contact(bodies[0]->geometry_patch(),
+                                                parameters.contact.slave_face,
+                                                *pairs);
+                  const auto r                         = hertz.evaluate(*pairs);
+                  checks["hertz_contact_radius"]       = r.contact_radius;
+                  checks["hertz_contact_radius_exact"] = r.contact_radius_exact;
+                  checks["hertz_contact_radius_error"] =
+                    std::abs(r.contact_radius / r.contact_radius_exact - 1.);
+                  checks["hertz_contact_radius_moment"] =
+                    r.contact_radius_moment;
+                  checks["hertz_contact_radius_moment_error"] = std::abs(
+                    r.contact_radius_moment / r.contact_radius_exact - 1.);
+                  checks["hertz_peak_pressure"]       = r.peak_pressure;
+                  checks["hertz_peak_pressure_exact"] = r.peak_pressure_exact;
+                  checks["hertz_peak_pressure_error"] =
+                    std::abs(r.peak_pressure / r.peak_pressure_exact - 1.);
+                  checks["pressure_l2_rel_error"]    = r.profile_l2_error;
+                  checks["hertz_max_pair_deviation"] = r.max_pair_deviation;
+                  checks["hertz_inner_pairs"]        = r.n_inner_pairs;
+                  checks["hertz_loaded_pairs"]       = r.n_loaded;
+                  checks["hertz_fitted_pairs"]       = r.n_fitted;
+                  pcout << "  Hertz: contact radius " << std::setprecision(5)
+                        << r.contact_radius << " (Hertz "
+                        << r.contact_radius_exact << "), peak pressure "
+                        << r.peak_pressure << " (Hertz "
+                        << r.peak_pressure_exact << "), profile L2 error "
+                        << std::setprecision(3) << r.profile_l2_error
+                        << std::setprecision(6) << std::endl;
                   for (const std::string &w : r.warnings)
                     {
                       pcout << "  warning: " << w << std::endl;

@@ -464,3 +464,27 @@ TEST(CliBadInput, GradingBandOutsideItsDirection)
                                "Body 1/Grading: 'band 0: 0.6, 0.4, 8': a band "
                                "is 'band d: from, to, ratio'");
 }
+
+
+
+TEST(CliBadInput, HertzChecksOfTheOtherDimension)
+{
+  expect_refused_at_parse_time("hertz-point-2d",
+                               "Checks/Hertz point load=1",
+                               "Checks/Hertz point load is the 3D point "
+                               "contact of a sphere");
+  expect_refused_at_parse_time("hertz-line-3d",
+                               "Checks/Hertz line load=1",
+                               "Checks/Hertz line load is the 2D line contact",
+                               "v7-sphere-on-block.prm");
+  expect_refused_at_parse_time("hertz-axis-2d",
+                               "Checks/Hertz axis direction=0, 1",
+                               "Checks/Hertz axis direction = '0, 1' must be "
+                               "a non-zero 3D vector",
+                               "v7-sphere-on-block.prm");
+  // A geometry file has no Body 1/Radius to fall back on.
+  expect_refused_at_parse_time("hertz-radius-file",
+                               "Checks/Hertz radius=0",
+                               "Checks/Hertz radius = 0 takes Body 1/Radius",
+                               "v7-sphere-on-block.prm");
+}

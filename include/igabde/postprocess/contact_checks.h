@@ -98,6 +98,62 @@ namespace igabde
       Result
       evaluate(const std::vector<contact::PairState<2>> &pairs) const;
     };
+
+    /**
+     * @brief The 3D Hertz point contact of a sphere of radius R pressed by
+     * the force P onto a flat (Johnson, Contact Mechanics §4.2):
+     * a = (3 P R / (4 E*))^(1/3), p(r) = p0 sqrt(1 - r^2/a^2),
+     * p0 = 3 P / (2 pi a^2); r is the distance from the axis through
+     * axis_point along axis_direction (the load direction). A half or
+     * quarter model (symmetry planes through the axis) gives the same
+     * figures as the whole: each is a pointwise value or a ratio of sums
+     * over the pairs, and P stays the whole sphere's load.
+     */
+    struct HertzPointCheck
+    {
+      double       load              = 0.;
+      double       radius            = 0.;
+      double       effective_modulus = 0.;
+      Point<3>     axis_point;
+      Tensor<1, 3> axis_direction;
+      /// Depth of Body 1's elements under the contact's centre; 0: not
+      /// checked.
+      double element_depth = 0.;
+
+      struct Result
+      {
+        /// Contact radius from the pairs: the least-squares fit of
+        /// Hertz's ellipse p^2 = c (a^2 - r^2) to the pairs carrying at
+        /// least half the peak pressure (r up to about 0.87 a), a =
+        /// sqrt(c a^2 / c); it uses the pairs where the profile is smooth,
+        /// not the edge, where a pair's pressure is smeared over its
+        /// support (weighted-gap) or its tributary area.
+        double contact_radius = 0.;
+        /// Contact radius from the second moment of the pair forces:
+        /// Hertz's profile has int p r^2 dA / int p dA = 2 a^2 / 5, so
+        /// a_m = sqrt(5/2 sum F_i r_i^2 / sum F_i); biased by O(h^2) where
+        /// a pair's force is spread over a basis function's support.
+        double contact_radius_moment = 0.;
+        double contact_radius_exact  = 0.;
+        double peak_pressure         = 0.;
+        double peak_pressure_exact   = 0.;
+        /// sqrt(sum A_i (p_i - p(r_i))^2 / sum A_i p(r_i)^2) over the pairs
+        /// with r_i <= 1.2 a (A_i the pairs' areas), Hertz's a and p0.
+        double profile_l2_error = 0.;
+        /// Largest |p_i - p(r_i)| / p0 over the pairs inside r < 0.9 a,
+        /// and how many pairs lie there.
+        double       max_pair_deviation = 0.;
+        unsigned int n_inner_pairs      = 0;
+        /// Pairs carrying load, and those in the ellipse fit.
+        unsigned int n_loaded = 0;
+        unsigned int n_fitted = 0;
+        /// Why the figures do not measure the method, if they do not.
+        std::vector<std::string> warnings;
+      };
+
+      Result
+      evaluate(const std::vector<contact::PairState<3>> &pairs) const;
+    };
   } // namespace postprocess
 } // namespace igabde
 

@@ -433,9 +433,15 @@ namespace igabde
       /// Hertz line load P (N/m) on the cylinder of Body 1/Radius against a
       /// rigid flat; 0: no Hertz check (V5).
       double hertz_line_load = 0.;
-      /// A point on the Hertz symmetry axis, and its direction.
-      std::string hertz_axis_point     = "0, 0";
-      std::string hertz_axis_direction = "0, 1";
+      /// Hertz point load P (N) on the sphere of radius hertz_radius against
+      /// a flat (3D, V7); 0: no such check.
+      double hertz_point_load = 0.;
+      /// Radius of the Hertz cylinder or sphere; 0: Body 1/Radius.
+      double hertz_radius = 0.;
+      /// A point on the Hertz symmetry axis, and its direction; empty: the
+      /// origin and the last coordinate direction.
+      std::string hertz_axis_point;
+      std::string hertz_axis_direction;
 
       /// Declares the "Checks" subsection.
       static void
