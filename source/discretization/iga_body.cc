@@ -1063,9 +1063,12 @@ namespace igabde
     SurfacePoint<dim>
     IgaBody<dim>::closest_surface_point(const types::boundary_id face,
                                         const Point<dim>        &location,
-                                        const SurfacePoint<dim> &) const
+                                        const SurfacePoint<dim> &nearest) const
     {
-      const Point<dim>  xi = patch().closest_point_on_face(face, location);
+      // The nearest surface point (a pair point of this face) starts the
+      // search among its spans.
+      const Point<dim> xi =
+        patch().closest_point_on_face(face, location, &nearest.parametric);
       SurfacePoint<dim> point;
       point.parametric = xi;
       point.location   = patch().value(xi);

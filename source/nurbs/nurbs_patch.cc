@@ -938,7 +938,8 @@ namespace igabde
     template <int dim>
     Point<dim>
     NurbsPatch<dim>::closest_point_on_face(const unsigned int face,
-                                           const Point<dim>  &x) const
+                                           const Point<dim>  &x,
+                                           const Point<dim>  *near) const
     {
       AssertThrow(face < 2 * dim,
                   ExcMessage("NurbsPatch: face " + std::to_string(face) +
@@ -947,27 +948,60 @@ namespace igabde
       const unsigned int d = face / 2;
       const double       value_d =
         (face % 2 == 0 ? knots[d].front() : knots[d].back());
-
-      // Sample the face at breakpoints and three points per span.
-      std::array<std::vector<double>, dim> samples;
-      for (unsigned int e = 0; e < dim; ++e)
-        {
-          if (e == d)
-            samples[e] = {value_d};
-          else
-            {
-              const auto b = breakpoints(e);
-              for (unsigned int s = 0; s + 1 < b.size(); ++s)
-                for (unsigned int j = 0; j < 4; ++j)
-                  samples[e].push_back(b[s] + (b[s + 1] - b[s]) * j / 4.);
-              samples[e].push_back(b.back());
-            }
-        }
-      const Point<dim>      xi = nearest_sample(samples, x);
       std::array<bool, dim> fixed;
       fixed.fill(false);
       fixed[d] = true;
-      return minimize_distance(x, xi, fixed, nullptr);
+
+      // Sample the face at breakpoints and three points per span, over
+      // the spans [first, last) of each direction: all of them, or those
+      // within one span of near's. Returns the Newton answer and whether
+      // it lies in the sampled spans.
+      const auto project_from_samples = [&](const bool local) {
+        std::array<std::vector<double>, dim> samples;
+        Point<dim>                           lo, hi;
+        for (unsigned int e = 0; e < dim; ++e)
+          {
+            if (e == d)
+              {
+                samples[e] = {value_d};
+                lo[e] = hi[e] = value_d;
+                continue;
+              }
+            const auto   b     = breakpoints(e);
+            unsigned int first = 0, last = b.size() - 1;
+            if (local)
+              {
+                const unsigned int span = static_cast<unsigned int>(
+                  std::upper_bound(b.begin(), b.end() - 1, (*near)[e]) -
+                  b.begin() - 1);
+                first = (span > 0 ? span - 1 : 0);
+                last  = std::min<unsigned int>(span + 2, b.size() - 1);
+              }
+            for (unsigned int s = first; s < last; ++s)
+              for (unsigned int j = 0; j < 4; ++j)
+                samples[e].push_back(b[s] + (b[s + 1] - b[s]) * j / 4.);
+            samples[e].push_back(b[last]);
+            lo[e] = b[first];
+            hi[e] = b[last];
+          }
+        const Point<dim> xi =
+          minimize_distance(x, nearest_sample(samples, x), fixed, nullptr);
+        bool inside = true;
+        for (unsigned int e = 0; e < dim; ++e)
+          inside = inside && xi[e] >= lo[e] && xi[e] <= hi[e];
+        return std::make_pair(xi, inside);
+      };
+
+      if (near == nullptr)
+        return project_from_samples(false).first;
+      // Thousands of pairs project onto faces of hundreds of spans: the
+      // whole face's samples took 7 ms per point on V7's 20 x 20 face. The
+      // answer near's spans give stands when Newton stayed in them;
+      // otherwise near was not near, and the whole face is sampled.
+      const auto [xi, inside] = project_from_samples(true);
+      if (inside)
+        return xi;
+      return project_from_samples(false).first;
     }
 
 

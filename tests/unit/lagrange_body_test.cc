@@ -10,7 +10,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 namespace
 {
@@ -83,5 +85,63 @@ TEST(LagrangeBody, ContainsOnlyItsOwnPoints)
       EXPECT_TRUE(body->contains(Point<3>(3., 0.5, 1.5))) << to_string(type);
       EXPECT_FALSE(body->contains(Point<3>(6., 0., 0.))) << to_string(type);
       EXPECT_FALSE(body->contains(Point<3>(3., 0.5, 0.5))) << to_string(type);
+    }
+}
+
+
+
+// The curved beam is left-handed, so the FE_Q mesh runs its last direction
+// (y) backwards. With that direction graded (4 spans, ratio 8, toward
+// y = 0), the mesh's cells must still be the patch's spans: the nodes'
+// y values are the breakpoints and span midpoints of the patch, not their
+// mirror images 1 - y (which the mesh had before 2026-11-26: the grading
+// landed at y = 1 and a face point in a span the mirrored lookup did not
+// know crashed).
+TEST(LagrangeBody, ReflectedMeshKeepsTheGradedSpans)
+{
+  discretization::BodyDescription<3> d;
+  d.geometry = nurbs::make_curved_beam(5., 6., 1.);
+  nurbs::elevate_to_degree(d.geometry, 2);
+  nurbs::subdivide(d.geometry,
+                   std::array<unsigned int, 3>{{2, 4, 4}},
+                   std::array<double, 3>{{1., 1., 8.}});
+  const std::vector<double> breaks = d.geometry.breakpoints(2);
+  ASSERT_EQ(breaks.size(), 5u);
+  ASSERT_GT(breaks[4] - breaks[3], 4. * (breaks[1] - breaks[0]));
+
+  discretization::DiscretizationSettings settings;
+  settings.type   = discretization::Type::lagrange;
+  settings.degree = 2;
+  auto body       = discretization::create_body<3>(d, settings);
+  body->setup();
+
+  // The extrusion is linear in the parameter: y = xi_2.
+  std::vector<double> expected;
+  for (unsigned int k = 0; k + 1 < breaks.size(); ++k)
+    expected.insert(expected.end(),
+                    {breaks[k], 0.5 * (breaks[k] + breaks[k + 1])});
+  expected.push_back(breaks.back());
+  std::vector<double> ys;
+  for (types::global_dof_index i = 0; i < body->n_dofs(); ++i)
+    ys.push_back(body->dof_location(i)[1]);
+  std::sort(ys.begin(), ys.end());
+  ys.erase(std::unique(ys.begin(),
+                       ys.end(),
+                       [](const double a, const double b) {
+                         return std::abs(a - b) < 1e-12;
+                       }),
+           ys.end());
+  ASSERT_EQ(ys.size(), expected.size());
+  for (unsigned int k = 0; k < ys.size(); ++k)
+    EXPECT_NEAR(ys[k], expected[k], 1e-12) << k;
+
+  // A face point in every span of the r = 5 face along y lies on that
+  // face at the parametric y asked for.
+  for (unsigned int k = 0; k + 1 < breaks.size(); ++k)
+    {
+      const double y = 0.5 * (breaks[k] + breaks[k + 1]);
+      const auto   p = body->face_point(0, Point<2>(0.3, y));
+      EXPECT_NEAR(p.location[1], y, 1e-12);
+      EXPECT_NEAR(std::hypot(p.location[0], p.location[2]), 5., 1e-3);
     }
 }

@@ -430,6 +430,40 @@ TEST(NurbsPatch, ClosestPoints)
 
 
 
+// A start near the answer (the nearest of a face's pair points) searches
+// only the spans around it; the answer is the whole face's, and a start on
+// the wrong side of the face still finds it (the whole face is searched
+// when Newton leaves the spans around the start).
+TEST(NurbsPatch, ClosestPointOnFaceFromANearStart)
+{
+  NurbsPatch<3> beam = make_curved_beam(5., 6., 1.);
+  elevate_to_degree(beam, 2);
+  subdivide(beam, std::array<unsigned int, 3>{{2, 16, 6}});
+  std::mt19937                           random(7);
+  std::uniform_real_distribution<double> unit(0., 1.);
+  for (unsigned int k = 0; k < 20; ++k)
+    {
+      const double   t = 0.05 + 1.4 * unit(random), y = unit(random);
+      const Point<3> x(4.8 * std::cos(t), y, 4.8 * std::sin(t));
+      const Point<3> whole = beam.closest_point_on_face(0, x);
+      // Near: a point of the face about one span away.
+      Point<3> near        = whole;
+      near[1]              = std::min(1., whole[1] + 0.06);
+      near[2]              = std::max(0., whole[2] - 0.1);
+      const Point<3> local = beam.closest_point_on_face(0, x, &near);
+      EXPECT_LT((beam.value(local) - beam.value(whole)).norm(), 1e-11) << k;
+      // A start at the far end of the face.
+      Point<3> far            = whole;
+      far[1]                  = (whole[1] < 0.5 ? 1. : 0.);
+      far[2]                  = (whole[2] < 0.5 ? 1. : 0.);
+      const Point<3> from_far = beam.closest_point_on_face(0, x, &far);
+      EXPECT_LT((beam.value(from_far) - beam.value(whole)).norm(), 1e-11) << k;
+      EXPECT_NEAR((beam.value(whole) - x).norm(), 0.2, 1e-11);
+    }
+}
+
+
+
 TEST(NurbsParametricMesh, CellsAreKnotSpans)
 {
   NurbsPatch<2> plate = make_plate_with_hole(1., 4.);

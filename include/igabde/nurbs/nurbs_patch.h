@@ -121,9 +121,18 @@ namespace igabde
        * @brief Closest parametric point on the face @p face to the physical
        * point @p x (Newton from a sampled start). Returns xi in the volume
        * parametric coordinates (the face coordinate fixed).
+       *
+       * The start is the nearest of the images of the breakpoints and three
+       * points per span of the face. With @p near (a parametric point of
+       * the face near the answer, e.g. the nearest of a set of surface
+       * points) only the spans within one span of @p near are sampled; the
+       * whole face is sampled after all when the answer found there is
+       * farther from @p x than the image of @p near.
        */
       Point<dim>
-      closest_point_on_face(const unsigned int face, const Point<dim> &x) const;
+      closest_point_on_face(const unsigned int face,
+                            const Point<dim>  &x,
+                            const Point<dim>  *near = nullptr) const;
 
       /**
        * @brief The centroid of the face @p face (its area-weighted mean
