@@ -395,6 +395,7 @@ namespace igabde
           geometry.patches.push_back(read_patch<dim>(node, patch_where));
           index_of_id[id] = geometry.patches.size() - 1;
           check_jacobian(geometry.patches.back(), patch_where);
+          check_patch_closure(geometry.patches.back(), patch_where);
         }
 
       if (multipatch != nullptr)
@@ -631,6 +632,100 @@ namespace igabde
 
     template <int dim>
     void
+    check_patch_closure(const NurbsPatch<dim> &patch, const std::string &where)
+    {
+      const double diameter   = net_diameter(patch);
+      const auto   breaks     = all_breakpoints(patch);
+      const auto   face_value = [&](const unsigned int face) {
+        return face % 2 == 0 ? breaks[face / 2].front() :
+                                 breaks[face / 2].back();
+      };
+      // The face's measure: 4 Gauss points per span and face direction,
+      // |cof(J) e_d| the face's area (length) element.
+      for (unsigned int face = 0; face < 2 * dim; ++face)
+        {
+          const unsigned int                   d = face / 2;
+          std::array<std::vector<double>, dim> b = breaks;
+          std::array<unsigned int, dim>        n;
+          n.fill(4);
+          std::vector<double> weights;
+          b[d]                                  = {0., 1.};
+          n[d]                                  = 1;
+          double                        measure = 0.;
+          const std::vector<Point<dim>> points =
+            gauss_points<dim>(b, n, &weights);
+          for (unsigned int q = 0; q < points.size(); ++q)
+            {
+              Point<dim> xi = points[q];
+              xi[d]         = face_value(face);
+              measure +=
+                weights[q] * cofactor_column(patch.jacobian(xi), d).norm();
+            }
+          std::ostringstream m;
+          m << where << "face " << face << " (G+Smo side " << face + 1
+            << ") collapses: its " << (dim == 2 ? "length" : "area") << " is "
+            << measure
+            << ", a pole where its control points are one point but "
+               "separate unknowns, so the body would be punctured there "
+               "(gluing a patch to itself is not built); model the part "
+               "away from the pole, e.g. a sector of a sphere as "
+               "contrib/geometry/sphere-sector writes it.";
+          AssertThrow(measure > 1e-8 * std::pow(diameter, dim - 1),
+                      base::ExcInput(m.str()));
+        }
+      // Two faces that coincide.
+      for (unsigned int f = 0; f < 2 * dim; ++f)
+        for (unsigned int g = f + 1; g < 2 * dim; ++g)
+          {
+            std::array<std::vector<double>, dim> samples;
+            for (unsigned int d = 0; d < dim; ++d)
+              if (d == f / 2)
+                samples[d] = {face_value(f)};
+              else
+                for (unsigned int e = 0; e + 1 < breaks[d].size(); ++e)
+                  for (unsigned int k = 0; k < 5; ++k)
+                    samples[d].push_back(breaks[d][e] +
+                                         (breaks[d][e + 1] - breaks[d][e]) * k /
+                                           4.);
+            const auto on_g = [&](const Point<dim> &xi) {
+              const Point<dim> x = patch.value(xi);
+              return x.distance(patch.value(
+                       patch.closest_point_on_face(g, x))) <= 1e-8 * diameter;
+            };
+            // The face's middle first: off g for every pair of faces that
+            // merely share an edge, so the samples are tried only where
+            // the faces may coincide.
+            Point<dim> middle;
+            for (unsigned int d = 0; d < dim; ++d)
+              middle[d] =
+                (d == f / 2 ? face_value(f) :
+                              0.5 * (breaks[d].front() + breaks[d].back()));
+            bool all_on = on_g(middle);
+            if (all_on)
+              for (const Point<dim> &xi : tensor_product_points<dim>(samples))
+                if (!on_g(xi))
+                  {
+                    all_on = false;
+                    break;
+                  }
+            AssertThrow(
+              !all_on,
+              base::ExcInput(
+                where + "faces " + std::to_string(f) + " and " +
+                std::to_string(g) + " (G+Smo sides " + std::to_string(f + 1) +
+                " and " + std::to_string(g + 1) +
+                ") coincide: the patch closes on itself (a full ring or "
+                "tube), and a body of one patch would have a slit there "
+                "(gluing a patch to itself is not built); model a "
+                "symmetric part of it instead, e.g. a half or a quarter "
+                "with symmetry supports on the cuts."));
+          }
+    }
+
+
+
+    template <int dim>
+    void
     check_interfaces(const MultiPatchGeometry<dim> &geometry,
                      const std::string             &where)
     {
@@ -726,6 +821,10 @@ namespace igabde
     check_jacobian<2>(const NurbsPatch<2> &, const std::string &);
     template void
     check_jacobian<3>(const NurbsPatch<3> &, const std::string &);
+    template void
+    check_patch_closure<2>(const NurbsPatch<2> &, const std::string &);
+    template void
+    check_patch_closure<3>(const NurbsPatch<3> &, const std::string &);
     template void
     check_interfaces<2>(const MultiPatchGeometry<2> &, const std::string &);
     template void

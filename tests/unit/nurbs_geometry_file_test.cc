@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <iomanip>
 #include <sstream>
 
 using namespace dealii;
@@ -413,4 +414,73 @@ TEST(NurbsFaceInterpolation, CollocatesAtTheGrevillePointsOfCurvedFaces)
   subdivide(beam, {{2, 6, 3}});
   for (unsigned int face = 0; face < 6; ++face)
     check(beam, face);
+}
+
+
+
+// A patch that meets itself would be a slit or a puncture in a body of one
+// patch: a full ring (its two angular ends coincide) and a quarter disc
+// whose radial direction starts at the centre (the face r = 0 is one
+// point) are refused with what to model instead; the quarter annulus, whose
+// faces are all distinct and of positive length, is read.
+TEST(GeometryFile, PatchesThatMeetThemselvesAreRefused)
+{
+  const cli::ScratchFolder folder("geometry-closure", "unit");
+  const double             h = std::sqrt(0.5);
+  std::ostringstream       ring, ring_weights;
+  ring << std::setprecision(17);
+  ring_weights << std::setprecision(17);
+  const double circle[9][3] = {{1, 0, 1},
+                               {1, 1, h},
+                               {0, 1, 1},
+                               {-1, 1, h},
+                               {-1, 0, 1},
+                               {-1, -1, h},
+                               {0, -1, 1},
+                               {1, -1, h},
+                               {1, 0, 1}};
+  for (const double r : {1., 2.})
+    for (const auto &c : circle)
+      {
+        ring << r * c[0] << ' ' << r * c[1] << '\n';
+        ring_weights << c[2] << '\n';
+      }
+  expect_refused(folder,
+                 "ring.xml",
+                 xml(patch_2d("0",
+                              "0 0 0 0.25 0.25 0.5 0.5 0.75 0.75 1 1 1",
+                              "0 0 1 1",
+                              ring.str(),
+                              ring_weights.str(),
+                              "2",
+                              "1")),
+                 "faces 0 and 1 (G+Smo sides 1 and 2) coincide");
+
+  std::ostringstream pole;
+  pole << std::setprecision(17) << "0 0\n0 0\n0 0\n1 0\n1 1\n0 1\n";
+  expect_refused(folder,
+                 "pole.xml",
+                 xml(patch_2d("0",
+                              "0 0 0 1 1 1",
+                              "0 0 1 1",
+                              pole.str(),
+                              "1\n" + std::to_string(h) + "\n1\n1\n" +
+                                std::to_string(h) + "\n1\n",
+                              "2",
+                              "1")),
+                 "face 2 (G+Smo side 3) collapses");
+
+  std::ostringstream annulus;
+  annulus << std::setprecision(17) << "1 0\n1 1\n0 1\n2 0\n2 2\n0 2\n";
+  const std::string path =
+    write(folder,
+          "annulus.xml",
+          xml(patch_2d("0",
+                       "0 0 0 1 1 1",
+                       "0 0 1 1",
+                       annulus.str(),
+                       "1\n0.70710678118654757\n1\n1\n0.70710678118654757\n1\n",
+                       "2",
+                       "1")));
+  EXPECT_EQ(read_geometry_file<2>(path).patches.size(), 1u);
 }

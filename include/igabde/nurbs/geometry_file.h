@@ -95,6 +95,20 @@ namespace igabde
     check_jacobian(const NurbsPatch<dim> &patch, const std::string &where);
 
     /**
+     * @brief Refuses (base::ExcInput prefixed by @p where) a patch that
+     * meets itself, which a body of one patch would hold as a slit or a
+     * puncture: a face that collapses (its area, or length in 2D, below
+     * 1e-8 of the patch's diameter^(dim-1): a pole, where the face's control
+     * points are one point but separate unknowns), or two faces that
+     * coincide (every sample of one, the images of 5 points per knot span
+     * and direction, within 1e-8 of the diameter of the other: a closed
+     * ring or tube). Gluing a patch to itself is not built.
+     */
+    template <int dim>
+    void
+    check_patch_closure(const NurbsPatch<dim> &patch, const std::string &where);
+
+    /**
      * @brief Refuses (base::ExcInput prefixed by @p where) an interface
      * whose two faces do not coincide: points on each face (the images of
      * 5 points per knot span and direction) must lie on the other face
