@@ -23,8 +23,8 @@ mpi_ranks is N and its ranks list names which bodies each rank factorised
 Usage: tests/mpi_reproduce_test.py IGABDE N [--all]
   --all: every scene of prm/ with both discretisations and both contact
          paths (minutes); without it a set that covers one and two bodies,
-         2D and 3D, friction with load steps, both paths and both
-         discretisations.
+         2D and 3D, friction with load steps, both paths, both
+         discretisations and a geometry file.
 """
 
 import json
@@ -45,6 +45,8 @@ QUICK = [
     ("v5-hertz-2d", "nurbs", "condensed"),
     ("b1-cantilever-beams", "nurbs", "condensed"),
     ("v6-cylinder-on-block", "nurbs", "full"),
+    # A geometry file read by every rank (relative to the scene's folder).
+    ("v7-sphere-on-block", "nurbs", "condensed"),
 ]
 
 

@@ -525,25 +525,40 @@ namespace igabde
                 pcout << "= " << worst;
               pcout << std::defaultfloat << std::setprecision(6) << std::endl;
             }
-          const double hertz_radius = (parameters.checks.hertz_radius > 0. ?
-                                         parameters.checks.hertz_radius :
-                                         parameters.body1.radius);
+          // What the 2D and 3D Hertz checks share: the radius, E* of the
+          // two bodies (the second rigid when there is none), the axis and
+          // the depth of Body 1's elements under the contact.
+          const auto set_hertz_inputs = [&](auto &hertz) {
+            hertz.radius = (parameters.checks.hertz_radius > 0. ?
+                              parameters.checks.hertz_radius :
+                              parameters.body1.radius);
+            hertz.effective_modulus =
+              postprocess::effective_modulus<dim>(bodies[0]->material(),
+                                                  bodies.size() > 1 ?
+                                                    &bodies[1]->material() :
+                                                    nullptr);
+            std::tie(hertz.axis_point, hertz.axis_direction) =
+              hertz_axis<dim>(parameters.checks, scene_file);
+            hertz.element_depth =
+              element_depth_under_contact(bodies[0]->geometry_patch(),
+                                          parameters.contact.slave_face,
+                                          *pairs);
+          };
+          const auto report_warnings =
+            [&](const std::vector<std::string> &messages) {
+              for (const std::string &w : messages)
+                {
+                  pcout << "  warning: " << w << std::endl;
+                  warnings.push_back(w);
+                }
+            };
           if (parameters.checks.hertz_line_load > 0.)
             {
               if constexpr (dim == 2)
                 {
                   postprocess::HertzCheck hertz;
-                  hertz.line_load         = parameters.checks.hertz_line_load;
-                  hertz.radius            = hertz_radius;
-                  hertz.effective_modulus = postprocess::effective_modulus<dim>(
-                    bodies[0]->material(),
-                    bodies.size() > 1 ? &bodies[1]->material() : nullptr);
-                  std::tie(hertz.axis_point, hertz.axis_direction) =
-                    hertz_axis<dim>(parameters.checks, scene_file);
-                  hertz.element_depth =
-                    element_depth_under_contact(bodies[0]->geometry_patch(),
-                                                parameters.contact.slave_face,
-                                                *pairs);
+                  hertz.line_load = parameters.checks.hertz_line_load;
+                  set_hertz_inputs(hertz);
                   const auto r                     = hertz.evaluate(*pairs);
                   checks["hertz_half_width"]       = r.half_width;
                   checks["hertz_half_width_exact"] = r.half_width_exact;
@@ -566,11 +581,7 @@ namespace igabde
                         << "), profile L2 error " << std::setprecision(3)
                         << r.profile_l2_error << std::setprecision(6)
                         << std::endl;
-                  for (const std::string &w : r.warnings)
-                    {
-                      pcout << "  warning: " << w << std::endl;
-                      warnings.push_back(w);
-                    }
+                  report_warnings(r.warnings);
                 }
             }
           if (parameters.checks.hertz_point_load > 0.)
@@ -578,17 +589,8 @@ namespace igabde
               if constexpr (dim == 3)
                 {
                   postprocess::HertzPointCheck hertz;
-                  hertz.load              = parameters.checks.hertz_point_load;
-                  hertz.radius            = hertz_radius;
-                  hertz.effective_modulus = postprocess::effective_modulus<dim>(
-                    bodies[0]->material(),
-                    bodies.size() > 1 ? &bodies[1]->material() : nullptr);
-                  std::tie(hertz.axis_point, hertz.axis_direction) =
-                    hertz_axis<dim>(parameters.checks, scene_file);
-                  hertz.element_depth =
-                    element_depth_under_contact(bodies[0]->geometry_patch(),
-                                                parameters.contact.slave_face,
-                                                *pairs);
+                  hertz.load = parameters.checks.hertz_point_load;
+                  set_hertz_inputs(hertz);
                   const auto r                         = hertz.evaluate(*pairs);
                   checks["hertz_contact_radius"]       = r.contact_radius;
                   checks["hertz_contact_radius_exact"] = r.contact_radius_exact;
@@ -614,11 +616,7 @@ namespace igabde
                         << r.peak_pressure_exact << "), profile L2 error "
                         << std::setprecision(3) << r.profile_l2_error
                         << std::setprecision(6) << std::endl;
-                  for (const std::string &w : r.warnings)
-                    {
-                      pcout << "  warning: " << w << std::endl;
-                      warnings.push_back(w);
-                    }
+                  report_warnings(r.warnings);
                 }
             }
         }
