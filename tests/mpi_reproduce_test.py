@@ -53,10 +53,11 @@ QUICK = [
 # Bookkeeping that moves with the thread count even in one process (each
 # rank runs on its share of the cores): a Lagrange pair weight that comes
 # out 0 with one thread and 1e-17 with two moves one unknown into the Schur
-# interface, and with it MUMPS' factor size, the path-cost inputs and
-# estimates; the coupled matrix's count of exact zeros moves by round-off.
-# None of them is a physical figure.
+# interface, and with it MUMPS' factor size and flop count, the path-cost
+# inputs and estimates; the coupled matrix's count of exact zeros moves by
+# round-off. None of them is a physical figure.
 BOOKKEEPING = ["--ignore", "factor_entries",
+               "--ignore", "factorization_flops",
                "--ignore", "contact_path_cost_inputs",
                "--ignore", "contact_path_estimated_seconds",
                "--ignore", "contact_path_reason",
