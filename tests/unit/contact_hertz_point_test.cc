@@ -10,7 +10,10 @@
 #include <cmath>
 #include <vector>
 
-namespace
+// Named, not anonymous: the unity build puts several test files in one
+// translation unit, where anonymous-namespace names (R, E, nu, ...) of
+// different files would clash.
+namespace hertz_point_test
 {
   using namespace dealii;
   using igabde::contact::PairState;
@@ -62,116 +65,116 @@ namespace
         }
     return pairs;
   }
-} // namespace
 
 
 
-// Point values of Hertz's profile: the ellipse fit is exact (p^2 is linear
-// in r^2), the peak is the profile at the pair nearest the axis, and the
-// profile errors vanish; the moment estimate is a midpoint sum of
-// int p r^2 / int p, whose error is dominated by the square-root edge,
-// O((h/a)^(3/2)) relative: at h = a/100, 1e-3 times a constant of order
-// one, so 1 % is a safe bound and 1e-6 an impossible one.
-TEST(HertzPointCheck, PointValuesOfHertzGiveItsRadiusAndPeak)
-{
-  const HertzPointCheck check =
-    check_for(Point<3>(), Tensor<1, 3>({0., 0., 1.}));
-  const double a     = std::cbrt(3. * 0.75 / (4. * check.effective_modulus));
-  const double h     = a / 100.;
-  const auto   pairs = grid_pairs(check, 150, h, false, Point<3>(), ex, ey);
-  const auto   r     = check.evaluate(pairs);
+  // Point values of Hertz's profile: the ellipse fit is exact (p^2 is linear
+  // in r^2), the peak is the profile at the pair nearest the axis, and the
+  // profile errors vanish; the moment estimate is a midpoint sum of
+  // int p r^2 / int p, whose error is dominated by the square-root edge,
+  // O((h/a)^(3/2)) relative: at h = a/100, 1e-3 times a constant of order
+  // one, so 1 % is a safe bound and 1e-6 an impossible one.
+  TEST(HertzPointCheck, PointValuesOfHertzGiveItsRadiusAndPeak)
+  {
+    const HertzPointCheck check =
+      check_for(Point<3>(), Tensor<1, 3>({0., 0., 1.}));
+    const double a     = std::cbrt(3. * 0.75 / (4. * check.effective_modulus));
+    const double h     = a / 100.;
+    const auto   pairs = grid_pairs(check, 150, h, false, Point<3>(), ex, ey);
+    const auto   r     = check.evaluate(pairs);
 
-  EXPECT_NEAR(r.contact_radius_exact, a, 1e-15);
-  EXPECT_NEAR(r.contact_radius / a, 1., 1e-10);
-  const double p0 = 3. * 0.75 / (2. * M_PI * a * a);
-  EXPECT_NEAR(r.peak_pressure_exact / p0, 1., 1e-14);
-  EXPECT_NEAR(r.peak_pressure / (p0 * std::sqrt(1. - 0.5 * h * h / (a * a))),
-              1.,
-              1e-12);
-  EXPECT_LT(r.profile_l2_error, 1e-13);
-  EXPECT_LT(r.max_pair_deviation, 1e-13);
-  EXPECT_NEAR(r.contact_radius_moment / a, 1., 1e-2);
-  EXPECT_GT(std::abs(r.contact_radius_moment / a - 1.), 1e-6);
-  EXPECT_GT(r.n_fitted, 1000u);
-  EXPECT_TRUE(r.warnings.empty());
-}
-
-
-
-// A quarter model and the whole contact give the same figures, in any
-// orientation of the axis: every figure is pointwise or a ratio of sums.
-TEST(HertzPointCheck, QuarterAndFullModelsAgreeInAnyOrientation)
-{
-  const double a = std::cbrt(3. * 0.75 / (4. * 1000. / (2. * (1. - 0.09))));
-  const double h = a / 20.;
-
-  const HertzPointCheck upright =
-    check_for(Point<3>(), Tensor<1, 3>({0., 0., 1.}));
-  const auto quarter =
-    upright.evaluate(grid_pairs(upright, 30, h, false, Point<3>(), ex, ey));
-
-  // The whole contact, about an axis through (1, 2, 3) along (1, 1, 1).
-  const Point<3>     origin(1., 2., 3.);
-  const Tensor<1, 3> n(
-    {1. / std::sqrt(3.), 1. / std::sqrt(3.), 1. / std::sqrt(3.)});
-  const Tensor<1, 3>    e1({1. / std::sqrt(2.), -1. / std::sqrt(2.), 0.});
-  const Tensor<1, 3>    e2     = cross_product_3d(n, e1);
-  const HertzPointCheck tilted = check_for(origin, 2. * n);
-  const auto            full =
-    tilted.evaluate(grid_pairs(tilted, 30, h, true, origin, e1, e2));
-
-  EXPECT_NEAR(full.contact_radius, quarter.contact_radius, 1e-12 * a);
-  EXPECT_NEAR(full.contact_radius_moment,
-              quarter.contact_radius_moment,
-              1e-12 * a);
-  EXPECT_NEAR(full.peak_pressure,
-              quarter.peak_pressure,
-              1e-12 * quarter.peak_pressure);
-  EXPECT_NEAR(full.profile_l2_error, quarter.profile_l2_error, 1e-12);
-  EXPECT_EQ(full.n_fitted, 4 * quarter.n_fitted);
-  EXPECT_EQ(full.n_inner_pairs, 4 * quarter.n_inner_pairs);
-}
+    EXPECT_NEAR(r.contact_radius_exact, a, 1e-15);
+    EXPECT_NEAR(r.contact_radius / a, 1., 1e-10);
+    const double p0 = 3. * 0.75 / (2. * M_PI * a * a);
+    EXPECT_NEAR(r.peak_pressure_exact / p0, 1., 1e-14);
+    EXPECT_NEAR(r.peak_pressure / (p0 * std::sqrt(1. - 0.5 * h * h / (a * a))),
+                1.,
+                1e-12);
+    EXPECT_LT(r.profile_l2_error, 1e-13);
+    EXPECT_LT(r.max_pair_deviation, 1e-13);
+    EXPECT_NEAR(r.contact_radius_moment / a, 1., 1e-2);
+    EXPECT_GT(std::abs(r.contact_radius_moment / a - 1.), 1e-6);
+    EXPECT_GT(r.n_fitted, 1000u);
+    EXPECT_TRUE(r.warnings.empty());
+  }
 
 
 
-// A profile that is not Hertz's is measured as such: pressures 10 % above
-// Hertz's everywhere give a peak 10 % high, the same radius (a scaled
-// ellipse has the same zero), and profile errors of 10 %.
-TEST(HertzPointCheck, ScaledProfileIsMeasuredAsScaled)
-{
-  const HertzPointCheck check =
-    check_for(Point<3>(), Tensor<1, 3>({0., 0., 1.}));
-  const double a = check.evaluate({}).contact_radius_exact;
-  auto pairs     = grid_pairs(check, 40, a / 25., false, Point<3>(), ex, ey);
-  for (auto &pair : pairs)
-    pair.force_local[0] *= 1.1;
-  const auto r = check.evaluate(pairs);
-  EXPECT_NEAR(r.contact_radius / a, 1., 1e-10);
-  EXPECT_NEAR(r.profile_l2_error, 0.1, 1e-12);
-  const double p_first = r.peak_pressure / 1.1;
-  EXPECT_NEAR(r.max_pair_deviation,
-              0.1 * p_first / r.peak_pressure_exact,
-              1e-12);
-}
+  // A quarter model and the whole contact give the same figures, in any
+  // orientation of the axis: every figure is pointwise or a ratio of sums.
+  TEST(HertzPointCheck, QuarterAndFullModelsAgreeInAnyOrientation)
+  {
+    const double a = std::cbrt(3. * 0.75 / (4. * 1000. / (2. * (1. - 0.09))));
+    const double h = a / 20.;
+
+    const HertzPointCheck upright =
+      check_for(Point<3>(), Tensor<1, 3>({0., 0., 1.}));
+    const auto quarter =
+      upright.evaluate(grid_pairs(upright, 30, h, false, Point<3>(), ex, ey));
+
+    // The whole contact, about an axis through (1, 2, 3) along (1, 1, 1).
+    const Point<3>     origin(1., 2., 3.);
+    const Tensor<1, 3> n(
+      {1. / std::sqrt(3.), 1. / std::sqrt(3.), 1. / std::sqrt(3.)});
+    const Tensor<1, 3>    e1({1. / std::sqrt(2.), -1. / std::sqrt(2.), 0.});
+    const Tensor<1, 3>    e2     = cross_product_3d(n, e1);
+    const HertzPointCheck tilted = check_for(origin, 2. * n);
+    const auto            full =
+      tilted.evaluate(grid_pairs(tilted, 30, h, true, origin, e1, e2));
+
+    EXPECT_NEAR(full.contact_radius, quarter.contact_radius, 1e-12 * a);
+    EXPECT_NEAR(full.contact_radius_moment,
+                quarter.contact_radius_moment,
+                1e-12 * a);
+    EXPECT_NEAR(full.peak_pressure,
+                quarter.peak_pressure,
+                1e-12 * quarter.peak_pressure);
+    EXPECT_NEAR(full.profile_l2_error, quarter.profile_l2_error, 1e-12);
+    EXPECT_EQ(full.n_fitted, 4 * quarter.n_fitted);
+    EXPECT_EQ(full.n_inner_pairs, 4 * quarter.n_inner_pairs);
+  }
 
 
 
-// Too few pairs in the contact zone, or elements deeper than twice the
-// contact radius, are said: the figures then measure the mesh.
-TEST(HertzPointCheck, UnresolvedZoneAndDeepElementsAreSaid)
-{
-  HertzPointCheck check = check_for(Point<3>(), Tensor<1, 3>({0., 0., 1.}));
-  const double    a     = check.evaluate({}).contact_radius_exact;
-  const auto      coarse =
-    check.evaluate(grid_pairs(check, 4, 0.4 * a, false, Point<3>(), ex, ey));
-  ASSERT_EQ(coarse.warnings.size(), 1u);
-  EXPECT_NE(coarse.warnings[0].find("not resolved by the pairs"),
-            std::string::npos);
+  // A profile that is not Hertz's is measured as such: pressures 10 % above
+  // Hertz's everywhere give a peak 10 % high, the same radius (a scaled
+  // ellipse has the same zero), and profile errors of 10 %.
+  TEST(HertzPointCheck, ScaledProfileIsMeasuredAsScaled)
+  {
+    const HertzPointCheck check =
+      check_for(Point<3>(), Tensor<1, 3>({0., 0., 1.}));
+    const double a = check.evaluate({}).contact_radius_exact;
+    auto pairs     = grid_pairs(check, 40, a / 25., false, Point<3>(), ex, ey);
+    for (auto &pair : pairs)
+      pair.force_local[0] *= 1.1;
+    const auto r = check.evaluate(pairs);
+    EXPECT_NEAR(r.contact_radius / a, 1., 1e-10);
+    EXPECT_NEAR(r.profile_l2_error, 0.1, 1e-12);
+    const double p_first = r.peak_pressure / 1.1;
+    EXPECT_NEAR(r.max_pair_deviation,
+                0.1 * p_first / r.peak_pressure_exact,
+                1e-12);
+  }
 
-  check.element_depth = 3. * a;
-  const auto deep =
-    check.evaluate(grid_pairs(check, 40, a / 20., false, Point<3>(), ex, ey));
-  ASSERT_EQ(deep.warnings.size(), 1u);
-  EXPECT_NE(deep.warnings[0].find("more than twice the contact radius"),
-            std::string::npos);
-}
+
+
+  // Too few pairs in the contact zone, or elements deeper than twice the
+  // contact radius, are said: the figures then measure the mesh.
+  TEST(HertzPointCheck, UnresolvedZoneAndDeepElementsAreSaid)
+  {
+    HertzPointCheck check = check_for(Point<3>(), Tensor<1, 3>({0., 0., 1.}));
+    const double    a     = check.evaluate({}).contact_radius_exact;
+    const auto      coarse =
+      check.evaluate(grid_pairs(check, 4, 0.4 * a, false, Point<3>(), ex, ey));
+    ASSERT_EQ(coarse.warnings.size(), 1u);
+    EXPECT_NE(coarse.warnings[0].find("not resolved by the pairs"),
+              std::string::npos);
+
+    check.element_depth = 3. * a;
+    const auto deep =
+      check.evaluate(grid_pairs(check, 40, a / 20., false, Point<3>(), ex, ey));
+    ASSERT_EQ(deep.warnings.size(), 1u);
+    EXPECT_NE(deep.warnings[0].find("more than twice the contact radius"),
+              std::string::npos);
+  }
+} // namespace hertz_point_test

@@ -21,7 +21,10 @@
 #include <string>
 #include <vector>
 
-namespace
+// Named, not anonymous: the unity build puts several test files in one
+// translation unit, where anonymous-namespace names (R, E, nu, ...) of
+// different files would clash.
+namespace v7_hertz_test
 {
   constexpr double R = 1., E = 1000., nu = 0.3, traction = 3.75;
 
@@ -117,23 +120,23 @@ namespace
     // the closed-form area.
     EXPECT_NEAR(4. * force / P, 1., area_tolerance);
   }
-} // namespace
 
 
 
-TEST(ContactV7Hertz, NurbsContactRadiusAndPeakWithinTwoPercent)
-{
-  // The NURBS face is the exact sphere: only quadrature error.
-  expect_hertz(run_v7("nurbs", ""), 1e-8);
-}
+  TEST(ContactV7Hertz, NurbsContactRadiusAndPeakWithinTwoPercent)
+  {
+    // The NURBS face is the exact sphere: only quadrature error.
+    expect_hertz(run_v7("nurbs", ""), 1e-8);
+  }
 
 
 
-TEST(ContactV7Hertz, LagrangeContactRadiusAndPeakWithinTwoPercent)
-{
-  // FE_Q(2) interpolates the curved face: its area is off by O(theta^4)
-  // for spans of angle theta, at most 0.11 rad here (the coarsest of the
-  // graded spans): 1.5e-4 times a small constant (2.3e-7 measured).
-  expect_hertz(run_v7("lagrange", "--set 'Discretization/Type=lagrange'"),
-               1e-5);
-}
+  TEST(ContactV7Hertz, LagrangeContactRadiusAndPeakWithinTwoPercent)
+  {
+    // FE_Q(2) interpolates the curved face: its area is off by O(theta^4)
+    // for spans of angle theta, at most 0.11 rad here (the coarsest of the
+    // graded spans): 1.5e-4 times a small constant (2.3e-7 measured).
+    expect_hertz(run_v7("lagrange", "--set 'Discretization/Type=lagrange'"),
+                 1e-5);
+  }
+} // namespace v7_hertz_test
