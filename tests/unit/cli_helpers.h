@@ -8,9 +8,11 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <string>
 #include <sys/wait.h>
 #include <unistd.h>
+#include <vector>
 
 namespace cli
 {
@@ -146,6 +148,25 @@ namespace cli
     std::ifstream in(path);
     return std::string((std::istreambuf_iterator<char>(in)),
                        std::istreambuf_iterator<char>());
+  }
+
+  /// The rows of the CSV file @p path split at commas (the header first);
+  /// no quoting, as igabde writes none.
+  inline std::vector<std::vector<std::string>>
+  read_csv(const std::string &path)
+  {
+    std::vector<std::vector<std::string>> rows;
+    std::ifstream                         in(path);
+    std::string                           line;
+    while (std::getline(in, line))
+      {
+        rows.emplace_back();
+        std::stringstream s(line);
+        std::string       cell;
+        while (std::getline(s, cell, ','))
+          rows.back().push_back(cell);
+      }
+    return rows;
   }
 } // namespace cli
 

@@ -65,22 +65,24 @@ namespace
                               cli::join(scratch.path, "out/summary.json")),
                             nullptr,
                             false);
-    std::ifstream in(cli::join(scratch.path, "out/contact-0001.csv"));
-    std::string   line;
-    std::getline(in, line);
-    EXPECT_EQ(line,
-              "pair,x,y,area,gap,p_n,p_t1,pressure,recovered_pressure,"
-              "slip_t1,status");
-    while (std::getline(in, line))
-      {
-        std::vector<std::string> cells;
-        std::stringstream        s(line);
-        std::string              cell;
-        while (std::getline(s, cell, ','))
-          cells.push_back(cell);
-        run.pairs.push_back(std::array<double, 3>{
-          {std::stod(cells[1]), std::stod(cells[7]), std::stod(cells[5])}});
-      }
+    const auto rows =
+      cli::read_csv(cli::join(scratch.path, "out/contact-0001.csv"));
+    EXPECT_FALSE(rows.empty());
+    EXPECT_EQ(rows.empty() ? std::vector<std::string>() : rows.front(),
+              (std::vector<std::string>{"pair",
+                                        "x",
+                                        "y",
+                                        "area",
+                                        "gap",
+                                        "p_n",
+                                        "p_t1",
+                                        "pressure",
+                                        "recovered_pressure",
+                                        "slip_t1",
+                                        "status"}));
+    for (std::size_t r = 1; r < rows.size(); ++r)
+      run.pairs.push_back(std::array<double, 3>{
+        {std::stod(rows[r][1]), std::stod(rows[r][7]), std::stod(rows[r][5])}});
     return run;
   }
 

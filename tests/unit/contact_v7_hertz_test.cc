@@ -49,38 +49,30 @@ namespace v7_hertz_test
   run_v7(const std::string &name, const std::string &sets)
   {
     const cli::ScratchFolder scratch(name, "v7");
-    const auto               result = cli::run_igabde(
-      "'" +
-        cli::join(std::string(IGABDE_SOURCE_DIR),
-                  "prm/v7-sphere-on-block.prm") +
-        "' --quiet --set 'Output/Directory=out' --set 'Output/Print "
-                      "timing=false' " +
-        sets,
-      scratch.path);
-    EXPECT_EQ(result.status, 0) << result.output;
+    const cli::SceneRun      scene =
+      cli::run_prm_scene(scratch.path, "v7-sphere-on-block.prm", sets);
+    EXPECT_EQ(scene.status, 0) << scene.output;
     V7Run run;
-    run.summary =
-      nlohmann::json::parse(cli::read_file(
-                              cli::join(scratch.path, "out/summary.json")),
-                            nullptr,
-                            false);
-    std::ifstream in(cli::join(scratch.path, "out/contact-0001.csv"));
-    std::string   line;
-    std::getline(in, line);
-    EXPECT_EQ(line,
-              "pair,x,y,z,area,gap,p_n,pressure,recovered_pressure,status");
-    while (std::getline(in, line))
-      {
-        std::vector<std::string> cells;
-        std::stringstream        s(line);
-        std::string              cell;
-        while (std::getline(s, cell, ','))
-          cells.push_back(cell);
-        run.pairs.push_back(std::array<double, 4>{{std::stod(cells[1]),
-                                                   std::stod(cells[2]),
-                                                   std::stod(cells[6]),
-                                                   std::stod(cells[7])}});
-      }
+    run.summary = scene.summary;
+    const auto rows =
+      cli::read_csv(cli::join(scratch.path, "out/contact-0001.csv"));
+    EXPECT_FALSE(rows.empty());
+    EXPECT_EQ(rows.empty() ? std::vector<std::string>() : rows.front(),
+              (std::vector<std::string>{"pair",
+                                        "x",
+                                        "y",
+                                        "z",
+                                        "area",
+                                        "gap",
+                                        "p_n",
+                                        "pressure",
+                                        "recovered_pressure",
+                                        "status"}));
+    for (std::size_t r = 1; r < rows.size(); ++r)
+      run.pairs.push_back(std::array<double, 4>{{std::stod(rows[r][1]),
+                                                 std::stod(rows[r][2]),
+                                                 std::stod(rows[r][6]),
+                                                 std::stod(rows[r][7])}});
     return run;
   }
 
