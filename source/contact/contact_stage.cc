@@ -115,12 +115,12 @@ namespace igabde
       TimerOutput::Scope t(timer, "contact: pairs");
       if (!obstacle)
         master_face =
-          std::make_unique<BodyFace<dim>>(*bodies[1], settings.master_face);
+          std::make_unique<BodyFace<dim>>(*bodies[1], settings.master_faces);
       const ContactSurface<dim> &master =
         obstacle ? static_cast<const ContactSurface<dim> &>(*obstacle) :
                    *master_face;
       pair_list = pairing->make_pairs(*bodies[0],
-                                      settings.slave_face,
+                                      settings.slave_faces,
                                       master,
                                       settings.context);
 

@@ -1,17 +1,37 @@
+#include <igabde/base/utilities.h>
+
 #include <igabde/contact/contact_surface.h>
 #include <igabde/contact/obstacle.h>
+
+#include <limits>
 
 namespace igabde
 {
   namespace contact
   {
     template <int dim>
-    BodyFace<dim>::BodyFace(const discretization::Body<dim> &body,
-                            const types::boundary_id         face)
+    BodyFace<dim>::BodyFace(const discretization::Body<dim>       &body,
+                            const std::vector<types::boundary_id> &faces)
       : body(body)
-      , face(face)
-      , samples(body.surface_points(face))
-    {}
+      , faces(faces)
+    {
+      Assert(!faces.empty(), ExcInternalError());
+      for (const types::boundary_id face : faces)
+        {
+          first_sample.push_back(samples.size());
+          const auto points = body.surface_points(face);
+          samples.insert(samples.end(), points.begin(), points.end());
+          if (faces.size() > 1)
+            {
+              std::vector<Point<dim>> locations;
+              for (const auto &p : points)
+                locations.push_back(p.location);
+              face_index.push_back(
+                std::make_unique<base::NearestPoints<dim>>(locations));
+            }
+        }
+      first_sample.push_back(samples.size());
+    }
 
 
 
@@ -28,7 +48,10 @@ namespace igabde
     std::string
     BodyFace<dim>::description() const
     {
-      return body.name() + "'s face " + std::to_string(face);
+      std::string names;
+      for (const types::boundary_id face : faces)
+        names += (names.empty() ? "" : "+") + body.face_name(face);
+      return body.name() + "'s face " + names;
     }
 
 
@@ -49,7 +72,27 @@ namespace igabde
       const discretization::SurfacePoint<dim> *nearest) const
     {
       Assert(nearest != nullptr, ExcInternalError());
-      return body.closest_surface_point(face, location, *nearest);
+      if (faces.size() == 1)
+        return body.closest_surface_point(faces[0], location, *nearest);
+      // Every face from its own nearest sample; the closest wins.
+      discretization::SurfacePoint<dim> best;
+      double best_distance = std::numeric_limits<double>::max();
+      for (unsigned int k = 0; k < faces.size(); ++k)
+        {
+          if (first_sample[k + 1] == first_sample[k])
+            continue;
+          const auto &start =
+            samples[first_sample[k] + face_index[k]->nearest(location)];
+          const auto point =
+            body.closest_surface_point(faces[k], location, start);
+          const double distance = point.location.distance(location);
+          if (distance < best_distance)
+            {
+              best_distance = distance;
+              best          = point;
+            }
+        }
+      return best;
     }
 
 
@@ -80,7 +123,14 @@ namespace igabde
     discretization::FaceGrid<dim>
     BodyFace<dim>::face_grid() const
     {
-      return body.face_grid(face);
+      AssertThrow(faces.size() == 1,
+                  base::ExcInput(
+                    description() +
+                    ": face coordinates exist on one patch face; the "
+                    "weighted-gap pairing needs a master surface of one "
+                    "face in this version (use Pairing = node-to-surface "
+                    "for a master surface over several patches)."));
+      return body.face_grid(faces[0]);
     }
 
 
@@ -89,7 +139,7 @@ namespace igabde
     discretization::FacePoint<dim>
     BodyFace<dim>::face_point(const Point<dim - 1> &eta) const
     {
-      return body.face_point(face, eta);
+      return body.face_point(faces[0], eta);
     }
 
 

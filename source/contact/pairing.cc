@@ -13,6 +13,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <numeric>
 #include <sstream>
 
 namespace igabde
@@ -148,22 +149,86 @@ namespace igabde
         pair.gap = std::max(pair.gap, 0.);
         return pair;
       }
+      /**
+       * The points @p points of several faces with the coincident ones
+       * (within 1e-10 of the cloud's size: the edge two patch faces share)
+       * made one: tributary areas summed, normals averaged by area, the
+       * first one's operator (the faces' traces agree there: the patches'
+       * control points are glued).
+       */
+      template <int dim>
+      std::vector<discretization::SurfacePoint<dim>>
+      merge_coincident_points(
+        const std::vector<discretization::SurfacePoint<dim>> &points)
+      {
+        const double tolerance = 1e-10 * cloud_size(points);
+        // Sorted along x, coincident points are neighbours within the
+        // tolerance in x.
+        std::vector<unsigned int> order(points.size());
+        std::iota(order.begin(), order.end(), 0u);
+        std::sort(order.begin(), order.end(), [&](const auto a, const auto b) {
+          return points[a].location[0] < points[b].location[0];
+        });
+        std::vector<int> merged_into(points.size(), -1);
+        for (unsigned int k = 0; k < order.size(); ++k)
+          for (unsigned int l = k + 1;
+               l < order.size() &&
+               points[order[l]].location[0] - points[order[k]].location[0] <=
+                 tolerance;
+               ++l)
+            {
+              const unsigned int a = std::min(order[k], order[l]);
+              const unsigned int b = std::max(order[k], order[l]);
+              if (merged_into[b] < 0 && merged_into[a] < 0 &&
+                  points[a].location.distance(points[b].location) <= tolerance)
+                merged_into[b] = a;
+            }
+        std::vector<discretization::SurfacePoint<dim>> result;
+        std::vector<int>                               position(points.size());
+        std::vector<Tensor<1, dim>>                    normal_sum;
+        for (unsigned int i = 0; i < points.size(); ++i)
+          if (merged_into[i] < 0)
+            {
+              position[i] = result.size();
+              result.push_back(points[i]);
+              normal_sum.push_back(points[i].tributary_area * points[i].normal);
+            }
+        for (unsigned int i = 0; i < points.size(); ++i)
+          if (merged_into[i] >= 0)
+            {
+              const int p = position[merged_into[i]];
+              result[p].tributary_area += points[i].tributary_area;
+              normal_sum[p] += points[i].tributary_area * points[i].normal;
+            }
+        for (unsigned int p = 0; p < result.size(); ++p)
+          if (normal_sum[p].norm() > 0.)
+            result[p].normal = normal_sum[p] / normal_sum[p].norm();
+        return result;
+      }
     } // namespace
 
 
 
     template <int dim>
     std::vector<ContactPair<dim>>
-    PointPairing<dim>::make_pairs(const discretization::Body<dim> &slave_body,
-                                  const types::boundary_id         slave_face,
-                                  const ContactSurface<dim>       &master,
-                                  const std::string &context) const
+    PointPairing<dim>::make_pairs(
+      const discretization::Body<dim>       &slave_body,
+      const std::vector<types::boundary_id> &slave_faces,
+      const ContactSurface<dim>             &master,
+      const std::string                     &context) const
     {
-      const auto slave = slave_body.surface_points(slave_face);
+      std::vector<discretization::SurfacePoint<dim>> slave;
+      for (const types::boundary_id face : slave_faces)
+        {
+          const auto points = slave_body.surface_points(face);
+          slave.insert(slave.end(), points.begin(), points.end());
+        }
       AssertThrow(!slave.empty(),
                   base::ExcInput(context + ": Contact/Slave face " +
-                                 std::to_string(slave_face) +
+                                 slave_body.face_name(slave_faces.front()) +
                                  " of Body 1 has no contact points."));
+      if (slave_faces.size() > 1)
+        slave = merge_coincident_points(slave);
       return make_pairs(slave, master, context);
     }
 
@@ -442,21 +507,15 @@ namespace igabde
     template <int dim>
     std::vector<ContactPair<dim>>
     WeightedGapPairing<dim>::make_pairs(
-      const discretization::Body<dim> &slave_body,
-      const types::boundary_id         slave_face,
-      const ContactSurface<dim>       &master,
-      const std::string               &context) const
+      const discretization::Body<dim>       &slave_body,
+      const std::vector<types::boundary_id> &slave_faces,
+      const ContactSurface<dim>             &master,
+      const std::string                     &context) const
     {
-      constexpr unsigned int fd    = dim - 1;
-      const auto             sgrid = slave_body.face_grid(slave_face);
+      constexpr unsigned int              fd = dim - 1;
       std::unique_ptr<FaceProjector<dim>> projector;
       if (master.deformable())
         projector = std::make_unique<FaceProjector<dim>>(master, context);
-      // Gauss rule exact for N_j R_B on flat faces (degree p_s + p_m per
-      // direction) with one point to spare for the measure.
-      const unsigned int master_degree =
-        projector ? projector->grid.degree : sgrid.degree;
-      const QGauss<1> rule((sgrid.degree + master_degree) / 2 + 2);
 
       std::map<types::global_dof_index, WeightedIntegrals<dim>> integrals;
       const bool dual_basis = dual;
@@ -482,225 +541,242 @@ namespace igabde
         return m;
       };
 
-      // Slave elements, one by one.
-      std::array<unsigned int, fd> n_elements;
-      unsigned int                 n_total = 1;
-      for (unsigned int k = 0; k < fd; ++k)
+      // Slave elements, one by one, face by face: the integrals of a basis
+      // function that two faces share (glued patches) add up.
+      for (const types::boundary_id slave_face : slave_faces)
         {
-          n_elements[k] = sgrid.breaks[k].size() - 1;
-          n_total *= n_elements[k];
-        }
-      for (unsigned int element = 0; element < n_total; ++element)
-        {
-          Point<fd>                           lo, hi;
-          std::array<std::vector<double>, fd> cuts;
-          unsigned int                        rest = element;
+          const auto sgrid = slave_body.face_grid(slave_face);
+          // Gauss rule exact for N_j R_B on flat faces (degree p_s + p_m per
+          // direction) with one point to spare for the measure.
+          const unsigned int master_degree =
+            projector ? projector->grid.degree : sgrid.degree;
+          const QGauss<1> rule((sgrid.degree + master_degree) / 2 + 2);
+          std::array<unsigned int, fd> n_elements;
+          unsigned int                 n_total = 1;
           for (unsigned int k = 0; k < fd; ++k)
             {
-              const unsigned int e = rest % n_elements[k];
-              rest /= n_elements[k];
-              lo[k]   = sgrid.breaks[k][e];
-              hi[k]   = sgrid.breaks[k][e + 1];
-              cuts[k] = {lo[k], hi[k]};
+              n_elements[k] = sgrid.breaks[k].size() - 1;
+              n_total *= n_elements[k];
             }
-
-          // Cuts where the projection of the element's centre line in
-          // direction k crosses a master element edge.
-          if (projector)
-            for (unsigned int k = 0; k < fd; ++k)
-              {
-                const auto master_eta = [&](const double t) {
-                  Point<fd> eta = 0.5 * (lo + hi);
-                  eta[k]        = t;
-                  return projector->project(
-                    slave_body.face_point(slave_face, eta).location);
-                };
-                const Point<fd> at_lo = master_eta(lo[k]);
-                const Point<fd> at_hi = master_eta(hi[k]);
-                for (unsigned int c = 0; c < fd; ++c)
-                  {
-                    const auto  &mb  = projector->grid.breaks[c];
-                    const double tol = 1e-12 * (mb.back() - mb.front());
-                    for (unsigned int i = 1; i + 1 < mb.size(); ++i)
-                      {
-                        // The crossing t of master_eta(t)[c] = mb[i], by
-                        // TOMS 748 (Alefeld, Potra and Shi) on the bracket.
-                        const double fa = at_lo[c] - mb[i],
-                                     fb = at_hi[c] - mb[i];
-                        if (!((fa > tol && fb < -tol) ||
-                              (fa < -tol && fb > tol)))
-                          continue;
-                        std::uintmax_t max_iterations = 200;
-                        const auto bracket = boost::math::tools::toms748_solve(
-                          [&](const double t) {
-                            return master_eta(t)[c] - mb[i];
-                          },
-                          lo[k],
-                          hi[k],
-                          fa,
-                          fb,
-                          [&](const double x, const double y) {
-                            return std::abs(y - x) <= 1e-14 * (hi[k] - lo[k]);
-                          },
-                          max_iterations);
-                        const double t = 0.5 * (bracket.first + bracket.second);
-                        cuts[k].push_back(t);
-                      }
-                  }
-                std::sort(cuts[k].begin(), cuts[k].end());
-                cuts[k].erase(std::unique(cuts[k].begin(),
-                                          cuts[k].end(),
-                                          [&](const double x, const double y) {
-                                            return y - x <=
-                                                   1e-13 * (hi[k] - lo[k]);
-                                          }),
-                              cuts[k].end());
-              }
-
-          // The element's dual basis (biorthogonal to its face basis):
-          // psi_j = sum_k A_jk N_k with A = D M^{-1}, M_jk = int_e N_j N_k,
-          // D = diag(int_e N_j), so that int_e psi_j N_k = delta_jk D_jj.
-          std::map<types::global_dof_index, unsigned int> local;
-          Eigen::MatrixXd                                 dual;
-          if (dual_basis)
+          for (unsigned int element = 0; element < n_total; ++element)
             {
-              std::vector<std::vector<std::pair<unsigned int, double>>> values;
-              std::vector<double>                                       dAs;
-              std::array<unsigned int, fd>                              n_q1;
-              unsigned int nq_e = 1;
+              Point<fd>                           lo, hi;
+              std::array<std::vector<double>, fd> cuts;
+              unsigned int                        rest = element;
               for (unsigned int k = 0; k < fd; ++k)
                 {
-                  n_q1[k] = rule.size();
-                  nq_e *= rule.size();
+                  const unsigned int e = rest % n_elements[k];
+                  rest /= n_elements[k];
+                  lo[k]   = sgrid.breaks[k][e];
+                  hi[k]   = sgrid.breaks[k][e + 1];
+                  cuts[k] = {lo[k], hi[k]};
                 }
-              for (unsigned int q = 0; q < nq_e; ++q)
-                {
-                  Point<fd>    eta;
-                  double       weight = 1.;
-                  unsigned int qr     = q;
-                  for (unsigned int k = 0; k < fd; ++k)
-                    {
-                      const unsigned int iq = qr % n_q1[k];
-                      qr /= n_q1[k];
-                      eta[k] = lo[k] + (hi[k] - lo[k]) * rule.point(iq)[0];
-                      weight *= (hi[k] - lo[k]) * rule.weight(iq);
-                    }
-                  const auto s = slave_body.face_point(slave_face, eta);
-                  dAs.push_back(weight * s.measure);
-                  values.emplace_back();
-                  for (unsigned int a = 0; a < s.op.weights.size(); ++a)
-                    if (s.op.weights[a] != 0.)
-                      {
-                        const auto key = s.op.dofs[a][0];
-                        const auto it  = local.emplace(key, local.size()).first;
-                        values.back().emplace_back(it->second, s.op.weights[a]);
-                      }
-                }
-              const unsigned int n            = local.size();
-              Eigen::MatrixXd    M            = Eigen::MatrixXd::Zero(n, n);
-              Eigen::VectorXd    D            = Eigen::VectorXd::Zero(n);
-              double             element_area = 0.;
-              for (unsigned int q = 0; q < values.size(); ++q)
-                {
-                  element_area += dAs[q];
-                  for (const auto &[j, nj] : values[q])
-                    {
-                      D(j) += nj * dAs[q];
-                      for (const auto &[k, nk] : values[q])
-                        M(j, k) += nj * nk * dAs[q];
-                    }
-                }
-              // Functions of the cell that vanish on the face (FE_Q) have
-              // no share: identity rows keep M regular, D = 0 drops them.
-              for (unsigned int j = 0; j < n; ++j)
-                if (D(j) <= 1e-12 * element_area)
-                  {
-                    M.row(j).setZero();
-                    M.col(j).setZero();
-                    M(j, j) = 1.;
-                    D(j)    = 0.;
-                  }
-              dual = D.asDiagonal() * M.inverse();
-            }
 
-          // Every piece with the tensor Gauss rule.
-          std::array<unsigned int, fd> n_pieces;
-          unsigned int                 n_piece_total = 1;
-          for (unsigned int k = 0; k < fd; ++k)
-            {
-              n_pieces[k] = cuts[k].size() - 1;
-              n_piece_total *= n_pieces[k];
-            }
-          const unsigned int nq       = rule.size();
-          unsigned int       nq_total = 1;
-          for (unsigned int k = 0; k < fd; ++k)
-            nq_total *= nq;
-          for (unsigned int piece = 0; piece < n_piece_total; ++piece)
-            for (unsigned int q = 0; q < nq_total; ++q)
-              {
-                Point<fd>    eta;
-                double       weight = 1.;
-                unsigned int pr = piece, qr = q;
+              // Cuts where the projection of the element's centre line in
+              // direction k crosses a master element edge.
+              if (projector)
                 for (unsigned int k = 0; k < fd; ++k)
                   {
-                    const unsigned int i  = pr % n_pieces[k];
-                    const unsigned int iq = qr % nq;
-                    pr /= n_pieces[k];
-                    qr /= nq;
-                    const double a = cuts[k][i], b = cuts[k][i + 1];
-                    eta[k] = a + (b - a) * rule.point(iq)[0];
-                    weight *= (b - a) * rule.weight(iq);
-                  }
-                const auto s = slave_body.face_point(slave_face, eta);
-                const auto m = facing(s.location);
-                AssertThrow(s.normal * m.normal < 0.,
-                            base::ExcInput(
-                              not_facing(context, s.location, master)));
-                const double dA   = weight * s.measure;
-                const double g    = (s.location - m.location) * m.normal;
-                min_pointwise_gap = std::min(min_pointwise_gap, g);
-                if (!dual_basis)
-                  {
-                    for (unsigned int a = 0; a < s.op.weights.size(); ++a)
-                      if (s.op.weights[a] != 0.)
-                        {
-                          const double w  = s.op.weights[a] * dA;
-                          auto        &in = integrals[s.op.dofs[a][0]];
-                          in.area += w;
-                          in.gap += w * g;
-                          in.normal += w * m.normal;
-                          in.x1 += w * s.location;
-                          in.x2 += w * m.location;
-                          add_row<dim>(s.op, w, in.op1, dofs1);
-                          add_row<dim>(m.op, w, in.op2, dofs2);
-                        }
-                  }
-                else
-                  {
-                    Eigen::VectorXd N = Eigen::VectorXd::Zero(local.size());
-                    for (unsigned int a = 0; a < s.op.weights.size(); ++a)
-                      if (s.op.weights[a] != 0.)
-                        N(local.at(s.op.dofs[a][0])) = s.op.weights[a];
-                    const Eigen::VectorXd psi = dual * N;
-                    for (const auto &[key, j] : local)
+                    const auto master_eta = [&](const double t) {
+                      Point<fd> eta = 0.5 * (lo + hi);
+                      eta[k]        = t;
+                      return projector->project(
+                        slave_body.face_point(slave_face, eta).location);
+                    };
+                    const Point<fd> at_lo = master_eta(lo[k]);
+                    const Point<fd> at_hi = master_eta(hi[k]);
+                    for (unsigned int c = 0; c < fd; ++c)
                       {
-                        const double w_n = N(j) * dA;
-                        const double w_d = psi(j) * dA;
-                        if (w_n == 0. && w_d == 0.)
-                          continue;
-                        auto &in = integrals[key];
-                        // Areas, frames and locations with the face basis
-                        // (non-negative); gaps and operators with the dual.
-                        in.area += w_n;
-                        in.gap += w_d * g;
-                        in.normal += w_n * m.normal;
-                        in.x1 += w_n * s.location;
-                        in.x2 += w_n * m.location;
-                        add_row<dim>(s.op, w_d, in.op1, dofs1);
-                        add_row<dim>(m.op, w_d, in.op2, dofs2);
+                        const auto  &mb  = projector->grid.breaks[c];
+                        const double tol = 1e-12 * (mb.back() - mb.front());
+                        for (unsigned int i = 1; i + 1 < mb.size(); ++i)
+                          {
+                            // The crossing t of master_eta(t)[c] = mb[i], by
+                            // TOMS 748 (Alefeld, Potra and Shi) on the bracket.
+                            const double fa = at_lo[c] - mb[i],
+                                         fb = at_hi[c] - mb[i];
+                            if (!((fa > tol && fb < -tol) ||
+                                  (fa < -tol && fb > tol)))
+                              continue;
+                            std::uintmax_t max_iterations = 200;
+                            const auto     bracket =
+                              boost::math::tools::toms748_solve(
+                                [&](const double t) {
+                                  return master_eta(t)[c] - mb[i];
+                                },
+                                lo[k],
+                                hi[k],
+                                fa,
+                                fb,
+                                [&](const double x, const double y) {
+                                  return std::abs(y - x) <=
+                                         1e-14 * (hi[k] - lo[k]);
+                                },
+                                max_iterations);
+                            const double t =
+                              0.5 * (bracket.first + bracket.second);
+                            cuts[k].push_back(t);
+                          }
+                      }
+                    std::sort(cuts[k].begin(), cuts[k].end());
+                    cuts[k].erase(std::unique(cuts[k].begin(),
+                                              cuts[k].end(),
+                                              [&](const double x,
+                                                  const double y) {
+                                                return y - x <=
+                                                       1e-13 * (hi[k] - lo[k]);
+                                              }),
+                                  cuts[k].end());
+                  }
+
+              // The element's dual basis (biorthogonal to its face basis):
+              // psi_j = sum_k A_jk N_k with A = D M^{-1}, M_jk = int_e N_j N_k,
+              // D = diag(int_e N_j), so that int_e psi_j N_k = delta_jk D_jj.
+              std::map<types::global_dof_index, unsigned int> local;
+              Eigen::MatrixXd                                 dual;
+              if (dual_basis)
+                {
+                  std::vector<std::vector<std::pair<unsigned int, double>>>
+                                               values;
+                  std::vector<double>          dAs;
+                  std::array<unsigned int, fd> n_q1;
+                  unsigned int                 nq_e = 1;
+                  for (unsigned int k = 0; k < fd; ++k)
+                    {
+                      n_q1[k] = rule.size();
+                      nq_e *= rule.size();
+                    }
+                  for (unsigned int q = 0; q < nq_e; ++q)
+                    {
+                      Point<fd>    eta;
+                      double       weight = 1.;
+                      unsigned int qr     = q;
+                      for (unsigned int k = 0; k < fd; ++k)
+                        {
+                          const unsigned int iq = qr % n_q1[k];
+                          qr /= n_q1[k];
+                          eta[k] = lo[k] + (hi[k] - lo[k]) * rule.point(iq)[0];
+                          weight *= (hi[k] - lo[k]) * rule.weight(iq);
+                        }
+                      const auto s = slave_body.face_point(slave_face, eta);
+                      dAs.push_back(weight * s.measure);
+                      values.emplace_back();
+                      for (unsigned int a = 0; a < s.op.weights.size(); ++a)
+                        if (s.op.weights[a] != 0.)
+                          {
+                            const auto key = s.op.dofs[a][0];
+                            const auto it =
+                              local.emplace(key, local.size()).first;
+                            values.back().emplace_back(it->second,
+                                                       s.op.weights[a]);
+                          }
+                    }
+                  const unsigned int n            = local.size();
+                  Eigen::MatrixXd    M            = Eigen::MatrixXd::Zero(n, n);
+                  Eigen::VectorXd    D            = Eigen::VectorXd::Zero(n);
+                  double             element_area = 0.;
+                  for (unsigned int q = 0; q < values.size(); ++q)
+                    {
+                      element_area += dAs[q];
+                      for (const auto &[j, nj] : values[q])
+                        {
+                          D(j) += nj * dAs[q];
+                          for (const auto &[k, nk] : values[q])
+                            M(j, k) += nj * nk * dAs[q];
+                        }
+                    }
+                  // Functions of the cell that vanish on the face (FE_Q) have
+                  // no share: identity rows keep M regular, D = 0 drops them.
+                  for (unsigned int j = 0; j < n; ++j)
+                    if (D(j) <= 1e-12 * element_area)
+                      {
+                        M.row(j).setZero();
+                        M.col(j).setZero();
+                        M(j, j) = 1.;
+                        D(j)    = 0.;
+                      }
+                  dual = D.asDiagonal() * M.inverse();
+                }
+
+              // Every piece with the tensor Gauss rule.
+              std::array<unsigned int, fd> n_pieces;
+              unsigned int                 n_piece_total = 1;
+              for (unsigned int k = 0; k < fd; ++k)
+                {
+                  n_pieces[k] = cuts[k].size() - 1;
+                  n_piece_total *= n_pieces[k];
+                }
+              const unsigned int nq       = rule.size();
+              unsigned int       nq_total = 1;
+              for (unsigned int k = 0; k < fd; ++k)
+                nq_total *= nq;
+              for (unsigned int piece = 0; piece < n_piece_total; ++piece)
+                for (unsigned int q = 0; q < nq_total; ++q)
+                  {
+                    Point<fd>    eta;
+                    double       weight = 1.;
+                    unsigned int pr = piece, qr = q;
+                    for (unsigned int k = 0; k < fd; ++k)
+                      {
+                        const unsigned int i  = pr % n_pieces[k];
+                        const unsigned int iq = qr % nq;
+                        pr /= n_pieces[k];
+                        qr /= nq;
+                        const double a = cuts[k][i], b = cuts[k][i + 1];
+                        eta[k] = a + (b - a) * rule.point(iq)[0];
+                        weight *= (b - a) * rule.weight(iq);
+                      }
+                    const auto s = slave_body.face_point(slave_face, eta);
+                    const auto m = facing(s.location);
+                    AssertThrow(s.normal * m.normal < 0.,
+                                base::ExcInput(
+                                  not_facing(context, s.location, master)));
+                    const double dA   = weight * s.measure;
+                    const double g    = (s.location - m.location) * m.normal;
+                    min_pointwise_gap = std::min(min_pointwise_gap, g);
+                    if (!dual_basis)
+                      {
+                        for (unsigned int a = 0; a < s.op.weights.size(); ++a)
+                          if (s.op.weights[a] != 0.)
+                            {
+                              const double w  = s.op.weights[a] * dA;
+                              auto        &in = integrals[s.op.dofs[a][0]];
+                              in.area += w;
+                              in.gap += w * g;
+                              in.normal += w * m.normal;
+                              in.x1 += w * s.location;
+                              in.x2 += w * m.location;
+                              add_row<dim>(s.op, w, in.op1, dofs1);
+                              add_row<dim>(m.op, w, in.op2, dofs2);
+                            }
+                      }
+                    else
+                      {
+                        Eigen::VectorXd N = Eigen::VectorXd::Zero(local.size());
+                        for (unsigned int a = 0; a < s.op.weights.size(); ++a)
+                          if (s.op.weights[a] != 0.)
+                            N(local.at(s.op.dofs[a][0])) = s.op.weights[a];
+                        const Eigen::VectorXd psi = dual * N;
+                        for (const auto &[key, j] : local)
+                          {
+                            const double w_n = N(j) * dA;
+                            const double w_d = psi(j) * dA;
+                            if (w_n == 0. && w_d == 0.)
+                              continue;
+                            auto &in = integrals[key];
+                            // Areas, frames and locations with the face basis
+                            // (non-negative); gaps and operators with the dual.
+                            in.area += w_n;
+                            in.gap += w_d * g;
+                            in.normal += w_n * m.normal;
+                            in.x1 += w_n * s.location;
+                            in.x2 += w_n * m.location;
+                            add_row<dim>(s.op, w_d, in.op1, dofs1);
+                            add_row<dim>(m.op, w_d, in.op2, dofs2);
+                          }
                       }
                   }
-              }
+            }
         }
 
       double total = 0.;
@@ -782,7 +858,7 @@ namespace igabde
         }
       AssertThrow(!pairs.empty(),
                   base::ExcInput(context + ": Contact/Slave face " +
-                                 std::to_string(slave_face) +
+                                 slave_body.face_name(slave_faces.front()) +
                                  " of Body 1 has no contact points."));
       double size = 0.;
       for (const auto &pair : pairs)

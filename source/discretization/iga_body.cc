@@ -3,6 +3,7 @@
 #include <igabde/linear_algebra/dense_lu.h>
 
 #include <igabde/nurbs/geometry_builders.h>
+#include <igabde/nurbs/multi_patch.h>
 #include <igabde/nurbs/parametric_mesh.h>
 
 #include <igabde/discretization/iga_body.h>
@@ -35,65 +36,84 @@ namespace igabde
     IgaBody<dim>::IgaBody(const BodyDescription<dim>   &description,
                           const DiscretizationSettings &settings)
       : Body<dim>(description, settings)
-      , geometry(description.geometry)
     {
-      AssertThrow(geometry.n_control_points() > 0,
+      AssertThrow(description.geometry.n_control_points() > 0,
                   ExcMessage("Body '" + description.name +
                              "': the description has no NURBS geometry; "
                              "build one with the nurbs/geometry_builders."));
       AssertThrow(settings.degree >= 1,
                   ExcMessage("Body '" + description.name +
                              "': the NURBS degree must be at least 1."));
-      // An exact geometry cannot be lowered (a circle needs rational
-      // degree 2): running at the geometry's degree while reporting the
-      // requested one would be a silent wrong answer.
-      for (unsigned int d = 0; d < dim; ++d)
-        AssertThrow(
-          geometry.degree(d) <= settings.degree,
-          base::ExcInput(
-            "Discretization/Degree = " + std::to_string(settings.degree) +
-            " is below the degree " + std::to_string(geometry.degree(d)) +
-            " of " + description.name +
-            "'s exact geometry in parametric "
-            "direction " +
-            std::to_string(d) +
-            "; use Degree >= " + std::to_string(geometry.degree(d)) +
-            " with NURBS, or Discretization/Type = lagrange for an "
-            "FE_Q approximation of this geometry."));
-      nurbs::elevate_to_degree(geometry, settings.degree);
-      for (unsigned int r = 0; r < settings.refinements; ++r)
-        geometry.refine_uniformly(1);
+      spaces.resize(description.n_patches());
+      std::vector<nurbs::NurbsPatch<dim>> patches;
+      for (unsigned int p = 0; p < spaces.size(); ++p)
+        {
+          PatchSpace &space = spaces[p];
+          space.geometry    = description.patch(p);
+          // An exact geometry cannot be lowered (a circle needs rational
+          // degree 2): running at the geometry's degree while reporting
+          // the requested one would be a silent wrong answer.
+          for (unsigned int d = 0; d < dim; ++d)
+            AssertThrow(
+              space.geometry.degree(d) <= settings.degree,
+              base::ExcInput(
+                "Discretization/Degree = " + std::to_string(settings.degree) +
+                " is below the degree " +
+                std::to_string(space.geometry.degree(d)) + " of " +
+                description.name +
+                "'s exact geometry in parametric "
+                "direction " +
+                std::to_string(d) +
+                (spaces.size() > 1 ? " of patch " + std::to_string(p) : "") +
+                "; use Degree >= " + std::to_string(space.geometry.degree(d)) +
+                " with NURBS, or Discretization/Type = lagrange for an "
+                "FE_Q approximation of this geometry."));
+          nurbs::elevate_to_degree(space.geometry, settings.degree);
+          for (unsigned int r = 0; r < settings.refinements; ++r)
+            space.geometry.refine_uniformly(1);
 
-      nurbs::make_parametric_triangulation(geometry, parametric_mesh);
+          nurbs::make_parametric_triangulation(space.geometry, space.mesh);
+          for (unsigned int d = 0; d < dim; ++d)
+            space.breaks[d] = space.geometry.knot_vector(d).breakpoints();
+          space.orientation = space.geometry.orientation();
 
-      for (unsigned int d = 0; d < dim; ++d)
-        breaks[d] = geometry.knot_vector(d).breakpoints();
-      orientation = geometry.orientation();
+          // Newton starts for the point inversion: breakpoints and span
+          // midpoints per direction; their tensor grid is evaluated and
+          // indexed at the first inversion.
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              const auto &b = space.breaks[d];
+              for (unsigned int e = 0; e + 1 < b.size(); ++e)
+                {
+                  space.sample_coordinates[d].push_back(b[e]);
+                  space.sample_coordinates[d].push_back(0.5 *
+                                                        (b[e] + b[e + 1]));
+                }
+              space.sample_coordinates[d].push_back(b.back());
+            }
+          patches.push_back(space.geometry);
+        }
+      // The interfaces were checked to be conforming when the scene was
+      // read; refinement keeps them so, and gluing checks it again.
+      auto [numbers, n] =
+        nurbs::glue_control_points(patches,
+                                   description.interfaces,
+                                   "Body '" + description.name + "': ");
+      n_points = n;
+      for (unsigned int p = 0; p < spaces.size(); ++p)
+        spaces[p].numbers = std::move(numbers[p]);
 
       default_placement = settings.pair_placement;
 
-      Point<dim> lo = geometry.control_point(0), hi = lo;
-      for (unsigned int a = 0; a < geometry.n_control_points(); ++a)
-        for (unsigned int d = 0; d < dim; ++d)
-          {
-            lo[d] = std::min(lo[d], geometry.control_point(a)[d]);
-            hi[d] = std::max(hi[d], geometry.control_point(a)[d]);
-          }
-      diameter = (hi - lo).norm();
-
-      // Newton starts for the point inversion: breakpoints and span
-      // midpoints per direction; their tensor grid is evaluated and indexed
-      // at the first inversion.
-      for (unsigned int d = 0; d < dim; ++d)
-        {
-          for (unsigned int e = 0; e + 1 < breaks[d].size(); ++e)
+      Point<dim> lo = spaces[0].geometry.control_point(0), hi = lo;
+      for (const PatchSpace &space : spaces)
+        for (unsigned int a = 0; a < space.geometry.n_control_points(); ++a)
+          for (unsigned int d = 0; d < dim; ++d)
             {
-              sample_coordinates[d].push_back(breaks[d][e]);
-              sample_coordinates[d].push_back(
-                0.5 * (breaks[d][e] + breaks[d][e + 1]));
+              lo[d] = std::min(lo[d], space.geometry.control_point(a)[d]);
+              hi[d] = std::max(hi[d], space.geometry.control_point(a)[d]);
             }
-          sample_coordinates[d].push_back(breaks[d].back());
-        }
+      diameter = (hi - lo).norm();
     }
 
 
@@ -111,25 +131,46 @@ namespace igabde
     unsigned int
     IgaBody<dim>::n_elements() const
     {
-      return parametric_mesh.n_active_cells();
+      unsigned int n = 0;
+      for (const PatchSpace &space : spaces)
+        n += space.mesh.n_active_cells();
+      return n;
+    }
+
+
+
+    template <int dim>
+    unsigned int
+    IgaBody<dim>::n_patches() const
+    {
+      return spaces.size();
     }
 
 
 
     template <int dim>
     const nurbs::NurbsPatch<dim> &
-    IgaBody<dim>::patch() const
+    IgaBody<dim>::patch(const unsigned int p) const
     {
-      return geometry;
+      return spaces.at(p).geometry;
     }
 
 
 
     template <int dim>
     const Triangulation<dim> &
-    IgaBody<dim>::triangulation() const
+    IgaBody<dim>::triangulation(const unsigned int p) const
     {
-      return parametric_mesh;
+      return spaces.at(p).mesh;
+    }
+
+
+
+    template <int dim>
+    const std::vector<unsigned int> &
+    IgaBody<dim>::control_point_numbers(const unsigned int p) const
+    {
+      return spaces.at(p).numbers;
     }
 
 
@@ -139,8 +180,9 @@ namespace igabde
     IgaBody<dim>::max_degree() const
     {
       unsigned int p = 0;
-      for (unsigned int d = 0; d < dim; ++d)
-        p = std::max(p, geometry.degree(d));
+      for (const PatchSpace &space : spaces)
+        for (unsigned int d = 0; d < dim; ++d)
+          p = std::max(p, space.geometry.degree(d));
       return p;
     }
 
@@ -151,8 +193,10 @@ namespace igabde
     IgaBody<dim>::n_quadrature_points_1d() const
     {
       bool rational = false;
-      for (unsigned int a = 1; a < geometry.n_control_points(); ++a)
-        rational = rational || (geometry.weight(a) != geometry.weight(0));
+      for (const PatchSpace &space : spaces)
+        for (unsigned int a = 1; a < space.geometry.n_control_points(); ++a)
+          rational =
+            rational || (space.geometry.weight(a) != space.geometry.weight(0));
       return max_degree() + (rational ? 2 : 1);
     }
 
@@ -161,7 +205,8 @@ namespace igabde
     template <int dim>
     std::pair<double, Tensor<1, dim>>
     IgaBody<dim>::face_measure_and_normal(const unsigned int    face,
-                                          const Tensor<2, dim> &J) const
+                                          const Tensor<2, dim> &J,
+                                          const double          orientation)
     {
       const unsigned int   d    = face / 2;
       const double         side = (face % 2 == 0 ? -1. : 1.);
@@ -176,19 +221,44 @@ namespace igabde
 
 
     template <int dim>
+    std::pair<const typename IgaBody<dim>::PatchSpace *, unsigned int>
+    IgaBody<dim>::patch_face(const types::boundary_id face) const
+    {
+      AssertThrow(patch_of_face<dim>(face) < spaces.size(),
+                  ExcMessage("Body '" + this->description().name + "': face " +
+                             (spaces.size() == 1 ?
+                                std::to_string(face) +
+                                  " does not exist; patch faces "
+                                  "are 0.." +
+                                  std::to_string(2 * dim - 1) + "." :
+                                std::to_string(patch_of_face<dim>(face)) + "." +
+                                  std::to_string(local_face<dim>(face)) +
+                                  " does not exist; the body has " +
+                                  std::to_string(spaces.size()) +
+                                  " patches (faces p.f, p = 0.." +
+                                  std::to_string(spaces.size() - 1) +
+                                  ", f = 0.." + std::to_string(2 * dim - 1) +
+                                  ").")));
+      return {&spaces[patch_of_face<dim>(face)], local_face<dim>(face)};
+    }
+
+
+
+    template <int dim>
     void
     IgaBody<dim>::setup_space()
     {
-      const unsigned int n_cp = geometry.n_control_points();
-      this->n_unknowns        = dim * n_cp;
+      this->n_unknowns = dim * n_points;
       this->dof_locations.resize(this->n_unknowns);
       this->dof_components.resize(this->n_unknowns);
-      for (unsigned int a = 0; a < n_cp; ++a)
-        for (unsigned int c = 0; c < dim; ++c)
-          {
-            this->dof_locations[dim * a + c]  = geometry.control_point(a);
-            this->dof_components[dim * a + c] = c;
-          }
+      for (const PatchSpace &space : spaces)
+        for (unsigned int a = 0; a < space.numbers.size(); ++a)
+          for (unsigned int c = 0; c < dim; ++c)
+            {
+              this->dof_locations[dim * space.numbers[a] + c] =
+                space.geometry.control_point(a);
+              this->dof_components[dim * space.numbers[a] + c] = c;
+            }
 
       // Supports: with open knot vectors only the face's control points
       // have a nonzero trace there, and sum R = 1 makes a constant value
@@ -201,28 +271,24 @@ namespace igabde
       this->dirichlet_dofs.assign(this->description().dirichlet.size(), {});
       for (unsigned int b = 0; b < this->description().dirichlet.size(); ++b)
         {
-          const auto &bc = this->description().dirichlet[b];
-          AssertThrow(bc.boundary_id < 2 * dim,
-                      ExcMessage("Body '" + name + "': Dirichlet face " +
-                                 std::to_string(bc.boundary_id) +
-                                 " does not exist; patch faces are 0.." +
-                                 std::to_string(2 * dim - 1) + "."));
+          const auto &bc           = this->description().dirichlet[b];
+          const auto [space, face] = patch_face(bc.boundary_id);
+          const auto &geometry     = space->geometry;
           // A value given as a function of the point: the face's
           // control-point values that interpolate it at the face's
           // Greville points.
           const std::vector<unsigned int> face_points =
-            geometry.face_control_points(bc.boundary_id);
+            geometry.face_control_points(face);
           std::array<std::vector<double>, dim> field_values;
           for (unsigned int c = 0; c < dim; ++c)
             if (bc.components[c] && bc.field[c])
-              field_values[c] = nurbs::interpolate_on_face(geometry,
-                                                           bc.boundary_id,
-                                                           bc.field[c]);
+              field_values[c] =
+                nurbs::interpolate_on_face(geometry, face, bc.field[c]);
           for (unsigned int k = 0; k < face_points.size(); ++k)
             for (unsigned int c = 0; c < dim; ++c)
               if (bc.components[c])
                 {
-                  const unsigned int a = face_points[k];
+                  const unsigned int a = space->numbers[face_points[k]];
                   const double       value =
                     bc.field[c] ? field_values[c][k] : bc.value[c];
                   const types::global_dof_index i  = dim * a + c;
@@ -266,50 +332,62 @@ namespace igabde
       // point holds the point.
       for (const auto &support : this->description().point_supports)
         {
-          std::vector<unsigned int> corners;
-          for (unsigned int v = 0; v < (1u << dim); ++v)
-            {
-              std::vector<unsigned int> common =
-                geometry.face_control_points((v & 1u) ? 1 : 0);
-              std::sort(common.begin(), common.end());
-              for (unsigned int d = 1; d < dim; ++d)
-                {
-                  std::vector<unsigned int> face =
-                    geometry.face_control_points(2 * d + ((v >> d) & 1u));
-                  std::sort(face.begin(), face.end());
-                  std::vector<unsigned int> both;
-                  std::set_intersection(common.begin(),
-                                        common.end(),
-                                        face.begin(),
-                                        face.end(),
-                                        std::back_inserter(both));
-                  common.swap(both);
-                }
-              corners.insert(corners.end(), common.begin(), common.end());
-            }
+          std::vector<std::pair<unsigned int, Point<dim>>> corners;
+          for (const PatchSpace &space : spaces)
+            for (unsigned int v = 0; v < (1u << dim); ++v)
+              {
+                std::vector<unsigned int> common =
+                  space.geometry.face_control_points((v & 1u) ? 1 : 0);
+                std::sort(common.begin(), common.end());
+                for (unsigned int d = 1; d < dim; ++d)
+                  {
+                    std::vector<unsigned int> face =
+                      space.geometry.face_control_points(2 * d +
+                                                         ((v >> d) & 1u));
+                    std::sort(face.begin(), face.end());
+                    std::vector<unsigned int> both;
+                    std::set_intersection(common.begin(),
+                                          common.end(),
+                                          face.begin(),
+                                          face.end(),
+                                          std::back_inserter(both));
+                    common.swap(both);
+                  }
+                for (const unsigned int a : common)
+                  if (std::none_of(corners.begin(),
+                                   corners.end(),
+                                   [&](const auto &c) {
+                                     return c.first == space.numbers[a];
+                                   }))
+                    corners.emplace_back(space.numbers[a],
+                                         space.geometry.control_point(a));
+              }
           const auto at =
             std::find_if(corners.begin(),
                          corners.end(),
-                         [&](const unsigned int a) {
-                           return geometry.control_point(a).distance(
-                                    support.location) <= 1e-10 * diameter;
+                         [&](const auto &corner) {
+                           return corner.second.distance(support.location) <=
+                                  1e-10 * diameter;
                          });
           std::string corner_list;
-          for (const unsigned int a : corners)
-            corner_list += std::string(a == corners.front() ? "" : ", ") + "(" +
-                           base::to_string(geometry.control_point(a)) + ")";
+          for (const auto &corner : corners)
+            corner_list +=
+              std::string(&corner == &corners.front() ? "" : ", ") + "(" +
+              base::to_string(corner.second) + ")";
           AssertThrow(at != corners.end(),
                       ExcMessage("Body '" + name + "': the point support at (" +
                                  base::to_string(support.location) +
-                                 ") is not a corner of the patch; a NURBS "
-                                 "body takes point supports at its corners " +
+                                 ") is not a corner of the patch" +
+                                 (spaces.size() > 1 ? "es" : "") +
+                                 "; a NURBS body takes point supports at "
+                                 "its corners " +
                                  corner_list +
                                  " (or use Discretization/Type = lagrange, "
                                  "whose every mesh node can take one)."));
           for (unsigned int c = 0; c < dim; ++c)
             if (support.components[c])
               {
-                const types::global_dof_index i     = dim * (*at) + c;
+                const types::global_dof_index i     = dim * at->first + c;
                 const double                  value = support.value[c];
                 // A support already there must agree, on the same history
                 // where the value is not zero.
@@ -341,30 +419,37 @@ namespace igabde
       // Couplings of the control points first (the scalar basis functions
       // of each knot span), then each expanded to its dim x dim block of
       // unknowns: dim^2 less work than adding every unknown of every span.
-      DynamicSparsityPattern               points(n_cp, n_cp);
-      nurbs::NurbsValues<dim>              span_values(geometry,
-                                          Quadrature<dim>(),
-                                          update_default);
+      DynamicSparsityPattern               points(n_points, n_points);
       std::vector<types::global_dof_index> dofs, span_points;
-      for (const auto &cell : parametric_mesh.active_cell_iterators())
+      for (const PatchSpace &space : spaces)
         {
-          span_values.reinit(cell);
-          span_values.get_dof_indices(dofs);
-          span_points.clear();
-          for (const auto i : dofs)
-            if (i % dim == 0)
-              span_points.push_back(i / dim);
-          std::sort(span_points.begin(), span_points.end());
-          for (const auto a : span_points)
-            points.add_entries(a, span_points.begin(), span_points.end(), true);
+          nurbs::NurbsValues<dim> span_values(space.geometry,
+                                              Quadrature<dim>(),
+                                              update_default);
+          span_values.number_unknowns_by(space.numbers);
+          for (const auto &cell : space.mesh.active_cell_iterators())
+            {
+              span_values.reinit(cell);
+              span_values.get_dof_indices(dofs);
+              span_points.clear();
+              for (const auto i : dofs)
+                if (i % dim == 0)
+                  span_points.push_back(i / dim);
+              std::sort(span_points.begin(), span_points.end());
+              for (const auto a : span_points)
+                points.add_entries(a,
+                                   span_points.begin(),
+                                   span_points.end(),
+                                   true);
+            }
         }
       std::vector<unsigned int> row_lengths(this->n_unknowns);
-      for (unsigned int a = 0; a < n_cp; ++a)
+      for (unsigned int a = 0; a < n_points; ++a)
         for (unsigned int c = 0; c < dim; ++c)
           row_lengths[dim * a + c] = dim * points.row_length(a);
       this->sparsity.reinit(this->n_unknowns, this->n_unknowns, row_lengths);
       std::vector<types::global_dof_index> columns;
-      for (unsigned int a = 0; a < n_cp; ++a)
+      for (unsigned int a = 0; a < n_points; ++a)
         {
           columns.clear();
           for (auto entry = points.begin(a); entry != points.end(a); ++entry)
@@ -386,26 +471,46 @@ namespace igabde
     IgaBody<dim>::assemble()
     {
       const auto &desc = this->description();
+      // Each patch's tractions, on its own face numbers.
       for (const auto &t : desc.tractions)
-        AssertThrow(t.boundary_id < 2 * dim,
-                    ExcMessage("Body '" + desc.name + "': traction face " +
-                               std::to_string(t.boundary_id) +
-                               " does not exist; patch faces are 0.." +
-                               std::to_string(2 * dim - 1) + "."));
+        patch_face(t.boundary_id);
+      const auto on_patch = [&](const std::vector<NeumannCondition<dim>> &all,
+                                const unsigned int                        p) {
+        std::vector<NeumannCondition<dim>> mine;
+        for (const auto &t : all)
+          if (patch_of_face<dim>(t.boundary_id) == p)
+            {
+              mine.push_back(t);
+              mine.back().boundary_id = local_face<dim>(t.boundary_id);
+            }
+        return mine;
+      };
 
       // Cells: p+1 (p+2 rational) Gauss points per direction; faces one
       // more.
-      nurbs::NurbsValues<dim> cell_values(
-        geometry,
-        QGauss<dim>(n_quadrature_points_1d()),
-        update_values | update_gradients | update_JxW_values |
-          (desc.body_force_field ? update_quadrature_points : update_default));
-      cell_values.check_orientation("Body '" + desc.name + "'");
-      const nurbs::NurbsValues<dim> face_values(
-        geometry,
-        QGauss<dim - 1>(n_quadrature_points_1d() + 1),
-        update_values | update_quadrature_points | update_normal_vectors |
-          update_JxW_values);
+      std::vector<std::unique_ptr<nurbs::NurbsValues<dim>>> cell_values,
+        face_values;
+      for (const PatchSpace &space : spaces)
+        {
+          cell_values.push_back(std::make_unique<nurbs::NurbsValues<dim>>(
+            space.geometry,
+            QGauss<dim>(n_quadrature_points_1d()),
+            update_values | update_gradients | update_JxW_values |
+              (desc.body_force_field ? update_quadrature_points :
+                                       update_default)));
+          cell_values.back()->check_orientation(
+            "Body '" + desc.name + "'" +
+            (spaces.size() > 1 ?
+               " patch " + std::to_string(cell_values.size() - 1) :
+               ""));
+          cell_values.back()->number_unknowns_by(space.numbers);
+          face_values.push_back(std::make_unique<nurbs::NurbsValues<dim>>(
+            space.geometry,
+            QGauss<dim - 1>(n_quadrature_points_1d() + 1),
+            update_values | update_quadrature_points | update_normal_vectors |
+              update_JxW_values));
+          face_values.back()->number_unknowns_by(space.numbers);
+        }
       // One load vector per load history; K with history 0, which holds
       // the body force.
       this->assemble_history_loads(
@@ -413,15 +518,16 @@ namespace igabde
             const std::vector<NeumannCondition<dim>> &tractions,
             SparseMatrix<double>                     &matrix,
             Vector<double>                           &rhs) {
-          elasticity::assemble_system<dim>(parametric_mesh.begin_active(),
-                                           parametric_mesh.end(),
-                                           cell_values,
-                                           face_values,
-                                           desc.material,
-                                           body_force,
-                                           tractions,
-                                           matrix,
-                                           rhs);
+          for (unsigned int p = 0; p < spaces.size(); ++p)
+            elasticity::assemble_system<dim>(spaces[p].mesh.begin_active(),
+                                             spaces[p].mesh.end(),
+                                             *cell_values[p],
+                                             *face_values[p],
+                                             desc.material,
+                                             body_force,
+                                             on_patch(tractions, p),
+                                             matrix,
+                                             rhs);
         },
         // Point loads: P_A = R_A(xi_X) P (method.md, sec. 3).
         [&](const PointLoad<dim> &load, Vector<double> &rhs) {
@@ -432,50 +538,88 @@ namespace igabde
 
 
     template <int dim>
-    Point<dim>
-    IgaBody<dim>::parametric_point(const Point<dim> &location) const
+    std::pair<unsigned int, Point<dim>>
+    IgaBody<dim>::locate(const Point<dim> &location) const
     {
       std::call_once(index_built, [this]() {
-        sample_index = std::make_unique<base::NearestPoints<dim>>(
-          geometry.values_on_grid(sample_coordinates));
+        for (const PatchSpace &space : spaces)
+          sample_index.push_back(std::make_unique<base::NearestPoints<dim>>(
+            space.geometry.values_on_grid(space.sample_coordinates)));
       });
-      // The nearest sample, ties to the first (as a scan would).
-      // Its parametric point: the grid index, direction 0 fastest.
-      unsigned int rest = sample_index->nearest(location);
-      Point<dim>   start;
-      for (unsigned int d = 0; d < dim; ++d)
+      // Each patch's nearest sample (ties to the first, as a scan would);
+      // its parametric point: the grid index, direction 0 fastest. The
+      // patches are tried from the nearest sample on until one holds the
+      // point (one patch: the first).
+      std::vector<std::pair<double, unsigned int>> order;
+      std::vector<Point<dim>>                      starts(spaces.size());
+      for (unsigned int p = 0; p < spaces.size(); ++p)
         {
-          start[d] = sample_coordinates[d][rest % sample_coordinates[d].size()];
-          rest /= sample_coordinates[d].size();
+          const auto  &coordinates = spaces[p].sample_coordinates;
+          unsigned int rest        = sample_index[p]->nearest(location);
+          const double distance = (*sample_index[p])[rest].distance(location);
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              starts[p][d] = coordinates[d][rest % coordinates[d].size()];
+              rest /= coordinates[d].size();
+            }
+          order.emplace_back(distance, p);
         }
-      double           distance = 0.;
-      const Point<dim> xi =
-        geometry.closest_parametric_point(location, &start, &distance);
-      if (distance > 1e-8 * diameter)
+      std::sort(order.begin(), order.end());
+      double       best = std::numeric_limits<double>::max();
+      Point<dim>   best_xi;
+      unsigned int best_patch = 0;
+      for (const auto &[sample_distance, p] : order)
+        {
+          double           distance = 0.;
+          const Point<dim> xi =
+            spaces[p].geometry.closest_parametric_point(location,
+                                                        &starts[p],
+                                                        &distance);
+          if (distance < best)
+            {
+              best       = distance;
+              best_xi    = xi;
+              best_patch = p;
+            }
+          if (best <= 1e-8 * diameter)
+            break;
+        }
+      if (best > 1e-8 * diameter)
         {
           std::ostringstream s;
           s << "Body '" << this->description().name << "': the point ("
-            << location << ") is not in the body (distance " << distance
-            << " from its closest point (" << geometry.value(xi)
+            << location << ") is not in the body (distance " << best
+            << " from its closest point ("
+            << spaces[best_patch].geometry.value(best_xi)
             << ")); point loads and probes must lie in or on the body.";
           AssertThrow(false, ExcMessage(s.str()));
         }
-      return xi;
+      return {best_patch, best_xi};
+    }
+
+
+
+    template <int dim>
+    Point<dim>
+    IgaBody<dim>::parametric_point(const Point<dim> &location) const
+    {
+      return locate(location).second;
     }
 
 
 
     template <int dim>
     PointOperator<dim>
-    IgaBody<dim>::parametric_point_operator(const Point<dim> &xi) const
+    IgaBody<dim>::parametric_point_operator(const Point<dim>  &xi,
+                                            const unsigned int p) const
     {
       std::vector<unsigned int> indices;
       PointOperator<dim>        op;
-      geometry.basis(xi, indices, op.weights);
+      spaces.at(p).geometry.basis(xi, indices, op.weights);
       op.dofs.resize(indices.size());
       for (unsigned int k = 0; k < indices.size(); ++k)
         for (unsigned int c = 0; c < dim; ++c)
-          op.dofs[k][c] = dim * indices[k] + c;
+          op.dofs[k][c] = dim * spaces[p].numbers[indices[k]] + c;
       return op;
     }
 
@@ -485,7 +629,8 @@ namespace igabde
     PointOperator<dim>
     IgaBody<dim>::point_operator(const Point<dim> &location) const
     {
-      return parametric_point_operator(parametric_point(location));
+      const auto [p, xi] = locate(location);
+      return parametric_point_operator(xi, p);
     }
 
 
@@ -493,26 +638,25 @@ namespace igabde
     template <int dim>
     Tensor<1, dim>
     IgaBody<dim>::displacement_at_parametric(const Vector<double> &u,
-                                             const Point<dim>     &xi) const
+                                             const Point<dim>     &xi,
+                                             const unsigned int    p) const
     {
-      return parametric_point_operator(xi).displacement(u);
+      return parametric_point_operator(xi, p).displacement(u);
     }
 
 
 
     template <int dim>
     std::vector<SurfacePoint<dim>>
-    IgaBody<dim>::surface_points(const types::boundary_id face,
+    IgaBody<dim>::surface_points(const types::boundary_id body_face,
                                  const PairPlacement      placement) const
     {
-      AssertThrow(face < 2 * dim,
-                  ExcMessage("Body '" + this->description().name + "': face " +
-                             std::to_string(face) +
-                             " does not exist; patch faces are 0.." +
-                             std::to_string(2 * dim - 1) + "."));
-      const unsigned int d = face / 2;
-      const double fixed   = (face % 2 == 0 ? geometry.knot_vector(d).front() :
-                                              geometry.knot_vector(d).back());
+      const auto [space, face]    = patch_face(body_face);
+      const auto        &geometry = space->geometry;
+      const unsigned int patch    = patch_of_face<dim>(body_face);
+      const unsigned int d        = face / 2;
+      const double fixed = (face % 2 == 0 ? geometry.knot_vector(d).front() :
+                                            geometry.knot_vector(d).back());
 
       // Face quadrature: needed for the right-hand side int R_A dGamma and,
       // with the Gauss placement, as the points themselves.
@@ -531,7 +675,7 @@ namespace igabde
         nurbs::NurbsValues<dim> values(geometry,
                                        QGauss<dim - 1>(n_1d),
                                        update_values | update_JxW_values);
-        for (const auto &cell : parametric_mesh.active_cell_iterators())
+        for (const auto &cell : space->mesh.active_cell_iterators())
           for (const unsigned int f : cell->face_indices())
             if (cell->face(f)->at_boundary() &&
                 cell->face(f)->boundary_id() == face)
@@ -571,7 +715,7 @@ namespace igabde
             else if (placement == PairPlacement::greville)
               coords[e] = geometry.knot_vector(e).greville_abscissae();
             else
-              coords[e] = breaks[e];
+              coords[e] = space->breaks[e];
           xis = nurbs::tensor_product_points<dim>(coords);
         }
 
@@ -580,9 +724,11 @@ namespace igabde
         {
           result[i].parametric = xis[i];
           result[i].location   = geometry.value(xis[i]);
-          result[i].normal =
-            face_measure_and_normal(face, geometry.jacobian(xis[i])).second;
-          result[i].op = parametric_point_operator(xis[i]);
+          result[i].normal     = face_measure_and_normal(face,
+                                                     geometry.jacobian(xis[i]),
+                                                     space->orientation)
+                               .second;
+          result[i].op = parametric_point_operator(xis[i], patch);
         }
 
       if (placement == PairPlacement::gauss)
@@ -595,18 +741,23 @@ namespace igabde
       integrate(n_quadrature_points_1d() + 1, nullptr, nullptr);
       Eigen::VectorXd areas;
       if (placement == PairPlacement::greville)
-        areas = greville_tributary_areas(face, face_cps, integrals);
+        areas = greville_tributary_areas(*space, face, face_cps, integrals);
       else
         {
           Eigen::MatrixXd M =
             Eigen::MatrixXd::Zero(face_cps.size(), xis.size());
+          std::vector<unsigned int> indices;
+          std::vector<double>       R;
           for (unsigned int i = 0; i < xis.size(); ++i)
-            for (unsigned int k = 0; k < result[i].op.weights.size(); ++k)
-              {
-                const auto it = local_of.find(result[i].op.dofs[k][0] / dim);
-                if (it != local_of.end())
-                  M(it->second, i) += result[i].op.weights[k];
-              }
+            {
+              geometry.basis(xis[i], indices, R);
+              for (unsigned int k = 0; k < R.size(); ++k)
+                {
+                  const auto it = local_of.find(indices[k]);
+                  if (it != local_of.end())
+                    M(it->second, i) += R[k];
+                }
+            }
           areas = M.completeOrthogonalDecomposition().solve(integrals);
         }
       for (unsigned int i = 0; i < xis.size(); ++i)
@@ -619,10 +770,12 @@ namespace igabde
     template <int dim>
     Eigen::VectorXd
     IgaBody<dim>::greville_tributary_areas(
-      const types::boundary_id         face,
+      const PatchSpace                &space,
+      const unsigned int               face,
       const std::vector<unsigned int> &face_cps,
       const Eigen::VectorXd           &integrals) const
     {
+      const auto &geometry = space.geometry;
       // sum_i R_A(xi_i) A_i = int R_A dGamma over the face's control points
       // A and Greville points xi_i, both tensor grids of the face's
       // directions. With R_A = w_A N_A / W, N_A = prod_e N_e,a_e and W the
@@ -730,15 +883,13 @@ namespace igabde
 
     template <int dim>
     FaceGrid<dim>
-    IgaBody<dim>::face_grid(const types::boundary_id face) const
+    IgaBody<dim>::face_grid(const types::boundary_id body_face) const
     {
-      AssertThrow(face < 2 * dim,
-                  ExcMessage("Body '" + this->description().name + "': face " +
-                             std::to_string(face) + " does not exist."));
+      const auto [space, face] = patch_face(body_face);
       FaceGrid<dim> grid;
       for (unsigned int e = 0, k = 0; e < dim; ++e)
         if (e != face / 2)
-          grid.breaks[k++] = breaks[e];
+          grid.breaks[k++] = space->breaks[e];
       grid.degree = max_degree();
       return grid;
     }
@@ -747,20 +898,21 @@ namespace igabde
 
     template <int dim>
     FacePoint<dim>
-    IgaBody<dim>::face_point(const types::boundary_id face,
+    IgaBody<dim>::face_point(const types::boundary_id body_face,
                              const Point<dim - 1>    &eta) const
     {
-      const unsigned int d = face / 2;
+      const auto [space, face] = patch_face(body_face);
+      const unsigned int d     = face / 2;
       Point<dim>         xi;
       for (unsigned int e = 0, k = 0; e < dim; ++e)
-        xi[e] =
-          (e == d ? (face % 2 == 0 ? breaks[d].front() : breaks[d].back()) :
-                    eta[k++]);
-      const Tensor<2, dim> J = geometry.jacobian(xi);
+        xi[e] = (e == d ? (face % 2 == 0 ? space->breaks[d].front() :
+                                           space->breaks[d].back()) :
+                          eta[k++]);
+      const Tensor<2, dim> J = space->geometry.jacobian(xi);
       FacePoint<dim>       result;
-      result.location = geometry.value(xi);
+      result.location = space->geometry.value(xi);
       std::tie(result.measure, result.normal) =
-        face_measure_and_normal(face, J);
+        face_measure_and_normal(face, J, space->orientation);
       for (unsigned int e = 0, k = 0; e < dim; ++e)
         if (e != d)
           {
@@ -768,7 +920,7 @@ namespace igabde
               result.tangents[k][c] = J[c][e];
             ++k;
           }
-      result.op = parametric_point_operator(xi);
+      result.op = parametric_point_operator(xi, patch_of_face<dim>(body_face));
       return result;
     }
 
@@ -780,18 +932,26 @@ namespace igabde
                                  const ExactSolution<dim> &exact) const
     {
       AssertDimension(u.size(), this->n_unknowns);
-      nurbs::NurbsValues<dim> values(geometry,
-                                     QGauss<dim>(max_degree() + 3),
-                                     update_values | update_gradients |
-                                       update_quadrature_points |
-                                       update_JxW_values);
-      return elasticity::compute_error_norms<dim>(
-        parametric_mesh.begin_active(),
-        parametric_mesh.end(),
-        values,
-        u,
-        this->material(),
-        exact);
+      // The norms of every patch, from their integrals.
+      ErrorNorms result;
+      for (const PatchSpace &space : spaces)
+        {
+          nurbs::NurbsValues<dim> values(space.geometry,
+                                         QGauss<dim>(max_degree() + 3),
+                                         update_values | update_gradients |
+                                           update_quadrature_points |
+                                           update_JxW_values);
+          values.number_unknowns_by(space.numbers);
+          result.add(
+            elasticity::compute_error_norms<dim>(space.mesh.begin_active(),
+                                                 space.mesh.end(),
+                                                 values,
+                                                 u,
+                                                 this->material(),
+                                                 exact),
+            static_cast<bool>(exact.stress));
+        }
+      return result;
     }
 
 
@@ -799,9 +959,12 @@ namespace igabde
     template <int dim>
     SymmetricTensor<2, dim>
     IgaBody<dim>::strain_at_parametric(const Vector<double> &u,
-                                       const Point<dim>     &xi_in) const
+                                       const Point<dim>     &xi_in,
+                                       const unsigned int    p) const
     {
       AssertDimension(u.size(), this->n_unknowns);
+      const auto &geometry = spaces.at(p).geometry;
+      const auto &numbers  = spaces[p].numbers;
       // Where the map is singular (a collapsed corner, or two faces meeting
       // at a straight angle) the discrete strain has no limit: its
       // components across the degenerate direction are a difference of
@@ -834,7 +997,7 @@ namespace igabde
         {
           const Tensor<1, dim> g = JinvT * dR[l];
           for (unsigned int c = 0; c < dim; ++c)
-            elasticity::add_basis_strain<dim>(u[dim * indices[l] + c],
+            elasticity::add_basis_strain<dim>(u[dim * numbers[indices[l]] + c],
                                               g,
                                               c,
                                               eps);
@@ -849,9 +1012,9 @@ namespace igabde
     IgaBody<dim>::stress(const Vector<double> &u,
                          const Point<dim>     &location) const
     {
-      return elasticity::stress(
-        strain_at_parametric(u, parametric_point(location)),
-        this->material());
+      const auto [p, xi] = locate(location);
+      return elasticity::stress(strain_at_parametric(u, xi, p),
+                                this->material());
     }
 
 
@@ -865,10 +1028,17 @@ namespace igabde
       const bool        rational = n_quadrature_points_1d() > max_degree() + 1;
       const QGauss<dim> quadrature(rational ? std::max(max_degree() + 1, 12u) :
                                               max_degree() + 1);
-      nurbs::NurbsValues<dim> values(geometry, quadrature, update_JxW_values);
-      return elasticity::integrate_measure(parametric_mesh.begin_active(),
-                                           parametric_mesh.end(),
-                                           values);
+      double            result = 0.;
+      for (const PatchSpace &space : spaces)
+        {
+          nurbs::NurbsValues<dim> values(space.geometry,
+                                         quadrature,
+                                         update_JxW_values);
+          result += elasticity::integrate_measure(space.mesh.begin_active(),
+                                                  space.mesh.end(),
+                                                  values);
+        }
+      return result;
     }
 
 
@@ -878,14 +1048,24 @@ namespace igabde
     IgaBody<dim>::largest_strain(const Vector<double> &u) const
     {
       AssertDimension(u.size(), this->n_unknowns);
-      nurbs::NurbsValues<dim> values(geometry,
-                                     QGauss<dim>(max_degree() + 1),
-                                     update_values | update_gradients |
-                                       update_quadrature_points);
-      return elasticity::largest_strain<dim>(parametric_mesh.begin_active(),
-                                             parametric_mesh.end(),
-                                             values,
-                                             u);
+      std::pair<double, Point<dim>> result(0., Point<dim>());
+      for (const PatchSpace &space : spaces)
+        {
+          nurbs::NurbsValues<dim> values(space.geometry,
+                                         QGauss<dim>(max_degree() + 1),
+                                         update_values | update_gradients |
+                                           update_quadrature_points);
+          values.number_unknowns_by(space.numbers);
+          const auto part =
+            elasticity::largest_strain<dim>(space.mesh.begin_active(),
+                                            space.mesh.end(),
+                                            values,
+                                            u);
+          if (&space == &spaces.front() ||
+              std::abs(part.first) > std::abs(result.first))
+            result = part;
+        }
+      return result;
     }
 
 
@@ -947,7 +1127,7 @@ namespace igabde
       AssertDimension(u.size(), this->n_unknowns);
       const unsigned int n_sub =
         output_subdivisions_for<dim>(this->settings.output_subdivisions,
-                                     parametric_mesh.n_active_cells());
+                                     n_elements());
       const auto &material = this->material();
 
       // Output points: lexicographic (n+1)^dim grid on [0, 1]^dim.
@@ -975,61 +1155,69 @@ namespace igabde
       const auto [first, end]    = this->output_cells(piece, n_pieces);
 
       std::vector<DataOutBase::Patch<dim, dim>> patches;
-      nurbs::NurbsValues<dim>                   ev(geometry,
-                                 Quadrature<dim>(ref),
-                                 update_values | update_gradients |
-                                   update_quadrature_points);
       std::vector<double>                       local_u;
-      unsigned int                              index = 0;
-      for (const auto &cell : parametric_mesh.active_cell_iterators())
+      unsigned int                              index = 0, cell_index = 0;
+      for (unsigned int p = 0; p < spaces.size(); ++p)
         {
-          if (cell->active_cell_index() < first ||
-              cell->active_cell_index() >= end)
-            continue;
-          ev.reinit(cell);
-          elasticity::get_local_values(ev, u, local_u);
-          DataOutBase::Patch<dim, dim> patch;
-          patch.n_subdivisions       = n_sub;
-          patch.points_are_available = true;
-          patch.patch_index          = index++;
-          patch.reference_cell       = ReferenceCells::get_hypercube<dim>();
-          for (unsigned int v = 0; v < GeometryInfo<dim>::vertices_per_cell;
-               ++v)
+          nurbs::NurbsValues<dim> ev(spaces[p].geometry,
+                                     Quadrature<dim>(ref),
+                                     update_values | update_gradients |
+                                       update_quadrature_points);
+          ev.number_unknowns_by(spaces[p].numbers);
+          for (const auto &cell : spaces[p].mesh.active_cell_iterators())
             {
-              unsigned int s = 0, stride = 1;
-              for (unsigned int d = 0; d < dim; ++d)
+              if (cell_index < first || cell_index >= end)
                 {
-                  s += ((v >> d) & 1u) * n_sub * stride;
-                  stride *= n_sub + 1;
+                  ++cell_index;
+                  continue;
                 }
-              patch.vertices[v] = ev.quadrature_point(s);
-            }
-          patch.data.reinit(n_data + dim, ref.size());
-          for (unsigned int q = 0; q < ref.size(); ++q)
-            {
-              const Tensor<1, dim> uh =
-                elasticity::displacement<dim>(ev, local_u, q);
-              // Where the map is singular (a collapsed corner) the strain
-              // is read a short step inside (strain_at_parametric()).
-              const SymmetricTensor<2, dim> eps =
-                ev.regular(q) ? elasticity::strain<dim>(ev, local_u, q) :
-                                strain_at_parametric(u, ev.parametric_point(q));
-              const SymmetricTensor<2, dim> sigma =
-                elasticity::stress(eps, material);
-              const double vm = elasticity::von_mises(sigma, material);
+              ++cell_index;
+              ev.reinit(cell);
+              elasticity::get_local_values(ev, u, local_u);
+              DataOutBase::Patch<dim, dim> patch;
+              patch.n_subdivisions       = n_sub;
+              patch.points_are_available = true;
+              patch.patch_index          = index++;
+              patch.reference_cell       = ReferenceCells::get_hypercube<dim>();
+              for (unsigned int v = 0; v < GeometryInfo<dim>::vertices_per_cell;
+                   ++v)
+                {
+                  unsigned int s = 0, stride = 1;
+                  for (unsigned int d = 0; d < dim; ++d)
+                    {
+                      s += ((v >> d) & 1u) * n_sub * stride;
+                      stride *= n_sub + 1;
+                    }
+                  patch.vertices[v] = ev.quadrature_point(s);
+                }
+              patch.data.reinit(n_data + dim, ref.size());
+              for (unsigned int q = 0; q < ref.size(); ++q)
+                {
+                  const Tensor<1, dim> uh =
+                    elasticity::displacement<dim>(ev, local_u, q);
+                  // Where the map is singular (a collapsed corner) the strain
+                  // is read a short step inside (strain_at_parametric()).
+                  const SymmetricTensor<2, dim> eps =
+                    ev.regular(q) ?
+                      elasticity::strain<dim>(ev, local_u, q) :
+                      strain_at_parametric(u, ev.parametric_point(q), p);
+                  const SymmetricTensor<2, dim> sigma =
+                    elasticity::stress(eps, material);
+                  const double vm = elasticity::von_mises(sigma, material);
 
-              unsigned int row = 0;
-              for (unsigned int c = 0; c < dim; ++c)
-                patch.data(row++, q) = uh[c];
-              for (const auto &[i, j] : comps)
-                patch.data(row++, q) = eps[i][j];
-              for (const auto &[i, j] : comps)
-                patch.data(row++, q) = sigma[i][j];
-              patch.data(row++, q) = vm;
-              for (unsigned int d = 0; d < dim; ++d)
-                patch.data(row++, q) = ev.quadrature_point(q)[d];
+                  unsigned int row = 0;
+                  for (unsigned int c = 0; c < dim; ++c)
+                    patch.data(row++, q) = uh[c];
+                  for (const auto &[i, j] : comps)
+                    patch.data(row++, q) = eps[i][j];
+                  for (const auto &[i, j] : comps)
+                    patch.data(row++, q) = sigma[i][j];
+                  patch.data(row++, q) = vm;
+                  for (unsigned int d = 0; d < dim; ++d)
+                    patch.data(row++, q) = ev.quadrature_point(q)[d];
+                }
+              patches.push_back(std::move(patch));
             }
-          patches.push_back(std::move(patch));
         }
 
       std::ofstream out = base::open_for_writing(filename);
@@ -1067,13 +1255,16 @@ namespace igabde
     {
       // The nearest surface point (a pair point of this face) starts the
       // search among its spans.
+      const auto [space, local] = patch_face(face);
       const Point<dim> xi =
-        patch().closest_point_on_face(face, location, &nearest.parametric);
+        space->geometry.closest_point_on_face(local,
+                                              location,
+                                              &nearest.parametric);
       SurfacePoint<dim> point;
       point.parametric = xi;
-      point.location   = patch().value(xi);
-      point.normal     = patch().outward_normal(face, xi);
-      point.op         = parametric_point_operator(xi);
+      point.location   = space->geometry.value(xi);
+      point.normal     = space->geometry.outward_normal(local, xi);
+      point.op = parametric_point_operator(xi, patch_of_face<dim>(face));
       return point;
     }
 

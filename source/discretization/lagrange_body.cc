@@ -228,6 +228,13 @@ namespace igabde
       , patch(description.geometry)
       , fe(FE_Q<dim>(settings.degree), dim)
     {
+      AssertThrow(description.n_patches() == 1,
+                  base::ExcInput(
+                    "Body '" + description.name + "' has " +
+                    std::to_string(description.n_patches()) +
+                    " patches; the Lagrange (FE_Q) path meshes one patch in "
+                    "this version: use Discretization/Type = nurbs for a "
+                    "multi-patch geometry."));
       AssertThrow(settings.degree >= 1 && settings.degree <= 4,
                   ExcMessage("Discretization/Degree: the Lagrange path "
                              "supports FE_Q degrees 1 to 4, got " +

@@ -248,20 +248,6 @@ namespace igabde
         return breaks;
       }
 
-      template <int dim>
-      double
-      net_diameter(const NurbsPatch<dim> &patch)
-      {
-        Point<dim> lo = patch.control_point(0), hi = lo;
-        for (unsigned int a = 0; a < patch.n_control_points(); ++a)
-          for (unsigned int d = 0; d < dim; ++d)
-            {
-              lo[d] = std::min(lo[d], patch.control_point(a)[d]);
-              hi[d] = std::max(hi[d], patch.control_point(a)[d]);
-            }
-        return (hi - lo).norm();
-      }
-
       std::string
       join(const std::vector<double> &values, const unsigned int per_line)
       {
@@ -634,7 +620,7 @@ namespace igabde
     void
     check_patch_closure(const NurbsPatch<dim> &patch, const std::string &where)
     {
-      const double diameter   = net_diameter(patch);
+      const double diameter   = control_net_diameter(patch);
       const auto   breaks     = all_breakpoints(patch);
       const auto   face_value = [&](const unsigned int face) {
         return face % 2 == 0 ? breaks[face / 2].front() :
@@ -739,8 +725,8 @@ namespace igabde
           AssertThrow(i.patch[0] != i.patch[1] || i.face[0] != i.face[1],
                       base::ExcInput(at + "a face cannot meet itself."));
           const double diameter =
-            std::max(net_diameter(geometry.patches[i.patch[0]]),
-                     net_diameter(geometry.patches[i.patch[1]]));
+            std::max(control_net_diameter(geometry.patches[i.patch[0]]),
+                     control_net_diameter(geometry.patches[i.patch[1]]));
           for (unsigned int s = 0; s < 2; ++s)
             {
               const NurbsPatch<dim> &from  = geometry.patches[i.patch[s]];
@@ -773,6 +759,22 @@ namespace igabde
                 }
             }
         }
+    }
+
+
+
+    template <int dim>
+    double
+    control_net_diameter(const NurbsPatch<dim> &patch)
+    {
+      Point<dim> lo = patch.control_point(0), hi = lo;
+      for (unsigned int a = 0; a < patch.n_control_points(); ++a)
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            lo[d] = std::min(lo[d], patch.control_point(a)[d]);
+            hi[d] = std::max(hi[d], patch.control_point(a)[d]);
+          }
+      return (hi - lo).norm();
     }
 
 
@@ -833,5 +835,9 @@ namespace igabde
     patch_measure<2>(const NurbsPatch<2> &, unsigned int);
     template double
     patch_measure<3>(const NurbsPatch<3> &, unsigned int);
+    template double
+    control_net_diameter<2>(const NurbsPatch<2> &);
+    template double
+    control_net_diameter<3>(const NurbsPatch<3> &);
   } // namespace nurbs
 } // namespace igabde

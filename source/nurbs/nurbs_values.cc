@@ -157,7 +157,21 @@ namespace igabde
       dofs.resize(dim * n_local);
       for (unsigned int l = 0; l < n_local; ++l)
         for (unsigned int c = 0; c < dim; ++c)
-          dofs[dim * l + c] = dim * local_control_points[l] + c;
+          dofs[dim * l + c] = dim * (numbering != nullptr ?
+                                       (*numbering)[local_control_points[l]] :
+                                       local_control_points[l]) +
+                              c;
+    }
+
+
+
+    template <int dim>
+    void
+    NurbsValues<dim>::number_unknowns_by(
+      const std::vector<unsigned int> &control_point_numbers)
+    {
+      AssertDimension(control_point_numbers.size(), patch->n_control_points());
+      numbering = &control_point_numbers;
     }
 
 

@@ -61,8 +61,15 @@ namespace igabde
       d.material.plane_model    = parameters.plane_model;
       d.material.validate(scene_file + ": " + name);
 
-      d.geometry =
-        make_geometry<dim>(body, where, parameters.discretization.degree);
+      {
+        nurbs::MultiPatchGeometry<dim> geometry =
+          make_geometry<dim>(body, where, parameters.discretization.degree);
+        d.geometry = std::move(geometry.patches.front());
+        d.more_patches.assign(std::make_move_iterator(geometry.patches.begin() +
+                                                      1),
+                              std::make_move_iterator(geometry.patches.end()));
+        d.interfaces = std::move(geometry.interfaces);
+      }
 
       // The body grammar was read and checked with the parameters
       // (BodyParameters::parse_parameters); here it only becomes
@@ -100,8 +107,10 @@ namespace igabde
         {
           discretization::DirichletCondition<dim> bc;
           bc.boundary_id = static_cast<types::boundary_id>(motion.face);
-          const Point<dim> centre = d.geometry.face_centroid(motion.face);
-          Tensor<1, dim>   displacement;
+          const Point<dim> centre =
+            d.patch(discretization::patch_of_face<dim>(motion.face))
+              .face_centroid(discretization::local_face<dim>(motion.face));
+          Tensor<1, dim> displacement;
           for (unsigned int c = 0; c < dim; ++c)
             displacement[c] = motion.motion[c];
           const std::vector<double> rotation(motion.motion.begin() + dim,

@@ -14,8 +14,8 @@ namespace igabde
       contact::ContactSettings cs;
       const auto              &c = parameters.contact;
       cs.friction_coefficient    = c.friction_coefficient;
-      cs.slave_face              = c.slave_face;
-      cs.master_face             = c.master_face;
+      cs.slave_faces             = c.slave_faces;
+      cs.master_faces            = c.master_faces;
       cs.pairing                 = c.pairing;
       cs.solver.algorithm        = c.algorithm;
       cs.solver.path             = c.path;

@@ -3,12 +3,16 @@
 
 #include <igabde/nurbs/geometry_builders.h>
 #include <igabde/nurbs/geometry_file.h>
+#include <igabde/nurbs/multi_patch.h>
+
+#include <igabde/discretization/body_description.h>
 
 #include <igabde/scene/geometry.h>
 
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 namespace igabde
@@ -17,49 +21,89 @@ namespace igabde
   {
     namespace
     {
-      /// The one patch of the body's geometry file.
+      /// The patches and interfaces of the body's geometry file.
       template <int dim>
-      nurbs::NurbsPatch<dim>
-      read_single_patch(const BodyParameters &body, const std::string &where)
+      nurbs::MultiPatchGeometry<dim>
+      read_patches(const BodyParameters &body, const std::string &where)
       {
-        nurbs::MultiPatchGeometry<dim> file;
         try
           {
-            file = nurbs::read_geometry_file<dim>(body.geometry_path);
+            return nurbs::read_geometry_file<dim>(body.geometry_path);
           }
         catch (const base::ExcInput &e)
           {
             AssertThrow(false,
                         base::ExcInput(where + base::exception_message(e)));
           }
-        AssertThrow(file.patches.size() == 1,
-                    base::ExcInput(
-                      where + body.geometry_path + " holds " +
-                      std::to_string(file.patches.size()) +
-                      " patches; a body is one patch in this version "
-                      "(gluing patches is not built yet): give a file with "
-                      "one Geometry element."));
-        return file.patches.front();
+        return {};
       }
     } // namespace
 
 
 
-    void
+    unsigned int
     check_geometry_file(const BodyParameters &body,
                         const unsigned int    dimension,
+                        const unsigned int    degree,
                         const std::string    &where)
     {
+      // Read, and for several patches also subdivided and glued: an
+      // interface that Subdivisions or Grading make non-conforming is
+      // refused now, before anything is built.
+      const auto check = [&](const auto &file) -> unsigned int {
+        const unsigned int n = file.patches.size();
+        if (n == 1)
+          return 1;
+        // A body is one piece: every patch reached through interfaces.
+        std::vector<unsigned int> piece(n);
+        for (unsigned int p = 0; p < n; ++p)
+          piece[p] = p;
+        for (bool changed = true; changed;)
+          {
+            changed = false;
+            for (const auto &i : file.interfaces)
+              {
+                const unsigned int low =
+                  std::min(piece[i.patch[0]], piece[i.patch[1]]);
+                for (const unsigned int p : i.patch)
+                  if (piece[p] != low)
+                    {
+                      piece[p] = low;
+                      changed  = true;
+                    }
+              }
+          }
+        for (unsigned int p = 0; p < n; ++p)
+          AssertThrow(piece[p] == 0,
+                      base::ExcInput(
+                        where + body.geometry_path + " holds " +
+                        std::to_string(n) +
+                        " patches, but no interface "
+                        "joins patch " +
+                        std::to_string(p) +
+                        " to patch 0: a body is one connected piece; list "
+                        "the interfaces in a MultiPatch element (patch, "
+                        "side, patch, side per line), or put separate parts "
+                        "in separate bodies."));
+        return n;
+      };
       if (dimension == 2)
-        read_single_patch<2>(body, where);
-      else
-        read_single_patch<3>(body, where);
+        {
+          const unsigned int n = check(read_patches<2>(body, where));
+          if (n > 1)
+            make_geometry<2>(body, where, degree);
+          return n;
+        }
+      const unsigned int n = check(read_patches<3>(body, where));
+      if (n > 1)
+        make_geometry<3>(body, where, degree);
+      return n;
     }
 
 
 
     template <int dim>
-    nurbs::NurbsPatch<dim>
+    nurbs::MultiPatchGeometry<dim>
     make_geometry(const BodyParameters          &body,
                   const std::string             &where,
                   const unsigned int             degree,
@@ -92,7 +136,8 @@ namespace igabde
                                  ") must be smaller than Outer radius (" +
                                  std::to_string(body.outer_radius) + ")."));
 
-      nurbs::NurbsPatch<dim> patch;
+      nurbs::NurbsPatch<dim>         patch;
+      nurbs::MultiPatchGeometry<dim> file;
       if (body.geometry == Geometry::box)
         {
           // Empty corners: the unit box [0, 1]^dim.
@@ -164,9 +209,13 @@ namespace igabde
             patch = nurbs::make_cylinder(c, body.radius, body.width, full);
         }
       else if (body.geometry == Geometry::file)
-        patch = read_single_patch<dim>(body,
-                                       where + "Geometry file = " +
-                                         body.geometry_file + ": ");
+        {
+          file =
+            read_patches<dim>(body,
+                              where + "Geometry file = " + body.geometry_file +
+                                ": ");
+          patch = file.patches.front();
+        }
       else if (body.geometry == Geometry::curved_beam)
         {
           need_3d();
@@ -180,6 +229,10 @@ namespace igabde
                     base::ExcInput(where + "Geometry = '" +
                                    to_string(body.geometry) + "' is unknown."));
 
+      // A built-in shape is one patch.
+      if (body.geometry != Geometry::file)
+        file.patches = {patch};
+
       // Read and checked with the scene (BodyParameters::parse_parameters).
       std::array<unsigned int, dim> n_spans;
       for (unsigned int d = 0; d < dim; ++d)
@@ -187,41 +240,57 @@ namespace igabde
       // k-refinement: elevate first, then insert knots, so that the base
       // subdivisions (and later refinements) give C^{p-1} spaces, not the C0
       // space that inserting before elevating would leave.
-      nurbs::elevate_to_degree(patch, degree);
+      for (auto &part : file.patches)
+        nurbs::elevate_to_degree(part, degree);
 
       // Point loads lie in or on the body: checked here, when the scene is
-      // read, on a copy split into at most 8 parts per span (starting
+      // read, on copies split into at most 8 parts per span (starting
       // points enough for the closest-point Newton; the image is the same).
       if (!body.point_loads.empty())
         {
-          nurbs::NurbsPatch<dim>        check = patch;
-          std::array<unsigned int, dim> parts;
-          for (unsigned int d = 0; d < dim; ++d)
-            parts[d] = std::min(n_spans[d], 8u);
-          nurbs::subdivide(check, parts);
-          Point<dim> lo = check.control_point(0), hi = lo;
-          for (unsigned int a = 0; a < check.n_control_points(); ++a)
-            for (unsigned int d = 0; d < dim; ++d)
-              {
-                lo[d] = std::min(lo[d], check.control_point(a)[d]);
-                hi[d] = std::max(hi[d], check.control_point(a)[d]);
-              }
+          std::vector<nurbs::NurbsPatch<dim>> checks;
+          Point<dim> lo = file.patches[0].control_point(0), hi = lo;
+          for (const auto &part : file.patches)
+            {
+              nurbs::NurbsPatch<dim>        check = part;
+              std::array<unsigned int, dim> parts;
+              for (unsigned int d = 0; d < dim; ++d)
+                parts[d] = std::min(n_spans[d], 8u);
+              nurbs::subdivide(check, parts);
+              for (unsigned int a = 0; a < check.n_control_points(); ++a)
+                for (unsigned int d = 0; d < dim; ++d)
+                  {
+                    lo[d] = std::min(lo[d], check.control_point(a)[d]);
+                    hi[d] = std::max(hi[d], check.control_point(a)[d]);
+                  }
+              checks.push_back(std::move(check));
+            }
           const double diameter = (hi - lo).norm();
           for (const auto &load : body.point_loads)
             {
               Point<dim> x;
               for (unsigned int d = 0; d < dim; ++d)
                 x[d] = load.location[d];
-              double           distance = 0.;
-              const Point<dim> xi =
-                check.closest_parametric_point(x, nullptr, &distance);
+              double     distance = std::numeric_limits<double>::max();
+              Point<dim> closest;
+              for (const auto &check : checks)
+                {
+                  double           d = 0.;
+                  const Point<dim> xi =
+                    check.closest_parametric_point(x, nullptr, &d);
+                  if (d < distance)
+                    {
+                      distance = d;
+                      closest  = check.value(xi);
+                    }
+                }
               // The coincidence tolerance of the pairing (doc/robustness.md).
               if (distance > 1e-8 * diameter)
                 {
                   std::ostringstream m;
                   m << where << "Point loads: the point (" << x
                     << ") is not in the body (distance " << distance
-                    << " from its closest point (" << check.value(xi)
+                    << " from its closest point (" << closest
                     << ")); give a point in or on the body.";
                   AssertThrow(false, base::ExcInput(m.str()));
                 }
@@ -243,9 +312,17 @@ namespace igabde
                                  body.grading_band[d] :
                                  std::array<double, 2>{{0., 0.}};
             }
-          nurbs::subdivide(patch, n_spans, grading, toward_high, bands);
+          for (auto &part : file.patches)
+            nurbs::subdivide(part, n_spans, grading, toward_high, bands);
+          // Subdivisions apply per parametric direction of each patch, so
+          // they may leave an interface non-conforming: refused here.
+          if (file.patches.size() > 1)
+            nurbs::glue_control_points(file.patches,
+                                       file.interfaces,
+                                       where + "Geometry file = " +
+                                         body.geometry_file + ": ");
         }
-      return patch;
+      return file;
     }
 
 
@@ -332,35 +409,40 @@ namespace igabde
 
     template <int dim>
     nlohmann::json
-    geometry_record(const BodyParameters         &body,
-                    const unsigned int            degree,
-                    const nurbs::NurbsPatch<dim> &patch)
+    geometry_record(const BodyParameters &body,
+                    const unsigned int    degree,
+                    const unsigned int    n_control_points)
     {
-      // The measure of the exact geometry, from its patch before
+      // The measure of the exact geometry, from its patches before
       // Subdivisions and Refinements (the same map with the fewest spans:
       // the quadrature cost does not grow with the mesh).
-      std::array<unsigned int, dim> subdivisions;
-      const nurbs::NurbsPatch<dim>  coarse =
+      std::array<unsigned int, dim>        subdivisions;
+      const nurbs::MultiPatchGeometry<dim> coarse =
         make_geometry<dim>(body, "", degree, &subdivisions);
+      double measure = 0.;
+      for (const auto &patch : coarse.patches)
+        measure += nurbs::patch_measure(patch);
       return nlohmann::json{{"geometry",
                              body.geometry == Geometry::file ?
                                body.geometry_file :
                                to_string(body.geometry)},
-                            {"patches", 1},
-                            {"control_points", patch.n_control_points()},
-                            {"measure", nurbs::patch_measure(coarse)}};
+                            {"patches", coarse.patches.size()},
+                            {"control_points", n_control_points},
+                            {"measure", measure}};
     }
 
 
 
     template <int dim>
     void
-    export_geometry(const nurbs::NurbsPatch<dim> &patch,
-                    const std::string            &directory,
-                    const std::string            &name)
+    export_geometry(const discretization::Body<dim> &body,
+                    const std::string               &directory)
     {
       nurbs::MultiPatchGeometry<dim> geometry;
-      geometry.patches.push_back(patch);
+      for (unsigned int p = 0; p < body.n_patches(); ++p)
+        geometry.patches.push_back(body.geometry_patch(p));
+      geometry.interfaces     = body.description().interfaces;
+      const std::string  name = body.name();
       std::ostringstream xml;
       nurbs::write_geometry_file(geometry, xml);
       base::write_file_atomically(directory + "/" + name + "-geometry.xml",
@@ -376,27 +458,19 @@ namespace igabde
 
 
     template nlohmann::json
-    geometry_record<2>(const BodyParameters &,
-                       unsigned int,
-                       const nurbs::NurbsPatch<2> &);
+    geometry_record<2>(const BodyParameters &, unsigned int, unsigned int);
     template nlohmann::json
-    geometry_record<3>(const BodyParameters &,
-                       unsigned int,
-                       const nurbs::NurbsPatch<3> &);
+    geometry_record<3>(const BodyParameters &, unsigned int, unsigned int);
     template void
-    export_geometry<2>(const nurbs::NurbsPatch<2> &,
-                       const std::string &,
-                       const std::string &);
+    export_geometry<2>(const discretization::Body<2> &, const std::string &);
     template void
-    export_geometry<3>(const nurbs::NurbsPatch<3> &,
-                       const std::string &,
-                       const std::string &);
-    template nurbs::NurbsPatch<2>
+    export_geometry<3>(const discretization::Body<3> &, const std::string &);
+    template nurbs::MultiPatchGeometry<2>
     make_geometry<2>(const BodyParameters &,
                      const std::string &,
                      unsigned int,
                      std::array<unsigned int, 2> *);
-    template nurbs::NurbsPatch<3>
+    template nurbs::MultiPatchGeometry<3>
     make_geometry<3>(const BodyParameters &,
                      const std::string &,
                      unsigned int,

@@ -524,9 +524,60 @@ namespace igabde
 
 
       /**
-       * Reads the face key of @p item; refuses a face that @p geometry does
-       * not have, naming the faces it has.
+       * Reads the faces of @p key: a face number f, or 'p.f' (face f of
+       * patch p of a multi-patch geometry file), several joined by '+' where
+       * @p several allows. The body face is p * faces.size() + f (faces:
+       * the 2 dim faces of a patch). Refuses a face that @p geometry does not
+       * have, naming the faces it has; a patch beyond the file's is refused
+       * when the file is read.
        */
+      std::vector<unsigned int>
+      read_faces(const std::string              &key,
+                 const std::vector<std::string> &faces,
+                 const Geometry                  geometry,
+                 const std::string              &where,
+                 const std::string              &item,
+                 const bool                      several = true)
+      {
+        static const std::regex face_pattern(
+          "^\\s*(?:([0-9]+)\\.)?([0-9]+)\\s*$");
+        const std::string form =
+          "must be a patch face 0.." + std::to_string(faces.size() - 1) +
+          (geometry == Geometry::file ?
+             " (or p.f: face f of patch p of a multi-patch file" +
+               std::string(several ? "; several joined by '+'" : "") + ")" :
+             std::string(several ? " (several joined by '+')" : "")) +
+          " of the " + to_string(geometry) + ": " + face_list(faces) + ".";
+        std::vector<unsigned int>      result;
+        const std::vector<std::string> terms = base::split(key, '+');
+        AssertThrow(several || terms.size() == 1,
+                    base::ExcInput(where + ": '" + base::trim(item) +
+                                   "' names several faces; give one face "
+                                   "here."));
+        for (const std::string &term : terms)
+          {
+            std::smatch match;
+            AssertThrow(std::regex_match(term, match, face_pattern) &&
+                          match[2].length() < 3 &&
+                          std::stoul(match[2].str()) < faces.size() &&
+                          (!match[1].matched || (geometry == Geometry::file &&
+                                                 match[1].length() < 6)),
+                        base::ExcInput(where + ": face '" + base::trim(term) +
+                                       "' " +
+                                       (base::trim(item) == base::trim(term) ?
+                                          std::string() :
+                                          "in '" + base::trim(item) + "' ") +
+                                       form));
+            const unsigned int patch =
+              match[1].matched ? std::stoul(match[1].str()) : 0;
+            result.push_back(patch * faces.size() + std::stoul(match[2].str()));
+          }
+        return result;
+      }
+
+
+
+      /// read_faces() of exactly one face.
       unsigned int
       read_face(const std::string              &key,
                 const std::vector<std::string> &faces,
@@ -534,15 +585,56 @@ namespace igabde
                 const std::string              &where,
                 const std::string              &item)
       {
-        const std::vector<double> face = base::parse_doubles(key, where);
-        AssertThrow(face.size() == 1 && face[0] >= 0 &&
-                      face[0] < faces.size() && face[0] == std::floor(face[0]),
-                    base::ExcInput(where + ": face in '" + item +
-                                   "' must be a patch face 0.." +
-                                   std::to_string(faces.size() - 1) +
-                                   " of the " + to_string(geometry) + ": " +
-                                   face_list(faces) + "."));
-        return static_cast<unsigned int>(face[0]);
+        return read_faces(key, faces, geometry, where, item, false).front();
+      }
+
+
+
+      /// A body face as the scene writes it: 'f', or 'p.f' beyond patch 0.
+      std::string
+      face_name(const unsigned int face, const unsigned int dimension)
+      {
+        return face < 2 * dimension ?
+                 std::to_string(face) :
+                 std::to_string(face / (2 * dimension)) + "." +
+                   std::to_string(face % (2 * dimension));
+      }
+
+
+
+      /**
+       * Refuses a face of @p body (its supports, tractions, moments, face
+       * motions, held rotation and @p more) on a patch that the body's
+       * geometry does not have; @p where names the body.
+       */
+      void
+      check_face_patches(const BodyParameters            &body,
+                         const std::vector<unsigned int> &more,
+                         const unsigned int               dimension,
+                         const std::string               &where)
+      {
+        std::vector<std::pair<std::string, unsigned int>> faces;
+        for (const auto &s : body.supports)
+          faces.emplace_back("Supports", s.face);
+        for (const auto &t : body.tractions)
+          faces.emplace_back("Tractions", t.face);
+        for (const auto &m : body.moments)
+          faces.emplace_back("Moments", m.face);
+        for (const auto &m : body.face_motions)
+          faces.emplace_back("Face motions", m.face);
+        if (body.hold_rotation_face >= 0)
+          faces.emplace_back("Hold rotation", body.hold_rotation_face);
+        for (const unsigned int face : more)
+          faces.emplace_back("contact face", face);
+        for (const auto &[parameter, face] : faces)
+          AssertThrow(
+            face / (2 * dimension) < body.n_patches,
+            base::ExcInput(
+              where + "/" + parameter + ": face " + face_name(face, dimension) +
+              " is on patch " + std::to_string(face / (2 * dimension)) +
+              ", but the geometry has " + std::to_string(body.n_patches) +
+              " patch" + (body.n_patches == 1 ? "" : "es") + " (0.." +
+              std::to_string(body.n_patches - 1) + ")."));
       }
 
 
@@ -797,8 +889,16 @@ namespace igabde
                               where + "Supports",
                               "'face: components', e.g. '0: x y'");
           SupportParameters support;
-          support.face =
-            read_face(key, faces, geometry, where + "Supports", item);
+          // Faces joined by '+': one support per face, alike.
+          const std::vector<unsigned int> support_faces =
+            read_faces(key, faces, geometry, where + "Supports", item);
+          const auto add_support = [&]() {
+            for (const unsigned int face : support_faces)
+              {
+                support.face = face;
+                supports.push_back(support);
+              }
+          };
           // 'c = function expression': one component given by an
           // expression of the point, scaled like a value.
           static const std::regex function_entry(
@@ -826,7 +926,7 @@ namespace igabde
               support.components[c]  = true;
               support.expressions[c] = all[c];
               support.history        = history;
-              supports.push_back(support);
+              add_support();
               continue;
             }
           std::string rest = value;
@@ -860,7 +960,7 @@ namespace igabde
                       base::ExcInput(where + "Supports: '" + item +
                                      "' names no component."));
           support.history = history;
-          supports.push_back(support);
+          add_support();
         }
 
       // Tractions: "face: pressure p", "face: vector tx, ty", "face: exact",
@@ -875,9 +975,9 @@ namespace igabde
             where + "Tractions",
             "'face: pressure p', 'face: vector tx, ty', 'face: exact' or "
             "'face: function fx; fy'");
-          TractionParameters traction;
-          traction.face =
-            read_face(key, faces, geometry, where + "Tractions", item);
+          TractionParameters              traction;
+          const std::vector<unsigned int> traction_faces =
+            read_faces(key, faces, geometry, where + "Tractions", item);
           if (rest.rfind("pressure", 0) == 0)
             {
               traction.kind = TractionParameters::Kind::pressure;
@@ -917,7 +1017,11 @@ namespace igabde
                                        "ty[, tz]', 'exact' or 'function fx; "
                                        "fy[; fz]'."));
           traction.history = history;
-          tractions.push_back(traction);
+          for (const unsigned int face : traction_faces)
+            {
+              traction.face = face;
+              tractions.push_back(traction);
+            }
         }
 
       // Hold rotation: one face.
@@ -1218,12 +1322,15 @@ namespace igabde
                           "solver).");
         prm.declare_entry("Slave face",
                           "2",
-                          Patterns::Integer(0, 5),
-                          "Patch face of Body 1 that may touch Body 2.");
+                          Patterns::Anything(),
+                          "Patch face of Body 1 that may touch Body 2: f, "
+                          "or p.f for face f of patch p of a multi-patch "
+                          "geometry file.");
         prm.declare_entry("Master face",
                           "3",
-                          Patterns::Integer(0, 5),
-                          "Patch face of Body 2 that may touch Body 1.");
+                          Patterns::Anything(),
+                          "Patch face of Body 2 that may touch Body 1: f or "
+                          "p.f.");
         prm.declare_entry("Pair placement",
                           "greville",
                           Patterns::Selection("greville|knots|gauss"),
@@ -1320,13 +1427,13 @@ namespace igabde
           parse_choice<contact::Condensation>(prm.get("Condensation"),
                                               {contact::Condensation::schur,
                                                contact::Condensation::columns});
-        slave_face     = prm.get_integer("Slave face");
-        master_face    = prm.get_integer("Master face");
-        pair_placement = parse_choice<discretization::PairPlacement>(
+        slave_face_text  = base::trim(prm.get("Slave face"));
+        master_face_text = base::trim(prm.get("Master face"));
+        pair_placement   = parse_choice<discretization::PairPlacement>(
           prm.get("Pair placement"),
           {discretization::PairPlacement::greville,
-           discretization::PairPlacement::knots,
-           discretization::PairPlacement::gauss});
+             discretization::PairPlacement::knots,
+             discretization::PairPlacement::gauss});
         pairing = parse_choice<contact::Pairing>(
           prm.get("Pairing"),
           {contact::Pairing::node_to_surface,
@@ -1729,9 +1836,23 @@ namespace igabde
                 (std::filesystem::path(scene_file).parent_path() / file)
                   .lexically_normal()
                   .string();
-            check_geometry_file(*body,
-                                dimension,
-                                where + " = " + body->geometry_file + ": ");
+            body->n_patches =
+              check_geometry_file(*body,
+                                  dimension,
+                                  discretization.degree,
+                                  where + " = " + body->geometry_file + ": ");
+            AssertThrow(body->n_patches == 1 ||
+                          discretization.type == discretization::Type::nurbs,
+                        base::ExcInput(
+                          where + " = " + body->geometry_file + " has " +
+                          std::to_string(body->n_patches) +
+                          " patches; the Lagrange (FE_Q) path meshes one "
+                          "patch in this version: set Discretization/Type = "
+                          "nurbs, or give a single-patch file."));
+            check_face_patches(*body,
+                               {},
+                               dimension,
+                               f + (body == &body1 ? "Body 1" : "Body 2"));
           }
       exact.parse_parameters(prm);
       contact.parse_parameters(prm);
@@ -1842,22 +1963,45 @@ namespace igabde
       if (contact.enabled)
         {
           // The contact faces must exist on the bodies that carry them.
-          const auto check_face = [&](const BodyParameters &body,
-                                      const std::string    &body_name,
-                                      const std::string    &parameter,
-                                      const unsigned int    face) {
+          const auto read_contact_face = [&](const BodyParameters &body,
+                                             const std::string    &body_name,
+                                             const std::string    &parameter,
+                                             const std::string    &text) {
             const auto faces = patch_faces(body.geometry, dimension);
-            AssertThrow(face < faces.size(),
-                        base::ExcInput(f + "Contact/" + parameter + " = " +
-                                       std::to_string(face) +
-                                       " is not a patch face of " + body_name +
-                                       " (" + to_string(body.geometry) +
-                                       " in " + std::to_string(dimension) +
-                                       "D: " + face_list(faces) + ")."));
+            return read_faces(text,
+                              faces,
+                              body.geometry,
+                              f + "Contact/" + parameter + " (" + body_name +
+                                ")",
+                              text);
           };
-          check_face(body1, "Body 1", "Slave face", contact.slave_face);
+          contact.slave_faces = read_contact_face(body1,
+                                                  "Body 1",
+                                                  "Slave face",
+                                                  contact.slave_face_text);
           if (body2.type == BodyType::deformable)
-            check_face(body2, "Body 2", "Master face", contact.master_face);
+            contact.master_faces = read_contact_face(body2,
+                                                     "Body 2",
+                                                     "Master face",
+                                                     contact.master_face_text);
+          AssertThrow(
+            contact.master_faces.size() == 1 ||
+              (contact.pairing != contact::Pairing::weighted_gap &&
+               contact.pairing != contact::Pairing::weighted_gap_standard),
+            base::ExcInput(f +
+                           "Contact/Master face = " + contact.master_face_text +
+                           ": the weighted-gap pairing projects on one master "
+                           "face in this version; give one face, or Pairing = "
+                           "node-to-surface for a master surface over several "
+                           "patches."));
+          // A face of a patch the geometry file does not have.
+          for (const auto *body : {&body1, &body2})
+            if (body->type == BodyType::deformable)
+              check_face_patches(*body,
+                                 body == &body1 ? contact.slave_faces :
+                                                  contact.master_faces,
+                                 dimension,
+                                 f + (body == &body1 ? "Body 1" : "Body 2"));
         }
       // A body with no Supports at all is held by nothing but contact.
       for (const auto *body : {&body1, &body2})

@@ -87,14 +87,14 @@ namespace igabde
                     const std::string                            &name,
                     const discretization::DiscretizationSettings &settings,
                     const unsigned int                            refinements,
-                    const unsigned int                            contact_face,
+                    const std::vector<unsigned int>              &contact_faces,
                     const bool                                    contact,
                     const std::string                            &scene_file)
       {
         // The exact geometry before its subdivisions (a split beyond the
         // memory must not be built to be counted).
-        std::array<unsigned int, dim> subdivisions;
-        const nurbs::NurbsPatch<dim>  geometry =
+        std::array<unsigned int, dim>        subdivisions;
+        const nurbs::MultiPatchGeometry<dim> patches =
           make_geometry<dim>(body,
                              scene_file + ": " + name + "/",
                              settings.degree,
@@ -104,37 +104,58 @@ namespace igabde
         std::array<double, dim> nodes;
         SizeEstimate::BodySize  size;
         size.name       = name;
-        size.n_elements = 1.;
+        size.n_elements = 0.;
         // Separator width (node layers) and matrix entries per row and
-        // component, per direction.
-        double width = 0., couplings = 1.;
-        for (unsigned int d = 0; d < dim; ++d)
+        // component, per direction; nodes of all patches (an interface's
+        // shared nodes counted twice: an upper bound).
+        double width = 0., couplings = 1., n = 0.;
+        for (unsigned int p = 0; p < patches.patches.size(); ++p)
           {
-            const double base_spans = geometry.breakpoints(d).size() - 1.;
-            const double spans      = base_spans * subdivisions[d];
-            size.n_elements *= spans * split;
-            if (nurbs)
+            const nurbs::NurbsPatch<dim> &geometry = patches.patches[p];
+            double                        elements = 1., patch_couplings = 1.;
+            for (unsigned int d = 0; d < dim; ++d)
               {
-                const unsigned int p = geometry.degree(d);
-                // Subdivisions and refinements insert simple knots.
-                nodes[d] = geometry.n_control_points(d) +
-                           base_spans * (subdivisions[d] * split - 1.);
-                couplings *= 2. * p + 1.;
-                width = std::max(width, double(p));
+                const double base_spans = geometry.breakpoints(d).size() - 1.;
+                const double spans      = base_spans * subdivisions[d];
+                elements *= spans * split;
+                if (nurbs)
+                  {
+                    const unsigned int degree = geometry.degree(d);
+                    // Subdivisions and refinements insert simple knots.
+                    nodes[d] = geometry.n_control_points(d) +
+                               base_spans * (subdivisions[d] * split - 1.);
+                    patch_couplings *= 2. * degree + 1.;
+                    width = std::max(width, double(degree));
+                  }
+                else
+                  {
+                    const double q = settings.degree;
+                    nodes[d]       = q * spans * split + 1.;
+                    // A node on a cell edge couples with 2q+1 nodes, one inside
+                    // a cell with q+1.
+                    patch_couplings *=
+                      ((2. * q + 1.) + (q - 1.) * (q + 1.)) / q;
+                    width = std::max(width, (q + 1.) / 2.);
+                  }
               }
-            else
-              {
-                const double q = settings.degree;
-                nodes[d]       = q * spans * split + 1.;
-                // A node on a cell edge couples with 2q+1 nodes, one inside
-                // a cell with q+1.
-                couplings *= ((2. * q + 1.) + (q - 1.) * (q + 1.)) / q;
-                width = std::max(width, (q + 1.) / 2.);
-              }
+            size.n_elements += elements;
+            couplings          = std::max(couplings, patch_couplings);
+            double patch_nodes = 1.;
+            for (unsigned int d = 0; d < dim; ++d)
+              patch_nodes *= nodes[d];
+            n += patch_nodes;
+            // The contact faces of this patch (of several, their shared
+            // nodes counted twice).
+            for (const unsigned int contact_face : contact_faces)
+              if (contact && p == contact_face / (2 * dim))
+                {
+                  double face = 1.;
+                  for (unsigned int d = 0; d < dim; ++d)
+                    if (d != (contact_face % (2 * dim)) / 2)
+                      face *= nodes[d];
+                  size.face_unknowns += dim * face;
+                }
           }
-        double n = 1.;
-        for (unsigned int d = 0; d < dim; ++d)
-          n *= nodes[d];
         const double k      = dim;
         size.n_unknowns     = k * n;
         size.matrix_entries = k * k * n * couplings;
@@ -143,7 +164,8 @@ namespace igabde
         size.factor_entries =
           (dim == 2 ? factor_constant_2d : factor_constant_3d) * k * k * width *
           width * growth;
-        if (dim == 3)
+        // Nested bisection of one patch's node grid.
+        if (dim == 3 && patches.patches.size() == 1)
           size.factor_entries =
             std::min(size.factor_entries,
                      bisection_constant *
@@ -154,14 +176,6 @@ namespace igabde
                                                 width));
         size.factor_entries =
           std::min(size.factor_entries, size.n_unknowns * size.n_unknowns / 2.);
-        if (contact)
-          {
-            double face = 1.;
-            for (unsigned int d = 0; d < dim; ++d)
-              if (d != contact_face / 2)
-                face *= nodes[d];
-            size.face_unknowns = k * face;
-          }
         return size;
       }
 
@@ -180,7 +194,7 @@ namespace igabde
                                               "Body 1",
                                               parameters.discretization,
                                               refinements,
-                                              c.slave_face,
+                                              c.slave_faces,
                                               c.enabled,
                                               scene_file));
         if (parameters.body2.type == BodyType::deformable)
@@ -188,7 +202,7 @@ namespace igabde
                                                 "Body 2",
                                                 parameters.discretization,
                                                 refinements,
-                                                c.master_face,
+                                                c.master_faces,
                                                 c.enabled,
                                                 scene_file));
         const bool direct  = (parameters.discretization.linear_solver !=

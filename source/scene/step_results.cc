@@ -539,10 +539,12 @@ namespace igabde
                                                     nullptr);
             std::tie(hertz.axis_point, hertz.axis_direction) =
               hertz_axis<dim>(parameters.checks, scene_file);
-            hertz.element_depth =
-              element_depth_under_contact(bodies[0]->geometry_patch(),
-                                          parameters.contact.slave_face,
-                                          *pairs);
+            hertz.element_depth = element_depth_under_contact(
+              bodies[0]->geometry_patch(discretization::patch_of_face<dim>(
+                parameters.contact.slave_faces.front())),
+              discretization::local_face<dim>(
+                parameters.contact.slave_faces.front()),
+              *pairs);
           };
           const auto report_warnings =
             [&](const std::vector<std::string> &messages) {

@@ -99,8 +99,8 @@ TEST(CliBadInput, SupportOnAFaceTheGeometryDoesNotHave)
   // A 2D box has faces 0..3; face 4 exists only in 3D.
   expect_refused_at_parse_time("support-face",
                                "Body 2/Supports=0: x; 4: y",
-                               "Body 2/Supports: face in '4: y' must be a "
-                               "patch face 0..3 of the box");
+                               "Body 2/Supports: face '4' in '4: y' must be "
+                               "a patch face 0..3");
 }
 
 
@@ -109,8 +109,8 @@ TEST(CliBadInput, TractionOnAFaceTheGeometryDoesNotHave)
 {
   expect_refused_at_parse_time("traction-face",
                                "Body 1/Tractions=5: pressure 1",
-                               "Body 1/Tractions: face in '5: pressure 1' "
-                               "must be a patch face 0..3");
+                               "Body 1/Tractions: face '5' in '5: pressure "
+                               "1' must be a patch face 0..3");
 }
 
 
@@ -119,8 +119,8 @@ TEST(CliBadInput, ContactFaceTheGeometryDoesNotHave)
 {
   expect_refused_at_parse_time("contact-face",
                                "Contact/Master face=4",
-                               "Contact/Master face = 4 is not a patch face "
-                               "of Body 2");
+                               "Contact/Master face (Body 2): face '4' must "
+                               "be a patch face 0..3");
 }
 
 
@@ -248,7 +248,8 @@ TEST(CliBadInput, MomentWithTheWrongNumberOfComponentsOrFace)
                                "Moments: '1: 1, 2' must give one value");
   expect_refused_at_parse_time("moment-face",
                                "Body 1/Moments=7: 1",
-                               "Moments: face in '7: 1' must be a patch face");
+                               "Moments: face '7' in '7: 1' must be a patch "
+                               "face");
 }
 
 
@@ -445,7 +446,7 @@ TEST(CliBadInput, HoldRotationOnAMissingFaceOrOnTheFullPath)
 {
   expect_refused_at_parse_time("hold-face",
                                "Body 1/Hold rotation=7",
-                               "Body 1/Hold rotation: face in '7' must be a "
+                               "Body 1/Hold rotation: face '7' must be a "
                                "patch face 0..3");
   expect_refused_at_parse_time("hold-full",
                                "Body 1/Hold rotation=3",

@@ -112,18 +112,6 @@ namespace
       .at("support_reaction");
   }
 
-  void
-  expect_refused(const std::string &arguments,
-                 const std::string &folder,
-                 const std::string &says)
-  {
-    SCOPED_TRACE(arguments);
-    const auto result = cli::run_igabde(arguments, folder);
-    EXPECT_EQ(result.status, 2) << result.output;
-    EXPECT_EQ(result.output.find('\n'), result.output.size() - 1)
-      << result.output;
-    EXPECT_NE(result.output.find(says), std::string::npos) << result.output;
-  }
 } // namespace
 
 
@@ -250,15 +238,15 @@ TEST(CliGeometryFile, BadGeometryFilesAndExpressionsAreRefusedWhenRead)
   write_box_scene(scene);
   const std::string run = "'" + scene + "' --set Output/Directory=out ";
 
-  expect_refused(run + "--set 'Body 1/Geometry=file'",
-                 folder,
-                 "Body 1/Geometry file is empty");
-  expect_refused(run + "--set 'Body 1/Geometry=file' --set 'Body "
-                       "1/Geometry file=nowhere.xml'",
-                 folder,
-                 "no such file");
+  cli::expect_refused(run + "--set 'Body 1/Geometry=file'",
+                      folder,
+                      "Body 1/Geometry file is empty");
+  cli::expect_refused(run + "--set 'Body 1/Geometry=file' --set 'Body "
+                            "1/Geometry file=nowhere.xml'",
+                      folder,
+                      "no such file");
 
-  // Two patches: refused until patches are glued.
+  // Two patches that no interface joins: not one body.
   std::ofstream(cli::join(folder.path, "two.xml"))
     << "<xml>\n"
        "<Geometry type=\"TensorBSpline2\" id=\"0\"><Basis "
@@ -274,17 +262,17 @@ TEST(CliGeometryFile, BadGeometryFilesAndExpressionsAreRefusedWhenRead)
        "0 1 1</KnotVector></Basis></Basis><coefs geoDim=\"2\">1 0 2 0 1 1 2 "
        "1</coefs></Geometry>\n"
        "</xml>\n";
-  expect_refused(run + "--set 'Body 1/Geometry=file' --set 'Body "
-                       "1/Geometry file=two.xml'",
-                 folder,
-                 "holds 2 patches");
+  cli::expect_refused(run + "--set 'Body 1/Geometry=file' --set 'Body "
+                            "1/Geometry file=two.xml'",
+                      folder,
+                      "no interface joins patch 1 to patch 0");
 
-  expect_refused(run + "--set 'Body 1/Tractions=3: function -100*x'",
-                 folder,
-                 "has 1 expressions; give 2");
-  expect_refused(run + "--set 'Body 1/Tractions=3: function 0; -100*q'",
-                 folder,
-                 "cannot evaluate");
+  cli::expect_refused(run + "--set 'Body 1/Tractions=3: function -100*x'",
+                      folder,
+                      "has 1 expressions; give 2");
+  cli::expect_refused(run + "--set 'Body 1/Tractions=3: function 0; -100*q'",
+                      folder,
+                      "cannot evaluate");
   EXPECT_FALSE(std::filesystem::exists(cli::join(folder.path, "out")));
 }
 
@@ -341,10 +329,10 @@ TEST(CliExpressionLoads, BodyForceFieldReactionIsItsIntegral)
     }
   const std::string run =
     "'" + scene + "' --set Output/Directory=refused --set ";
-  expect_refused(run + "'Body 1/Body force=function 0; -100*t'",
-                 folder,
-                 "Body force uses t");
-  expect_refused(run + "'Body 1/Supports=2: x y; 3: y = function 0.1*t'",
-                 folder,
-                 "uses t");
+  cli::expect_refused(run + "'Body 1/Body force=function 0; -100*t'",
+                      folder,
+                      "Body force uses t");
+  cli::expect_refused(run + "'Body 1/Supports=2: x y; 3: y = function 0.1*t'",
+                      folder,
+                      "uses t");
 }

@@ -2,6 +2,8 @@
 #ifndef igabde_tests_unit_cli_helpers_h
 #define igabde_tests_unit_cli_helpers_h
 
+#include <gtest/gtest.h>
+
 #include <array>
 #include <cstdio>
 #include <cstdlib>
@@ -167,6 +169,23 @@ namespace cli
           rows.back().push_back(cell);
       }
     return rows;
+  }
+
+  /**
+   * Runs igabde with @p arguments in @p folder and expects it refused with
+   * exit status 2 and one line of output that says @p says.
+   */
+  inline void
+  expect_refused(const std::string &arguments,
+                 const std::string &folder,
+                 const std::string &says)
+  {
+    SCOPED_TRACE(arguments);
+    const auto result = run_igabde(arguments, folder);
+    EXPECT_EQ(result.status, 2) << result.output;
+    EXPECT_EQ(result.output.find('\n'), result.output.size() - 1)
+      << result.output;
+    EXPECT_NE(result.output.find(says), std::string::npos) << result.output;
   }
 } // namespace cli
 

@@ -72,8 +72,8 @@ namespace
 
     contact::ContactSettings cs;
     cs.friction_coefficient = mu;
-    cs.slave_face           = 2;
-    cs.master_face          = 3;
+    cs.slave_faces          = {2};
+    cs.master_faces         = {3};
     cs.progress             = false;
     std::ostringstream log;
     TimerOutput        timer(log, TimerOutput::never, TimerOutput::wall_times);

@@ -115,8 +115,8 @@ namespace
 
     contact::ContactSettings cs;
     cs.friction_coefficient = mu;
-    cs.slave_face           = 2 * (dim - 1);
-    cs.master_face          = 2 * (dim - 1) + 1;
+    cs.slave_faces          = {2 * (dim - 1)};
+    cs.master_faces         = {2 * (dim - 1) + 1};
     cs.pairing              = pairing;
     cs.progress             = false;
     std::ostringstream log;

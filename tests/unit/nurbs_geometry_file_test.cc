@@ -7,6 +7,7 @@
 
 #include <igabde/nurbs/geometry_builders.h>
 #include <igabde/nurbs/geometry_file.h>
+#include <igabde/nurbs/multi_patch.h>
 
 #include <gtest/gtest.h>
 
@@ -483,4 +484,91 @@ TEST(GeometryFile, PatchesThatMeetThemselvesAreRefused)
                        "2",
                        "1")));
   EXPECT_EQ(read_geometry_file<2>(path).patches.size(), 1u);
+}
+
+
+
+namespace glue_test
+{
+  /// The L of three unit squares of ReadsTheTopologyOfAThreePatchLShape,
+  /// its middle square (patch 1) written with its directions swapped (a
+  /// left-handed patch whose faces are numbered differently), each patch
+  /// split into @p spans[p] spans per direction.
+  MultiPatchGeometry<2>
+  l_shape(const cli::ScratchFolder                         &folder,
+          const std::array<std::array<unsigned int, 2>, 3> &spans)
+  {
+    // Patch 1 = [-1, 0]^2, direction 0 along y: faces 0 y = -1, 1 y = 0,
+    // 2 x = -1, 3 x = 0; so patch 2's south meets its face 1 (side 2),
+    // and its face 3 (side 4) meets patch 0's west.
+    const std::string swapped =
+      patch_2d("1", "0 0 1 1", "0 0 1 1", "-1 -1\n-1 0\n0 -1\n0 0\n");
+    MultiPatchGeometry<2> g = read_geometry_file<2>(
+      write(folder,
+            "lshape-swapped.xml",
+            xml(square("0", 0., -1.) + swapped + square("2", -1., 0.) +
+                "<MultiPatch parDim=\"2\" id=\"9\">\n"
+                " <patches type=\"id_range\">0 2</patches>\n"
+                " <interfaces>\n2 3 1 2\n1 4 0 1\n </interfaces>\n"
+                "</MultiPatch>\n")));
+    for (unsigned int p = 0; p < 3; ++p)
+      subdivide(g.patches[p], spans[p]);
+    return g;
+  }
+} // namespace glue_test
+
+
+
+TEST(GeometryFile, GluesConformingPatchesWhateverTheirOrientation)
+{
+  const cli::ScratchFolder folder("geometry-glue", "unit");
+  // Patch 1's direction 0 runs along y, so its spans are given swapped.
+  const MultiPatchGeometry<2> g =
+    glue_test::l_shape(folder, {{{{2, 3}}, {{3, 3}}, {{3, 2}}}});
+  const auto [numbers, n] =
+    glue_control_points(g.patches, g.interfaces, "lshape: ");
+  // 3 x 4 + 4 x 4 + 4 x 3 control points, 4 + 4 shared (the point (0, 0)
+  // of all three patches is one).
+  EXPECT_EQ(n, 40u - 8u);
+  // Independent of the matching: control points with one number coincide,
+  // control points with different numbers do not.
+  std::vector<std::vector<Point<2>>> at(n);
+  for (unsigned int p = 0; p < 3; ++p)
+    for (unsigned int a = 0; a < g.patches[p].n_control_points(); ++a)
+      at[numbers[p][a]].push_back(g.patches[p].control_point(a));
+  for (unsigned int i = 0; i < n; ++i)
+    {
+      ASSERT_FALSE(at[i].empty());
+      for (const Point<2> &x : at[i])
+        EXPECT_LT(x.distance(at[i][0]), 1e-14);
+      for (unsigned int j = 0; j < i; ++j)
+        EXPECT_GT(at[j][0].distance(at[i][0]), 0.1);
+    }
+  // Patch 0 keeps its own numbering.
+  for (unsigned int a = 0; a < g.patches[0].n_control_points(); ++a)
+    EXPECT_EQ(numbers[0][a], a);
+}
+
+
+
+TEST(GeometryFile, NonConformingInterfacesAreRefusedNamingThem)
+{
+  const cli::ScratchFolder folder("geometry-glue-bad", "unit");
+  // Patch 0 has 3 spans along its west face, patch 1 2 along the face it
+  // meets there.
+  const MultiPatchGeometry<2> g =
+    glue_test::l_shape(folder, {{{{2, 3}}, {{2, 3}}, {{3, 2}}}});
+  try
+    {
+      glue_control_points(g.patches, g.interfaces, "lshape: ");
+      FAIL() << "a non-conforming interface was glued";
+    }
+  catch (const base::ExcInput &e)
+    {
+      const std::string message = base::exception_message(e);
+      EXPECT_NE(message.find("lshape: interface (patch 1 face 3, patch 0 "
+                             "face 0) is not conforming"),
+                std::string::npos)
+        << message;
+    }
 }

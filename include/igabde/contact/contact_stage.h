@@ -38,7 +38,7 @@ namespace igabde
       /// Coulomb friction coefficient; 0 forms no tangential unknowns.
       double friction_coefficient = 0.;
       /// Patch faces of Body 1 (slave) and Body 2 (master).
-      unsigned int slave_face = 2, master_face = 3;
+      std::vector<unsigned int> slave_faces = {2}, master_faces = {3};
       /// Pairing strategy (create_pairing_strategy()).
       Pairing pairing = Pairing::node_to_surface;
       /// The condensed path condenses through the bodies' Schur complements

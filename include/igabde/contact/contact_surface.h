@@ -1,11 +1,14 @@
 #ifndef igabde_contact_contact_surface_h
 #define igabde_contact_contact_surface_h
 
+#include <igabde/base/nearest_points.h>
+
 #include <igabde/discretization/body.h>
 
 #include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -71,15 +74,22 @@ namespace igabde
 
 
     /**
-     * @brief A patch face of a deformable body as a contact surface.
+     * @brief Patch faces of a deformable body as one contact surface: one
+     * face, or several of a multi-patch body (patch faces that meet at
+     * interfaces).
+     *
+     * With several faces the closest point is searched on each (from its
+     * own nearest sample) and the closest kept; face coordinates
+     * (face_grid(), face_point(), which the weighted-gap pairing projects
+     * on) exist for one face only.
      */
     template <int dim>
     class BodyFace : public ContactSurface<dim>
     {
     public:
-      /// Samples the face's candidate points (Body::surface_points()).
-      BodyFace(const discretization::Body<dim> &body,
-               const types::boundary_id         face);
+      /// Samples the faces' candidate points (Body::surface_points()).
+      BodyFace(const discretization::Body<dim>       &body,
+               const std::vector<types::boundary_id> &faces);
 
       bool
       deformable() const override;
@@ -103,8 +113,12 @@ namespace igabde
 
     private:
       const discretization::Body<dim>               &body;
-      const types::boundary_id                       face;
+      const std::vector<types::boundary_id>          faces;
       std::vector<discretization::SurfacePoint<dim>> samples;
+      /// The first sample of each face in samples, and the end.
+      std::vector<unsigned int> first_sample;
+      /// Each face's samples indexed (several faces only).
+      std::vector<std::unique_ptr<base::NearestPoints<dim>>> face_index;
     };
   } // namespace contact
 } // namespace igabde

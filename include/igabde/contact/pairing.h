@@ -62,16 +62,17 @@ namespace igabde
       name() const = 0;
 
       /**
-       * @brief The pairs of the patch face @p slave_face of @p slave_body
-       * (Body 1) against @p master, frames from the master normal. Throws
+       * @brief The pairs of the patch faces @p slave_faces of @p slave_body
+       * (Body 1: one face, or several of a multi-patch body forming one
+       * surface) against @p master, frames from the master normal. Throws
        * an input error, naming @p context, when the surfaces do not face
        * each other or Body 1 initially penetrates.
        */
       virtual std::vector<ContactPair<dim>>
-      make_pairs(const discretization::Body<dim> &slave_body,
-                 const types::boundary_id         slave_face,
-                 const ContactSurface<dim>       &master,
-                 const std::string               &context) const = 0;
+      make_pairs(const discretization::Body<dim>       &slave_body,
+                 const std::vector<types::boundary_id> &slave_faces,
+                 const ContactSurface<dim>             &master,
+                 const std::string                     &context) const = 0;
     };
 
 
@@ -85,12 +86,14 @@ namespace igabde
     class PointPairing : public PairingStrategy<dim>
     {
     public:
-      /// make_pairs() below on the points of Body::surface_points().
+      /// make_pairs() below on the points of Body::surface_points() of
+      /// every face; a point that two faces share (on the edge where two
+      /// patches meet) is one point, carrying both tributary areas.
       std::vector<ContactPair<dim>>
-      make_pairs(const discretization::Body<dim> &slave_body,
-                 const types::boundary_id         slave_face,
-                 const ContactSurface<dim>       &master,
-                 const std::string               &context) const override;
+      make_pairs(const discretization::Body<dim>       &slave_body,
+                 const std::vector<types::boundary_id> &slave_faces,
+                 const ContactSurface<dim>             &master,
+                 const std::string                     &context) const override;
 
       /**
        * @brief The pairs of the points @p slave (Body 1's contact face)
@@ -204,10 +207,10 @@ namespace igabde
       name() const override;
 
       std::vector<ContactPair<dim>>
-      make_pairs(const discretization::Body<dim> &slave_body,
-                 const types::boundary_id         slave_face,
-                 const ContactSurface<dim>       &master,
-                 const std::string               &context) const override;
+      make_pairs(const discretization::Body<dim>       &slave_body,
+                 const std::vector<types::boundary_id> &slave_faces,
+                 const ContactSurface<dim>             &master,
+                 const std::string                     &context) const override;
 
     private:
       /// Weights psi_j (dual basis) instead of N_j.

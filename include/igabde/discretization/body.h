@@ -561,11 +561,28 @@ namespace igabde
 
       /**
        * @brief The exact geometry after degree elevation, Subdivisions and
-       * Refinements: the NURBS analysis space, or the map the Lagrange
-       * mesh's cells follow.
+       * Refinements, patch @p p of it: the NURBS analysis space, or the map
+       * the Lagrange mesh's cells follow.
        */
       virtual const nurbs::NurbsPatch<dim> &
-      geometry_patch() const = 0;
+      geometry_patch(const unsigned int p = 0) const = 0;
+
+      /// @brief Number of patches of the geometry (faces p * 2 dim + f).
+      virtual unsigned int
+      n_patches() const
+      {
+        return 1;
+      }
+
+      /// @brief The face @p face as scenes write it: "f" on patch 0, "p.f"
+      /// on patch p > 0.
+      std::string
+      face_name(const types::boundary_id face) const
+      {
+        return face < 2 * dim ? std::to_string(face) :
+                                std::to_string(face / (2 * dim)) + "." +
+                                  std::to_string(face % (2 * dim));
+      }
 
     protected:
       /**

@@ -1,6 +1,7 @@
 #ifndef igabde_discretization_body_description_h
 #define igabde_discretization_body_description_h
 
+#include <igabde/nurbs/geometry_file.h>
 #include <igabde/nurbs/nurbs_patch.h>
 
 #include <igabde/discretization/settings.h>
@@ -24,6 +25,35 @@ namespace igabde
   namespace discretization
   {
     using namespace dealii;
+
+    /**
+     * @brief The faces of a body: face f of patch p is p * 2 dim + f (the
+     * scene's 'p.f'); a single-patch body's faces are 0..2 dim - 1.
+     */
+    template <int dim>
+    constexpr unsigned int
+    face_id(const unsigned int patch, const unsigned int face)
+    {
+      return patch * 2 * dim + face;
+    }
+
+    /// The patch of the face @p id.
+    template <int dim>
+    constexpr unsigned int
+    patch_of_face(const unsigned int id)
+    {
+      return id / (2 * dim);
+    }
+
+    /// The face number 0..2 dim - 1 within its patch of the face @p id.
+    template <int dim>
+    constexpr unsigned int
+    local_face(const unsigned int id)
+    {
+      return id % (2 * dim);
+    }
+
+
 
     /**
      * @brief Prescribed displacement on a patch face: the selected components
@@ -139,8 +169,28 @@ namespace igabde
     {
       /// Name used in output files and messages.
       std::string name = "body";
-      /// Exact geometry as a NURBS patch (coarsest description).
+      /// Exact geometry as a NURBS patch (coarsest description); of a
+      /// multi-patch body, patch 0.
       nurbs::NurbsPatch<dim> geometry;
+      /// Patches 1, 2, ... of a multi-patch body (empty: one patch).
+      std::vector<nurbs::NurbsPatch<dim>> more_patches;
+      /// The interfaces where the patches are glued (patch indices as
+      /// above, faces 0..2 dim - 1).
+      std::vector<nurbs::PatchInterface> interfaces;
+
+      /// Number of patches.
+      unsigned int
+      n_patches() const
+      {
+        return 1 + more_patches.size();
+      }
+
+      /// Patch @p p.
+      const nurbs::NurbsPatch<dim> &
+      patch(const unsigned int p) const
+      {
+        return p == 0 ? geometry : more_patches.at(p - 1);
+      }
       /// Material law.
       elasticity::IsotropicMaterial<dim> material;
       /// Supports.

@@ -31,6 +31,12 @@ namespace igabde
      * @brief The isogeometric (NURBS) discretisation of a body, hosted in
      * deal.II.
      *
+     * A body is one patch or several glued at conforming interfaces
+     * (BodyDescription::interfaces): every patch below is treated alike and
+     * the control points that interface faces share are one unknown
+     * (nurbs::glue_control_points()); face p * 2 dim + f is face f of
+     * patch p.
+     *
      * The description's patch is elevated to settings.degree in every
      * direction whose degree is lower, then h-refined settings.refinements
      * times (one midpoint knot per span and direction each time); the
@@ -67,9 +73,13 @@ namespace igabde
       std::string
       discretization_name() const override;
 
-      /// @brief Number of non-empty knot spans.
+      /// @brief Number of non-empty knot spans over all patches.
       unsigned int
       n_elements() const override;
+
+      /// @brief Number of patches.
+      unsigned int
+      n_patches() const override;
 
       /**
        * @brief R_A at the parametric preimage of @p location (Newton
@@ -146,21 +156,27 @@ namespace igabde
       measure() const override;
 
       const nurbs::NurbsPatch<dim> &
-      geometry_patch() const override
+      geometry_patch(const unsigned int p = 0) const override
       {
-        return geometry;
+        return spaces.at(p).geometry;
       }
 
       std::pair<double, Point<dim>>
       largest_strain(const Vector<double> &u) const override;
 
-      /// @brief The refined and elevated patch: the analysis space.
+      /// @brief The refined and elevated patch @p p: its analysis space.
       const nurbs::NurbsPatch<dim> &
-      patch() const;
+      patch(const unsigned int p = 0) const;
 
-      /// @brief The parametric mesh (one cell per non-empty knot span).
+      /// @brief The parametric mesh of patch @p p (one cell per non-empty
+      /// knot span).
       const Triangulation<dim> &
-      triangulation() const;
+      triangulation(const unsigned int p = 0) const;
+
+      /// @brief The glued index of each control point of patch @p p (its
+      /// unknowns are dim n + c).
+      const std::vector<unsigned int> &
+      control_point_numbers(const unsigned int p) const;
 
       /**
        * @brief Parametric coordinates of a physical point of the body
@@ -171,6 +187,11 @@ namespace igabde
       Point<dim>
       parametric_point(const Point<dim> &location) const;
 
+      /// @brief parametric_point() with the patch that holds the point (of
+      /// a point on an interface, either).
+      std::pair<unsigned int, Point<dim>>
+      locate(const Point<dim> &location) const;
+
       /**
        * @brief The exact closest point of the NURBS face @p face to
        * @p location (Newton on the patch), with the exact outward normal.
@@ -180,9 +201,11 @@ namespace igabde
                             const Point<dim>        &location,
                             const SurfacePoint<dim> &nearest) const override;
 
-      /// @brief Displacement/point-force operator at parametric point @p xi.
+      /// @brief Displacement/point-force operator at parametric point @p xi
+      /// of patch @p p.
       PointOperator<dim>
-      parametric_point_operator(const Point<dim> &xi) const;
+      parametric_point_operator(const Point<dim>  &xi,
+                                const unsigned int p = 0) const;
 
       /**
        * @brief Strain eps(u_h) at the parametric point @p xi; at a point
@@ -190,7 +213,9 @@ namespace igabde
        * disc's 45-degree corner) the limit from inside the patch.
        */
       SymmetricTensor<2, dim>
-      strain_at_parametric(const Vector<double> &u, const Point<dim> &xi) const;
+      strain_at_parametric(const Vector<double> &u,
+                           const Point<dim>     &xi,
+                           const unsigned int    p = 0) const;
 
       /// @brief Gauss points per direction of the cell rule (p+1, or p+2
       /// for a rational patch); faces use one more.
@@ -200,7 +225,8 @@ namespace igabde
       /// @brief Displacement u_h at the parametric point @p xi.
       Tensor<1, dim>
       displacement_at_parametric(const Vector<double> &u,
-                                 const Point<dim>     &xi) const;
+                                 const Point<dim>     &xi,
+                                 const unsigned int    p = 0) const;
 
     protected:
       /// @brief Unknowns, control-point locations, supports and sparsity.
@@ -212,42 +238,67 @@ namespace igabde
       assemble() override;
 
     private:
-      /// Surface measure factor |cof(J) e_d| and outward unit normal.
-      std::pair<double, Tensor<1, dim>>
-      face_measure_and_normal(const unsigned int    face,
-                              const Tensor<2, dim> &J) const;
+      /// One patch of the body: its analysis space and parametric mesh.
+      struct PatchSpace
+      {
+        /// The elevated and refined patch.
+        nurbs::NurbsPatch<dim> geometry;
+        /// One cell per non-empty knot span (boundary id = patch face).
+        Triangulation<dim> mesh;
+        /// Knot breakpoints per direction.
+        std::array<std::vector<double>, dim> breaks;
+        /// Sign of det(dx/dxi) (+1 right-handed).
+        double orientation = 1.;
+        /// The glued index of each control point.
+        std::vector<unsigned int> numbers;
+        /// Newton starts of the point inversion: their coordinates per
+        /// direction (a tensor grid, direction 0 fastest).
+        std::array<std::vector<double>, dim> sample_coordinates;
+      };
 
-      /// Tributary areas of the Greville points of face @p face: the
-      /// collocation system sum_i R_A(xi_i) A_i = @p integrals (one entry
-      /// per control point of @p face_cps), solved direction by direction.
+      /// Surface measure factor |cof(J) e_d| and outward unit normal of the
+      /// patch face @p face (0..2 dim - 1) of a patch of orientation
+      /// @p orientation.
+      static std::pair<double, Tensor<1, dim>>
+      face_measure_and_normal(const unsigned int    face,
+                              const Tensor<2, dim> &J,
+                              const double          orientation);
+
+      /// The patch and its face (0..2 dim - 1) of the body face @p face;
+      /// throws naming the body when there is no such face.
+      std::pair<const PatchSpace *, unsigned int>
+      patch_face(const types::boundary_id face) const;
+
+      /// Tributary areas of the Greville points of face @p face of
+      /// @p space: the collocation system sum_i R_A(xi_i) A_i = @p integrals
+      /// (one entry per control point of @p face_cps), solved direction by
+      /// direction.
       Eigen::VectorXd
-      greville_tributary_areas(const types::boundary_id         face,
+      greville_tributary_areas(const PatchSpace                &space,
+                               const unsigned int               face,
                                const std::vector<unsigned int> &face_cps,
                                const Eigen::VectorXd &integrals) const;
 
-      /// Largest degree over the directions.
+      /// Largest degree over the directions and patches.
       unsigned int
       max_degree() const;
 
-      nurbs::NurbsPatch<dim>               geometry;
-      Triangulation<dim>                   parametric_mesh;
-      std::array<std::vector<double>, dim> breaks;
+      /// The patches (sized once in the constructor: a Triangulation is not
+      /// moved).
+      std::vector<PatchSpace> spaces;
+      /// Number of glued control points (n_unknowns / dim).
+      unsigned int n_points = 0;
       /// Pair placement parsed from the settings.
       PairPlacement default_placement = PairPlacement::greville;
-      /// Sign of det(dx/dxi) (+1 right-handed).
-      double orientation = 1.;
-      /// Size of the body (bounding-box diagonal of the control net).
+      /// Size of the body (bounding-box diagonal of the control nets).
       double diameter = 0.;
-      /// Samples for the Newton start of the point inversion: their
-      /// coordinates per direction (the samples are the tensor grid,
-      /// direction 0 fastest).
-      std::array<std::vector<double>, dim> sample_coordinates;
-      /// Their images, indexed by an R-tree built at the first inversion
-      /// (most runs invert no point; V5 with 4 refinements has a million
-      /// samples and inverts a thousand pair points, which a scan took a
-      /// second for).
-      mutable std::once_flag                            index_built;
-      mutable std::unique_ptr<base::NearestPoints<dim>> sample_index;
+      /// The samples' images per patch, indexed by R-trees built at the
+      /// first inversion (most runs invert no point; V5 with 4 refinements
+      /// has a million samples and inverts a thousand pair points, which a
+      /// scan took a second for).
+      mutable std::once_flag index_built;
+      mutable std::vector<std::unique_ptr<base::NearestPoints<dim>>>
+        sample_index;
     };
   } // namespace discretization
 } // namespace igabde

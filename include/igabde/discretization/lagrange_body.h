@@ -92,7 +92,7 @@ namespace igabde
       measure() const override;
 
       const nurbs::NurbsPatch<dim> &
-      geometry_patch() const override
+      geometry_patch(const unsigned int = 0) const override
       {
         return patch;
       }

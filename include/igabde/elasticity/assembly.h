@@ -449,11 +449,15 @@ namespace igabde
             }
         }
       ErrorNorms result;
-      result.l2_relative     = std::sqrt(e_l2 / std::max(u_l2, 1e-300));
-      result.energy_relative = with_stress ?
-                                 std::sqrt(e_en / std::max(u_en, 1e-300)) :
-                                 std::numeric_limits<double>::quiet_NaN();
-      result.measure         = vol;
+      result.l2_relative          = std::sqrt(e_l2 / std::max(u_l2, 1e-300));
+      result.energy_relative      = with_stress ?
+                                      std::sqrt(e_en / std::max(u_en, 1e-300)) :
+                                      std::numeric_limits<double>::quiet_NaN();
+      result.measure              = vol;
+      result.l2_error_squared     = e_l2;
+      result.l2_norm_squared      = u_l2;
+      result.energy_error_squared = e_en;
+      result.energy_norm_squared  = u_en;
       return result;
     }
 

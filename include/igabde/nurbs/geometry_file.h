@@ -120,6 +120,14 @@ namespace igabde
                      const std::string             &where);
 
     /**
+     * @brief The diagonal of the bounding box of the control points of
+     * @p patch: the patch's size, the scale of the geometric tolerances.
+     */
+    template <int dim>
+    double
+    control_net_diameter(const NurbsPatch<dim> &patch);
+
+    /**
      * @brief Area (2D) or volume (3D) of the patch's image, by Gauss
      * quadrature of |det J| with @p n_points per direction and knot span,
      * or, for 0, n = max(p + 1, ceil(17 / ln(4 k))) in a direction of k

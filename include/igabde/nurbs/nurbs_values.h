@@ -75,6 +75,16 @@ namespace igabde
       void
       check_orientation(const std::string &owner);
 
+      /**
+       * @brief Numbers the unknowns by @p control_point_numbers (the glued
+       * index of each control point of a multi-patch body, which must
+       * outlive this object): get_dof_indices() gives dim n[A] + c instead
+       * of dim A + c. control_points() stays the patch's own numbering.
+       */
+      void
+      number_unknowns_by(
+        const std::vector<unsigned int> &control_point_numbers);
+
       /// Evaluates on the knot span of @p cell.
       void
       reinit(const cell_iterator &cell);
@@ -229,15 +239,17 @@ namespace igabde
       std::array<unsigned int, dim> n_1d;
       std::array<unsigned int, dim> current_span;
       std::vector<unsigned int>     local_control_points;
-      std::vector<double>           values;
-      std::vector<Tensor<1, dim>>   parametric_gradients;
-      std::vector<Tensor<1, dim>>   gradients;
-      std::vector<Point<dim>>       points;
-      std::vector<Point<dim>>       parametric_points;
-      std::vector<Tensor<2, dim>>   jacobians;
-      std::vector<double>           jxw;
-      std::vector<Tensor<1, dim>>   normals;
-      std::vector<char>             is_regular;
+      /// The glued numbering (number_unknowns_by()); null: the patch's own.
+      const std::vector<unsigned int> *numbering = nullptr;
+      std::vector<double>              values;
+      std::vector<Tensor<1, dim>>      parametric_gradients;
+      std::vector<Tensor<1, dim>>      gradients;
+      std::vector<Point<dim>>          points;
+      std::vector<Point<dim>>          parametric_points;
+      std::vector<Tensor<2, dim>>      jacobians;
+      std::vector<double>              jxw;
+      std::vector<Tensor<1, dim>>      normals;
+      std::vector<char>                is_regular;
       /// Per-point scratch: 1D B-splines and derivatives per direction.
       std::array<std::vector<double>, dim> N, dN;
     };

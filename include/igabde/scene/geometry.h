@@ -1,7 +1,10 @@
 #ifndef igabde_scene_geometry_h
 #define igabde_scene_geometry_h
 
+#include <igabde/nurbs/geometry_file.h>
 #include <igabde/nurbs/nurbs_patch.h>
+
+#include <igabde/discretization/body.h>
 
 #include <igabde/scene/parameters.h>
 
@@ -15,15 +18,17 @@ namespace igabde
   namespace scene
   {
     /**
-     * @brief The exact NURBS geometry a body's parameters name, elevated to
-     * at least @p degree and then split into its base subdivisions (knot
-     * insertion after elevation: C^{p-1} across the new knots); @p where
+     * @brief The exact NURBS geometry a body's parameters name (one patch,
+     * or a file's patches and interfaces), elevated to at least @p degree
+     * and then split into its base subdivisions (knot insertion after
+     * elevation: C^{p-1} across the new knots; several patches are then
+     * checked to stay conforming, nurbs::glue_control_points()); @p where
      * prefixes error messages. With @p subdivisions, the split is checked
      * and returned there but not applied: the size guard counts the
      * subdivided patch without building it.
      */
     template <int dim>
-    nurbs::NurbsPatch<dim>
+    nurbs::MultiPatchGeometry<dim>
     make_geometry(const BodyParameters          &body,
                   const std::string             &where,
                   const unsigned int             degree,
@@ -42,37 +47,40 @@ namespace igabde
      * @brief Reads the geometry file of @p body (Geometry = file, its
      * geometry_path resolved) as a @p dimension-D file and refuses, with a
      * one-line input error prefixed by @p where, a file that cannot be
-     * read, is not valid (nurbs::read_geometry_file()) or holds more than
-     * one patch.
+     * read or is not valid (nurbs::read_geometry_file()), or whose
+     * interfaces the body's Subdivisions (at @p degree) leave
+     * non-conforming. Returns the number of patches.
      */
-    void
+    unsigned int
     check_geometry_file(const BodyParameters &body,
                         const unsigned int    dimension,
+                        const unsigned int    degree,
                         const std::string    &where);
 
     /**
      * @brief What summary.json says of a body's geometry: its source
      * (the built-in shape or the file as the scene names it), patches,
-     * control points of the analysis patch @p patch, and measure (area or
-     * volume of the exact geometry, nurbs::patch_measure() on the body's
-     * patch elevated to @p degree before Subdivisions and Refinements).
+     * @p n_control_points (the analysis space's, glued), and measure (area
+     * or volume of the exact geometry, nurbs::patch_measure() summed over
+     * the body's patches elevated to @p degree before Subdivisions and
+     * Refinements).
      */
     template <int dim>
     nlohmann::json
-    geometry_record(const BodyParameters         &body,
-                    const unsigned int            degree,
-                    const nurbs::NurbsPatch<dim> &patch);
+    geometry_record(const BodyParameters &body,
+                    const unsigned int    degree,
+                    const unsigned int    n_control_points);
 
     /**
-     * @brief Writes @p patch as the G+Smo XML file
-     * @p directory/@p name-geometry.xml and its control net as
-     * @p directory/@p name-control-net.vtu.
+     * @brief Writes the analysis geometry of @p body (every patch after
+     * elevation, Subdivisions and Refinements, and the interfaces) as the
+     * G+Smo XML file @p directory/name-geometry.xml and the control nets
+     * as @p directory/name-control-net.vtu.
      */
     template <int dim>
     void
-    export_geometry(const nurbs::NurbsPatch<dim> &patch,
-                    const std::string            &directory,
-                    const std::string            &name);
+    export_geometry(const discretization::Body<dim> &body,
+                    const std::string               &directory);
   } // namespace scene
 } // namespace igabde
 

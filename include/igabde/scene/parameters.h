@@ -278,6 +278,9 @@ namespace igabde
       /// it resolves to.
       std::string geometry_file;
       std::string geometry_path;
+      /// Number of patches of the geometry (of a file: read with the
+      /// scene).
+      unsigned int n_patches = 1;
       /// Knot spans per direction of the base mesh, before refinements
       /// (dimension counts, 1 to 9999).
       std::vector<unsigned int> subdivisions = {1, 1, 1};
@@ -394,10 +397,14 @@ namespace igabde
       /// GMRES iteration limit per Newton step (gmres-amg).
       unsigned int          krylov_max_iterations = 1000;
       contact::Condensation condensation = contact::Condensation::schur;
-      /// Patch face of Body 1 that may touch.
-      unsigned int slave_face = 2;
-      /// Patch face of Body 2 that may touch.
-      unsigned int master_face = 3;
+      /// Patch faces of Body 1 that may touch ('p.f' of a multi-patch body:
+      /// p * 2 dim + f; several joined by '+'), read from slave_face_text
+      /// once the dimension and the bodies are known.
+      std::vector<unsigned int> slave_faces = {2};
+      /// The scene's Slave face and Master face as written.
+      std::string slave_face_text = "2", master_face_text = "3";
+      /// Patch faces of Body 2 that may touch.
+      std::vector<unsigned int> master_faces = {3};
       /// Where pairs sit on a NURBS surface.
       discretization::PairPlacement pair_placement =
         discretization::PairPlacement::greville;

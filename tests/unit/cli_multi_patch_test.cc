@@ -1,0 +1,385 @@
+// Multi-patch bodies from the command line: V2 on a ring of four glued
+// patches, on a quarter of three patches of both orientations, and on a
+// 3D slab of four patches gives the single-patch scene's errors (the Lame
+// field is exact in the angle on these exact arcs, so every error is the
+// radial discretisation's, which the patches share) and converges at its
+// rate p + 1; the exported analysis geometry reads back to the same
+// figures; bad multi-patch input is refused when the scene is read.
+#include <gtest/gtest.h>
+
+#include "cli_helpers.h"
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+namespace multi_patch_test
+{
+  const std::string source(IGABDE_SOURCE_DIR);
+
+  /// Writes a ring sector by contrib/geometry/annulus-patches with
+  /// @p arguments into @p folder/@p name.
+  void
+  write_ring(const std::string &folder,
+             const std::string &name,
+             const std::string &arguments)
+  {
+    const auto r =
+      cli::run_in(folder,
+                  "python3 '" +
+                    cli::join(source, "contrib/geometry/annulus-patches") +
+                    "' --inner-radius 1 --radius 2 " + arguments + " > " +
+                    name);
+    ASSERT_EQ(r.status, 0) << r.output;
+  }
+
+  /// Runs @p scene (a path) with @p sets in @p folder/@p out and returns
+  /// its summary (null if it failed).
+  nlohmann::json
+  run(const std::string &folder,
+      const std::string &scene,
+      const std::string &sets,
+      const std::string &out)
+  {
+    const auto r = cli::run_igabde("'" + scene + "' --quiet " + sets +
+                                     " --set 'Output/Directory=" + out +
+                                     "' --set 'Output/Write vtu=false' "
+                                     "--set 'Output/Print timing=false'",
+                                   folder);
+    EXPECT_EQ(r.status, 0) << r.output;
+    if (r.status != 0)
+      return nullptr;
+    return nlohmann::json::parse(
+      cli::read_file(cli::join(cli::join(folder, out), "summary.json")));
+  }
+
+  double
+  l2(const nlohmann::json &summary)
+  {
+    return summary.is_null() ?
+             1. :
+             summary.at("checks").at("l2_error").get<double>();
+  }
+
+  double
+  energy(const nlohmann::json &summary)
+  {
+    return summary.is_null() ?
+             1. :
+             summary.at("checks").at("energy_error").get<double>();
+  }
+
+} // namespace multi_patch_test
+
+
+
+namespace multi_patch_test
+{
+  /// A G+Smo Geometry element: the multilinear box [lo, hi] (2D or 3D),
+  /// its parametric directions taken in the order @p axes (axes[d] is the
+  /// coordinate that direction d runs along).
+  std::string
+  box_patch(const unsigned int         id,
+            const std::vector<double> &lo,
+            const std::vector<double> &hi,
+            const std::vector<int>    &axes)
+  {
+    const unsigned int dim = lo.size();
+    const std::string  n   = std::to_string(dim);
+    std::string        xml = "<Geometry type=\"TensorBSpline" + n + "\" id=\"" +
+                      std::to_string(id) +
+                      "\"><Basis type=\"TensorBSplineBasis" + n + "\">";
+    for (unsigned int d = 0; d < dim; ++d)
+      xml += "<Basis type=\"BSplineBasis\" index=\"" + std::to_string(d) +
+             "\"><KnotVector degree=\"1\">0 0 1 1</KnotVector></Basis>";
+    xml += "</Basis><coefs geoDim=\"" + n + "\">";
+    // Control point a: bit d of a is the end of direction d.
+    for (unsigned int a = 0; a < (1u << dim); ++a)
+      {
+        std::vector<double> x = lo;
+        for (unsigned int d = 0; d < dim; ++d)
+          if ((a >> d) & 1u)
+            x[axes[d]] = hi[axes[d]];
+        for (const double v : x)
+          xml += std::to_string(v) + " ";
+        xml += "\n";
+      }
+    return xml + "</coefs></Geometry>\n";
+  }
+
+  /// The V3 contact patch test with both blocks split at x = 0.5 in two
+  /// glued patches, the second patch of each turned (its directions in
+  /// another order); the slave and master surfaces each span both
+  /// patches, and the meshes match (as the node-to-surface pairing needs
+  /// for the patch test). Returns the scene's path.
+  std::string
+  write_split_patch_test(const std::string &folder, const unsigned int dim)
+  {
+    const bool three = (dim == 3);
+    // Body 1: [0, 1]^dim; patch 1's directions (y, x[, z]): its face
+    // x = 0.5 is face 2, y = 0 face 0, y = 1 face 1.
+    const std::vector<double> z0 =
+      three ? std::vector<double>{0.} : std::vector<double>{};
+    const std::vector<double> z1 =
+      three ? std::vector<double>{1.} : std::vector<double>{};
+    auto with_z = [](std::vector<double> v, const std::vector<double> &z) {
+      v.insert(v.end(), z.begin(), z.end());
+      return v;
+    };
+    const std::vector<int> plain =
+      three ? std::vector<int>{0, 1, 2} : std::vector<int>{0, 1};
+    const std::vector<int> turned =
+      three ? std::vector<int>{1, 0, 2} : std::vector<int>{1, 0};
+    const std::string multipatch =
+      "<MultiPatch parDim=\"" + std::to_string(dim) +
+      "\" id=\"9\"><patches type=\"id_range\">0 1</patches>"
+      "<interfaces>0 2 1 3</interfaces></MultiPatch>\n";
+    std::ofstream(cli::join(folder, "upper.xml"))
+      << "<xml>\n"
+      << box_patch(0, with_z({0., 0.}, z0), with_z({0.5, 1.}, z1), plain)
+      << box_patch(1, with_z({0.5, 0.}, z0), with_z({1., 1.}, z1), turned)
+      << multipatch << "</xml>\n";
+    std::ofstream(cli::join(folder, "lower.xml"))
+      << "<xml>\n"
+      << box_patch(0, with_z({0., -1.}, z0), with_z({0.5, 0.}, z1), plain)
+      << box_patch(1, with_z({0.5, -1.}, z0), with_z({1., 0.}, z1), turned)
+      << multipatch << "</xml>\n";
+    const std::string scene = cli::join(folder, "split.prm");
+    // Faces: patch 0 plain (0 x = lo, 1 x = hi, 2 y = lo, 3 y = hi,
+    // 4 z = lo, 5 z = hi); patch 1 turned (0 y = lo, 1 y = hi, 2 x = lo,
+    // 3 x = hi, ...). In 3D the z faces are held in z on both bodies.
+    const std::string z_supports =
+      three ? "; 0.4+1.4: z; 0.5+1.5: z" : std::string();
+    std::ofstream(scene)
+      << "set Dimension = " << dim << "\n"
+      << "subsection Discretization\n  set Type = nurbs\n  set Degree = 2\n"
+         "  set Refinements = 1\nend\n"
+      << "subsection Body 1\n  set Geometry = file\n"
+         "  set Geometry file = upper.xml\n  set Subdivisions = 2\n"
+         "  set Young's modulus = 1000\n  set Poisson's ratio = 0.3\n"
+         "  set Supports = 0.0: x"
+      << z_supports << "\n  set Tractions = 0.3+1.1: pressure 1\nend\n"
+      << "subsection Body 2\n  set Type = deformable\n"
+         "  set Geometry = file\n  set Geometry file = lower.xml\n"
+         "  set Subdivisions = 2\n"
+         "  set Young's modulus = 1000\n  set Poisson's ratio = 0.3\n"
+         "  set Supports = 0.0: x; 0.2+1.0: y"
+      << z_supports << "\nend\n"
+      << "subsection Contact\n  set Enabled = true\n"
+         "  set Slave face = 0.2+1.0\n  set Master face = 0.3+1.1\nend\n"
+      << "subsection Checks\n  set Uniform pressure = 1\nend\n";
+    return scene;
+  }
+} // namespace multi_patch_test
+
+
+
+TEST(CliMultiPatch, RingOfFourPatchesConvergesLikeOnePatch)
+{
+  using namespace multi_patch_test;
+  const cli::ScratchFolder folder("multi-patch-ring");
+  const std::string        ring = cli::join(source, "prm/v2-lame-ring.prm");
+  const std::string   quarter   = cli::join(source, "prm/v2-lame-cylinder.prm");
+  std::vector<double> errors;
+  for (const unsigned int r : {2u, 3u, 4u})
+    {
+      SCOPED_TRACE("Refinements = " + std::to_string(r));
+      const std::string set =
+        "--set Discretization/Refinements=" + std::to_string(r);
+      const auto whole = run(folder, ring, set, "ring" + std::to_string(r));
+      const auto one   = run(folder, quarter, set, "one" + std::to_string(r));
+      // Each of the ring's patches is the quarter's patch turned: the
+      // same radial space, exact in the angle.
+      EXPECT_NEAR(l2(whole), l2(one), 1e-8 * l2(one));
+      EXPECT_NEAR(energy(whole), energy(one), 1e-8 * energy(one));
+      errors.push_back(l2(whole));
+      if (!whole.is_null())
+        {
+          EXPECT_EQ(whole.at("bodies")[0].at("patches"), 4);
+          // The exact ring's area 3 pi (rational arcs integrate exactly).
+          EXPECT_NEAR(whole.at("bodies")[0].at("measure").get<double>(),
+                      3. * M_PI,
+                      1e-12);
+          EXPECT_TRUE(whole.at("bodies")[0].at("free_rigid_modes").empty());
+        }
+    }
+  // L2 error of order h^(p+1) = h^3 (the asymptotic rate, to 0.15).
+  for (unsigned int k = 0; k + 1 < errors.size(); ++k)
+    EXPECT_NEAR(std::log2(errors[k] / errors[k + 1]), 3., 0.15);
+}
+
+
+
+TEST(CliMultiPatch, PatchesOfEitherOrientationAndFaceSumsGiveTheQuarter)
+{
+  using namespace multi_patch_test;
+  const cli::ScratchFolder folder("multi-patch-flipped");
+  // A quarter ring of three patches, the middle one running backwards in
+  // the angle (left-handed): its faces 2 and 3 swap.
+  write_ring(folder.path, "quarter-3.xml", "--angle 90 --patches 3 --flip-odd");
+  const std::string quarter = cli::join(source, "prm/v2-lame-cylinder.prm");
+  const std::string set =
+    "--set 'Body 1/Geometry=file' --set 'Body 1/Geometry file=" +
+    cli::join(folder.path, "quarter-3.xml") +
+    "' --set 'Body 1/Supports=0.2: y; 2.3: x' --set 'Body "
+    "1/Tractions=0.0+1.0+2.0: pressure 1' --set Discretization/Refinements=3";
+  const auto three = run(folder, quarter, set, "three");
+  const auto one =
+    run(folder, quarter, "--set Discretization/Refinements=3", "one");
+  EXPECT_NEAR(l2(three), l2(one), 1e-8 * l2(one));
+  EXPECT_NEAR(energy(three), energy(one), 1e-8 * energy(one));
+  ASSERT_FALSE(three.is_null());
+  EXPECT_NEAR(three.at("bodies")[0].at("measure").get<double>(),
+              0.75 * M_PI,
+              1e-12);
+}
+
+
+
+TEST(CliMultiPatch, SlabOfFourPatchesIsThePlaneStrainRing)
+{
+  using namespace multi_patch_test;
+  const cli::ScratchFolder folder("multi-patch-slab");
+  write_ring(folder.path, "slab.xml", "--patches 4 --width 1 --flip-odd");
+  const std::string quarter = cli::join(source, "prm/v2-lame-cylinder-3d.prm");
+  const std::string set =
+    "--set 'Body 1/Geometry=file' --set 'Body 1/Geometry file=" +
+    cli::join(folder.path, "slab.xml") +
+    "' --set 'Body 1/Supports=0.4+1.4+2.4+3.4: z; 0.5+1.5+2.5+3.5: z' "
+    "--set 'Body 1/Point supports=1, 0, 0: y; -1, 0, 0: y; 0, 1, 0: x' "
+    "--set 'Body 1/Tractions=0.0+1.0+2.0+3.0: pressure 1' "
+    "--set Discretization/Refinements=1";
+  const auto slab = run(folder, quarter, set, "slab");
+  const auto one =
+    run(folder, quarter, "--set Discretization/Refinements=1", "one");
+  EXPECT_NEAR(l2(slab), l2(one), 1e-8 * l2(one));
+  EXPECT_NEAR(energy(slab), energy(one), 1e-8 * energy(one));
+  ASSERT_FALSE(slab.is_null());
+  EXPECT_NEAR(slab.at("bodies")[0].at("measure").get<double>(),
+              3. * M_PI,
+              1e-12);
+}
+
+
+
+TEST(CliMultiPatch, ExportedRingReadsBackToTheSameFigures)
+{
+  using namespace multi_patch_test;
+  const cli::ScratchFolder folder("multi-patch-export");
+  const std::string        ring = cli::join(source, "prm/v2-lame-ring.prm");
+  const auto first = run(folder, ring, "--export-geometry", "first");
+  // The analysis geometry (after Refinements = 3) read as the file, not
+  // refined again.
+  const auto again = run(folder,
+                         ring,
+                         "--set 'Body 1/Geometry file=" +
+                           cli::join(folder.path, "first/body1-geometry.xml") +
+                           "' --set Discretization/Refinements=0",
+                         "again");
+  ASSERT_FALSE(first.is_null());
+  ASSERT_FALSE(again.is_null());
+  EXPECT_EQ(again.at("n_dofs"), first.at("n_dofs"));
+  EXPECT_EQ(again.at("bodies")[0].at("patches"), 4);
+  EXPECT_NEAR(l2(again), l2(first), 1e-12 * l2(first));
+  EXPECT_NEAR(energy(again), energy(first), 1e-12 * energy(first));
+}
+
+
+
+TEST(CliMultiPatch, BadMultiPatchInputIsRefusedWhenRead)
+{
+  using namespace multi_patch_test;
+  const cli::ScratchFolder folder("multi-patch-bad");
+  const std::string ring = "'" + cli::join(source, "prm/v2-lame-ring.prm") +
+                           "' --set Output/Directory=out ";
+  cli::expect_refused(
+    ring + "--set 'Body 1/Supports=4.2: y'",
+    folder,
+    "Body 1/Supports: face 4.2 is on patch 4, but the geometry "
+    "has 4 patches");
+  cli::expect_refused(ring + "--set Discretization/Type=lagrange",
+                      folder,
+                      "the Lagrange (FE_Q) path meshes one patch");
+  cli::expect_refused("'" + cli::join(source, "prm/v2-lame-cylinder.prm") +
+                        "' --set 'Body 1/Supports=1.2: y'",
+                      folder,
+                      "Body 1/Supports: face '1.2' in '1.2: y' must be a patch "
+                      "face 0..3");
+  const std::string split = write_split_patch_test(folder.path, 2);
+  cli::expect_refused("'" + split + "' --set Contact/Pairing=weighted-gap",
+                      folder,
+                      "the weighted-gap pairing projects on one master face in "
+                      "this version");
+  // Subdivisions apply per direction of each patch: a patch of the ring
+  // turned by 90 degrees in its parameters would not match; here two
+  // rings of different spans along the angle cannot be told apart, so the
+  // L of unit squares with its middle patch transposed is used.
+  std::ofstream(cli::join(folder.path, "l.xml"))
+    << "<xml>\n"
+    << "<Geometry type=\"TensorBSpline2\" id=\"0\"><Basis "
+       "type=\"TensorBSplineBasis2\"><Basis type=\"BSplineBasis\" "
+       "index=\"0\"><KnotVector degree=\"1\">0 0 1 1</KnotVector></Basis>"
+       "<Basis type=\"BSplineBasis\" index=\"1\"><KnotVector degree=\"1\">0 "
+       "0 1 1</KnotVector></Basis></Basis><coefs geoDim=\"2\">0 -1 1 -1 0 0 "
+       "1 0</coefs></Geometry>\n"
+    << "<Geometry type=\"TensorBSpline2\" id=\"1\"><Basis "
+       "type=\"TensorBSplineBasis2\"><Basis type=\"BSplineBasis\" "
+       "index=\"0\"><KnotVector degree=\"1\">0 0 1 1</KnotVector></Basis>"
+       "<Basis type=\"BSplineBasis\" index=\"1\"><KnotVector degree=\"1\">0 "
+       "0 1 1</KnotVector></Basis></Basis><coefs geoDim=\"2\">-1 -1 -1 0 0 "
+       "-1 0 0</coefs></Geometry>\n"
+    << "<MultiPatch parDim=\"2\" id=\"9\"><patches type=\"id_range\">0 "
+       "1</patches><interfaces>1 4 0 1</interfaces></MultiPatch>\n"
+    << "</xml>\n";
+  cli::expect_refused(ring + "--set 'Body 1/Geometry file=" +
+                        cli::join(folder.path, "l.xml") +
+                        "' --set 'Body 1/Point supports=' --set 'Body "
+                        "1/Tractions=' --set 'Body 1/Supports=0.2: x y' --set "
+                        "'Body 1/Subdivisions=2, 3'",
+                      folder,
+                      "interface (patch 1 face 3, patch 0 face 0) is not "
+                      "conforming after Degree, Subdivisions and Refinements");
+  EXPECT_FALSE(std::filesystem::exists(cli::join(folder.path, "out")));
+}
+
+
+
+TEST(CliMultiPatch, ContactSurfacesOverTwoPatchesPassThePatchTest)
+{
+  using namespace multi_patch_test;
+  for (const unsigned int dim : {2u, 3u})
+    {
+      SCOPED_TRACE(std::to_string(dim) + "D");
+      const cli::ScratchFolder folder("multi-patch-contact-" +
+                                      std::to_string(dim));
+      const std::string        scene = write_split_patch_test(folder.path, dim);
+      // Node-to-surface, both surfaces over two patches.
+      const auto s = run(folder.path, scene, "", "out");
+      ASSERT_FALSE(s.is_null());
+      // Every pair carries the applied pressure (the criterion of V3).
+      EXPECT_LT(s.at("checks").at("pressure_uniformity").get<double>(), 1e-8);
+      EXPECT_EQ(s.at("bodies")[0].at("patches"), 2);
+      EXPECT_EQ(s.at("bodies")[1].at("patches"), 2);
+      // Weighted gap: the slave surface over two patches against a
+      // one-patch block of three spans per direction, whose mesh does not
+      // match (the mortar pairing passes the patch test there too).
+      const std::string block =
+        dim == 2 ? "--set 'Body 2/Lower corner=0, -1' --set 'Body 2/Upper "
+                   "corner=1, 0' --set 'Body 2/Supports=0: x; 2: y'" :
+                   "--set 'Body 2/Lower corner=0, -1, 0' --set 'Body "
+                   "2/Upper corner=1, 0, 1' --set 'Body 2/Supports=0: x; "
+                   "2: y; 4: z; 5: z'";
+      const auto w =
+        run(folder.path,
+            scene,
+            "--set 'Body 2/Geometry=box' --set 'Body 2/Subdivisions=3' " +
+              block +
+              " --set 'Contact/Master face=3' --set "
+              "Contact/Pairing=weighted-gap",
+            "weighted");
+      ASSERT_FALSE(w.is_null());
+      EXPECT_LT(w.at("checks").at("pressure_uniformity").get<double>(), 1e-8);
+    }
+}
