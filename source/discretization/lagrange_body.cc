@@ -1,4 +1,5 @@
 #include <igabde/base/files.h>
+#include <igabde/base/nearest_points.h>
 #include <igabde/base/utilities.h>
 
 #include <igabde/nurbs/parametric_mesh.h>
@@ -14,6 +15,7 @@
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 #include <deal.II/lac/full_matrix.h>
 
+#include <deal.II/grid/grid_reordering.h>
 #include <deal.II/grid/grid_tools.h>
 
 #include <deal.II/dofs/dof_tools.h>
@@ -225,16 +227,10 @@ namespace igabde
     LagrangeBody<dim>::LagrangeBody(const BodyDescription<dim>   &description,
                                     const DiscretizationSettings &settings)
       : Body<dim>(description, settings)
-      , patch(description.geometry)
       , fe(FE_Q<dim>(settings.degree), dim)
     {
-      AssertThrow(description.n_patches() == 1,
-                  base::ExcInput(
-                    "Body '" + description.name + "' has " +
-                    std::to_string(description.n_patches()) +
-                    " patches; the Lagrange (FE_Q) path meshes one patch in "
-                    "this version: use Discretization/Type = nurbs for a "
-                    "multi-patch geometry."));
+      for (unsigned int p = 0; p < description.n_patches(); ++p)
+        patches.push_back(description.patch(p));
       AssertThrow(settings.degree >= 1 && settings.degree <= 4,
                   ExcMessage("Discretization/Degree: the Lagrange path "
                              "supports FE_Q degrees 1 to 4, got " +
@@ -262,77 +258,258 @@ namespace igabde
 
 
     template <int dim>
-    void
-    LagrangeBody<dim>::setup_space()
+    Point<dim>
+    LagrangeBody<dim>::unit_centre()
     {
-      for (unsigned int r = 0; r < this->settings.refinements; ++r)
-        patch.refine_uniformly(1);
+      Point<dim> centre;
+      for (unsigned int d = 0; d < dim; ++d)
+        centre[d] = 0.5;
+      return centre;
+    }
+
+
+
+    template <int dim>
+    unsigned int
+    LagrangeBody<dim>::patch_of(
+      const typename Triangulation<dim>::cell_iterator &cell) const
+    {
+      return cell_parameters[cell->active_cell_index()].patch;
+    }
+
+
+
+    template <int dim>
+    Point<dim>
+    LagrangeBody<dim>::parametric_point(
+      const typename Triangulation<dim>::cell_iterator &cell,
+      const Point<dim>                                 &unit) const
+    {
+      const CellParameters &c  = cell_parameters[cell->active_cell_index()];
+      Point<dim>            xi = c.origin;
+      for (unsigned int e = 0; e < dim; ++e)
+        xi[c.direction[e]] += unit[e] * c.length[e];
+      return xi;
+    }
+
+
+
+    template <int dim>
+    void
+    LagrangeBody<dim>::make_mesh()
+    {
       // deal.II cells need a positive Jacobian. A left-handed patch (the
-      // curved beam) is used with its last parametric direction reversed:
+      // curved beam) is meshed with its last parametric direction reversed:
       // the mesh lays that direction's spans out mirrored (so that its
       // cells are the patch's spans also when they are graded), and the
       // two faces of that direction swap their boundary ids so that every
       // face keeps its patch face number.
-      reflect = (patch.orientation() < 0);
-      nurbs::make_parametric_triangulation(patch, triangulation, reflect);
-      if (reflect)
-        for (const auto &cell : triangulation.active_cell_iterators())
-          for (const auto f : cell->face_indices())
-            if (cell->face(f)->at_boundary() &&
-                cell->face(f)->boundary_id() / 2 == dim - 1)
-              cell->face(f)->set_boundary_id(cell->face(f)->boundary_id() ^ 1);
-      const auto to_patch = [&](Point<dim> xi) {
+      const auto meshed = [&](const unsigned int p, Triangulation<dim> &mesh) {
+        const bool reflect = (patches[p].orientation() < 0);
+        nurbs::make_parametric_triangulation(patches[p], mesh, reflect);
         if (reflect)
-          xi[dim - 1] = patch.parametric_lower()[dim - 1] +
-                        patch.parametric_upper()[dim - 1] - xi[dim - 1];
-        return xi;
+          for (const auto &cell : mesh.active_cell_iterators())
+            for (const auto f : cell->face_indices())
+              if (cell->face(f)->at_boundary() &&
+                  cell->face(f)->boundary_id() / 2 == dim - 1)
+                cell->face(f)->set_boundary_id(cell->face(f)->boundary_id() ^
+                                               1);
+        // The patch's parametric point of a point of the mesh.
+        return [reflect,
+                lo = patches[p].parametric_lower(),
+                hi = patches[p].parametric_upper()](Point<dim> xi) {
+          if (reflect)
+            xi[dim - 1] = lo[dim - 1] + hi[dim - 1] - xi[dim - 1];
+          return xi;
+        };
       };
+      // The box of a cell from the parametric points of its vertices
+      // (axis-parallel: one direction changes along each unit axis).
+      const auto parameters = [](const unsigned int             p,
+                                 const std::vector<Point<dim>> &xi) {
+        CellParameters c;
+        c.patch  = p;
+        c.origin = xi[0];
+        for (unsigned int e = 0; e < dim; ++e)
+          {
+            const Tensor<1, dim> axis = xi[1u << e] - xi[0];
+            unsigned int         d    = 0;
+            for (unsigned int k = 1; k < dim; ++k)
+              if (std::abs(axis[k]) > std::abs(axis[d]))
+                d = k;
+            c.direction[e] = d;
+            c.length[e]    = axis[d];
+          }
+        return c;
+      };
+
+      cell_parameters.clear();
+      if (patches.size() == 1)
+        {
+          // One patch: the parametric mesh itself (vertices are parametric
+          // points), the map follows from its cells.
+          const auto to_patch = meshed(0, triangulation);
+          cell_parameters.resize(triangulation.n_active_cells());
+          for (const auto &cell : triangulation.active_cell_iterators())
+            {
+              std::vector<Point<dim>> xi;
+              for (const auto v : cell->vertex_indices())
+                xi.push_back(to_patch(cell->vertex(v)));
+              cell_parameters[cell->active_cell_index()] = parameters(0, xi);
+            }
+          return;
+        }
+
+      // Several patches: every patch's parametric mesh laid out in space
+      // (its vertices mapped), the vertices that patches share (conforming
+      // interfaces) made one, cells kept with the parametric points of
+      // their vertices in their own patch.
+      std::vector<Point<dim>>                                       vertices;
+      std::vector<std::vector<std::pair<unsigned int, Point<dim>>>> vertex_xi;
+      std::vector<CellData<dim>>                                    cells;
+      double                                                        size = 0.;
+      for (const auto &patch : patches)
+        for (unsigned int a = 0; a < patch.n_control_points(); ++a)
+          size = std::max(size, patch.control_point(a).norm());
+      const double tolerance = 1e-10 * std::max(size, 1.);
+      std::unique_ptr<base::NearestPoints<dim>> index;
+      for (unsigned int p = 0; p < patches.size(); ++p)
+        {
+          Triangulation<dim> mesh;
+          const auto         to_patch = meshed(p, mesh);
+          // The vertices so far, indexed to find the shared ones.
+          if (!vertices.empty())
+            index = std::make_unique<base::NearestPoints<dim>>(vertices);
+          const unsigned int        first_new = vertices.size();
+          std::vector<unsigned int> number(mesh.n_vertices());
+          for (unsigned int v = 0; v < mesh.n_vertices(); ++v)
+            {
+              const Point<dim> xi = to_patch(mesh.get_vertices()[v]);
+              const Point<dim> x  = patches[p].value(xi);
+              unsigned int     n  = vertices.size();
+              if (index)
+                {
+                  const unsigned int near = index->nearest(x);
+                  if (near < first_new &&
+                      (*index)[near].distance(x) <= tolerance)
+                    n = near;
+                }
+              if (n == vertices.size())
+                {
+                  vertices.push_back(x);
+                  vertex_xi.emplace_back();
+                }
+              vertex_xi[n].emplace_back(p, xi);
+              number[v] = n;
+            }
+          for (const auto &cell : mesh.active_cell_iterators())
+            {
+              CellData<dim> data;
+              for (const auto v : cell->vertex_indices())
+                data.vertices[v] = number[cell->vertex_index(v)];
+              data.material_id = p;
+              cells.push_back(data);
+            }
+        }
+      GridTools::consistently_order_cells(cells);
+      triangulation.clear();
+      triangulation.create_triangulation(vertices, cells, SubCellData());
+
+      cell_parameters.resize(triangulation.n_active_cells());
+      for (const auto &cell : triangulation.active_cell_iterators())
+        {
+          const unsigned int      p = cell->material_id();
+          std::vector<Point<dim>> xi;
+          for (const auto v : cell->vertex_indices())
+            for (const auto &[q, point] : vertex_xi[cell->vertex_index(v)])
+              if (q == p)
+                {
+                  xi.push_back(point);
+                  break;
+                }
+          AssertThrow(xi.size() == cell->n_vertices(), ExcInternalError());
+          cell_parameters[cell->active_cell_index()] = parameters(p, xi);
+        }
+      // Boundary ids: the patch face each boundary face lies on, p 2 dim + f.
+      for (const auto &cell : triangulation.active_cell_iterators())
+        for (const auto f : cell->face_indices())
+          if (cell->face(f)->at_boundary())
+            {
+              const unsigned int p = patch_of(cell);
+              // The unit cell's face f: its normal axis at 0 or 1.
+              Point<dim> unit       = unit_centre();
+              unit[f / 2]           = f % 2;
+              const Point<dim> xi   = parametric_point(cell, unit);
+              const auto      &lo   = patches[p].parametric_lower();
+              const auto      &hi   = patches[p].parametric_upper();
+              unsigned int     face = numbers::invalid_unsigned_int;
+              for (unsigned int d = 0; d < dim; ++d)
+                {
+                  const double tol = 1e-12 * (hi[d] - lo[d]);
+                  if (std::abs(xi[d] - lo[d]) <= tol)
+                    face = 2 * d;
+                  else if (std::abs(xi[d] - hi[d]) <= tol)
+                    face = 2 * d + 1;
+                }
+              AssertThrow(face != numbers::invalid_unsigned_int,
+                          ExcMessage("Body '" + this->description().name +
+                                     "': a boundary face of patch " +
+                                     std::to_string(p) +
+                                     " lies on no patch face: two patches "
+                                     "touch where no interface glues "
+                                     "them."));
+              cell->face(f)->set_boundary_id(face_id<dim>(p, face));
+            }
+    }
+
+
+
+    template <int dim>
+    void
+    LagrangeBody<dim>::setup_space()
+    {
+      for (auto &patch : patches)
+        for (unsigned int r = 0; r < this->settings.refinements; ++r)
+          patch.refine_uniformly(1);
+      make_mesh();
       dof_handler.reinit(triangulation);
       dof_handler.distribute_dofs(fe);
       this->n_unknowns = dof_handler.n_dofs();
 
-      // The cells by span, for face_point(): mesh breaks are the patch's,
-      // mirrored in the last direction when the mesh runs it backwards.
-      for (unsigned int d = 0; d < dim; ++d)
-        {
-          mesh_breaks[d] = patch.breakpoints(d);
-          if (reflect && d == dim - 1)
-            {
-              for (auto &b : mesh_breaks[d])
-                b =
-                  patch.parametric_lower()[d] + patch.parametric_upper()[d] - b;
-              std::sort(mesh_breaks[d].begin(), mesh_breaks[d].end());
-            }
-        }
-      cell_of_span.clear();
+      // The cells by patch and span, for face_point().
+      cell_of_span.assign(patches.size(), {});
       for (const auto &cell : dof_handler.active_cell_iterators())
-        cell_of_span[nurbs::span_of_point<dim>(mesh_breaks, cell->center())] =
-          cell;
+        {
+          const CellParameters &c = cell_parameters[cell->active_cell_index()];
+          std::array<std::vector<double>, dim> breaks;
+          for (unsigned int d = 0; d < dim; ++d)
+            breaks[d] = patches[c.patch].breakpoints(d);
+          cell_of_span[c.patch][nurbs::span_of_point<
+            dim>(breaks, parametric_point(cell, unit_centre()))] = cell;
+        }
 
       // Geometry: the exact NURBS map at the support points.
-      std::vector<Point<dim>> parametric(this->n_unknowns);
-      DoFTools::map_dofs_to_support_points(MappingCartesian<dim>(),
-                                           dof_handler,
-                                           parametric);
       euler_vector.reinit(this->n_unknowns);
       this->dof_locations.resize(this->n_unknowns);
       this->dof_components.resize(this->n_unknowns);
+      const auto &base = fe.base_element(0);
       {
         std::vector<types::global_dof_index> local(fe.n_dofs_per_cell());
         for (const auto &cell : dof_handler.active_cell_iterators())
           {
+            const auto &map = patches[patch_of(cell)];
             cell->get_dof_indices(local);
             for (unsigned int i = 0; i < local.size(); ++i)
-              this->dof_components[local[i]] =
-                fe.system_to_component_index(i).first;
+              {
+                const auto [component, k] = fe.system_to_component_index(i);
+                const Point<dim> x =
+                  map.value(parametric_point(cell, base.unit_support_point(k)));
+                this->dof_components[local[i]] = component;
+                euler_vector[local[i]]         = x[component];
+                this->dof_locations[local[i]]  = x;
+              }
           }
       }
-      for (types::global_dof_index i = 0; i < this->n_unknowns; ++i)
-        {
-          const Point<dim> x     = patch.value(to_patch(parametric[i]));
-          euler_vector[i]        = x[this->dof_components[i]];
-          this->dof_locations[i] = x;
-        }
 
       // Where the NURBS map is singular (det J = 0 at a cell vertex: the
       // 180-degree corner where the two arcs of the Hertz quarter disc meet,
@@ -349,29 +526,25 @@ namespace igabde
       // at the cell centre (the builders' regular vertices have ratios of
       // order one, singular ones about 1e-16).
       {
-        const auto                          &base = fe.base_element(0);
         std::vector<types::global_dof_index> local(fe.n_dofs_per_cell());
         std::array<bool, GeometryInfo<dim>::vertices_per_cell> singular;
         for (const auto &cell : dof_handler.active_cell_iterators())
           {
-            const double centre =
-              std::abs(determinant(patch.jacobian(to_patch(cell->center()))));
+            const auto  &map    = patches[patch_of(cell)];
+            const double centre = std::abs(
+              determinant(map.jacobian(parametric_point(cell, unit_centre()))));
             for (const auto v : cell->vertex_indices())
-              singular[v] = std::abs(determinant(patch.jacobian(
-                              to_patch(cell->vertex(v))))) <= 1e-8 * centre;
+              singular[v] =
+                std::abs(determinant(map.jacobian(
+                  parametric_point(cell,
+                                   GeometryInfo<dim>::unit_cell_vertex(v))))) <=
+                1e-8 * centre;
             if (std::none_of(singular.begin(), singular.end(), [](bool b) {
                   return b;
                 }))
               continue;
-            // The parametric cells are axis-parallel boxes.
-            const Point<dim> lower = cell->vertex(0);
-            const Point<dim> upper =
-              cell->vertex(GeometryInfo<dim>::vertices_per_cell - 1);
             const auto exact = [&](const Point<dim> &unit) {
-              Point<dim> xi;
-              for (unsigned int d = 0; d < dim; ++d)
-                xi[d] = lower[d] + unit[d] * (upper[d] - lower[d]);
-              return patch.value(to_patch(xi));
+              return map.value(parametric_point(cell, unit));
             };
             cell->get_dof_indices(local);
             for (unsigned int i = 0; i < local.size(); ++i)
@@ -743,12 +916,13 @@ namespace igabde
     FaceGrid<dim>
     LagrangeBody<dim>::face_grid(const types::boundary_id face) const
     {
-      AssertThrow(face < 2 * dim,
+      AssertThrow(patch_of_face<dim>(face) < patches.size(),
                   ExcMessage("Body '" + this->description().name + "': face " +
-                             std::to_string(face) + " does not exist."));
+                             this->face_name(face) + " does not exist."));
+      const auto   &patch = patches[patch_of_face<dim>(face)];
       FaceGrid<dim> grid;
       for (unsigned int e = 0, k = 0; e < dim; ++e)
-        if (e != face / 2)
+        if (e != local_face<dim>(face) / 2)
           grid.breaks[k++] = patch.breakpoints(e);
       grid.degree = fe.degree;
       return grid;
@@ -758,39 +932,41 @@ namespace igabde
 
     template <int dim>
     FacePoint<dim>
-    LagrangeBody<dim>::face_point(const types::boundary_id face,
+    LagrangeBody<dim>::face_point(const types::boundary_id body_face,
                                   const Point<dim - 1>    &eta) const
     {
-      const unsigned int d = face / 2;
-      // The parametric point of the patch, then of the mesh.
+      const unsigned int p     = patch_of_face<dim>(body_face);
+      const unsigned int face  = local_face<dim>(body_face);
+      const auto        &patch = patches.at(p);
+      const unsigned int d     = face / 2;
+      // The parametric point of the patch, its span and cell.
       Point<dim> xi;
       for (unsigned int e = 0, k = 0; e < dim; ++e)
         xi[e] = (e == d ? (face % 2 == 0 ? patch.parametric_lower()[d] :
                                            patch.parametric_upper()[d]) :
                           eta[k++]);
-      if (reflect)
-        xi[dim - 1] = patch.parametric_lower()[dim - 1] +
-                      patch.parametric_upper()[dim - 1] - xi[dim - 1];
+      std::array<std::vector<double>, dim> breaks;
+      for (unsigned int e = 0; e < dim; ++e)
+        breaks[e] = patch.breakpoints(e);
       const auto it =
-        cell_of_span.find(nurbs::span_of_point<dim>(mesh_breaks, xi));
-      Assert(it != cell_of_span.end(), ExcInternalError());
-      const auto &cell = it->second;
+        cell_of_span[p].find(nurbs::span_of_point<dim>(breaks, xi));
+      Assert(it != cell_of_span[p].end(), ExcInternalError());
+      const auto           &cell = it->second;
+      const CellParameters &c    = cell_parameters[cell->active_cell_index()];
 
-      // Unit coordinates in the (axis-aligned, parametric) cell.
-      const auto box = cell->bounding_box().get_boundary_points();
+      // Unit coordinates in the cell: unit axis e runs along parametric
+      // direction c.direction[e].
       Point<dim> unit;
-      double     scale[dim];
       for (unsigned int e = 0; e < dim; ++e)
         {
-          scale[e] = 1. / (box.second[e] - box.first[e]);
+          const unsigned int k = c.direction[e];
           unit[e] =
-            std::min(1., std::max(0., (xi[e] - box.first[e]) * scale[e]));
+            std::min(1., std::max(0., (xi[k] - c.origin[k]) / c.length[e]));
+          // On the face exactly, so that the functions of the other nodes
+          // vanish there.
+          if (k == d)
+            unit[e] = std::round(unit[e]);
         }
-      // On the face exactly, so that the functions of the other nodes
-      // vanish there.
-      unit[d] = std::round(unit[d]);
-      if (reflect)
-        scale[dim - 1] = -scale[dim - 1];
 
       std::vector<types::global_dof_index> local(fe.n_dofs_per_cell());
       cell->get_dof_indices(local);
@@ -804,13 +980,14 @@ namespace igabde
           const double         value = base.shape_value(k, unit);
           const Tensor<1, dim> grad  = base.shape_grad(k, unit);
           result.op.weights[k]       = value;
-          for (unsigned int c = 0; c < dim; ++c)
+          for (unsigned int comp = 0; comp < dim; ++comp)
             {
-              const auto i         = local[fe.component_to_system_index(c, k)];
-              result.op.dofs[k][c] = i;
-              result.location[c] += value * euler_vector[i];
+              const auto i = local[fe.component_to_system_index(comp, k)];
+              result.op.dofs[k][comp] = i;
+              result.location[comp] += value * euler_vector[i];
               for (unsigned int e = 0; e < dim; ++e)
-                J[c][e] += euler_vector[i] * grad[e] * scale[e];
+                J[comp][c.direction[e]] +=
+                  euler_vector[i] * grad[e] / c.length[e];
             }
         }
       // Outward normal along +-grad xi_d = J^-T e_d; dGamma = |det J|
@@ -823,8 +1000,8 @@ namespace igabde
       for (unsigned int e = 0, k = 0; e < dim; ++e)
         if (e != d)
           {
-            for (unsigned int c = 0; c < dim; ++c)
-              result.tangents[k][c] = J[c][e];
+            for (unsigned int comp = 0; comp < dim; ++comp)
+              result.tangents[k][comp] = J[comp][e];
             ++k;
           }
       return result;

@@ -1841,14 +1841,6 @@ namespace igabde
                                   dimension,
                                   discretization.degree,
                                   where + " = " + body->geometry_file + ": ");
-            AssertThrow(body->n_patches == 1 ||
-                          discretization.type == discretization::Type::nurbs,
-                        base::ExcInput(
-                          where + " = " + body->geometry_file + " has " +
-                          std::to_string(body->n_patches) +
-                          " patches; the Lagrange (FE_Q) path meshes one "
-                          "patch in this version: set Discretization/Type = "
-                          "nurbs, or give a single-patch file."));
             check_face_patches(*body,
                                {},
                                dimension,

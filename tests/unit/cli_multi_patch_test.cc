@@ -181,22 +181,28 @@ TEST(CliMultiPatch, RingOfFourPatchesConvergesLikeOnePatch)
   using namespace multi_patch_test;
   const cli::ScratchFolder folder("multi-patch-ring");
   const std::string        ring = cli::join(source, "prm/v2-lame-ring.prm");
-  const std::string   quarter   = cli::join(source, "prm/v2-lame-cylinder.prm");
-  std::vector<double> errors;
-  for (const unsigned int r : {2u, 3u, 4u})
+  const std::string quarter     = cli::join(source, "prm/v2-lame-cylinder.prm");
+  for (const std::string type : {"nurbs", "lagrange"})
     {
-      SCOPED_TRACE("Refinements = " + std::to_string(r));
-      const std::string set =
-        "--set Discretization/Refinements=" + std::to_string(r);
-      const auto whole = run(folder, ring, set, "ring" + std::to_string(r));
-      const auto one   = run(folder, quarter, set, "one" + std::to_string(r));
-      // Each of the ring's patches is the quarter's patch turned: the
-      // same radial space, exact in the angle.
-      EXPECT_NEAR(l2(whole), l2(one), 1e-8 * l2(one));
-      EXPECT_NEAR(energy(whole), energy(one), 1e-8 * energy(one));
-      errors.push_back(l2(whole));
-      if (!whole.is_null())
+      SCOPED_TRACE(type);
+      std::vector<double> errors;
+      for (const unsigned int r : {2u, 3u, 4u})
         {
+          SCOPED_TRACE("Refinements = " + std::to_string(r));
+          const std::string set =
+            "--set Discretization/Type=" + type +
+            " --set Discretization/Refinements=" + std::to_string(r);
+          const std::string tag   = type + std::to_string(r);
+          const auto        whole = run(folder, ring, set, "ring" + tag);
+          const auto        one   = run(folder, quarter, set, "one" + tag);
+          // Each of the ring's patches is the quarter's patch turned, and
+          // the discrete ring is symmetric: the same errors (NURBS: the
+          // same radial space, exact in the angle; FE_Q(2): the same
+          // interpolated quarter, four times).
+          EXPECT_NEAR(l2(whole), l2(one), 1e-8 * l2(one));
+          EXPECT_NEAR(energy(whole), energy(one), 1e-8 * energy(one));
+          errors.push_back(l2(whole));
+          ASSERT_FALSE(whole.is_null());
           EXPECT_EQ(whole.at("bodies")[0].at("patches"), 4);
           // The exact ring's area 3 pi (rational arcs integrate exactly).
           EXPECT_NEAR(whole.at("bodies")[0].at("measure").get<double>(),
@@ -204,10 +210,11 @@ TEST(CliMultiPatch, RingOfFourPatchesConvergesLikeOnePatch)
                       1e-12);
           EXPECT_TRUE(whole.at("bodies")[0].at("free_rigid_modes").empty());
         }
+      // L2 error of order h^(p+1) = h^3 for both (the asymptotic rate, to
+      // 0.15).
+      for (unsigned int k = 0; k + 1 < errors.size(); ++k)
+        EXPECT_NEAR(std::log2(errors[k] / errors[k + 1]), 3., 0.15);
     }
-  // L2 error of order h^(p+1) = h^3 (the asymptotic rate, to 0.15).
-  for (unsigned int k = 0; k + 1 < errors.size(); ++k)
-    EXPECT_NEAR(std::log2(errors[k] / errors[k + 1]), 3., 0.15);
 }
 
 
@@ -216,24 +223,42 @@ TEST(CliMultiPatch, PatchesOfEitherOrientationAndFaceSumsGiveTheQuarter)
 {
   using namespace multi_patch_test;
   const cli::ScratchFolder folder("multi-patch-flipped");
-  // A quarter ring of three patches, the middle one running backwards in
-  // the angle (left-handed): its faces 2 and 3 swap.
-  write_ring(folder.path, "quarter-3.xml", "--angle 90 --patches 3 --flip-odd");
+  // A quarter ring of three patches; in the second file the middle one
+  // runs backwards in the angle (left-handed): its faces 2 and 3 swap.
+  write_ring(folder.path, "quarter-3.xml", "--angle 90 --patches 3");
+  write_ring(folder.path, "flipped-3.xml", "--angle 90 --patches 3 --flip-odd");
   const std::string quarter = cli::join(source, "prm/v2-lame-cylinder.prm");
-  const std::string set =
-    "--set 'Body 1/Geometry=file' --set 'Body 1/Geometry file=" +
-    cli::join(folder.path, "quarter-3.xml") +
-    "' --set 'Body 1/Supports=0.2: y; 2.3: x' --set 'Body "
-    "1/Tractions=0.0+1.0+2.0: pressure 1' --set Discretization/Refinements=3";
-  const auto three = run(folder, quarter, set, "three");
-  const auto one =
-    run(folder, quarter, "--set Discretization/Refinements=3", "one");
-  EXPECT_NEAR(l2(three), l2(one), 1e-8 * l2(one));
-  EXPECT_NEAR(energy(three), energy(one), 1e-8 * energy(one));
-  ASSERT_FALSE(three.is_null());
-  EXPECT_NEAR(three.at("bodies")[0].at("measure").get<double>(),
-              0.75 * M_PI,
-              1e-12);
+  const auto set = [&](const std::string &file, const std::string &type) {
+    return "--set Discretization/Type=" + type +
+           " --set 'Body 1/Geometry=file' --set 'Body 1/Geometry file=" +
+           cli::join(folder.path, file) +
+           "' --set 'Body 1/Supports=0.2: y; 2.3: x' --set 'Body "
+           "1/Tractions=0.0+1.0+2.0: pressure 1' --set "
+           "Discretization/Refinements=3";
+  };
+  for (const std::string type : {"nurbs", "lagrange"})
+    {
+      SCOPED_TRACE(type);
+      const auto three =
+        run(folder, quarter, set("quarter-3.xml", type), "three-" + type);
+      const auto flipped =
+        run(folder, quarter, set("flipped-3.xml", type), "flipped-" + type);
+      // The same mesh and map, numbered otherwise.
+      EXPECT_NEAR(l2(flipped), l2(three), 1e-8 * l2(three));
+      EXPECT_NEAR(energy(flipped), energy(three), 1e-8 * energy(three));
+      ASSERT_FALSE(flipped.is_null());
+      EXPECT_NEAR(flipped.at("bodies")[0].at("measure").get<double>(),
+                  0.75 * M_PI,
+                  1e-12);
+      if (type == "nurbs")
+        {
+          // Exact in the angle: the single patch's errors.
+          const auto one =
+            run(folder, quarter, "--set Discretization/Refinements=3", "one");
+          EXPECT_NEAR(l2(flipped), l2(one), 1e-8 * l2(one));
+          EXPECT_NEAR(energy(flipped), energy(one), 1e-8 * energy(one));
+        }
+    }
 }
 
 
@@ -244,22 +269,26 @@ TEST(CliMultiPatch, SlabOfFourPatchesIsThePlaneStrainRing)
   const cli::ScratchFolder folder("multi-patch-slab");
   write_ring(folder.path, "slab.xml", "--patches 4 --width 1 --flip-odd");
   const std::string quarter = cli::join(source, "prm/v2-lame-cylinder-3d.prm");
-  const std::string set =
-    "--set 'Body 1/Geometry=file' --set 'Body 1/Geometry file=" +
-    cli::join(folder.path, "slab.xml") +
-    "' --set 'Body 1/Supports=0.4+1.4+2.4+3.4: z; 0.5+1.5+2.5+3.5: z' "
-    "--set 'Body 1/Point supports=1, 0, 0: y; -1, 0, 0: y; 0, 1, 0: x' "
-    "--set 'Body 1/Tractions=0.0+1.0+2.0+3.0: pressure 1' "
-    "--set Discretization/Refinements=1";
-  const auto slab = run(folder, quarter, set, "slab");
-  const auto one =
-    run(folder, quarter, "--set Discretization/Refinements=1", "one");
-  EXPECT_NEAR(l2(slab), l2(one), 1e-8 * l2(one));
-  EXPECT_NEAR(energy(slab), energy(one), 1e-8 * energy(one));
-  ASSERT_FALSE(slab.is_null());
-  EXPECT_NEAR(slab.at("bodies")[0].at("measure").get<double>(),
-              3. * M_PI,
-              1e-12);
+  for (const std::string type : {"nurbs", "lagrange"})
+    {
+      SCOPED_TRACE(type);
+      const std::string common = "--set Discretization/Type=" + type +
+                                 " --set Discretization/Refinements=1";
+      const std::string set =
+        common + " --set 'Body 1/Geometry=file' --set 'Body 1/Geometry file=" +
+        cli::join(folder.path, "slab.xml") +
+        "' --set 'Body 1/Supports=0.4+1.4+2.4+3.4: z; 0.5+1.5+2.5+3.5: z' "
+        "--set 'Body 1/Point supports=1, 0, 0: y; -1, 0, 0: y; 0, 1, 0: x' "
+        "--set 'Body 1/Tractions=0.0+1.0+2.0+3.0: pressure 1'";
+      const auto slab = run(folder, quarter, set, "slab-" + type);
+      const auto one  = run(folder, quarter, common, "one-" + type);
+      EXPECT_NEAR(l2(slab), l2(one), 1e-8 * l2(one));
+      EXPECT_NEAR(energy(slab), energy(one), 1e-8 * energy(one));
+      ASSERT_FALSE(slab.is_null());
+      EXPECT_NEAR(slab.at("bodies")[0].at("measure").get<double>(),
+                  3. * M_PI,
+                  1e-12);
+    }
 }
 
 
@@ -299,9 +328,6 @@ TEST(CliMultiPatch, BadMultiPatchInputIsRefusedWhenRead)
     folder,
     "Body 1/Supports: face 4.2 is on patch 4, but the geometry "
     "has 4 patches");
-  cli::expect_refused(ring + "--set Discretization/Type=lagrange",
-                      folder,
-                      "the Lagrange (FE_Q) path meshes one patch");
   cli::expect_refused("'" + cli::join(source, "prm/v2-lame-cylinder.prm") +
                         "' --set 'Body 1/Supports=1.2: y'",
                       folder,
@@ -349,37 +375,40 @@ TEST(CliMultiPatch, BadMultiPatchInputIsRefusedWhenRead)
 TEST(CliMultiPatch, ContactSurfacesOverTwoPatchesPassThePatchTest)
 {
   using namespace multi_patch_test;
-  for (const unsigned int dim : {2u, 3u})
-    {
-      SCOPED_TRACE(std::to_string(dim) + "D");
-      const cli::ScratchFolder folder("multi-patch-contact-" +
-                                      std::to_string(dim));
-      const std::string        scene = write_split_patch_test(folder.path, dim);
-      // Node-to-surface, both surfaces over two patches.
-      const auto s = run(folder.path, scene, "", "out");
-      ASSERT_FALSE(s.is_null());
-      // Every pair carries the applied pressure (the criterion of V3).
-      EXPECT_LT(s.at("checks").at("pressure_uniformity").get<double>(), 1e-8);
-      EXPECT_EQ(s.at("bodies")[0].at("patches"), 2);
-      EXPECT_EQ(s.at("bodies")[1].at("patches"), 2);
-      // Weighted gap: the slave surface over two patches against a
-      // one-patch block of three spans per direction, whose mesh does not
-      // match (the mortar pairing passes the patch test there too).
-      const std::string block =
-        dim == 2 ? "--set 'Body 2/Lower corner=0, -1' --set 'Body 2/Upper "
-                   "corner=1, 0' --set 'Body 2/Supports=0: x; 2: y'" :
-                   "--set 'Body 2/Lower corner=0, -1, 0' --set 'Body "
-                   "2/Upper corner=1, 0, 1' --set 'Body 2/Supports=0: x; "
-                   "2: y; 4: z; 5: z'";
-      const auto w =
-        run(folder.path,
-            scene,
-            "--set 'Body 2/Geometry=box' --set 'Body 2/Subdivisions=3' " +
-              block +
-              " --set 'Contact/Master face=3' --set "
-              "Contact/Pairing=weighted-gap",
-            "weighted");
-      ASSERT_FALSE(w.is_null());
-      EXPECT_LT(w.at("checks").at("pressure_uniformity").get<double>(), 1e-8);
-    }
+  for (const std::string type : {"nurbs", "lagrange"})
+    for (const unsigned int dim : {2u, 3u})
+      {
+        SCOPED_TRACE(type + " " + std::to_string(dim) + "D");
+        const cli::ScratchFolder folder("multi-patch-contact-" + type +
+                                        std::to_string(dim));
+        const std::string scene = write_split_patch_test(folder.path, dim);
+        const std::string discretization = "--set Discretization/Type=" + type;
+        // Node-to-surface, both surfaces over two patches.
+        const auto s = run(folder.path, scene, discretization, "out");
+        ASSERT_FALSE(s.is_null());
+        // Every pair carries the applied pressure (the criterion of V3).
+        EXPECT_LT(s.at("checks").at("pressure_uniformity").get<double>(), 1e-8);
+        EXPECT_EQ(s.at("bodies")[0].at("patches"), 2);
+        EXPECT_EQ(s.at("bodies")[1].at("patches"), 2);
+        // Weighted gap: the slave surface over two patches against a
+        // one-patch block of three spans per direction, whose mesh does not
+        // match (the mortar pairing passes the patch test there too).
+        const std::string block =
+          dim == 2 ? "--set 'Body 2/Lower corner=0, -1' --set 'Body 2/Upper "
+                     "corner=1, 0' --set 'Body 2/Supports=0: x; 2: y'" :
+                     "--set 'Body 2/Lower corner=0, -1, 0' --set 'Body "
+                     "2/Upper corner=1, 0, 1' --set 'Body 2/Supports=0: x; "
+                     "2: y; 4: z; 5: z'";
+        const auto w =
+          run(folder.path,
+              scene,
+              discretization +
+                " --set 'Body 2/Geometry=box' --set 'Body 2/Subdivisions=3' " +
+                block +
+                " --set 'Contact/Master face=3' --set "
+                "Contact/Pairing=weighted-gap",
+              "weighted");
+        ASSERT_FALSE(w.is_null());
+        EXPECT_LT(w.at("checks").at("pressure_uniformity").get<double>(), 1e-8);
+      }
 }

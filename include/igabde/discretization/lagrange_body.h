@@ -32,6 +32,9 @@ namespace igabde
      * mesh of the body's NURBS patch, with the geometry interpolated from the
      * exact NURBS map at the FE_Q support points (isoparametric
      * MappingFEField), so curved boundaries are curved elements of degree k.
+     * A body of several patches is meshed patch by patch, the vertices of
+     * their conforming interfaces shared (one continuous FE_Q space), face
+     * f of patch p having boundary id p * 2 dim + f.
      */
     template <int dim>
     class LagrangeBody : public Body<dim>
@@ -92,9 +95,15 @@ namespace igabde
       measure() const override;
 
       const nurbs::NurbsPatch<dim> &
-      geometry_patch(const unsigned int = 0) const override
+      geometry_patch(const unsigned int p = 0) const override
       {
-        return patch;
+        return patches.at(p);
+      }
+
+      unsigned int
+      n_patches() const override
+      {
+        return patches.size();
       }
 
       std::pair<double, Point<dim>>
@@ -118,11 +127,47 @@ namespace igabde
       assemble() override;
 
     private:
-      /// The patch after the scene's h-refinements (geometry source).
-      nurbs::NurbsPatch<dim> patch;
-      Triangulation<dim>     triangulation;
-      FESystem<dim>          fe;
-      DoFHandler<dim>        dof_handler;
+      /**
+       * The parametric box of a cell: the patch, and the map from the unit
+       * cell, xi[direction[e]] = origin[direction[e]] + unit[e] length[e]
+       * (a length is negative where the cell runs its direction backwards).
+       */
+      struct CellParameters
+      {
+        unsigned int                  patch = 0;
+        Point<dim>                    origin;
+        std::array<unsigned int, dim> direction{};
+        std::array<double, dim>       length{};
+      };
+
+      /// The mesh: one patch's parametric mesh, or several patches' laid
+      /// out in space with the vertices of their interfaces shared; fills
+      /// cell_parameters and the boundary ids (faces p 2 dim + f).
+      void
+      make_mesh();
+
+      /// The patch of @p cell.
+      unsigned int
+      patch_of(const typename Triangulation<dim>::cell_iterator &cell) const;
+
+      /// The patch's parametric point of the unit-cell point @p unit of
+      /// @p cell.
+      Point<dim>
+      parametric_point(const typename Triangulation<dim>::cell_iterator &cell,
+                       const Point<dim> &unit) const;
+
+      /// (0.5, ..., 0.5).
+      static Point<dim>
+      unit_centre();
+
+      /// The patches after the scene's h-refinements (the map the cells
+      /// follow).
+      std::vector<nurbs::NurbsPatch<dim>> patches;
+      /// Per active cell.
+      std::vector<CellParameters> cell_parameters;
+      Triangulation<dim>          triangulation;
+      FESystem<dim>               fe;
+      DoFHandler<dim>             dof_handler;
       /// Physical position of every support point (the MappingFEField data).
       Vector<double>                            euler_vector;
       std::unique_ptr<MappingFEField<dim, dim>> mapping;
@@ -137,14 +182,9 @@ namespace igabde
       /// recovered pressures search in a background thread).
       std::pair<typename DoFHandler<dim>::active_cell_iterator, Point<dim>>
       find_cell(const Point<dim> &location) const;
-      /// Whether the mesh runs the patch's last parametric direction
-      /// backwards (a left-handed patch).
-      bool reflect = false;
-      /// Cell breaks of the mesh per direction (mesh coordinates).
-      std::array<std::vector<double>, dim> mesh_breaks;
-      /// The cell of each span of mesh_breaks (face_point()).
-      std::map<std::array<unsigned int, dim>,
-               typename DoFHandler<dim>::active_cell_iterator>
+      /// The cell of each knot span, per patch (face_point()).
+      std::vector<std::map<std::array<unsigned int, dim>,
+                           typename DoFHandler<dim>::active_cell_iterator>>
         cell_of_span;
     };
   } // namespace discretization
