@@ -1,10 +1,12 @@
-// Multi-patch bodies from the command line: V2 on a ring of four glued
-// patches, on a quarter of three patches of both orientations, and on a
-// 3D slab of four patches gives the single-patch scene's errors (the Lame
-// field is exact in the angle on these exact arcs, so every error is the
-// radial discretisation's, which the patches share) and converges at its
-// rate p + 1; the exported analysis geometry reads back to the same
-// figures; bad multi-patch input is refused when the scene is read.
+// Multi-patch bodies from the command line, NURBS and FE_Q(2): V2 on a
+// ring of four glued patches and on a 3D slab of four patches gives the
+// single-patch quarter's errors (the discrete ring is the quarter four
+// times; NURBS is moreover exact in the angle on these arcs) and converges
+// at the rate p + 1; a quarter of three patches gives the same errors
+// whatever its middle patch's orientation; the exported analysis geometry
+// reads back to the same figures; the V3 contact patch test holds with
+// both contact surfaces over three glued patches; bad multi-patch input is
+// refused when the scene is read.
 #include <gtest/gtest.h>
 
 #include "cli_helpers.h"
@@ -13,6 +15,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <tuple>
 #include <vector>
 
 namespace multi_patch_test
@@ -109,17 +112,15 @@ namespace multi_patch_test
     return xml + "</coefs></Geometry>\n";
   }
 
-  /// The V3 contact patch test with both blocks split at x = 0.5 in two
-  /// glued patches, the second patch of each turned (its directions in
-  /// another order); the slave and master surfaces each span both
-  /// patches, and the meshes match (as the node-to-surface pairing needs
-  /// for the patch test). Returns the scene's path.
+  /// The V3 contact patch test with both blocks split along x into three
+  /// glued patches of equal width, the middle patch of each turned (its
+  /// directions in another order); the slave and master surfaces each span
+  /// the three patches, and the meshes match (as the node-to-surface
+  /// pairing needs for the patch test). Returns the scene's path.
   std::string
   write_split_patch_test(const std::string &folder, const unsigned int dim)
   {
-    const bool three = (dim == 3);
-    // Body 1: [0, 1]^dim; patch 1's directions (y, x[, z]): its face
-    // x = 0.5 is face 2, y = 0 face 0, y = 1 face 1.
+    const bool                three = (dim == 3);
     const std::vector<double> z0 =
       three ? std::vector<double>{0.} : std::vector<double>{};
     const std::vector<double> z1 =
@@ -128,30 +129,35 @@ namespace multi_patch_test
       v.insert(v.end(), z.begin(), z.end());
       return v;
     };
+    // A plain patch's faces: 0 x = lo, 1 x = hi, 2 y = lo, 3 y = hi
+    // (4 z = lo, 5 z = hi); the turned one's directions are (y, x[, z]):
+    // 0 y = lo, 1 y = hi, 2 x = lo, 3 x = hi.
     const std::vector<int> plain =
       three ? std::vector<int>{0, 1, 2} : std::vector<int>{0, 1};
     const std::vector<int> turned =
       three ? std::vector<int>{1, 0, 2} : std::vector<int>{1, 0};
+    // Interfaces (G+Smo sides = face + 1): plain east (1) to turned west
+    // (2), turned east (3) to plain west (0).
     const std::string multipatch =
       "<MultiPatch parDim=\"" + std::to_string(dim) +
-      "\" id=\"9\"><patches type=\"id_range\">0 1</patches>"
-      "<interfaces>0 2 1 3</interfaces></MultiPatch>\n";
-    std::ofstream(cli::join(folder, "upper.xml"))
-      << "<xml>\n"
-      << box_patch(0, with_z({0., 0.}, z0), with_z({0.5, 1.}, z1), plain)
-      << box_patch(1, with_z({0.5, 0.}, z0), with_z({1., 1.}, z1), turned)
-      << multipatch << "</xml>\n";
-    std::ofstream(cli::join(folder, "lower.xml"))
-      << "<xml>\n"
-      << box_patch(0, with_z({0., -1.}, z0), with_z({0.5, 0.}, z1), plain)
-      << box_patch(1, with_z({0.5, -1.}, z0), with_z({1., 0.}, z1), turned)
-      << multipatch << "</xml>\n";
+      "\" id=\"9\"><patches type=\"id_range\">0 2</patches>"
+      "<interfaces>0 2 1 3\n1 4 2 1</interfaces></MultiPatch>\n";
+    for (const auto &[name, y0, y1] : {std::make_tuple("upper.xml", 0., 1.),
+                                       std::make_tuple("lower.xml", -1., 0.)})
+      {
+        std::ofstream out(cli::join(folder, name));
+        out << "<xml>\n";
+        for (unsigned int p = 0; p < 3; ++p)
+          out << box_patch(p,
+                           with_z({p / 3., y0}, z0),
+                           with_z({(p + 1) / 3., y1}, z1),
+                           p == 1 ? turned : plain);
+        out << multipatch << "</xml>\n";
+      }
     const std::string scene = cli::join(folder, "split.prm");
-    // Faces: patch 0 plain (0 x = lo, 1 x = hi, 2 y = lo, 3 y = hi,
-    // 4 z = lo, 5 z = hi); patch 1 turned (0 y = lo, 1 y = hi, 2 x = lo,
-    // 3 x = hi, ...). In 3D the z faces are held in z on both bodies.
+    // In 3D the z faces are held in z on both bodies.
     const std::string z_supports =
-      three ? "; 0.4+1.4: z; 0.5+1.5: z" : std::string();
+      three ? "; 0.4+1.4+2.4: z; 0.5+1.5+2.5: z" : std::string();
     std::ofstream(scene)
       << "set Dimension = " << dim << "\n"
       << "subsection Discretization\n  set Type = nurbs\n  set Degree = 2\n"
@@ -160,15 +166,16 @@ namespace multi_patch_test
          "  set Geometry file = upper.xml\n  set Subdivisions = 2\n"
          "  set Young's modulus = 1000\n  set Poisson's ratio = 0.3\n"
          "  set Supports = 0.0: x"
-      << z_supports << "\n  set Tractions = 0.3+1.1: pressure 1\nend\n"
+      << z_supports << "\n  set Tractions = 0.3+1.1+2.3: pressure 1\nend\n"
       << "subsection Body 2\n  set Type = deformable\n"
          "  set Geometry = file\n  set Geometry file = lower.xml\n"
          "  set Subdivisions = 2\n"
          "  set Young's modulus = 1000\n  set Poisson's ratio = 0.3\n"
-         "  set Supports = 0.0: x; 0.2+1.0: y"
+         "  set Supports = 0.0: x; 0.2+1.0+2.2: y"
       << z_supports << "\nend\n"
       << "subsection Contact\n  set Enabled = true\n"
-         "  set Slave face = 0.2+1.0\n  set Master face = 0.3+1.1\nend\n"
+         "  set Slave face = 0.2+1.0+2.2\n"
+         "  set Master face = 0.3+1.1+2.3\nend\n"
       << "subsection Checks\n  set Uniform pressure = 1\nend\n";
     return scene;
   }
@@ -372,7 +379,7 @@ TEST(CliMultiPatch, BadMultiPatchInputIsRefusedWhenRead)
 
 
 
-TEST(CliMultiPatch, ContactSurfacesOverTwoPatchesPassThePatchTest)
+TEST(CliMultiPatch, ContactSurfacesOverThreePatchesPassThePatchTest)
 {
   using namespace multi_patch_test;
   for (const std::string type : {"nurbs", "lagrange"})
@@ -383,14 +390,14 @@ TEST(CliMultiPatch, ContactSurfacesOverTwoPatchesPassThePatchTest)
                                         std::to_string(dim));
         const std::string scene = write_split_patch_test(folder.path, dim);
         const std::string discretization = "--set Discretization/Type=" + type;
-        // Node-to-surface, both surfaces over two patches.
+        // Node-to-surface, both surfaces over three patches.
         const auto s = run(folder.path, scene, discretization, "out");
         ASSERT_FALSE(s.is_null());
         // Every pair carries the applied pressure (the criterion of V3).
         EXPECT_LT(s.at("checks").at("pressure_uniformity").get<double>(), 1e-8);
-        EXPECT_EQ(s.at("bodies")[0].at("patches"), 2);
-        EXPECT_EQ(s.at("bodies")[1].at("patches"), 2);
-        // Weighted gap: the slave surface over two patches against a
+        EXPECT_EQ(s.at("bodies")[0].at("patches"), 3);
+        EXPECT_EQ(s.at("bodies")[1].at("patches"), 3);
+        // Weighted gap: the slave surface over three patches against a
         // one-patch block of three spans per direction, whose mesh does not
         // match (the mortar pairing passes the patch test there too).
         const std::string block =
