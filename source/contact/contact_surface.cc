@@ -31,6 +31,25 @@ namespace igabde
             }
         }
       first_sample.push_back(samples.size());
+      if (faces.size() > 1)
+        for (const types::boundary_id face : faces)
+          single_faces.push_back(std::make_unique<BodyFace<dim>>(
+            body,
+            std::vector<types::boundary_id>{face}));
+    }
+
+
+
+    template <int dim>
+    std::vector<const ContactSurface<dim> *>
+    BodyFace<dim>::parts() const
+    {
+      if (single_faces.empty())
+        return {this};
+      std::vector<const ContactSurface<dim> *> result;
+      for (const auto &face : single_faces)
+        result.push_back(face.get());
+      return result;
     }
 
 
@@ -124,12 +143,9 @@ namespace igabde
     BodyFace<dim>::face_grid() const
     {
       AssertThrow(faces.size() == 1,
-                  base::ExcInput(
-                    description() +
-                    ": face coordinates exist on one patch face; the "
-                    "weighted-gap pairing needs a master surface of one "
-                    "face in this version (use Pairing = node-to-surface "
-                    "for a master surface over several patches)."));
+                  ExcMessage(description() +
+                             ": face coordinates exist on each patch face "
+                             "alone (parts())."));
       return body.face_grid(faces[0]);
     }
 

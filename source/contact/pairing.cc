@@ -512,10 +512,44 @@ namespace igabde
       const ContactSurface<dim>             &master,
       const std::string                     &context) const
     {
-      constexpr unsigned int              fd = dim - 1;
-      std::unique_ptr<FaceProjector<dim>> projector;
+      constexpr unsigned int fd = dim - 1;
+      // One projector per master face (a surface over several patches has
+      // one face coordinate system per patch face).
+      const std::vector<const ContactSurface<dim> *>   parts = master.parts();
+      std::vector<std::unique_ptr<FaceProjector<dim>>> projectors;
       if (master.deformable())
-        projector = std::make_unique<FaceProjector<dim>>(master, context);
+        for (const ContactSurface<dim> *part : parts)
+          projectors.push_back(
+            std::make_unique<FaceProjector<dim>>(*part, context));
+      // The master face holding the point closest to @p x, and the point's
+      // face coordinates there.
+      const auto project = [&](const Point<dim> &x) {
+        if (projectors.size() == 1)
+          return std::make_pair(0u, projectors[0]->project(x));
+        // A face far from x may leave the clamped Gauss-Newton cycling on
+        // its edge: such a face is not the closest one.
+        std::pair<unsigned int, Point<fd>> best;
+        double best_distance = std::numeric_limits<double>::max();
+        for (unsigned int k = 0; k < projectors.size(); ++k)
+          try
+            {
+              const Point<fd> eta = projectors[k]->project(x);
+              const double    distance =
+                parts[k]->face_point(eta).location.distance(x);
+              if (distance < best_distance)
+                {
+                  best_distance = distance;
+                  best          = {k, eta};
+                }
+            }
+          catch (const ExceptionBase &)
+            {
+              if (k + 1 == projectors.size() &&
+                  best_distance == std::numeric_limits<double>::max())
+                throw;
+            }
+        return best;
+      };
 
       std::map<types::global_dof_index, WeightedIntegrals<dim>> integrals;
       const bool dual_basis = dual;
@@ -530,8 +564,11 @@ namespace igabde
       // operator.
       const auto facing = [&](const Point<dim> &x) {
         discretization::FacePoint<dim> m;
-        if (projector)
-          m = master.face_point(projector->project(x));
+        if (!projectors.empty())
+          {
+            const auto [k, eta] = project(x);
+            m                   = parts[k]->face_point(eta);
+          }
         else
           {
             const auto cp = master.closest_point(x, nullptr);
@@ -548,8 +585,9 @@ namespace igabde
           const auto sgrid = slave_body.face_grid(slave_face);
           // Gauss rule exact for N_j R_B on flat faces (degree p_s + p_m per
           // direction) with one point to spare for the measure.
-          const unsigned int master_degree =
-            projector ? projector->grid.degree : sgrid.degree;
+          unsigned int master_degree = projectors.empty() ? sgrid.degree : 0;
+          for (const auto &projector : projectors)
+            master_degree = std::max(master_degree, projector->grid.degree);
           const QGauss<1> rule((sgrid.degree + master_degree) / 2 + 2);
           std::array<unsigned int, fd> n_elements;
           unsigned int                 n_total = 1;
@@ -573,51 +611,87 @@ namespace igabde
                 }
 
               // Cuts where the projection of the element's centre line in
-              // direction k crosses a master element edge.
-              if (projector)
+              // direction k crosses a master element edge, or passes from
+              // one master face to the next (an edge too).
+              if (!projectors.empty())
                 for (unsigned int k = 0; k < fd; ++k)
                   {
-                    const auto master_eta = [&](const double t) {
+                    const auto slave_point = [&](const double t) {
                       Point<fd> eta = 0.5 * (lo + hi);
                       eta[k]        = t;
-                      return projector->project(
-                        slave_body.face_point(slave_face, eta).location);
+                      return slave_body.face_point(slave_face, eta).location;
                     };
-                    const Point<fd> at_lo = master_eta(lo[k]);
-                    const Point<fd> at_hi = master_eta(hi[k]);
-                    for (unsigned int c = 0; c < fd; ++c)
+                    // The crossings of master face @p part's element edges
+                    // between t = a and b, both projected on that face.
+                    const auto cut_between = [&](const double       a,
+                                                 const double       b,
+                                                 const unsigned int part) {
+                      const auto &projector  = *projectors[part];
+                      const auto  master_eta = [&](const double t) {
+                        return projector.project(slave_point(t));
+                      };
+                      const Point<fd> at_a = master_eta(a);
+                      const Point<fd> at_b = master_eta(b);
+                      for (unsigned int c = 0; c < fd; ++c)
+                        {
+                          const auto  &mb  = projector.grid.breaks[c];
+                          const double tol = 1e-12 * (mb.back() - mb.front());
+                          for (unsigned int i = 1; i + 1 < mb.size(); ++i)
+                            {
+                              // The crossing t of master_eta(t)[c] = mb[i],
+                              // by TOMS 748 (Alefeld, Potra and Shi) on the
+                              // bracket.
+                              const double fa = at_a[c] - mb[i],
+                                           fb = at_b[c] - mb[i];
+                              if (!((fa > tol && fb < -tol) ||
+                                    (fa < -tol && fb > tol)))
+                                continue;
+                              std::uintmax_t max_iterations = 200;
+                              const auto     bracket =
+                                boost::math::tools::toms748_solve(
+                                  [&](const double t) {
+                                    return master_eta(t)[c] - mb[i];
+                                  },
+                                  a,
+                                  b,
+                                  fa,
+                                  fb,
+                                  [&](const double x, const double y) {
+                                    return std::abs(y - x) <=
+                                           1e-14 * (hi[k] - lo[k]);
+                                  },
+                                  max_iterations);
+                              cuts[k].push_back(
+                                0.5 * (bracket.first + bracket.second));
+                            }
+                        }
+                    };
+                    // From a to b: where the closest master face changes,
+                    // found by bisection, a cut; each stretch cut at its
+                    // face's edges.
+                    const auto part_at = [&](const double t) {
+                      return project(slave_point(t)).first;
+                    };
+                    double             a       = lo[k];
+                    unsigned int       part_a  = part_at(a);
+                    const unsigned int part_hi = part_at(hi[k]);
+                    for (unsigned int stretch = 0;
+                         part_a != part_hi && stretch < projectors.size();
+                         ++stretch)
                       {
-                        const auto  &mb  = projector->grid.breaks[c];
-                        const double tol = 1e-12 * (mb.back() - mb.front());
-                        for (unsigned int i = 1; i + 1 < mb.size(); ++i)
+                        double left = a, right = hi[k];
+                        while (right - left > 1e-14 * (hi[k] - lo[k]))
                           {
-                            // The crossing t of master_eta(t)[c] = mb[i], by
-                            // TOMS 748 (Alefeld, Potra and Shi) on the bracket.
-                            const double fa = at_lo[c] - mb[i],
-                                         fb = at_hi[c] - mb[i];
-                            if (!((fa > tol && fb < -tol) ||
-                                  (fa < -tol && fb > tol)))
-                              continue;
-                            std::uintmax_t max_iterations = 200;
-                            const auto     bracket =
-                              boost::math::tools::toms748_solve(
-                                [&](const double t) {
-                                  return master_eta(t)[c] - mb[i];
-                                },
-                                lo[k],
-                                hi[k],
-                                fa,
-                                fb,
-                                [&](const double x, const double y) {
-                                  return std::abs(y - x) <=
-                                         1e-14 * (hi[k] - lo[k]);
-                                },
-                                max_iterations);
-                            const double t =
-                              0.5 * (bracket.first + bracket.second);
-                            cuts[k].push_back(t);
+                            const double middle = 0.5 * (left + right);
+                            (part_at(middle) == part_a ? left : right) = middle;
                           }
+                        const double t = 0.5 * (left + right);
+                        cut_between(a, t, part_a);
+                        cuts[k].push_back(t);
+                        a      = t;
+                        part_a = part_at(right);
                       }
+                    cut_between(a, hi[k], part_a);
                     std::sort(cuts[k].begin(), cuts[k].end());
                     cuts[k].erase(std::unique(cuts[k].begin(),
                                               cuts[k].end(),

@@ -1976,16 +1976,6 @@ namespace igabde
                                                      "Body 2",
                                                      "Master face",
                                                      contact.master_face_text);
-          AssertThrow(
-            contact.master_faces.size() == 1 ||
-              (contact.pairing != contact::Pairing::weighted_gap &&
-               contact.pairing != contact::Pairing::weighted_gap_standard),
-            base::ExcInput(f +
-                           "Contact/Master face = " + contact.master_face_text +
-                           ": the weighted-gap pairing projects on one master "
-                           "face in this version; give one face, or Pairing = "
-                           "node-to-surface for a master surface over several "
-                           "patches."));
           // A face of a patch the geometry file does not have.
           for (const auto *body : {&body1, &body2})
             if (body->type == BodyType::deformable)

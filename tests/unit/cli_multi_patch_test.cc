@@ -142,15 +142,23 @@ namespace multi_patch_test
       "<MultiPatch parDim=\"" + std::to_string(dim) +
       "\" id=\"9\"><patches type=\"id_range\">0 2</patches>"
       "<interfaces>0 2 1 3\n1 4 2 1</interfaces></MultiPatch>\n";
-    for (const auto &[name, y0, y1] : {std::make_tuple("upper.xml", 0., 1.),
-                                       std::make_tuple("lower.xml", -1., 0.)})
+    // lower-shifted.xml: the lower block split elsewhere (x = 0.3, 0.7),
+    // so that slave elements straddle its patch boundaries.
+    const std::vector<double> thirds = {0., 1. / 3., 2. / 3., 1.};
+    for (const auto &[name, y0, y1, x] :
+         {std::make_tuple("upper.xml", 0., 1., thirds),
+          std::make_tuple("lower.xml", -1., 0., thirds),
+          std::make_tuple("lower-shifted.xml",
+                          -1.,
+                          0.,
+                          std::vector<double>{0., 0.3, 0.7, 1.})})
       {
         std::ofstream out(cli::join(folder, name));
         out << "<xml>\n";
         for (unsigned int p = 0; p < 3; ++p)
           out << box_patch(p,
-                           with_z({p / 3., y0}, z0),
-                           with_z({(p + 1) / 3., y1}, z1),
+                           with_z({x[p], y0}, z0),
+                           with_z({x[p + 1], y1}, z1),
                            p == 1 ? turned : plain);
         out << multipatch << "</xml>\n";
       }
@@ -340,11 +348,6 @@ TEST(CliMultiPatch, BadMultiPatchInputIsRefusedWhenRead)
                       folder,
                       "Body 1/Supports: face '1.2' in '1.2: y' must be a patch "
                       "face 0..3");
-  const std::string split = write_split_patch_test(folder.path, 2);
-  cli::expect_refused("'" + split + "' --set Contact/Pairing=weighted-gap",
-                      folder,
-                      "the weighted-gap pairing projects on one master face in "
-                      "this version");
   // Subdivisions apply per direction of each patch: a patch of the ring
   // turned by 90 degrees in its parameters would not match; here two
   // rings of different spans along the angle cannot be told apart, so the
@@ -417,5 +420,17 @@ TEST(CliMultiPatch, ContactSurfacesOverThreePatchesPassThePatchTest)
               "weighted");
         ASSERT_FALSE(w.is_null());
         EXPECT_LT(w.at("checks").at("pressure_uniformity").get<double>(), 1e-8);
+        // Weighted gap with the master surface over three patches too,
+        // split where the slave's are not (slave elements straddle its
+        // patch boundaries) and with three spans per patch.
+        const auto m = run(folder.path,
+                           scene,
+                           discretization +
+                             " --set 'Body 2/Geometry file=lower-shifted.xml' "
+                             "--set 'Body 2/Subdivisions=3' --set "
+                             "Contact/Pairing=weighted-gap",
+                           "master");
+        ASSERT_FALSE(m.is_null());
+        EXPECT_LT(m.at("checks").at("pressure_uniformity").get<double>(), 1e-8);
       }
 }

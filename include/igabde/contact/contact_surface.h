@@ -69,6 +69,14 @@ namespace igabde
        */
       virtual discretization::FacePoint<dim>
       face_point(const Point<dim - 1> &eta) const;
+
+      /// The surfaces with face coordinates of their own that this one is
+      /// made of: itself, or each patch face of a surface over several.
+      virtual std::vector<const ContactSurface<dim> *>
+      parts() const
+      {
+        return {this};
+      }
     };
 
 
@@ -80,8 +88,7 @@ namespace igabde
      *
      * With several faces the closest point is searched on each (from its
      * own nearest sample) and the closest kept; face coordinates
-     * (face_grid(), face_point(), which the weighted-gap pairing projects
-     * on) exist for one face only.
+     * (face_grid(), face_point()) are each face's own, through parts().
      */
     template <int dim>
     class BodyFace : public ContactSurface<dim>
@@ -111,9 +118,14 @@ namespace igabde
       discretization::FacePoint<dim>
       face_point(const Point<dim - 1> &eta) const override;
 
+      std::vector<const ContactSurface<dim> *>
+      parts() const override;
+
     private:
-      const discretization::Body<dim>               &body;
-      const std::vector<types::boundary_id>          faces;
+      const discretization::Body<dim>      &body;
+      const std::vector<types::boundary_id> faces;
+      /// Each face alone (several faces only).
+      std::vector<std::unique_ptr<BodyFace<dim>>>    single_faces;
       std::vector<discretization::SurfacePoint<dim>> samples;
       /// The first sample of each face in samples, and the end.
       std::vector<unsigned int> first_sample;
