@@ -373,6 +373,13 @@ namespace igabde
           size = std::max(size, patch.control_point(a).norm());
       const double tolerance = 1e-10 * std::max(size, 1.);
       std::unique_ptr<base::NearestPoints<dim>> index;
+      const auto glued = [&](const unsigned int p, const unsigned int q) {
+        for (const auto &i : this->description().interfaces)
+          if ((i.patch[0] == p && i.patch[1] == q) ||
+              (i.patch[0] == q && i.patch[1] == p))
+            return true;
+        return false;
+      };
       for (unsigned int p = 0; p < patches.size(); ++p)
         {
           Triangulation<dim> mesh;
@@ -387,11 +394,19 @@ namespace igabde
               const Point<dim> xi = to_patch(mesh.get_vertices()[v]);
               const Point<dim> x  = patches[p].value(xi);
               unsigned int     n  = vertices.size();
+              // Shared with a patch that an interface joins to this one;
+              // patches that merely touch stay apart (a slit), as on the
+              // NURBS path.
               if (index)
                 {
                   const unsigned int near = index->nearest(x);
                   if (near < first_new &&
-                      (*index)[near].distance(x) <= tolerance)
+                      (*index)[near].distance(x) <= tolerance &&
+                      std::any_of(vertex_xi[near].begin(),
+                                  vertex_xi[near].end(),
+                                  [&](const auto &entry) {
+                                    return glued(p, entry.first);
+                                  }))
                     n = near;
                 }
               if (n == vertices.size())

@@ -308,6 +308,44 @@ TEST(CliMultiPatch, SlabOfFourPatchesIsThePlaneStrainRing)
 
 
 
+TEST(CliMultiPatch, PatchesThatOnlyTouchStayApart)
+{
+  using namespace multi_patch_test;
+  const cli::ScratchFolder folder("multi-patch-slit");
+  // The ring without its last interface (patch 3 to patch 0 at theta = 0):
+  // the faces there touch but are not glued, a slit.
+  std::ifstream in(cli::join(source, "prm/geometry/annulus-4.xml"));
+  std::ofstream out(cli::join(folder.path, "slit.xml"));
+  std::string   line;
+  while (std::getline(in, line))
+    if (line != "3 4 0 3")
+      out << line << "\n";
+  out.close();
+  const std::string ring = cli::join(source, "prm/v2-lame-ring.prm");
+  // The slit's face carries its own unknowns on both sides: at Refinements
+  // = 3 the radial face of a patch has 2 + 8 = 10 control points (degree 2,
+  // 8 spans) and 2 * 8 + 1 = 17 FE_Q(2) nodes, two components each.
+  for (const auto &[type, extra] :
+       {std::make_pair(std::string("nurbs"), 20),
+        std::make_pair(std::string("lagrange"), 34)})
+    {
+      SCOPED_TRACE(type);
+      const std::string set    = "--set Discretization/Type=" + type;
+      const auto        closed = run(folder, ring, set, "closed-" + type);
+      const auto        slit   = run(folder,
+                            ring,
+                            set + " --set 'Body 1/Geometry file=" +
+                              cli::join(folder.path, "slit.xml") + "'",
+                            "slit-" + type);
+      ASSERT_FALSE(closed.is_null());
+      ASSERT_FALSE(slit.is_null());
+      EXPECT_EQ(slit.at("n_dofs").get<int>(),
+                closed.at("n_dofs").get<int>() + extra);
+    }
+}
+
+
+
 TEST(CliMultiPatch, ExportedRingReadsBackToTheSameFigures)
 {
   using namespace multi_patch_test;
