@@ -16,26 +16,26 @@ namespace igabde
       , faces(faces)
     {
       Assert(!faces.empty(), ExcInternalError());
+      if (faces.size() == 1)
+        {
+          samples = body.surface_points(faces[0]);
+          return;
+        }
+      // Several faces: each alone (its samples computed once, there),
+      // their samples together, and each face's indexed.
       for (const types::boundary_id face : faces)
         {
-          first_sample.push_back(samples.size());
-          const auto points = body.surface_points(face);
-          samples.insert(samples.end(), points.begin(), points.end());
-          if (faces.size() > 1)
-            {
-              std::vector<Point<dim>> locations;
-              for (const auto &p : points)
-                locations.push_back(p.location);
-              face_index.push_back(
-                std::make_unique<base::NearestPoints<dim>>(locations));
-            }
-        }
-      first_sample.push_back(samples.size());
-      if (faces.size() > 1)
-        for (const types::boundary_id face : faces)
           single_faces.push_back(std::make_unique<BodyFace<dim>>(
             body,
             std::vector<types::boundary_id>{face}));
+          const auto &points = single_faces.back()->sample_points();
+          samples.insert(samples.end(), points.begin(), points.end());
+          std::vector<Point<dim>> locations;
+          for (const auto &p : points)
+            locations.push_back(p.location);
+          face_index.push_back(
+            std::make_unique<base::NearestPoints<dim>>(locations));
+        }
     }
 
 
@@ -96,14 +96,14 @@ namespace igabde
       // Every face from its own nearest sample; the closest wins.
       discretization::SurfacePoint<dim> best;
       double best_distance = std::numeric_limits<double>::max();
-      for (unsigned int k = 0; k < faces.size(); ++k)
+      for (unsigned int k = 0; k < single_faces.size(); ++k)
         {
-          if (first_sample[k + 1] == first_sample[k])
+          const auto &face_samples = single_faces[k]->sample_points();
+          if (face_samples.empty())
             continue;
-          const auto &start =
-            samples[first_sample[k] + face_index[k]->nearest(location)];
-          const auto point =
-            body.closest_surface_point(faces[k], location, start);
+          const auto point = single_faces[k]->closest_point(
+            location,
+            &face_samples[face_index[k]->nearest(location)]);
           const double distance = point.location.distance(location);
           if (distance < best_distance)
             {

@@ -127,8 +127,6 @@ namespace igabde
       /// Each face alone (several faces only).
       std::vector<std::unique_ptr<BodyFace<dim>>>    single_faces;
       std::vector<discretization::SurfacePoint<dim>> samples;
-      /// The first sample of each face in samples, and the end.
-      std::vector<unsigned int> first_sample;
       /// Each face's samples indexed (several faces only).
       std::vector<std::unique_ptr<base::NearestPoints<dim>>> face_index;
     };
