@@ -403,17 +403,45 @@ namespace igabde
           return lu.solve_in_place(dN);
         }
 
-        // Levenberg-Marquardt: (K^T K + lambda I) d = K^T rhs.
+        // Levenberg-Marquardt: (K^T K + lambda I) d = K^T rhs, through
+        // BLAS-3 (syrk forms the lower triangle of K^T K at half a
+        // product's flops) and a Cholesky factorisation; a pivoted LDL^T
+        // where rounding leaves K^T K + lambda I not numerically positive.
         Vec
         dense_lm(const Vec &rhs, const double lm_relative) const
         {
-          const Mat    K   = dense_matrix();
-          const Mat    KtK = K.transpose() * K;
+          const Mat      K = dense_matrix();
+          const blas_int n = K.rows();
+          Mat            KtK(n, n);
+          {
+            const double one = 1., zero = 0.;
+            dealii::syrk("L",
+                         "T",
+                         &n,
+                         &n,
+                         &one,
+                         K.data(),
+                         &n,
+                         &zero,
+                         KtK.data(),
+                         &n);
+          }
           const double lm =
             lm_relative * std::max(KtK.diagonal().maxCoeff(), 1e-300);
-          return (KtK + lm * Mat::Identity(K.rows(), K.rows()))
-            .ldlt()
-            .solve(K.transpose() * rhs);
+          KtK.diagonal().array() += lm;
+          Vec      d    = K.transpose() * rhs;
+          blas_int info = 0;
+          Mat      L    = KtK;
+          dealii::potrf("L", &n, L.data(), &n, &info);
+          if (info == 0)
+            {
+              const blas_int nrhs = 1;
+              dealii::potrs("L", &n, &nrhs, L.data(), &n, d.data(), &n, &info);
+              if (info == 0 && d.allFinite())
+                return d;
+              d = K.transpose() * rhs;
+            }
+          return KtK.selfadjointView<Eigen::Lower>().ldlt().solve(d);
         }
 
         SparseMatrix
