@@ -26,7 +26,8 @@ namespace igabde
       const Eigen::MatrixXd                                &G,
       const bool                                            obstacle,
       const Solver                                          solver,
-      const unsigned int krylov_max_iterations)
+      const unsigned int krylov_max_iterations,
+      const MPI_Comm     communicator)
       : bodies(bodies)
       , d(n_components)
       , n_pairs(pairs.size())
@@ -35,6 +36,7 @@ namespace igabde
       , solver_type(solver == Solver::klu       ? "Amesos_Klu" :
                     solver == Solver::gmres_amg ? "gmres-amg" :
                                                   "Amesos_Mumps")
+      , communicator(solver == Solver::gmres_amg ? MPI_COMM_SELF : communicator)
       , krylov(solver == Solver::gmres_amg)
       , krylov_max_iterations(krylov_max_iterations)
     {
@@ -149,8 +151,18 @@ namespace igabde
             }
       scale = (n > 0 && sum > 0.) ? sum / n : 1.;
 
+      // Rows split in contiguous shares; the sparsity pattern holds every
+      // row, each rank takes its own.
       all = complete_index_set(n_total);
-      matrix.reinit(all, all, dsp, MPI_COMM_SELF);
+      const unsigned int n_ranks =
+                           Utilities::MPI::n_mpi_processes(this->communicator),
+                         rank =
+                           Utilities::MPI::this_mpi_process(this->communicator);
+      owned = IndexSet(n_total);
+      owned.add_range(std::size_t(n_total) * rank / n_ranks,
+                      std::size_t(n_total) * (rank + 1) / n_ranks);
+      owned.compress();
+      matrix.reinit(owned, owned, dsp, this->communicator);
       if (krylov)
         setup_krylov();
     }
@@ -413,6 +425,14 @@ namespace igabde
       AssertDimension(A.size(), n_pairs);
       AssertDimension(B.size(), n_pairs);
       matrix = 0.;
+      // Each rank adds its own rows only (every rank builds the same
+      // system; added twice, an entry would count twice).
+      const auto add = [this](const types::global_dof_index row,
+                              const types::global_dof_index column,
+                              const double                  value) {
+        if (owned.is_element(row))
+          matrix.add(row, column, value);
+      };
       std::vector<types::global_dof_index> columns;
       std::vector<double>                  values;
       for (unsigned int b = 0; b < bodies.size(); ++b)
@@ -421,6 +441,8 @@ namespace igabde
           for (types::global_dof_index i = 0; i < K.m(); ++i)
             {
               const types::global_dof_index gi = offsets[b] + i;
+              if (!owned.is_element(gi))
+                continue;
               if (held[gi])
                 {
                   matrix.add(gi, gi, scale);
@@ -443,14 +465,14 @@ namespace igabde
           {
             const unsigned int row = d * i + s, r = n_u + row;
             for (const auto &[g, v] : C_rows[row])
-              matrix.add(g, r, -v * scale);
+              add(g, r, -v * scale);
             for (unsigned int t = 0; t < d; ++t)
               {
                 if (B[i](s, t) != 0.)
-                  matrix.add(r, n_u + d * i + t, B[i](s, t) * scale);
+                  add(r, n_u + d * i + t, B[i](s, t) * scale);
                 if (A[i](s, t) != 0.)
                   for (const auto &[g, v] : C_rows[d * i + t])
-                    matrix.add(r, g, A[i](s, t) * v);
+                    add(r, g, A[i](s, t) * v);
               }
             for (unsigned int a = 0; a < n_alpha; ++a)
               {
@@ -458,9 +480,9 @@ namespace igabde
                 for (unsigned int t = 0; t < d; ++t)
                   ag += A[i](s, t) * G(d * i + t, a);
                 if (ag != 0.)
-                  matrix.add(r, alpha0 + a, ag);
+                  add(r, alpha0 + a, ag);
                 if (G(row, a) != 0.)
-                  matrix.add(alpha0 + a, r, G(row, a) * scale);
+                  add(alpha0 + a, r, G(row, a) * scale);
               }
           }
       matrix.compress(VectorOperation::add);
@@ -591,14 +613,12 @@ namespace igabde
                 "nothing)";
           return false;
         }
-      TrilinosWrappers::MPI::Vector rhs(all, MPI_COMM_SELF),
-        x(all, MPI_COMM_SELF);
-      for (unsigned int i = 0; i < n_u; ++i)
-        rhs[i] = held[i] ? scale * r_w[i] : r_w[i];
-      for (unsigned int i = 0; i < d * n_pairs; ++i)
-        rhs[n_u + i] = r_p[i];
-      for (unsigned int a = 0; a < n_alpha; ++a)
-        rhs[n_u + d * n_pairs + a] = r_alpha[a];
+      TrilinosWrappers::MPI::Vector rhs(owned, communicator),
+        x(owned, communicator);
+      for (const auto i : owned)
+        rhs[i] = i < n_u               ? (held[i] ? scale * r_w[i] : r_w[i]) :
+                 i < n_u + d * n_pairs ? r_p[i - n_u] :
+                                         r_alpha[i - n_u - d * n_pairs];
       rhs.compress(VectorOperation::insert);
       if (krylov)
         {
@@ -654,8 +674,8 @@ namespace igabde
             // (Amesos does not refine; near the solution the Newton
             // direction must be accurate to the rounding of the residual).
             direct->solve(x, rhs);
-            TrilinosWrappers::MPI::Vector residual(all, MPI_COMM_SELF),
-              correction(all, MPI_COMM_SELF);
+            TrilinosWrappers::MPI::Vector residual(owned, communicator),
+              correction(owned, communicator);
             matrix.vmult(residual, x);
             residual.sadd(-1., rhs);
             direct->solve(correction, residual);
@@ -668,15 +688,18 @@ namespace igabde
                   e.what();
             return false;
           }
+      // Every rank continues with the whole solution.
+      TrilinosWrappers::MPI::Vector whole(owned, all, communicator);
+      whole = x;
       dw.resize(n_u);
       dp.resize(d * n_pairs);
       dalpha.resize(n_alpha);
       for (unsigned int i = 0; i < n_u; ++i)
-        dw[i] = x[i];
+        dw[i] = whole[i];
       for (unsigned int i = 0; i < d * n_pairs; ++i)
-        dp[i] = scale * x[n_u + i];
+        dp[i] = scale * whole[n_u + i];
       for (unsigned int a = 0; a < n_alpha; ++a)
-        dalpha[a] = x[n_u + d * n_pairs + a];
+        dalpha[a] = whole[n_u + d * n_pairs + a];
       return true;
     }
 
@@ -737,35 +760,41 @@ namespace igabde
     contact::CoupledFactory<dim>
     coupled_factory(const Solver       solver,
                     const unsigned int krylov_max_iterations,
-                    std::ostream      *progress)
+                    std::ostream      *progress,
+                    const MPI_Comm     communicator)
     {
-      return
-        [solver,
-         krylov_max_iterations,
-         progress](const std::vector<const discretization::Body<dim> *> &bodies,
-                   const std::vector<contact::ContactPair<dim>>         &pairs,
-                   const unsigned int     n_components,
-                   const Eigen::MatrixXd &G,
-                   const bool             obstacle) {
-          auto system =
-            std::make_unique<CoupledSystem<dim>>(bodies,
-                                                 pairs,
-                                                 n_components,
-                                                 G,
-                                                 obstacle,
-                                                 solver,
-                                                 krylov_max_iterations);
-          system->report_progress_to(progress);
-          return system;
-        };
+      return [solver, krylov_max_iterations, progress, communicator](
+               const std::vector<const discretization::Body<dim> *> &bodies,
+               const std::vector<contact::ContactPair<dim>>         &pairs,
+               const unsigned int     n_components,
+               const Eigen::MatrixXd &G,
+               const bool             obstacle) {
+        auto system =
+          std::make_unique<CoupledSystem<dim>>(bodies,
+                                               pairs,
+                                               n_components,
+                                               G,
+                                               obstacle,
+                                               solver,
+                                               krylov_max_iterations,
+                                               communicator);
+        system->report_progress_to(progress);
+        return system;
+      };
     }
 
 
 
     template contact::CoupledFactory<2>
-    coupled_factory<2>(const Solver, const unsigned int, std::ostream *);
+    coupled_factory<2>(const Solver,
+                       const unsigned int,
+                       std::ostream *,
+                       const MPI_Comm);
     template contact::CoupledFactory<3>
-    coupled_factory<3>(const Solver, const unsigned int, std::ostream *);
+    coupled_factory<3>(const Solver,
+                       const unsigned int,
+                       std::ostream *,
+                       const MPI_Comm);
     template class CoupledSystem<2>;
     template class CoupledSystem<3>;
   } // namespace coupled

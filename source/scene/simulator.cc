@@ -261,7 +261,8 @@ namespace igabde
                                       parameters.output.progress &&
                                           pcout.is_active() ?
                                         &pcout.get_stream() :
-                                        nullptr));
+                                        nullptr,
+                                      MPI_COMM_WORLD));
       contact_stage->build_pairs(timer);
       // The coupled system reads every body's K on every rank.
       if (contact_stage->path() == contact::Path::full)

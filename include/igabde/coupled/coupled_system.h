@@ -37,9 +37,12 @@ namespace igabde
      * local frame, and the rigid-mode columns G, in one Trilinos sparse
      * matrix factorised by a sparse direct solver through Amesos (MUMPS by
      * default, KLU on request), or solved by GMRES with a block
-     * preconditioner ("gmres-amg"; see factorize()). The matrix is built
-     * on index sets, as the distributed version will need; today it lives
-     * on one process.
+     * preconditioner ("gmres-amg"; see factorize()). With a direct solver
+     * and a communicator of several ranks the matrix is distributed by
+     * rows (each rank a contiguous share of the unknowns, assembled by its
+     * owner only) and the direct solver factorises it on all ranks
+     * together; the solution is then gathered on every rank, which all
+     * run the same Newton iteration. gmres-amg runs on one process.
      *
      * Unknown order: Body 1's unknowns, Body 2's, then the pair forces
      * (pair by pair, normal first) and the rigid-mode amplitudes. Held
@@ -59,6 +62,9 @@ namespace igabde
        * @param solver The linear solver.
        * @param krylov_max_iterations GMRES iteration limit per solve
        * (gmres-amg).
+       * @param communicator The ranks that factorise the matrix together
+       * (each of them builds this system alike); MPI_COMM_SELF: this
+       * process alone. gmres-amg always runs on this process alone.
        */
       CoupledSystem(
         const std::vector<const discretization::Body<dim> *> &bodies,
@@ -67,7 +73,8 @@ namespace igabde
         const Eigen::MatrixXd                                &G,
         const bool                                            obstacle,
         const Solver                                          solver,
-        const unsigned int krylov_max_iterations = 1000);
+        const unsigned int krylov_max_iterations = 1000,
+        const MPI_Comm     communicator          = MPI_COMM_SELF);
 
       unsigned int
       n_dofs() const override;
@@ -165,8 +172,11 @@ namespace igabde
       Eigen::VectorXd stiffness;
       /// Amesos solver name.
       std::string solver_type;
-      /// The Newton matrix and its factorisation.
-      IndexSet                                        all;
+      /// The ranks that factorise the Newton matrix together.
+      MPI_Comm communicator;
+      /// The Newton matrix and its factorisation: all unknowns, and the
+      /// rows this rank owns (all of them on one rank).
+      IndexSet                                        all, owned;
       TrilinosWrappers::SparseMatrix                  matrix;
       mutable SolverControl                           control;
       std::unique_ptr<TrilinosWrappers::SolverDirect> direct;
@@ -203,13 +213,15 @@ namespace igabde
      * the contact stage calls once the pairs are formed: CoupledSystem
      * with the linear solver @p solver and
      * the GMRES iteration limit @p krylov_max_iterations, its progress
-     * lines to @p progress (nullptr: none).
+     * lines to @p progress (nullptr: none), a direct solver's matrix
+     * distributed over the ranks of @p communicator.
      */
     template <int dim>
     contact::CoupledFactory<dim>
     coupled_factory(const Solver       solver,
                     const unsigned int krylov_max_iterations,
-                    std::ostream      *progress = nullptr);
+                    std::ostream      *progress     = nullptr,
+                    const MPI_Comm     communicator = MPI_COMM_SELF);
   } // namespace coupled
 } // namespace igabde
 
