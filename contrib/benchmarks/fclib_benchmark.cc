@@ -73,6 +73,7 @@ main(int argc, char **argv)
 
   BNewtonSolver::Settings settings;
   settings.tolerance        = 1e-8;
+  settings.fclib_stopping   = true;
   settings.max_iterations   = max_iterations;
   settings.max_wall_seconds = seconds;
   settings.log              = log;

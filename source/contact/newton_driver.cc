@@ -372,8 +372,8 @@ namespace igabde
       // 1000 times the tolerance (its floor grows with the penalty).
       const double floor = law.floor_factor() * tolerance;
       const double rows  = std::max(floor, tolerance);
-      return (balanced <= tolerance && err <= tolerance && eq <= tolerance &&
-              disp <= tolerance) ||
+      return ((balanced <= tolerance || settings.fclib_stopping) &&
+              err <= tolerance && eq <= tolerance && disp <= tolerance) ||
              (at_rounding_floor && balanced <= floor && eq <= rows &&
               disp <= rows);
     }

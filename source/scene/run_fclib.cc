@@ -230,6 +230,7 @@ namespace igabde
       contact::BNewtonSolver::Settings solver_settings;
       solver_settings.tolerance      = settings.tolerance;
       solver_settings.max_iterations = settings.max_iterations;
+      solver_settings.fclib_stopping = true;
       solver_settings.r_factor       = settings.r_scale;
       solver_settings.log            = settings.verbose;
       solver_settings.log_stream     = &log;

@@ -31,7 +31,10 @@
 // <= 1e-8. Siconos' internal tolerance starts at 1e-8 and is tightened
 // (1e-10, 1e-12, 1e-14) until its answer passes or its solver stops
 // converging; the time is that of the run whose answer is reported. Times
-// are the solve alone (reading and conversion excluded), milliseconds.
+// are the solve alone (reading and conversion excluded), milliseconds; a
+// solve under a second runs twice and the faster run counts, for both
+// sides (the first call pays start-up costs). igabde stops as soon as the
+// FCLIB error passes (BNewtonSettings::fclib_stopping), as Siconos does.
 
 #include <igabde/contact/bnewton.h>
 #include <igabde/contact/contact_law.h>
@@ -47,6 +50,7 @@
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
+#include <limits>
 #include <siconos/numerics/FrictionContactProblem.h>
 #include <siconos/numerics/Friction_cst.h>
 #include <siconos/numerics/NonSmoothDrivers.h>
@@ -72,6 +76,20 @@ namespace
   {
     return std::chrono::duration<double, std::milli>(Clock::now() - start)
       .count();
+  }
+
+  /// How many runs a solve gets, @p fastest ms being its best so far (the
+  /// largest double before the first): one, and a second if the first
+  /// took under a second, the faster counting. A first call pays start-up
+  /// costs (OpenBLAS' threads, first-touch page faults: 7.4 ms first
+  /// against 2.6 ms after for igabde on Box_Stacks-i0122); Siconos and
+  /// igabde are timed alike.
+  unsigned int
+  runs(const double fastest)
+  {
+    return fastest == std::numeric_limits<double>::max() ? 1 :
+           fastest < 1000.                               ? 2 :
+                                                           1;
   }
 
   struct Outcome
@@ -168,17 +186,24 @@ namespace
         setrlimit(RLIMIT_AS, &memory);
         alarm(120);
         const int           n = fcp->dimension * fcp->numberOfContacts;
-        std::vector<double> r(n, 0.), u(n, 0.);
-        SolverOptions      *options = solver_options_create(solver_id);
-        options->iparam[SICONOS_IPARAM_MAX_ITER] = max_iterations;
-        options->dparam[SICONOS_DPARAM_TOL]      = tolerance;
-        Report     out;
-        const auto start = Clock::now();
-        out.info         = fcp->dimension == 3 ?
-                             fc3d_driver(fcp, r.data(), u.data(), options) :
-                             fc2d_driver(fcp, r.data(), u.data(), options);
-        out.ms           = milliseconds_since(start);
-        out.iterations   = options->iparam[SICONOS_IPARAM_ITER_DONE];
+        std::vector<double> r, u;
+        Report              out;
+        out.ms = std::numeric_limits<double>::max();
+        for (unsigned int run = 0; run < runs(out.ms); ++run)
+          {
+            r.assign(n, 0.);
+            u.assign(n, 0.);
+            SolverOptions *options = solver_options_create(solver_id);
+            options->iparam[SICONOS_IPARAM_MAX_ITER] = max_iterations;
+            options->dparam[SICONOS_DPARAM_TOL]      = tolerance;
+            const auto start                         = Clock::now();
+            out.info                                 = fcp->dimension == 3 ?
+                                                         fc3d_driver(fcp, r.data(), u.data(), options) :
+                                                         fc2d_driver(fcp, r.data(), u.data(), options);
+            out.ms         = std::min(out.ms, milliseconds_since(start));
+            out.iterations = options->iparam[SICONOS_IPARAM_ITER_DONE];
+            solver_options_delete(options);
+          }
         out.error =
           fclib_error(problem, Eigen::Map<const Eigen::VectorXd>(r.data(), n));
         const ssize_t written = write(channel[1], &out, sizeof(out));
@@ -374,6 +399,7 @@ main(int argc, char **argv)
 
   BNewtonSolver::Settings settings;
   settings.tolerance      = 1e-8;
+  settings.fclib_stopping = true;
   settings.max_iterations = 300;
   const BNewtonSolver solver(settings);
 
@@ -424,13 +450,18 @@ main(int argc, char **argv)
       FrictionContactProblem *fcp = siconos_problem(problem);
       ++attempted;
 
-      Outcome                     ours;
-      const auto                  start = Clock::now();
-      const BNewtonSolver::Result r     = solver.solve(problem);
-      ours.ms                           = milliseconds_since(start);
-      ours.ran                          = true;
-      ours.iterations                   = r.iterations;
-      ours.error                        = fclib_error(problem, r.p);
+      Outcome               ours;
+      BNewtonSolver::Result r;
+      ours.ms = std::numeric_limits<double>::max();
+      for (unsigned int run = 0; run < runs(ours.ms); ++run)
+        {
+          const auto start = Clock::now();
+          r                = solver.solve(problem);
+          ours.ms          = std::min(ours.ms, milliseconds_since(start));
+        }
+      ours.ran        = true;
+      ours.iterations = r.iterations;
+      ours.error      = fclib_error(problem, r.p);
 
       const bool    three = problem.n_components == 3;
       const Outcome nsn   = three ? run_siconos(fcp,

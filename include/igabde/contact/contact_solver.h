@@ -156,6 +156,15 @@ namespace igabde
       /** @brief Iteration budget over all phases. */
       unsigned int max_iterations = 100;
 
+      /**
+       * @brief Stop as soon as the FCLIB error (with the equilibrium
+       * rows) meets the tolerance, without asking the balanced error to
+       * meet it too: the measure FCLIB problems are judged by, for which
+       * Siconos' solvers are stopped the same way in the comparisons.
+       * False (scenes): both errors must meet it.
+       */
+      bool fclib_stopping = false;
+
       /** @brief Armijo sufficient-decrease constant sigma. */
       double armijo_sigma = 1e-4;
 
