@@ -7,6 +7,7 @@
 
 #include <deal.II/numerics/data_component_interpretation.h>
 
+#include <algorithm>
 #include <fstream>
 #include <iomanip>
 #include <limits>
@@ -23,21 +24,36 @@ namespace igabde
                         const Vector<double>                       &u1,
                         const std::vector<contact::PairState<dim>> &pairs)
     {
-      std::vector<double> p(pairs.size(),
+      std::vector<double>     p(pairs.size(),
                             std::numeric_limits<double>::quiet_NaN());
+      std::vector<Point<dim>> face_points; // read once, when needed
       for (unsigned int i = 0; i < pairs.size(); ++i)
         {
-          const Tensor<1, dim> n = pairs[i].normal;
-          try
-            {
-              p[i] = -n * (body1.stress(u1, pairs[i].location) * n);
-            }
-          catch (const ExceptionBase &)
-            {
-              // A weighted-gap pair's point is a weighted mean of its
-              // support; on a concave face it lies off the body: no
-              // stress there (NaN).
-            }
+          const Tensor<1, dim> n     = pairs[i].normal;
+          Point<dim>           where = pairs[i].location;
+          for (unsigned int attempt = 0; attempt < 2; ++attempt)
+            try
+              {
+                p[i] = -n * (body1.stress(u1, where) * n);
+                break;
+              }
+            catch (const ExceptionBase &)
+              {
+                // Off the body: its nearest surface point.
+                if (face_points.empty())
+                  for (unsigned int f = 0; f < 2 * dim * body1.n_patches(); ++f)
+                    for (const auto &q : body1.surface_points(f))
+                      face_points.push_back(q.location);
+                if (face_points.empty())
+                  break;
+                where = *std::min_element(
+                  face_points.begin(),
+                  face_points.end(),
+                  [&](const Point<dim> &a, const Point<dim> &b) {
+                    return a.distance_square(pairs[i].location) <
+                           b.distance_square(pairs[i].location);
+                  });
+              }
         }
       return p;
     }

@@ -18,7 +18,10 @@ namespace igabde
      * @brief The contact pressure recovered from Body 1's stress field at
      * each pair's point: -n . sigma(u_h) . n with the pair's normal n
      * (compression positive, Pa), beside the pair pressure p_n / area that
-     * the contact solution gives.
+     * the contact solution gives. A pair whose point lies off Body 1 (a
+     * weighted-gap pair's point is a weighted mean over its support: off a
+     * curved face, or with quadratic Lagrange weights just past a face's
+     * side) is evaluated at the nearest surface point of Body 1 instead.
      */
     template <int dim>
     std::vector<double>
