@@ -251,7 +251,25 @@ namespace igabde
     template <int dim>
     Tensor<2, dim>
     local_frame(const Tensor<1, dim> &n);
-  } // namespace contact
+
+    namespace internal
+    {
+      /// The refusal, naming @p context, when the two contact faces do not
+      /// face each other at @p location.
+      template <int dim>
+      std::string
+      not_facing(const std::string         &context,
+                 const Point<dim>          &location,
+                 const ContactSurface<dim> &master);
+
+      /// The refusal of an initial penetration by @p gap (negative).
+      template <int dim>
+      std::string
+      penetrates(const std::string         &context,
+                 const ContactSurface<dim> &master,
+                 const double               gap);
+    } // namespace internal
+  }   // namespace contact
 } // namespace igabde
 
 #endif
