@@ -1,5 +1,8 @@
 #include <igabde/base/files.h>
+#include <igabde/base/nearest_points.h>
 #include <igabde/base/utilities.h>
+
+#include <igabde/contact/contact_surface.h>
 
 #include <igabde/postprocess/contact_output.h>
 
@@ -8,6 +11,7 @@
 #include <deal.II/numerics/data_component_interpretation.h>
 
 #include <algorithm>
+#include <array>
 #include <fstream>
 #include <iomanip>
 #include <limits>
@@ -21,39 +25,38 @@ namespace igabde
     template <int dim>
     std::vector<double>
     recovered_pressures(const discretization::Body<dim>            &body1,
+                        const std::vector<types::boundary_id>      &faces,
                         const Vector<double>                       &u1,
                         const std::vector<contact::PairState<dim>> &pairs)
     {
-      std::vector<double>     p(pairs.size(),
+      std::vector<double> p(pairs.size(),
                             std::numeric_limits<double>::quiet_NaN());
-      std::vector<Point<dim>> face_points; // read once, when needed
+      if (pairs.empty())
+        return p;
+      const contact::BodyFace<dim> surface(body1, faces);
+      const auto                  &samples = surface.sample_points();
+      std::vector<Point<dim>>      locations;
+      for (const auto &s : samples)
+        locations.push_back(s.location);
+      const base::NearestPoints<dim> index(std::move(locations));
       for (unsigned int i = 0; i < pairs.size(); ++i)
         {
-          const Tensor<1, dim> n     = pairs[i].normal;
-          Point<dim>           where = pairs[i].location;
-          for (unsigned int attempt = 0; attempt < 2; ++attempt)
+          const Tensor<1, dim> n = pairs[i].normal;
+          const auto &nearest    = samples[index.nearest(pairs[i].location)];
+          // The closest point of the contact face; its nearest sample
+          // point (on the face too) if the stress cannot be evaluated
+          // there (a Lagrange face's projection just past its side).
+          const std::array<Point<dim>, 2> where = {
+            {surface.closest_point(pairs[i].location, &nearest).location,
+             nearest.location}};
+          for (const Point<dim> &x : where)
             try
               {
-                p[i] = -n * (body1.stress(u1, where) * n);
+                p[i] = -n * (body1.stress(u1, x) * n);
                 break;
               }
             catch (const ExceptionBase &)
-              {
-                // Off the body: its nearest surface point.
-                if (face_points.empty())
-                  for (unsigned int f = 0; f < 2 * dim * body1.n_patches(); ++f)
-                    for (const auto &q : body1.surface_points(f))
-                      face_points.push_back(q.location);
-                if (face_points.empty())
-                  break;
-                where = *std::min_element(
-                  face_points.begin(),
-                  face_points.end(),
-                  [&](const Point<dim> &a, const Point<dim> &b) {
-                    return a.distance_square(pairs[i].location) <
-                           b.distance_square(pairs[i].location);
-                  });
-              }
+              {}
         }
       return p;
     }
@@ -164,10 +167,12 @@ namespace igabde
 
     template std::vector<double>
     recovered_pressures<2>(const discretization::Body<2> &,
+                           const std::vector<types::boundary_id> &,
                            const Vector<double> &,
                            const std::vector<contact::PairState<2>> &);
     template std::vector<double>
     recovered_pressures<3>(const discretization::Body<3> &,
+                           const std::vector<types::boundary_id> &,
                            const Vector<double> &,
                            const std::vector<contact::PairState<3>> &);
     template void

@@ -403,6 +403,9 @@ namespace igabde
               bodies,
               u,
               pairs ? &*pairs : nullptr,
+              std::vector<types::boundary_id>(
+                parameters.contact.slave_faces.begin(),
+                parameters.contact.slave_faces.end()),
               pvd_records,
               writer);
           }

@@ -333,6 +333,7 @@ namespace igabde
       const std::vector<std::unique_ptr<discretization::Body<dim>>> &bodies,
       const std::vector<Vector<double>>                             &u,
       const std::vector<contact::PairState<dim>>                    *pairs,
+      const std::vector<types::boundary_id>                    &slave_faces,
       std::vector<std::vector<std::pair<double, std::string>>> &pvd_records,
       base::BackgroundWriter                                   &writer)
     {
@@ -352,11 +353,15 @@ namespace igabde
           writer.add([directory,
                       name,
                       write_vtu,
-                      body  = bodies[0].get(),
-                      u0    = u[0],
+                      body = bodies[0].get(),
+                      u0   = u[0],
+                      slave_faces,
                       pairs = *pairs]() {
             const std::vector<double> recovered =
-              postprocess::recovered_pressures<dim>(*body, u0, pairs);
+              postprocess::recovered_pressures<dim>(*body,
+                                                    slave_faces,
+                                                    u0,
+                                                    pairs);
             postprocess::write_pair_csv<dim>(pairs,
                                              recovered,
                                              directory + "/" + name + ".csv");
@@ -718,6 +723,7 @@ namespace igabde
       const std::vector<std::unique_ptr<discretization::Body<2>>> &,
       const std::vector<Vector<double>> &,
       const std::vector<contact::PairState<2>> *,
+      const std::vector<types::boundary_id> &,
       std::vector<std::vector<std::pair<double, std::string>>> &,
       base::BackgroundWriter &);
     template void
@@ -775,6 +781,7 @@ namespace igabde
       const std::vector<std::unique_ptr<discretization::Body<3>>> &,
       const std::vector<Vector<double>> &,
       const std::vector<contact::PairState<3>> *,
+      const std::vector<types::boundary_id> &,
       std::vector<std::vector<std::pair<double, std::string>>> &,
       base::BackgroundWriter &);
     template void

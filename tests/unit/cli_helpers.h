@@ -171,6 +171,48 @@ namespace cli
     return rows;
   }
 
+  /// A CSV table whose columns are found by their header names.
+  struct CsvTable
+  {
+    std::vector<std::string>              header;
+    std::vector<std::vector<std::string>> rows; ///< without the header
+
+    /// The index of column @p name; a test failure (and column 0) when
+    /// the table has none.
+    std::size_t
+    column(const std::string &name) const
+    {
+      for (std::size_t c = 0; c < header.size(); ++c)
+        if (header[c] == name)
+          return c;
+      ADD_FAILURE() << "the table has no column " << name;
+      return 0;
+    }
+
+    /// The entry of row @p row (0: the first after the header) in column
+    /// @p name, as a number ("nan" reads as NaN).
+    double
+    number(const std::size_t row, const std::string &name) const
+    {
+      return std::stod(rows.at(row).at(column(name)));
+    }
+  };
+
+  /// read_csv() with the first row as the header.
+  inline CsvTable
+  read_table(const std::string &path)
+  {
+    auto rows = read_csv(path);
+    EXPECT_FALSE(rows.empty()) << path << " is empty or missing";
+    CsvTable table;
+    if (!rows.empty())
+      {
+        table.header = rows.front();
+        table.rows.assign(rows.begin() + 1, rows.end());
+      }
+    return table;
+  }
+
   /**
    * Runs igabde with @p arguments in @p folder and expects it refused with
    * exit status 2 and one line of output that says @p says.

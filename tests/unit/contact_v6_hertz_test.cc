@@ -43,8 +43,10 @@ namespace
     nlohmann::json summary;
     /// Pair x coordinate, pressure and normal force (contact-0001.csv).
     std::vector<std::array<double, 3>> pairs;
-    /// The recovered pressure of each pair, as written (may be "nan").
-    std::vector<std::string> recovered;
+    /// The recovered pressure of each pair (NaN where none was written).
+    std::vector<double> recovered;
+    /// Whether each pair is open.
+    std::vector<bool> open;
   };
 
   /// Runs V6 with the overrides @p sets in a scratch folder.
@@ -67,27 +69,15 @@ namespace
                               cli::join(scratch.path, "out/summary.json")),
                             nullptr,
                             false);
-    const auto rows =
-      cli::read_csv(cli::join(scratch.path, "out/contact-0001.csv"));
-    EXPECT_FALSE(rows.empty());
-    EXPECT_EQ(rows.empty() ? std::vector<std::string>() : rows.front(),
-              (std::vector<std::string>{"pair",
-                                        "x",
-                                        "y",
-                                        "area",
-                                        "gap",
-                                        "p_n",
-                                        "p_t1",
-                                        "pressure",
-                                        "recovered_pressure",
-                                        "slip_t1",
-                                        "status"}));
-    for (std::size_t r = 1; r < rows.size(); ++r)
+    const cli::CsvTable table =
+      cli::read_table(cli::join(scratch.path, "out/contact-0001.csv"));
+    for (std::size_t r = 0; r < table.rows.size(); ++r)
       {
-        run.pairs.push_back(std::array<double, 3>{{std::stod(rows[r][1]),
-                                                   std::stod(rows[r][7]),
-                                                   std::stod(rows[r][5])}});
-        run.recovered.push_back(rows[r][8]);
+        run.pairs.push_back(std::array<double, 3>{{table.number(r, "x"),
+                                                   table.number(r, "pressure"),
+                                                   table.number(r, "p_n")}});
+        run.recovered.push_back(table.number(r, "recovered_pressure"));
+        run.open.push_back(table.rows[r][table.column("status")] == "open");
       }
     return run;
   }
@@ -181,21 +171,38 @@ TEST(ContactV6Hertz, PairsFollowJohnsonWhateverTheMeshRatio)
 
 
 
-// FE_Q(2) weighted-gap pair points are weighted means over the pairs'
-// supports, with the quadratic vertex functions' negative weights: some
-// lie just off the cylinder. Their recovered pressure is read at the
-// cylinder's nearest surface point instead of being left undefined (64 of
-// the 233 pairs were "nan" in the contact table before).
-TEST(ContactV6Hertz, EveryPairHasARecoveredPressureOnQuadraticLagrange)
+// The recovered pressure -n.sigma(u_h).n is read from the cylinder's stress
+// field at the point of its contact face closest to each pair: FE_Q(2)
+// weighted-gap pair points are weighted means over the pairs' supports,
+// with the quadratic vertex functions' negative weights, and some lie just
+// off the cylinder (64 of the 233 pairs were "nan" in the contact table
+// before it was read on the face). Against the pair pressures: on V5
+// (doc/studies.md, recovered contact pressure) the recovered pressure
+// deviates from a converged model by at most 7.3 % of the peak and the
+// pair pressure by at most 5.2 % on the coarsest meshes of both
+// discretisations, so the two differ by at most 12.5 % of p0 where the
+// pairs are closed; where they are open the face is traction free and the
+// recovered pressure is its own error, at most 7.3 % of p0.
+TEST(ContactV6Hertz, RecoveredPressuresAgreeWithThePairPressures)
 {
-  const V6Run run = run_v6("lagrange", "--set 'Discretization/Type=lagrange'");
-  ASSERT_EQ(run.summary.at("status"), "ok");
-  ASSERT_FALSE(run.recovered.empty());
-  for (std::size_t i = 0; i < run.recovered.size(); ++i)
+  const double p0 = johnson().second;
+  for (const std::string type : {"nurbs", "lagrange"})
     {
-      const double value = std::stod(run.recovered[i]);
-      EXPECT_TRUE(std::isfinite(value))
-        << "pair " << i << " at x = " << run.pairs[i][0] << ": "
-        << run.recovered[i];
+      SCOPED_TRACE(type);
+      const V6Run run =
+        run_v6("recovered-" + type, "--set 'Discretization/Type=" + type + "'");
+      ASSERT_EQ(run.summary.at("status"), "ok");
+      ASSERT_FALSE(run.recovered.empty());
+      for (std::size_t i = 0; i < run.recovered.size(); ++i)
+        {
+          const double recovered = run.recovered[i];
+          const double pressure  = run.pairs[i][1];
+          EXPECT_TRUE(std::isfinite(recovered)) << "pair " << i;
+          EXPECT_LE(std::abs(recovered - (run.open[i] ? 0. : pressure)),
+                    (run.open[i] ? 0.073 : 0.125) * p0)
+            << "pair " << i << " at x = " << run.pairs[i][0]
+            << (run.open[i] ? " (open)" : "") << ": recovered " << recovered
+            << ", pair pressure " << pressure;
+        }
     }
 }

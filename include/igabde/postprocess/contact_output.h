@@ -16,18 +16,22 @@ namespace igabde
   {
     /**
      * @brief The contact pressure recovered from Body 1's stress field at
-     * each pair's point: -n . sigma(u_h) . n with the pair's normal n
-     * (compression positive, Pa), beside the pair pressure p_n / area that
-     * the contact solution gives. A pair whose point lies off Body 1 (a
-     * weighted-gap pair's point is a weighted mean over its support: off a
-     * curved face, or with quadratic Lagrange weights just past a face's
-     * side) is evaluated at the nearest surface point of Body 1 instead.
+     * each pair: -n . sigma(u_h) . n with the pair's normal n (compression
+     * positive, Pa), beside the pair pressure p_n / area that the contact
+     * solution gives. It is evaluated at the point of Body 1's contact
+     * face (the patch faces @p faces) closest to the pair's point: a
+     * weighted-gap pair's point is a weighted mean over its support, off a
+     * curved face or, with quadratic Lagrange weights, just past a face's
+     * side. Where the stress cannot be evaluated at that point (a Lagrange
+     * face's projection, which is approximate), the face's sample point
+     * nearest to the pair is used.
      */
     template <int dim>
     std::vector<double>
-    recovered_pressures(const discretization::Body<dim>            &body1,
-                        const dealii::Vector<double>               &u1,
-                        const std::vector<contact::PairState<dim>> &pairs);
+    recovered_pressures(const discretization::Body<dim>               &body1,
+                        const std::vector<dealii::types::boundary_id> &faces,
+                        const dealii::Vector<double>                  &u1,
+                        const std::vector<contact::PairState<dim>>    &pairs);
 
     /**
      * @brief Writes the pairs of a load step as a CSV table (full

@@ -95,7 +95,8 @@ namespace igabde
 
     /**
      * @brief The files of load step @p step in @p directory: the pair table
-     * contact-NNNN.csv of @p pairs (nullptr without contact) and, with
+     * contact-NNNN.csv of @p pairs (nullptr without contact; recovered
+     * pressures on Body 1's patch faces @p slave_faces) and, with
      * @p write_vtu, the pairs' and the bodies' VTU files, whose names
      * @p pvd_records gains (one series per body, then one for the pairs);
      * write_pvd_series() writes the series. The files are written by
@@ -119,6 +120,7 @@ namespace igabde
       const std::vector<std::unique_ptr<discretization::Body<dim>>> &bodies,
       const std::vector<Vector<double>>                             &u,
       const std::vector<contact::PairState<dim>>                    *pairs,
+      const std::vector<types::boundary_id>                    &slave_faces,
       std::vector<std::vector<std::pair<double, std::string>>> &pvd_records,
       base::BackgroundWriter                                   &writer);
 
