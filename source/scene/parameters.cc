@@ -1,5 +1,7 @@
 #include <igabde/base/utilities.h>
 
+#include <igabde/discretization/body.h>
+
 #include <igabde/contact/contact_solver.h>
 #include <igabde/contact/pairing.h>
 
@@ -590,18 +592,6 @@ namespace igabde
 
 
 
-      /// A body face as the scene writes it: 'f', or 'p.f' beyond patch 0.
-      std::string
-      face_name(const unsigned int face, const unsigned int dimension)
-      {
-        return face < 2 * dimension ?
-                 std::to_string(face) :
-                 std::to_string(face / (2 * dimension)) + "." +
-                   std::to_string(face % (2 * dimension));
-      }
-
-
-
       /**
        * Refuses a face of @p body (its supports, tractions, moments, face
        * motions, held rotation and @p more) on a patch that the body's
@@ -630,8 +620,9 @@ namespace igabde
           AssertThrow(
             face / (2 * dimension) < body.n_patches,
             base::ExcInput(
-              where + "/" + parameter + ": face " + face_name(face, dimension) +
-              " is on patch " + std::to_string(face / (2 * dimension)) +
+              where + "/" + parameter + ": face " +
+              discretization::face_name(face, dimension) + " is on patch " +
+              std::to_string(face / (2 * dimension)) +
               ", but the geometry has " + std::to_string(body.n_patches) +
               " patch" + (body.n_patches == 1 ? "" : "es") + " (0.." +
               std::to_string(body.n_patches - 1) + ")."));

@@ -160,6 +160,22 @@ namespace igabde
     };
 
     /**
+     * @brief Face @p face of a body of dimension @p dimension as scenes
+     * write it: "f" on patch 0, "p.f" on patch p > 0 (the face number is
+     * p * 2 dimension + f).
+     */
+    inline std::string
+    face_name(const unsigned int face, const unsigned int dimension)
+    {
+      return face < 2 * dimension ?
+               std::to_string(face) :
+               std::to_string(face / (2 * dimension)) + "." +
+                 std::to_string(face % (2 * dimension));
+    }
+
+
+
+    /**
      * @brief A deformable body, discretised by NURBS or by Lagrange elements.
      *
      * This is the small interface the contact layer and the simulator see:
@@ -574,14 +590,12 @@ namespace igabde
         return 1;
       }
 
-      /// @brief The face @p face as scenes write it: "f" on patch 0, "p.f"
-      /// on patch p > 0.
+      /// @brief The face @p face as scenes write it (discretization::
+      /// face_name()).
       std::string
       face_name(const types::boundary_id face) const
       {
-        return face < 2 * dim ? std::to_string(face) :
-                                std::to_string(face / (2 * dim)) + "." +
-                                  std::to_string(face % (2 * dim));
+        return discretization::face_name(face, dim);
       }
 
     protected:
