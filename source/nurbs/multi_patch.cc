@@ -1,3 +1,4 @@
+#include <igabde/base/disjoint_sets.h>
 #include <igabde/base/nearest_points.h>
 #include <igabde/base/utilities.h>
 
@@ -12,48 +13,6 @@ namespace igabde
 {
   namespace nurbs
   {
-    namespace
-    {
-      /// Union-find with path halving; the root of a set is its smallest
-      /// member, so that numbering by roots keeps the order of first
-      /// appearance.
-      class Sets
-      {
-      public:
-        explicit Sets(const unsigned int n)
-          : parent(n)
-        {
-          std::iota(parent.begin(), parent.end(), 0u);
-        }
-
-        unsigned int
-        find(unsigned int a)
-        {
-          while (parent[a] != a)
-            {
-              parent[a] = parent[parent[a]];
-              a         = parent[a];
-            }
-          return a;
-        }
-
-        void
-        join(const unsigned int a, const unsigned int b)
-        {
-          const unsigned int ra = find(a), rb = find(b);
-          if (ra < rb)
-            parent[rb] = ra;
-          else if (rb < ra)
-            parent[ra] = rb;
-        }
-
-      private:
-        std::vector<unsigned int> parent;
-      };
-    } // namespace
-
-
-
     template <int dim>
     std::pair<std::vector<std::vector<unsigned int>>, unsigned int>
     glue_control_points(const std::vector<NurbsPatch<dim>> &patches,
@@ -63,7 +22,7 @@ namespace igabde
       std::vector<unsigned int> offset(patches.size() + 1, 0u);
       for (unsigned int p = 0; p < patches.size(); ++p)
         offset[p + 1] = offset[p] + patches[p].n_control_points();
-      Sets sets(offset.back());
+      base::DisjointSets sets(offset.back());
 
       for (unsigned int k = 0; k < interfaces.size(); ++k)
         {

@@ -1,3 +1,4 @@
+#include <igabde/base/disjoint_sets.h>
 #include <igabde/base/files.h>
 #include <igabde/base/utilities.h>
 
@@ -55,26 +56,11 @@ namespace igabde
         if (n == 1)
           return 1;
         // A body is one piece: every patch reached through interfaces.
-        std::vector<unsigned int> piece(n);
+        base::DisjointSets pieces(n);
+        for (const auto &i : file.interfaces)
+          pieces.join(i.patch[0], i.patch[1]);
         for (unsigned int p = 0; p < n; ++p)
-          piece[p] = p;
-        for (bool changed = true; changed;)
-          {
-            changed = false;
-            for (const auto &i : file.interfaces)
-              {
-                const unsigned int low =
-                  std::min(piece[i.patch[0]], piece[i.patch[1]]);
-                for (const unsigned int p : i.patch)
-                  if (piece[p] != low)
-                    {
-                      piece[p] = low;
-                      changed  = true;
-                    }
-              }
-          }
-        for (unsigned int p = 0; p < n; ++p)
-          AssertThrow(piece[p] == 0,
+          AssertThrow(pieces.find(p) == 0,
                       base::ExcInput(
                         where + body.geometry_path + " holds " +
                         std::to_string(n) +
