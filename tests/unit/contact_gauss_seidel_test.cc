@@ -34,7 +34,9 @@ namespace
     EXPECT_NEAR(un * p[0], 0., tol);
     EXPECT_LE(std::abs(p[1]), mu * p[0] + tol);
     if (std::abs(ut) > tol)
-      EXPECT_NEAR(p[1], -mu * p[0] * (ut > 0. ? 1. : -1.), tol);
+      {
+        EXPECT_NEAR(p[1], -mu * p[0] * (ut > 0. ? 1. : -1.), tol);
+      }
   }
 } // namespace
 
