@@ -6,43 +6,8 @@
 #include <gtest/gtest.h>
 
 #include "cli_helpers.h"
-#include <fstream>
-#include <sstream>
 #include <string>
 #include <vector>
-
-namespace
-{
-  /// The column @p name of the CSV table @p path.
-  std::vector<double>
-  column(const std::string &path, const std::string &name)
-  {
-    std::ifstream in(path);
-    std::string   line;
-    std::getline(in, line);
-    std::vector<std::string> header;
-    {
-      std::istringstream h(line);
-      std::string        cell;
-      while (std::getline(h, cell, ','))
-        header.push_back(cell);
-    }
-    unsigned int k = 0;
-    while (k < header.size() && header[k] != name)
-      ++k;
-    EXPECT_LT(k, header.size()) << name << " not in " << path;
-    std::vector<double> values;
-    while (std::getline(in, line))
-      {
-        std::istringstream row(line);
-        std::string        cell;
-        for (unsigned int i = 0; i <= k && std::getline(row, cell, ','); ++i)
-          ;
-        values.push_back(std::stod(cell));
-      }
-    return values;
-  }
-} // namespace
 
 
 
@@ -73,14 +38,14 @@ TEST(CliRecoveredPressure, EqualsTheUniformPressureOfThePatchTests)
                           "Output/Directory=out",
                         folder);
       ASSERT_EQ(r.status, 0) << r.output;
-      const std::string csv = cli::join(folder.path, "out/contact-0001.csv");
-      const auto        recovered = column(csv, "recovered_pressure");
-      const auto        pressure  = column(csv, "pressure");
-      ASSERT_FALSE(recovered.empty());
-      for (unsigned int i = 0; i < recovered.size(); ++i)
+      const std::string   csv = cli::join(folder.path, "out/contact-0001.csv");
+      const cli::CsvTable table = cli::read_table(csv);
+      ASSERT_FALSE(table.rows.empty());
+      for (unsigned int i = 0; i < table.rows.size(); ++i)
         {
-          EXPECT_NEAR(recovered[i], 1., 1e-8) << "pair " << i;
-          EXPECT_NEAR(pressure[i], 1., 1e-8) << "pair " << i;
+          EXPECT_NEAR(table.number(i, "recovered_pressure"), 1., 1e-8)
+            << "pair " << i;
+          EXPECT_NEAR(table.number(i, "pressure"), 1., 1e-8) << "pair " << i;
         }
     }
 }

@@ -71,6 +71,18 @@ namespace
                             false);
     const cli::CsvTable table =
       cli::read_table(cli::join(scratch.path, "out/contact-0001.csv"));
+    EXPECT_EQ(table.header,
+              (std::vector<std::string>{"pair",
+                                        "x",
+                                        "y",
+                                        "area",
+                                        "gap",
+                                        "p_n",
+                                        "p_t1",
+                                        "pressure",
+                                        "recovered_pressure",
+                                        "slip_t1",
+                                        "status"}));
     for (std::size_t r = 0; r < table.rows.size(); ++r)
       {
         run.pairs.push_back(std::array<double, 3>{{table.number(r, "x"),

@@ -56,6 +56,17 @@ namespace v7_hertz_test
     run.summary = scene.summary;
     const cli::CsvTable table =
       cli::read_table(cli::join(scratch.path, "out/contact-0001.csv"));
+    EXPECT_EQ(table.header,
+              (std::vector<std::string>{"pair",
+                                        "x",
+                                        "y",
+                                        "z",
+                                        "area",
+                                        "gap",
+                                        "p_n",
+                                        "pressure",
+                                        "recovered_pressure",
+                                        "status"}));
     for (std::size_t r = 0; r < table.rows.size(); ++r)
       run.pairs.push_back(std::array<double, 4>{{table.number(r, "x"),
                                                  table.number(r, "y"),
