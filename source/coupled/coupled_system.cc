@@ -2,6 +2,8 @@
 
 #include <igabde/coupled/coupled_system.h>
 
+#include <deal.II/base/array_view.h>
+#include <deal.II/base/mpi.h>
 #include <deal.II/base/timer.h>
 
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
@@ -36,7 +38,7 @@ namespace igabde
       , solver_type(solver == Solver::klu       ? "Amesos_Klu" :
                     solver == Solver::gmres_amg ? "gmres-amg" :
                                                   "Amesos_Mumps")
-      , communicator(solver == Solver::gmres_amg ? MPI_COMM_SELF : communicator)
+      , communicator(communicator)
       , krylov(solver == Solver::gmres_amg)
       , krylov_max_iterations(krylov_max_iterations)
     {
@@ -97,8 +99,29 @@ namespace igabde
           stiffness[i]      = area / (inverse_modulus * h);
         }
 
+      // Rows split among the ranks: each a contiguous share of the
+      // displacement rows (cut between control points or nodes, so that
+      // the AMG's blocks of dim unknowns stay on one rank) and of the pair
+      // and rigid-mode rows. Each rank builds the sparsity of its own rows
+      // only.
+      all = complete_index_set(n_total);
+      {
+        const std::size_t n_ranks =
+                            Utilities::MPI::n_mpi_processes(this->communicator),
+                          rank = Utilities::MPI::this_mpi_process(
+                            this->communicator);
+        const std::size_t n_nodes = n_u / dim, n_rest = n_total - n_u;
+        u_begin = dim * (n_nodes * rank / n_ranks);
+        u_end   = dim * (n_nodes * (rank + 1) / n_ranks);
+        owned   = IndexSet(n_total);
+        owned.add_range(u_begin, u_end);
+        owned.add_range(n_u + n_rest * rank / n_ranks,
+                        n_u + n_rest * (rank + 1) / n_ranks);
+        owned.compress();
+      }
+
       // Sparsity of the Newton matrix.
-      DynamicSparsityPattern dsp(n_total, n_total);
+      DynamicSparsityPattern dsp(n_total, n_total, owned);
       for (unsigned int b = 0; b < bodies.size(); ++b)
         {
           const SparseMatrix<double> &K = bodies[b]->stiffness_matrix();
@@ -151,17 +174,6 @@ namespace igabde
             }
       scale = (n > 0 && sum > 0.) ? sum / n : 1.;
 
-      // Rows split in contiguous shares; the sparsity pattern holds every
-      // row, each rank takes its own.
-      all = complete_index_set(n_total);
-      const unsigned int n_ranks =
-                           Utilities::MPI::n_mpi_processes(this->communicator),
-                         rank =
-                           Utilities::MPI::this_mpi_process(this->communicator);
-      owned = IndexSet(n_total);
-      owned.add_range(std::size_t(n_total) * rank / n_ranks,
-                      std::size_t(n_total) * (rank + 1) / n_ranks);
-      owned.compress();
       matrix.reinit(owned, owned, dsp, this->communicator);
       if (krylov)
         setup_krylov();
@@ -175,15 +187,20 @@ namespace igabde
     {
       // The displacement block: K of both bodies, held rows scale times
       // identity (as in the Newton matrix); it never changes, so its AMG
-      // is set up once.
-      displacement_set = complete_index_set(n_u);
-      DynamicSparsityPattern dsp(n_u, n_u);
+      // is set up once. Distributed as the Newton matrix's displacement
+      // rows: this rank's [u_begin, u_end).
+      displacement_set = IndexSet(n_u);
+      displacement_set.add_range(u_begin, u_end);
+      displacement_set.compress();
+      DynamicSparsityPattern dsp(n_u, n_u, displacement_set);
       for (unsigned int b = 0; b < bodies.size(); ++b)
         {
           const SparseMatrix<double> &K = bodies[b]->stiffness_matrix();
           for (types::global_dof_index i = 0; i < K.m(); ++i)
             {
               const unsigned int gi = offsets[b] + i;
+              if (!displacement_set.is_element(gi))
+                continue;
               if (held[gi])
                 dsp.add(gi, gi);
               else
@@ -192,7 +209,11 @@ namespace igabde
                     dsp.add(gi, offsets[b] + e->column());
             }
         }
-      K_matrix.reinit(displacement_set, displacement_set, dsp, MPI_COMM_SELF);
+      K_matrix.reinit(displacement_set,
+                      displacement_set,
+                      dsp,
+                      this->communicator);
+      // D, the diagonal of K on every row (every rank forms the same S~).
       std::vector<double> diagonal(n_u, scale);
       for (unsigned int b = 0; b < bodies.size(); ++b)
         {
@@ -202,13 +223,16 @@ namespace igabde
               const unsigned int gi = offsets[b] + i;
               if (held[gi])
                 {
-                  K_matrix.set(gi, gi, scale);
+                  if (displacement_set.is_element(gi))
+                    K_matrix.set(gi, gi, scale);
                   continue;
                 }
+              diagonal[gi] = K.diag_element(i);
+              if (!displacement_set.is_element(gi))
+                continue;
               for (auto e = K.begin(i); e != K.end(i); ++e)
                 if (!held[offsets[b] + e->column()])
                   K_matrix.set(gi, offsets[b] + e->column(), e->value());
-              diagonal[gi] = K.diag_element(i);
             }
         }
       K_matrix.compress(VectorOperation::insert);
@@ -218,8 +242,10 @@ namespace igabde
       // points or nodes: exact rigid motions of the discrete space).
       // Smoothed aggregation with translations only coarsens the bending
       // of slender bodies badly.
+      // ML reads this rank's rows, mode by mode.
       const unsigned int n_modes = (dim == 2 ? 3 : 6);
-      null_space.assign(std::size_t(n_modes) * n_u, 0.);
+      const std::size_t  n_local = u_end - u_begin;
+      null_space.assign(std::size_t(n_modes) * n_local, 0.);
       bool node_blocks = true;
       for (unsigned int b = 0; b < bodies.size(); ++b)
         {
@@ -234,22 +260,25 @@ namespace igabde
           size = size > 0. ? size : 1.;
           for (types::global_dof_index i = 0; i < body.n_dofs(); ++i)
             {
-              const std::size_t    g  = offsets[b] + i;
-              const unsigned int   c  = body.dof_component(i);
-              const Tensor<1, dim> x  = (body.dof_location(i) - centre) / size;
-              node_blocks             = node_blocks && (g % dim == c);
-              null_space[c * n_u + g] = 1.;
+              const std::size_t  g = offsets[b] + i;
+              const unsigned int c = body.dof_component(i);
+              node_blocks          = node_blocks && (g % dim == c);
+              if (g < u_begin || g >= u_end)
+                continue;
+              const std::size_t    l = g - u_begin;
+              const Tensor<1, dim> x = (body.dof_location(i) - centre) / size;
+              null_space[c * n_local + l] = 1.;
               if (dim == 2)
-                null_space[2 * n_u + g] = (c == 0 ? -x[1] : x[0]);
+                null_space[2 * n_local + l] = (c == 0 ? -x[1] : x[0]);
               else
                 {
                   // Rotations about x, y, z: (0,-z,y), (z,0,-x), (-y,x,0).
-                  const double rx[3]      = {0., -x[dim - 1], x[1]};
-                  const double ry[3]      = {x[dim - 1], 0., -x[0]};
-                  const double rz[3]      = {-x[1], x[0], 0.};
-                  null_space[3 * n_u + g] = rx[c];
-                  null_space[4 * n_u + g] = ry[c];
-                  null_space[5 * n_u + g] = rz[c];
+                  const double rx[3]          = {0., -x[dim - 1], x[1]};
+                  const double ry[3]          = {x[dim - 1], 0., -x[0]};
+                  const double rz[3]          = {-x[1], x[0], 0.};
+                  null_space[3 * n_local + l] = rx[c];
+                  null_space[4 * n_local + l] = ry[c];
+                  null_space[5 * n_local + l] = rz[c];
                 }
             }
         }
@@ -712,28 +741,40 @@ namespace igabde
       const TrilinosWrappers::MPI::Vector &src) const
     {
       // Block back substitution with P = [K U; 0 S~]: y = S~^-1 g, then
-      // x = AMG(f - U y) = AMG(f + C^T s y_p).
-      const unsigned int m = d * n_pairs;
-      Eigen::VectorXd    g(m + n_alpha);
-      for (unsigned int i = 0; i < m + n_alpha; ++i)
-        g[i] = src[n_u + i];
+      // x = AMG(f - U y) = AMG(f + C^T s y_p). The pair and rigid-mode
+      // rows g are few: every rank gathers them all and solves with S~;
+      // the displacement rows stay distributed. A vector's local entries
+      // are this rank's displacement rows, then its pair rows.
+      const unsigned int m       = d * n_pairs;
+      const std::size_t  n_local = u_end - u_begin;
+      const std::size_t  g_local = owned.n_elements() - n_local;
+      const std::size_t  g_begin =
+        (g_local > 0 ? owned.nth_index_in_set(n_local) - n_u : 0);
+      Eigen::VectorXd g  = Eigen::VectorXd::Zero(m + n_alpha);
+      const double   *in = src.begin();
+      for (std::size_t k = 0; k < g_local; ++k)
+        g[g_begin + k] = in[n_local + k];
+      if (Utilities::MPI::n_mpi_processes(communicator) > 1)
+        Utilities::MPI::sum(ArrayView<const double>(g.data(), g.size()),
+                            communicator,
+                            ArrayView<double>(g.data(), g.size()));
       const Eigen::VectorXd         y = schur_lu.solve(g);
-      TrilinosWrappers::MPI::Vector f(displacement_set, MPI_COMM_SELF),
-        x(displacement_set, MPI_COMM_SELF);
-      const double *in  = src.begin();
-      double       *out = f.begin();
-      for (unsigned int i = 0; i < n_u; ++i)
-        out[i] = in[i];
+      TrilinosWrappers::MPI::Vector f(displacement_set, communicator),
+        x(displacement_set, communicator);
+      double *out = f.begin();
+      for (std::size_t k = 0; k < n_local; ++k)
+        out[k] = in[k];
       for (unsigned int r = 0; r < m; ++r)
         for (const auto &[j, v] : C_rows[r])
-          out[j] += v * scale * y[r];
+          if (j >= u_begin && j < u_end)
+            out[j - u_begin] += v * scale * y[r];
       amg.vmult(x, f);
       double       *result = dst.begin();
       const double *xs     = x.begin();
-      for (unsigned int i = 0; i < n_u; ++i)
-        result[i] = xs[i];
-      for (unsigned int i = 0; i < m + n_alpha; ++i)
-        result[n_u + i] = y[i];
+      for (std::size_t k = 0; k < n_local; ++k)
+        result[k] = xs[k];
+      for (std::size_t k = 0; k < g_local; ++k)
+        result[n_local + k] = y[g_begin + k];
     }
 
 

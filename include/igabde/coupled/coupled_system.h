@@ -37,12 +37,13 @@ namespace igabde
      * local frame, and the rigid-mode columns G, in one Trilinos sparse
      * matrix factorised by a sparse direct solver through Amesos (MUMPS by
      * default, KLU on request), or solved by GMRES with a block
-     * preconditioner ("gmres-amg"; see factorize()). With a direct solver
-     * and a communicator of several ranks the matrix is distributed by
-     * rows (each rank a contiguous share of the unknowns, assembled by its
-     * owner only) and the direct solver factorises it on all ranks
-     * together; the solution is then gathered on every rank, which all
-     * run the same Newton iteration. gmres-amg runs on one process.
+     * preconditioner ("gmres-amg"; see factorize()). With a communicator
+     * of several ranks the matrix is distributed by rows (each rank a
+     * contiguous share of the displacement rows and one of the pair rows,
+     * assembled by its owner only); the direct solver factorises it on all
+     * ranks together, or GMRES runs on the distributed matrix with the
+     * AMG of the distributed displacement block. The solution is then
+     * gathered on every rank, which all run the same Newton iteration.
      *
      * Unknown order: Body 1's unknowns, Body 2's, then the pair forces
      * (pair by pair, normal first) and the rigid-mode amplitudes. Held
@@ -62,9 +63,9 @@ namespace igabde
        * @param solver The linear solver.
        * @param krylov_max_iterations GMRES iteration limit per solve
        * (gmres-amg).
-       * @param communicator The ranks that factorise the matrix together
-       * (each of them builds this system alike); MPI_COMM_SELF: this
-       * process alone. gmres-amg always runs on this process alone.
+       * @param communicator The ranks that factorise or iterate on the
+       * matrix together (each of them builds this system alike);
+       * MPI_COMM_SELF: this process alone.
        */
       CoupledSystem(
         const std::vector<const discretization::Body<dim> *> &bodies,
@@ -175,8 +176,10 @@ namespace igabde
       /// The ranks that factorise the Newton matrix together.
       MPI_Comm communicator;
       /// The Newton matrix and its factorisation: all unknowns, and the
-      /// rows this rank owns (all of them on one rank).
+      /// rows this rank owns (all of them on one rank): the displacement
+      /// rows [u_begin, u_end) and a share of the pair and rigid-mode rows.
       IndexSet                                        all, owned;
+      types::global_dof_index                         u_begin = 0, u_end = 0;
       TrilinosWrappers::SparseMatrix                  matrix;
       mutable SolverControl                           control;
       std::unique_ptr<TrilinosWrappers::SolverDirect> direct;
