@@ -5,6 +5,7 @@
 #include <igabde/discretization/iga_body.h>
 #include <igabde/discretization/lagrange_body.h>
 
+#include <deal.II/base/array_view.h>
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/multithread_info.h>
@@ -108,8 +109,11 @@ namespace igabde
       setup_space();
       AssertDimension(dof_locations.size(), n_unknowns);
       AssertDimension(dof_components.size(), n_unknowns);
-      assembled = false;
-      if (layout.matrix_everywhere || factorizes_here())
+      assembled       = false;
+      assembled_share = false;
+      if (shares_assembly())
+        assemble_share();
+      else if (layout.matrix_everywhere || factorizes_here())
         ensure_assembled();
       find_free_rigid_modes();
       hold_rotations();
@@ -130,11 +134,62 @@ namespace igabde
     void
     Body<dim>::ensure_assembled()
     {
-      if (assembled)
+      if (assembled && !assembled_share)
         return;
       assemble();
-      assembled      = true;
-      matrix_entries = system_matrix.n_nonzero_elements();
+      assembled       = true;
+      assembled_share = false;
+      matrix_entries  = sparsity.n_nonzero_elements();
+    }
+
+
+
+    template <int dim>
+    bool
+    Body<dim>::shares_assembly() const
+    {
+      return factorizes_here() && !layout.matrix_everywhere &&
+             settings.linear_solver == discretization::LinearSolver::direct &&
+             Utilities::MPI::n_mpi_processes(layout.group) > 1;
+    }
+
+
+
+    template <int dim>
+    void
+    Body<dim>::assemble_share()
+    {
+      // Contiguous runs of the cells, as the VTU pieces; the share that
+      // starts at the first cell also adds the point loads and moments.
+      assembly_cells =
+        output_cells(Utilities::MPI::this_mpi_process(layout.group),
+                     Utilities::MPI::n_mpi_processes(layout.group));
+      assemble();
+      assembly_cells  = {0, std::numeric_limits<unsigned int>::max()};
+      assembled       = true;
+      assembled_share = true;
+      matrix_entries  = sparsity.n_nonzero_elements();
+      for (auto &f : history_rhs)
+        Utilities::MPI::sum(ArrayView<const double>(f.data(), f.size()),
+                            layout.group,
+                            ArrayView<double>(f.data(), f.size()));
+      if (!history_rhs.empty())
+        load_rhs = history_rhs[0];
+    }
+
+
+
+    template <int dim>
+    Vector<double>
+    Body<dim>::stiffness_times(const Vector<double> &u) const
+    {
+      Vector<double> Ku(n_unknowns);
+      system_matrix.vmult(Ku, u);
+      if (assembled_share)
+        Utilities::MPI::sum(ArrayView<const double>(Ku.data(), Ku.size()),
+                            layout.group,
+                            ArrayView<double>(Ku.data(), Ku.size()));
+      return Ku;
     }
 
 
@@ -251,11 +306,7 @@ namespace igabde
             lifts[h][i] = prescribed_constraints.get_inhomogeneity(i);
           }
       for (unsigned int h = 0; h < n_h; ++h)
-        {
-          Vector<double> rhs_d(n_unknowns);
-          system_matrix.vmult(rhs_d, lifts[h]);
-          columns[h] -= rhs_d;
-        }
+        columns[h] -= stiffness_times(lifts[h]);
       solve_in_group(columns);
       u_history = columns;
       for (unsigned int h = 0; h < n_h; ++h)
@@ -450,14 +501,16 @@ namespace igabde
       AssertDimension(f.size(), n_unknowns);
       // Under a parallel layout the root computes it (it holds K; every
       // rank has the same u and f) and hands it to all.
+      // With the assembly divided, the group's ranks sum their K u.
       std::array<double, dim> reaction{};
-      if (Utilities::MPI::this_mpi_process(layout.world) == layout.root)
+      const bool              root =
+        (Utilities::MPI::this_mpi_process(layout.world) == layout.root);
+      if (root || assembled_share)
         {
           AssertThrow(assembled, ExcInternalError());
-          Vector<double> r(n_unknowns);
-          system_matrix.vmult(r, u);
+          Vector<double> r = stiffness_times(u);
           r -= f;
-          for (types::global_dof_index i = 0; i < n_unknowns; ++i)
+          for (types::global_dof_index i = 0; (root && i < n_unknowns); ++i)
             if (constraints.is_constrained(i))
               reaction[dof_components[i]] += r[i];
         }
@@ -484,14 +537,16 @@ namespace igabde
       const FaceMotion<dim> &motion = description().face_motions[k];
       const unsigned int     n_axes = (dim == 2 ? 1 : 3);
       std::vector<double>    result(dim + n_axes, 0.);
-      if (Utilities::MPI::this_mpi_process(layout.world) == layout.root)
+      const bool             root =
+        (Utilities::MPI::this_mpi_process(layout.world) == layout.root);
+      if (root || assembled_share)
         {
           AssertThrow(assembled, ExcInternalError());
-          Vector<double> r(n_unknowns);
-          system_matrix.vmult(r, u);
+          Vector<double> r = stiffness_times(u);
           r -= f;
           for (const types::global_dof_index i :
-               dirichlet_dofs.at(motion.condition))
+               (root ? dirichlet_dofs.at(motion.condition) :
+                       std::vector<types::global_dof_index>()))
             {
               const unsigned int   c = dof_components[i];
               const Tensor<1, dim> y = dof_locations[i] - motion.centre;
@@ -521,7 +576,8 @@ namespace igabde
     const SparseMatrix<double> &
     Body<dim>::stiffness_matrix() const
     {
-      Assert(assembled, ExcMessage("K is not assembled on this rank."));
+      Assert(assembled && !assembled_share,
+             ExcMessage("K is not assembled on this rank."));
       return system_matrix;
     }
 
@@ -699,6 +755,10 @@ namespace igabde
                        scratch,
                        history_rhs[h]);
             }
+          // Point loads and moments once: by the rank whose cells start at
+          // the first (all of them unless the group divides the assembly).
+          if (assembly_cells.first > 0)
+            continue;
           for (const auto &load : d.point_loads)
             if (load.history == h)
               point_load(load, history_rhs[h]);
@@ -1203,7 +1263,8 @@ namespace igabde
                                               dim == 3 ?
                                                 Order::nested_dissection :
                                                 Order::minimum_degree,
-                                              layout.group);
+                                              layout.group,
+                                              assembled_share);
           return;
         }
 

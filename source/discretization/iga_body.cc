@@ -518,16 +518,29 @@ namespace igabde
             const std::vector<NeumannCondition<dim>> &tractions,
             SparseMatrix<double>                     &matrix,
             Vector<double>                           &rhs) {
+          // The cells of this rank's share (all of them in one process),
+          // numbered through the patches in order.
+          unsigned int offset = 0;
           for (unsigned int p = 0; p < spaces.size(); ++p)
-            elasticity::assemble_system<dim>(spaces[p].mesh.begin_active(),
-                                             spaces[p].mesh.end(),
-                                             *cell_values[p],
-                                             *face_values[p],
-                                             desc.material,
-                                             body_force,
-                                             on_patch(tractions, p),
-                                             matrix,
-                                             rhs);
+            {
+              const unsigned int first = this->assembly_cells.first,
+                                 end   = this->assembly_cells.second;
+              elasticity::assemble_system<dim>(
+                spaces[p].mesh.begin_active(),
+                spaces[p].mesh.end(),
+                *cell_values[p],
+                *face_values[p],
+                desc.material,
+                body_force,
+                on_patch(tractions, p),
+                matrix,
+                rhs,
+                [first, end, offset](const auto &cell) {
+                  const unsigned int index = offset + cell->active_cell_index();
+                  return index >= first && index < end;
+                });
+              offset += spaces[p].mesh.n_active_cells();
+            }
         },
         // Point loads: P_A = R_A(xi_X) P (method.md, sec. 3).
         [&](const PointLoad<dim> &load, Vector<double> &rhs) {

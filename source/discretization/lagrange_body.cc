@@ -798,15 +798,21 @@ namespace igabde
             const std::vector<NeumannCondition<dim>> &tractions,
             SparseMatrix<double>                     &matrix,
             Vector<double>                           &rhs) {
-          elasticity::assemble_system<dim>(dof_handler.begin_active(),
-                                           dof_handler.end(),
-                                           cell_values,
-                                           face_values,
-                                           description.material,
-                                           body_force,
-                                           tractions,
-                                           matrix,
-                                           rhs);
+          const auto [first, end] = this->assembly_cells;
+          elasticity::assemble_system<dim>(
+            dof_handler.begin_active(),
+            dof_handler.end(),
+            cell_values,
+            face_values,
+            description.material,
+            body_force,
+            tractions,
+            matrix,
+            rhs,
+            [first = first, end = end](const auto &cell) {
+              return cell->active_cell_index() >= first &&
+                     cell->active_cell_index() < end;
+            });
         },
         [&](const PointLoad<dim> &load, Vector<double> &rhs) {
           point_operator(load.location).distribute(load.force, rhs);

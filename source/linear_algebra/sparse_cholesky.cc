@@ -231,7 +231,8 @@ namespace igabde
       const std::vector<bool>                    &eliminated,
       const std::vector<types::global_dof_index> &interface,
       const PivotOrder                            pivot_order,
-      const MPI_Comm                              communicator)
+      const MPI_Comm                              communicator,
+      const bool                                  distributed_values)
     {
       Data &d = *data;
       d.release();
@@ -265,6 +266,8 @@ namespace igabde
           for (unsigned int a = 0; a < n_s; ++a)
             for (unsigned int b = 0; b < n_s; ++b)
               d.schur(a, b) = matrix.el(interface[a], interface[b]);
+          if (distributed_values)
+            Utilities::MPI::sum(d.schur, communicator, d.schur);
         }
       else
         {
@@ -272,13 +275,17 @@ namespace igabde
           // row's diagonal first, the other columns ascending): its lower
           // triangle for MUMPS (1-based, nonzero values), and its pattern
           // (both triangles, sorted, 0-based) for the pivot order. Only
-          // the host reads K (MUMPS' centralised input).
+          // the host reads K (MUMPS' centralised input), unless every rank
+          // holds a share of its values (MUMPS' distributed input: each
+          // rank passes its entries, the host orders from the pattern).
           const SparsityPattern &pattern = matrix.get_sparsity_pattern();
           const unsigned int     n_free  = d.free_dofs.size();
           const bool             ordering =
             (pivot_order != PivotOrder::minimum_degree && n_s < n_free);
-          const unsigned int n_read    = (d.host ? n_free : 0);
-          std::size_t        n_entries = 0;
+          const unsigned int n_read =
+            (d.host || distributed_values ? n_free : 0);
+          const bool  order_here = ordering && d.host;
+          std::size_t n_entries  = 0;
           for (unsigned int r = 0; r < n_read; ++r)
             n_entries += pattern.row_length(d.free_dofs[r]);
           d.rows.clear();
@@ -287,9 +294,9 @@ namespace igabde
           d.rows.reserve(n_entries / 2 + n_free);
           d.cols.reserve(n_entries / 2 + n_free);
           d.values.reserve(n_entries / 2 + n_free);
-          std::vector<std::size_t>  row_start(ordering ? n_read + 1 : 0, 0);
+          std::vector<std::size_t>  row_start(order_here ? n_read + 1 : 0, 0);
           std::vector<unsigned int> columns;
-          if (ordering)
+          if (order_here)
             columns.reserve(n_entries);
           for (unsigned int r = 0; r < n_read; ++r)
             {
@@ -302,7 +309,7 @@ namespace igabde
                   const MUMPS_INT reduced = d.reduced_index[column];
                   if (reduced == 0)
                     continue;
-                  if (ordering)
+                  if (order_here)
                     columns.push_back(reduced - 1);
                   const double value = entry->value();
                   if (column <= row && value != 0.)
@@ -312,7 +319,7 @@ namespace igabde
                       d.values.push_back(value);
                     }
                 }
-              if (ordering)
+              if (order_here)
                 {
                   // The diagonal (first) to its place among the others.
                   const auto begin = columns.begin() + row_begin;
@@ -342,11 +349,22 @@ namespace igabde
           d.id.icntl[icntl(3)] = -1;
           d.id.icntl[icntl(4)] = 0;
 
-          d.id.n   = d.free_dofs.size();
-          d.id.nnz = d.values.size();
-          d.id.irn = d.rows.data();
-          d.id.jcn = d.cols.data();
-          d.id.a   = d.values.data();
+          d.id.n = d.free_dofs.size();
+          if (distributed_values)
+            {
+              d.id.icntl[icntl(18)] = 3; // distributed assembled input
+              d.id.nnz_loc          = d.values.size();
+              d.id.irn_loc          = d.rows.data();
+              d.id.jcn_loc          = d.cols.data();
+              d.id.a_loc            = d.values.data();
+            }
+          else
+            {
+              d.id.nnz = d.values.size();
+              d.id.irn = d.rows.data();
+              d.id.jcn = d.cols.data();
+              d.id.a   = d.values.data();
+            }
 
           std::vector<MUMPS_INT> schur_list(n_s);
           if (n_s > 0)

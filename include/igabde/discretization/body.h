@@ -21,6 +21,7 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <map>
 #include <memory>
 #include <mpi.h>
@@ -633,6 +634,15 @@ namespace igabde
       SparsityPattern sparsity;
       /// Unconstrained stiffness (assembled by the derived class).
       SparseMatrix<double> system_matrix;
+      /**
+       * The cells assemble() adds, in the body's cell order (the order of
+       * output_cells()): [first, end). All of them, except under MPI when
+       * the ranks of the body's group divide the assembly (each its share;
+       * MUMPS sums the shares of K, the group sums the load vectors).
+       */
+      std::pair<unsigned int, unsigned int> assembly_cells{
+        0,
+        std::numeric_limits<unsigned int>::max()};
       /// External loads of history 0 at factor 1 (history_rhs[0]).
       Vector<double> load_rhs;
       /// External loads of each load history at factor 1.
@@ -738,6 +748,21 @@ namespace igabde
       ParallelLayout                layout;
       /// Whether K and the load vectors were assembled on this rank.
       bool assembled = false;
+      /// Whether K holds this rank's share of the group's cells only (the
+      /// load vectors are whole: summed over the group).
+      bool assembled_share = false;
+      /// Whether the ranks of the layout's group divide the assembly: a
+      /// direct solver (MUMPS sums the shares) on a group of several ranks.
+      bool
+      shares_assembly() const;
+      /// Assembles this rank's share of the group's cells and sums the load
+      /// vectors over the group (collective on the group).
+      void
+      assemble_share();
+      /// K u for the whole K: this rank's K, or the sum of the group's
+      /// shares (collective on the group then).
+      Vector<double>
+      stiffness_times(const Vector<double> &u) const;
       /// n_matrix_entries(), from the root where K is not assembled.
       std::size_t matrix_entries = 0;
 

@@ -299,6 +299,8 @@ namespace igabde
      *   `traction(x, n)`.
      * @param matrix Receives K (its sparsity must hold the cell couplings).
      * @param rhs Receives the loads.
+     * @param assembles_cell Which cells to assemble (empty: all of them):
+     *   under MPI each rank of a body's group assembles its share.
      */
     template <int dim,
               typename Iterator,
@@ -306,15 +308,18 @@ namespace igabde
               typename FaceValues,
               typename Tractions>
     void
-    assemble_system(const Iterator                         &begin,
-                    const std::enable_if_t<true, Iterator> &end,
-                    const CellValues                       &cell_values,
-                    const FaceValues                       &face_values,
-                    const IsotropicMaterial<dim>           &material,
-                    const BodyForce<dim>                   &body_force,
-                    const Tractions                        &tractions,
-                    SparseMatrix<double>                   &matrix,
-                    Vector<double>                         &rhs)
+    assemble_system(
+      const Iterator                         &begin,
+      const std::enable_if_t<true, Iterator> &end,
+      const CellValues                       &cell_values,
+      const FaceValues                       &face_values,
+      const IsotropicMaterial<dim>           &material,
+      const BodyForce<dim>                   &body_force,
+      const Tractions                        &tractions,
+      SparseMatrix<double>                   &matrix,
+      Vector<double>                         &rhs,
+      const std::enable_if_t<true, std::function<bool(const Iterator &)>>
+        &assembles_cell = {})
     {
       // An empty matrix asks for the loads only (the tractions of another
       // load history): no stiffness is computed.
@@ -340,6 +345,12 @@ namespace igabde
       };
 
       auto worker = [&](const Iterator &cell, Scratch &scratch, Copy &copy) {
+        if (assembles_cell && !assembles_cell(cell))
+          {
+            copy.dofs.clear();
+            copy.rhs.reinit(0);
+            return;
+          }
         if (!with_matrix && !has_body_force)
           {
             // Loads of tractions only: cells without a loaded face add
@@ -385,7 +396,7 @@ namespace igabde
       };
 
       auto copier = [&](const Copy &copy) {
-        if (with_matrix)
+        if (with_matrix && !copy.dofs.empty())
           matrix.add(copy.dofs, copy.matrix);
         for (unsigned int i = 0; i < copy.dofs.size(); ++i)
           rhs[copy.dofs[i]] += copy.rhs[i];

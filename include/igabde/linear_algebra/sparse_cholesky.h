@@ -79,14 +79,19 @@ namespace igabde
        * (free, distinct); empty: a plain factorisation.
        * @param order the pivot order (PivotOrder).
        * @param communicator the ranks that factorise together (collective
-       * on it); only its first rank reads @p matrix.
+       * on it); only its first rank reads @p matrix, unless
+       * @p distributed_values.
+       * @param distributed_values each rank's @p matrix holds a share of
+       * K's values (same sparsity pattern on every rank); K is their sum
+       * (MUMPS' distributed assembled input).
        */
       void
       initialize(const SparseMatrix<double>                 &matrix,
                  const std::vector<bool>                    &eliminated,
                  const std::vector<types::global_dof_index> &interface,
                  PivotOrder     order        = PivotOrder::cheaper_of_both,
-                 const MPI_Comm communicator = MPI_COMM_SELF);
+                 const MPI_Comm communicator = MPI_COMM_SELF,
+                 const bool     distributed_values = false);
 
       /**
        * @brief Hands the interface, the Cholesky factor of S and the factor
