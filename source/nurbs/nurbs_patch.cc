@@ -91,6 +91,7 @@ namespace igabde
                                std::to_string(a) + " is " +
                                std::to_string(this->weights[a]) +
                                "; NURBS weights must be positive."));
+      update_physical_size();
     }
 
 
@@ -470,6 +471,19 @@ namespace igabde
           for (unsigned int c = 0; c < dim; ++c)
             points[b][c] = qw[b][c] / qw[b][dim];
         }
+      update_physical_size();
+    }
+
+
+
+    template <int dim>
+    void
+    NurbsPatch<dim>::update_physical_size()
+    {
+      double size = 0.;
+      for (const auto &p : points)
+        size = std::max(size, (p - points[0]).norm());
+      physical_size = std::max(size, 1e-300);
     }
 
 
@@ -749,10 +763,7 @@ namespace igabde
       for (unsigned int d = 0; d < dim; ++d)
         scale = std::max(scale, hi[d] - lo[d]);
       // Physical size, for the stopping test.
-      double size = 0.;
-      for (const auto &p : points)
-        size = std::max(size, (p - points[0]).norm());
-      size = std::max(size, 1e-300);
+      const double size = physical_size;
 
       auto objective = [&](const Point<dim> &z) {
         return 0.5 * (value(z) - x).norm_square();

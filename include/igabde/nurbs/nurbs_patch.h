@@ -226,6 +226,14 @@ namespace igabde
       std::array<KnotVector, dim> knots;
       std::vector<Point<dim>>     points;
       std::vector<double>         weights;
+      /// The largest distance of a control point from the first: the
+      /// physical size of minimize_distance()'s stopping test (kept with the
+      /// points, not recomputed per call: a refined patch has 10^5 points).
+      double physical_size = 1e-300;
+
+      /// Sets physical_size from the points.
+      void
+      update_physical_size();
     };
 
     /**
