@@ -499,9 +499,9 @@ namespace igabde
     {
       AssertDimension(u.size(), n_unknowns);
       AssertDimension(f.size(), n_unknowns);
-      // Under a parallel layout the root computes it (it holds K; every
-      // rank has the same u and f) and hands it to all.
-      // With the assembly divided, the group's ranks sum their K u.
+      // Under a parallel layout the root computes it (every rank has the
+      // same u and f) and hands it to all; K u comes from the root's K, or
+      // from the group's shares when the group divided the assembly.
       std::array<double, dim> reaction{};
       const bool              root =
         (Utilities::MPI::this_mpi_process(layout.world) == layout.root);
@@ -510,9 +510,10 @@ namespace igabde
           AssertThrow(assembled, ExcInternalError());
           Vector<double> r = stiffness_times(u);
           r -= f;
-          for (types::global_dof_index i = 0; (root && i < n_unknowns); ++i)
-            if (constraints.is_constrained(i))
-              reaction[dof_components[i]] += r[i];
+          if (root)
+            for (types::global_dof_index i = 0; i < n_unknowns; ++i)
+              if (constraints.is_constrained(i))
+                reaction[dof_components[i]] += r[i];
         }
       if (Utilities::MPI::n_mpi_processes(layout.world) > 1)
         Utilities::MPI::broadcast(reaction.data(),
@@ -542,6 +543,8 @@ namespace igabde
       if (root || assembled_share)
         {
           AssertThrow(assembled, ExcInternalError());
+          // K u: collective on the group when it divided the assembly; the
+          // root alone sums the reactions (the others loop over nothing).
           Vector<double> r = stiffness_times(u);
           r -= f;
           for (const types::global_dof_index i :
