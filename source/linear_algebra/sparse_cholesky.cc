@@ -291,9 +291,15 @@ namespace igabde
           d.rows.clear();
           d.cols.clear();
           d.values.clear();
-          d.rows.reserve(n_entries / 2 + n_free);
-          d.cols.reserve(n_entries / 2 + n_free);
-          d.values.reserve(n_entries / 2 + n_free);
+          // With distributed values a rank's entries are its share only.
+          const std::size_t n_triplets =
+            (n_entries / 2 + n_free) /
+            (distributed_values ?
+               Utilities::MPI::n_mpi_processes(communicator) :
+               1u);
+          d.rows.reserve(n_triplets);
+          d.cols.reserve(n_triplets);
+          d.values.reserve(n_triplets);
           std::vector<std::size_t>  row_start(order_here ? n_read + 1 : 0, 0);
           std::vector<unsigned int> columns;
           if (order_here)
