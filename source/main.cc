@@ -13,6 +13,7 @@
 
 #include <iostream>
 #include <string>
+#include <tbb/global_control.h>
 #include <utility>
 #include <vector>
 
@@ -70,6 +71,14 @@ int
 main(int argc, char **argv)
 {
   using namespace dealii;
+  // The background output jobs run on TBB's worker threads, whose stacks
+  // are 4 MiB by default; OpenBLAS' parallel LU (dgetrf, through the dense
+  // LU of a face's Greville collocation) recurses with about 0.5 MiB of
+  // stack per level and overflowed them on an 800-span face. The workers get
+  // twice the main thread's 8 MiB (address space; pages are touched only
+  // when used).
+  const tbb::global_control worker_stack(tbb::global_control::thread_stack_size,
+                                         std::size_t(16) << 20);
   const igabde::base::LightMpiSingleton light_mpi_singleton;
   // The node's cores for the task-based parts (WorkStream assembly, the
   // parallel multi-RHS solves), divided among the ranks under mpirun; the
