@@ -559,9 +559,6 @@ namespace igabde
                                   "the preconditioner is singular";
           return;
         }
-      direct = std::make_unique<TrilinosWrappers::SolverDirect>(
-        control,
-        TrilinosWrappers::SolverDirect::AdditionalData(false, solver_type));
       // Amesos prints its solver's error codes to the terminal itself;
       // they are caught here and their code joins the one message the
       // contact solver gives.
@@ -572,26 +569,64 @@ namespace igabde
       Timer clock;
       if (report)
         *progress << "  [progress] coupled system: " << solver_type
-                  << " factorisation of " << n_total << " unknowns ("
+                  << (direct ? " factorisation" : " analysis and factorisation")
+                  << " of " << n_total << " unknowns ("
                   << matrix.n_nonzero_elements() << " nonzeros) ..."
                   << std::flush;
       std::ostringstream captured;
       std::streambuf    *out = std::cout.rdbuf(captured.rdbuf());
       std::streambuf    *err = std::cerr.rdbuf(captured.rdbuf());
-      try
+      factorization_error.clear();
+      // The symbolic factorisation depends on the pattern only, which is
+      // the same at every Newton iteration: it is made once. A numeric
+      // factorisation that fails after a reused analysis (MUMPS' workspace,
+      // estimated at the analysis, can fall short when the pivots change
+      // with the values) is tried once more from a fresh analysis before
+      // the matrix is called singular.
+      for (unsigned int attempt = 0; attempt < 2; ++attempt)
         {
-          direct->initialize(matrix);
-        }
-      catch (const std::exception &)
-        {
-          // A singular Newton matrix (e.g. a floating body whose pairs are
-          // all open): solve() reports it, the contact solver says why.
-          factorization_error    = "singular";
-          const std::string text = captured.str();
-          const auto        code = text.find("INFOG(1) = ");
-          if (code != std::string::npos)
-            factorization_error +=
-              ", MUMPS " + text.substr(code, text.find('\n', code) - code);
+          const bool fresh  = !direct;
+          int        status = 0;
+          try
+            {
+              if (fresh)
+                {
+                  direct_problem = std::make_unique<Epetra_LinearProblem>();
+                  direct_problem->SetOperator(
+                    const_cast<Epetra_CrsMatrix *>(&matrix.trilinos_matrix()));
+                  Amesos factory;
+                  direct.reset(
+                    factory.Create(solver_type.c_str(), *direct_problem));
+                  AssertThrow(direct != nullptr,
+                              ExcMessage("Amesos has no solver " +
+                                         solver_type));
+                  status = direct->SymbolicFactorization();
+                  ++n_analyses;
+                }
+              if (status == 0)
+                status = direct->NumericFactorization();
+            }
+          catch (const std::exception &)
+            {
+              status = -1;
+            }
+          if (status == 0)
+            break;
+          direct.reset();
+          direct_problem.reset();
+          if (fresh)
+            {
+              // A singular Newton matrix (e.g. a floating body whose pairs
+              // are all open): solve() reports it, the contact solver says
+              // why.
+              factorization_error    = "singular";
+              const std::string text = captured.str();
+              const auto        code = text.find("INFOG(1) = ");
+              if (code != std::string::npos)
+                factorization_error +=
+                  ", MUMPS " + text.substr(code, text.find('\n', code) - code);
+              break;
+            }
         }
       std::cout.rdbuf(out);
       std::cerr.rdbuf(err);
@@ -702,12 +737,22 @@ namespace igabde
             // One step of iterative refinement against the assembled matrix
             // (Amesos does not refine; near the solution the Newton
             // direction must be accurate to the rounding of the residual).
-            direct->solve(x, rhs);
+            const auto direct_solve =
+              [this](TrilinosWrappers::MPI::Vector       &solution,
+                     const TrilinosWrappers::MPI::Vector &right_hand_side) {
+                direct_problem->SetLHS(&solution.trilinos_vector());
+                direct_problem->SetRHS(const_cast<Epetra_MultiVector *>(
+                  static_cast<const Epetra_MultiVector *>(
+                    &right_hand_side.trilinos_vector())));
+                AssertThrow(direct->Solve() == 0,
+                            ExcMessage(solver_type + "'s solve failed"));
+              };
+            direct_solve(x, rhs);
             TrilinosWrappers::MPI::Vector residual(owned, communicator),
               correction(owned, communicator);
             matrix.vmult(residual, x);
             residual.sadd(-1., rhs);
-            direct->solve(correction, residual);
+            direct_solve(correction, residual);
             x += correction;
           }
         catch (const std::exception &e)

@@ -19,6 +19,8 @@
 #include <Eigen/Dense>
 #include <Eigen/SparseLU>
 
+#include <Amesos_BaseSolver.h>
+#include <Epetra_LinearProblem.h>
 #include <memory>
 #include <string>
 #include <utility>
@@ -178,11 +180,19 @@ namespace igabde
       /// The Newton matrix and its factorisation: all unknowns, and the
       /// rows this rank owns (all of them on one rank): the displacement
       /// rows [u_begin, u_end) and a share of the pair and rigid-mode rows.
-      IndexSet                                        all, owned;
-      types::global_dof_index                         u_begin = 0, u_end = 0;
-      TrilinosWrappers::SparseMatrix                  matrix;
-      mutable SolverControl                           control;
-      std::unique_ptr<TrilinosWrappers::SolverDirect> direct;
+      IndexSet                       all, owned;
+      types::global_dof_index        u_begin = 0, u_end = 0;
+      TrilinosWrappers::SparseMatrix matrix;
+      mutable SolverControl          control;
+      /// The direct solver (Amesos) on the Newton matrix: the pattern never
+      /// changes, so its symbolic factorisation (MUMPS' analysis: the pivot
+      /// order) is made once and every Newton iteration factorises the new
+      /// values only.
+      std::unique_ptr<Epetra_LinearProblem> direct_problem;
+      std::unique_ptr<Amesos_BaseSolver>    direct;
+      /// Analyses of the Newton matrix so far (one unless a factorisation
+      /// failed and the next one started afresh).
+      unsigned int n_analyses = 0;
       /// Why the last factorisation failed (empty if it did not).
       std::string factorization_error;
       /// Where progress lines go (nullptr: nowhere).
