@@ -544,26 +544,27 @@ namespace igabde
         {
           AssertThrow(assembled, ExcInternalError());
           // K u: collective on the group when it divided the assembly; the
-          // root alone sums the reactions (the others loop over nothing).
+          // root alone sums the reactions.
           Vector<double> r = stiffness_times(u);
           r -= f;
-          for (const types::global_dof_index i :
-               (root ? dirichlet_dofs.at(motion.condition) :
-                       std::vector<types::global_dof_index>()))
-            {
-              const unsigned int   c = dof_components[i];
-              const Tensor<1, dim> y = dof_locations[i] - motion.centre;
-              result[c] += r[i];
-              // The moment of the force r_i e_c at y: (y x e_c) r_i.
-              if (dim == 2)
-                result[dim] += (c == 1 ? y[0] : -y[1]) * r[i];
-              else
-                for (unsigned int a = 0; a < 3; ++a)
-                  if (a != c)
-                    result[dim + a] +=
-                      ((c == (a + 2) % 3) ? y[(a + 1) % 3] : -y[(a + 2) % 3]) *
-                      r[i];
-            }
+          if (root)
+            for (const types::global_dof_index i :
+                 dirichlet_dofs.at(motion.condition))
+              {
+                const unsigned int   c = dof_components[i];
+                const Tensor<1, dim> y = dof_locations[i] - motion.centre;
+                result[c] += r[i];
+                // The moment of the force r_i e_c at y: (y x e_c) r_i.
+                if (dim == 2)
+                  result[dim] += (c == 1 ? y[0] : -y[1]) * r[i];
+                else
+                  for (unsigned int a = 0; a < 3; ++a)
+                    if (a != c)
+                      result[dim + a] +=
+                        ((c == (a + 2) % 3) ? y[(a + 1) % 3] :
+                                              -y[(a + 2) % 3]) *
+                        r[i];
+              }
         }
       if (Utilities::MPI::n_mpi_processes(layout.world) > 1)
         Utilities::MPI::broadcast(result.data(),

@@ -520,11 +520,11 @@ namespace igabde
             Vector<double>                           &rhs) {
           // The cells of this rank's share (all of them in one process),
           // numbered through the patches in order.
-          unsigned int offset = 0;
+          const unsigned int first  = this->assembly_cells.first;
+          const unsigned int end    = this->assembly_cells.second;
+          unsigned int       offset = 0;
           for (unsigned int p = 0; p < spaces.size(); ++p)
             {
-              const unsigned int first = this->assembly_cells.first,
-                                 end   = this->assembly_cells.second;
               elasticity::assemble_system<dim>(
                 spaces[p].mesh.begin_active(),
                 spaces[p].mesh.end(),
