@@ -86,6 +86,14 @@ BOOKKEEPING = ["--ignore", "factor_entries",
                "--ignore", "coupled_matrix_nonzeros"]
 
 
+# Scenes whose loads are self-equilibrated without contact: every body force
+# of a step (the support reactions) is zero in exact arithmetic, and the
+# figures compared are round-off (1e-15); compare-summaries judges them
+# against the force the loads are made of. The Lame ring: pressure 1 on the
+# unit inner radius.
+FORCE_SCALE = {"v2-lame-ring": 1.0}
+
+
 def every_scene():
     scenes = sorted(f[:-4] for f in os.listdir(os.path.join(SOURCE, "prm"))
                     if f.endswith(".prm"))
@@ -188,6 +196,7 @@ def main():
                 [sys.executable, COMPARE,
                  os.path.join(one, "summary.json"),
                  os.path.join(many, "summary.json")] + BOOKKEEPING +
+                ["--force-scale", str(FORCE_SCALE.get(scene, 0.0))] +
                 (KRYLOV_COMPARISON if krylov else []),
                 stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
             print(f"{'ok  ' if c.returncode == 0 else 'FAIL'} {name}: "
