@@ -12,6 +12,7 @@
 #include <mpi.h>
 #include <numeric>
 #include <string>
+#include <type_traits>
 
 namespace igabde
 {
@@ -28,111 +29,95 @@ namespace igabde
 
 
 
-      /**
-       * A fill-reducing pivot order for MUMPS (its PERM_IN, 1-based
-       * positions): METIS nested dissection of the interior unknowns, the
-       * Schur unknowns last, in their given order.
-       *
-       * MUMPS falls back to approximate minimum degree whenever a Schur
-       * complement is requested, whatever ICNTL(7) says; on 3D stiffness
-       * matrices nested dissection needs about half the flops (B2 8x16x8:
-       * 3.2 instead of 6.2 GFlop per body). The graph is first compressed
-       * into supervariables, runs of consecutive interior unknowns with the
-       * same adjacency (the components of one control point or node, which
-       * both discretisations number together), which METIS orders with
-       * their length as vertex weight: dim^2 fewer edges. Another numbering
-       * only compresses less.
-       *
-       * @p row_start, @p columns: the pattern of the free block (both
-       * triangles, each row sorted, 0-based). Returns an empty vector when
-       * METIS fails (MUMPS then orders).
-       */
-      std::vector<MUMPS_INT>
-      nested_dissection_order(const unsigned int               n,
-                              const std::vector<std::size_t>  &row_start,
-                              const std::vector<unsigned int> &columns,
-                              const std::vector<MUMPS_INT>    &schur_list)
-      {
-        std::vector<bool> in_schur(n, false);
-        for (const MUMPS_INT v : schur_list)
-          in_schur[v - 1] = true;
-        const auto same_row = [&](const unsigned int a, const unsigned int b) {
-          return row_start[a + 1] - row_start[a] ==
-                   row_start[b + 1] - row_start[b] &&
-                 std::equal(columns.begin() + row_start[a],
-                            columns.begin() + row_start[a + 1],
-                            columns.begin() + row_start[b]);
-        };
-
-        // Supervariables, numbered in increasing order of their unknowns.
-        std::vector<int>          super(n, -1);
-        std::vector<unsigned int> representative;
-        std::vector<idx_t>        weight;
-        for (unsigned int v = 0; v < n; ++v)
-          if (!in_schur[v])
-            {
-              if (v > 0 && super[v - 1] >= 0 && same_row(v - 1, v))
-                {
-                  super[v] = super[v - 1];
-                  ++weight.back();
-                }
-              else
-                {
-                  super[v] = representative.size();
-                  representative.push_back(v);
-                  weight.push_back(1);
-                }
-            }
-        const unsigned int n_super = representative.size();
-        if (n_super == 0)
-          return {};
-
-        // Their graph: a row's columns are sorted and the supervariable
-        // numbers grow with the unknowns, so repeats are adjacent.
-        std::vector<idx_t> xadj(n_super + 1, 0), adjncy;
-        adjncy.reserve(columns.size() / std::max<idx_t>(1, weight[0]) + 1);
-        for (unsigned int s = 0; s < n_super; ++s)
-          {
-            const unsigned int v = representative[s];
-            for (std::size_t k = row_start[v]; k < row_start[v + 1]; ++k)
-              {
-                const int t = super[columns[k]];
-                if (t >= 0 && t != static_cast<int>(s) &&
-                    (adjncy.size() == static_cast<std::size_t>(xadj[s]) ||
-                     adjncy.back() != t))
-                  adjncy.push_back(t);
-              }
-            xadj[s + 1] = adjncy.size();
-          }
-
-        idx_t              n_vertices = n_super;
-        std::vector<idx_t> perm(n_super), iperm(n_super);
-        idx_t              options[METIS_NOPTIONS];
-        METIS_SetDefaultOptions(options);
-        options[METIS_OPTION_NUMBERING] = 0;
-        if (METIS_NodeND(&n_vertices,
-                         xadj.data(),
-                         adjncy.data(),
-                         weight.data(),
-                         options,
-                         perm.data(),
-                         iperm.data()) != METIS_OK)
-          return {};
-
-        // Supervariables in METIS' order, each as a consecutive run.
-        std::vector<MUMPS_INT> first(n_super + 1, 0);
-        for (unsigned int k = 0; k < n_super; ++k)
-          first[k + 1] = first[k] + weight[perm[k]];
-        std::vector<MUMPS_INT> order(n, 0);
-        for (unsigned int v = 0; v < n; ++v)
-          if (super[v] >= 0)
-            order[v] = ++first[iperm[super[v]]];
-        MUMPS_INT next = n - schur_list.size();
-        for (const MUMPS_INT v : schur_list)
-          order[v - 1] = ++next;
-        return order;
-      }
     } // namespace
+
+    std::vector<int>
+    nested_dissection_order(const unsigned int               n,
+                            const std::vector<std::size_t>  &row_start,
+                            const std::vector<unsigned int> &columns,
+                            const std::vector<int>          &schur_list)
+    {
+      std::vector<bool> in_schur(n, false);
+      for (const int v : schur_list)
+        in_schur[v - 1] = true;
+      const auto same_row = [&](const unsigned int a, const unsigned int b) {
+        return row_start[a + 1] - row_start[a] ==
+                 row_start[b + 1] - row_start[b] &&
+               std::equal(columns.begin() + row_start[a],
+                          columns.begin() + row_start[a + 1],
+                          columns.begin() + row_start[b]);
+      };
+
+      // Supervariables, numbered in increasing order of their unknowns.
+      std::vector<int>          super(n, -1);
+      std::vector<unsigned int> representative;
+      std::vector<idx_t>        weight;
+      for (unsigned int v = 0; v < n; ++v)
+        if (!in_schur[v])
+          {
+            if (v > 0 && super[v - 1] >= 0 && same_row(v - 1, v))
+              {
+                super[v] = super[v - 1];
+                ++weight.back();
+              }
+            else
+              {
+                super[v] = representative.size();
+                representative.push_back(v);
+                weight.push_back(1);
+              }
+          }
+      const unsigned int n_super = representative.size();
+      if (n_super == 0)
+        return {};
+
+      // Their graph: a row's columns are sorted and the supervariable
+      // numbers grow with the unknowns, so repeats are adjacent.
+      std::vector<idx_t> xadj(n_super + 1, 0), adjncy;
+      adjncy.reserve(columns.size() / std::max<idx_t>(1, weight[0]) + 1);
+      for (unsigned int s = 0; s < n_super; ++s)
+        {
+          const unsigned int v = representative[s];
+          for (std::size_t k = row_start[v]; k < row_start[v + 1]; ++k)
+            {
+              const int t = super[columns[k]];
+              if (t >= 0 && t != static_cast<int>(s) &&
+                  (adjncy.size() == static_cast<std::size_t>(xadj[s]) ||
+                   adjncy.back() != t))
+                adjncy.push_back(t);
+            }
+          xadj[s + 1] = adjncy.size();
+        }
+
+      idx_t              n_vertices = n_super;
+      std::vector<idx_t> perm(n_super), iperm(n_super);
+      idx_t              options[METIS_NOPTIONS];
+      METIS_SetDefaultOptions(options);
+      options[METIS_OPTION_NUMBERING] = 0;
+      if (METIS_NodeND(&n_vertices,
+                       xadj.data(),
+                       adjncy.data(),
+                       weight.data(),
+                       options,
+                       perm.data(),
+                       iperm.data()) != METIS_OK)
+        return {};
+
+      // Supervariables in METIS' order, each as a consecutive run.
+      std::vector<int> first(n_super + 1, 0);
+      for (unsigned int k = 0; k < n_super; ++k)
+        first[k + 1] = first[k] + weight[perm[k]];
+      std::vector<int> order(n, 0);
+      for (unsigned int v = 0; v < n; ++v)
+        if (super[v] >= 0)
+          order[v] = ++first[iperm[super[v]]];
+      int next = n - schur_list.size();
+      for (const int v : schur_list)
+        order[v - 1] = ++next;
+      return order;
+    }
+
+
 
     struct SparseCholesky::Data
     {
@@ -397,6 +382,8 @@ namespace igabde
           const bool both = (pivot_order == PivotOrder::cheaper_of_both);
           if (pivot_order != PivotOrder::nested_dissection)
             d.call(1);
+          static_assert(std::is_same_v<MUMPS_INT, int>,
+                        "PERM_IN is handed over as int");
           const std::vector<MUMPS_INT> order =
             (ordering && d.host ?
                nested_dissection_order(n_free, row_start, columns, schur_list) :

@@ -193,6 +193,9 @@ namespace igabde
       /// Analyses of the Newton matrix so far (one unless a factorisation
       /// failed and the next one started afresh).
       unsigned int n_analyses = 0;
+      /// MUMPS' pivot order (PERM_IN) in one process: nested dissection of
+      /// the pattern (fill_reducing_order()); kept while MUMPS may read it.
+      std::vector<int> pivot_order;
       /// Why the last factorisation failed (empty if it did not).
       std::string factorization_error;
       /// Where progress lines go (nullptr: nowhere).
@@ -201,6 +204,8 @@ namespace igabde
       /// gmres-amg: the iteration limit, the displacement block K (held
       /// rows: scale times identity) and its AMG, D^-1 C^T of the Schur
       /// approximation (n_u x rows of C), the LU of S~, the last count.
+      /// The direct solver is MUMPS (not KLU).
+      bool                                         mumps  = false;
       bool                                         krylov = false;
       unsigned int                                 krylov_max_iterations = 1000;
       IndexSet                                     displacement_set;
@@ -214,6 +219,12 @@ namespace igabde
       /// Builds K_matrix, the AMG and the local flexibility C D^-1 C^T.
       void
       setup_krylov();
+
+      /// METIS nested dissection of the Newton matrix's pattern made
+      /// symmetric (one process: every row is this rank's); empty if METIS
+      /// fails.
+      std::vector<int>
+      fill_reducing_order() const;
 
       /// Applies P^-1 (gmres-amg).
       void

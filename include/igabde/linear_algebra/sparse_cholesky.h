@@ -145,6 +145,32 @@ namespace igabde
       struct Data;
       std::unique_ptr<Data> data;
     };
+
+    /**
+     * A fill-reducing pivot order for MUMPS (its PERM_IN, 1-based
+     * positions: entry v is the position of unknown v): METIS nested
+     * dissection of the unknowns not in @p schur_list, those last, in
+     * their given order.
+     *
+     * MUMPS falls back to approximate minimum degree whenever a Schur
+     * complement is requested, whatever ICNTL(7) says; on 3D stiffness
+     * matrices nested dissection needs about half the flops (B2 8x16x8:
+     * 3.2 instead of 6.2 GFlop per body). The graph is first compressed
+     * into supervariables, runs of consecutive unknowns with the same
+     * adjacency (the components of one control point or node, which both
+     * discretisations number together), which METIS orders with their
+     * length as vertex weight: dim^2 fewer edges. Another numbering only
+     * compresses less.
+     *
+     * @p row_start, @p columns: the pattern (both triangles, each row
+     * sorted and holding its diagonal, 0-based); @p schur_list: 1-based.
+     * Returns an empty vector when METIS fails (MUMPS then orders).
+     */
+    std::vector<int>
+    nested_dissection_order(const unsigned int               n,
+                            const std::vector<std::size_t>  &row_start,
+                            const std::vector<unsigned int> &columns,
+                            const std::vector<int>          &schur_list);
   } // namespace linear_algebra
 } // namespace igabde
 

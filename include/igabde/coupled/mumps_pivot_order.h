@@ -1,0 +1,36 @@
+#ifndef igabde_coupled_mumps_pivot_order_h
+#define igabde_coupled_mumps_pivot_order_h
+
+#include <vector>
+
+class Amesos_BaseSolver;
+
+namespace igabde
+{
+  namespace coupled
+  {
+    namespace internal
+    {
+      /**
+       * @brief Gives @p solver, if it is Amesos' MUMPS solver and before its
+       * symbolic factorisation, the pivot order @p order (MUMPS' PERM_IN,
+       * 1-based positions), which must stay alive while the solver may
+       * read it. Returns whether it was given (false for another solver
+       * or an empty order: the solver then orders itself).
+       */
+      bool
+      give_mumps_pivot_order(Amesos_BaseSolver &solver,
+                             std::vector<int>  &order);
+
+      /**
+       * @brief The floating-point operations of the last numeric
+       * factorisation of @p solver if it is Amesos' MUMPS solver (MUMPS'
+       * RINFOG(3)), else 0.
+       */
+      double
+      mumps_factorization_flops(Amesos_BaseSolver &solver);
+    } // namespace internal
+  }   // namespace coupled
+} // namespace igabde
+
+#endif

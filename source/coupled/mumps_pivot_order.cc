@@ -1,0 +1,39 @@
+// Hands a pivot order to Amesos' MUMPS solver and reads its flop count. Its own
+// file (and outside the unity batches: CMakeLists.txt) because Amesos_Mumps.h
+// opens namespace Teuchos at global scope, whose Utilities and ArrayView would
+// collide with deal.II's in any file that includes both.
+
+#include <igabde/coupled/mumps_pivot_order.h>
+
+#include <Amesos_Mumps.h>
+
+namespace igabde
+{
+  namespace coupled
+  {
+    namespace internal
+    {
+      bool
+      give_mumps_pivot_order(Amesos_BaseSolver &solver, std::vector<int> &order)
+      {
+        auto *mumps = dynamic_cast<Amesos_Mumps *>(&solver);
+        if (mumps == nullptr || order.empty())
+          return false;
+        // ICNTL(7) = 1: the order given in PERM_IN.
+        mumps->SetICNTL(7, 1);
+        mumps->SetOrdering(order.data());
+        return true;
+      }
+
+
+
+      double
+      mumps_factorization_flops(Amesos_BaseSolver &solver)
+      {
+        auto *mumps = dynamic_cast<Amesos_Mumps *>(&solver);
+        // RINFOG(3): the floating-point operations of the elimination.
+        return mumps != nullptr ? mumps->GetRINFOG()[2] : 0.;
+      }
+    } // namespace internal
+  }   // namespace coupled
+} // namespace igabde
