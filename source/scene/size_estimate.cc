@@ -235,8 +235,9 @@ namespace igabde
             e.bytes_dense += 8. * 3. * n_c * n_c;
             // The coupled system: both bodies' matrices again (Trilinos'
             // copy) and, direct, MUMPS' LU of the whole: L and U, of the
-            // bodies pressed face to face and factorised as one: three
-            // times the bodies' estimated factors together (the 3D
+            // bodies pressed face to face and factorised as one, in the
+            // nested-dissection order: one and a half times the bodies'
+            // estimated factors together (three before that order; the 3D
             // contact-patch family's peak memory against this estimate:
             // doc/performance.md).
             double matrix = 0., factor = 0.;
@@ -249,7 +250,7 @@ namespace igabde
               bytes_per_matrix_entry * matrix +
               (c.full_system_solver == coupled::Solver::gmres_amg ?
                  12. * matrix :
-                 bytes_per_factor_entry * 3. * factor);
+                 bytes_per_factor_entry * 1.5 * factor);
             e.automatic_path = (c.path == contact::Path::automatic &&
                                 c.algorithm == contact::Algorithm::bde);
             if (c.path == contact::Path::full ||
