@@ -297,6 +297,34 @@ TEST(FullSystem, KrylovAgreesWithTheDirectSolver)
 
 
 
+// The two direct solvers of the coupled system (MUMPS, KLU) solve the same
+// equations; both keep their symbolic factorisation over the Newton
+// iterations and factorise the new values only, so a value they did not
+// re-read would show here (V4: friction, ten load steps, the active set
+// changing; B2: two 3D bodies). Same bound as the paths' agreement.
+TEST(FullSystem, KluAgreesWithMumps)
+{
+  for (const std::string scene : {"v4-sliding-block", "b2-curved-beams"})
+    {
+      cli::ScratchFolder folder(scene, "klu");
+      const SceneRun     mumps = run_scene(scene,
+                                       "--set Contact/Path=full",
+                                       cli::join(folder.path, "m"));
+      const SceneRun     klu   = run_scene(scene,
+                                     "--set Contact/Path=full "
+                                           "--set 'Contact/Full system solver=klu'",
+                                     cli::join(folder.path, "k"));
+      ASSERT_EQ(klu.summary["full_system_solver"], "klu") << scene;
+      ASSERT_EQ(mumps.status.size(), klu.status.size()) << scene;
+      EXPECT_LT(deviation(mumps, klu), 1e-8) << scene;
+      for (unsigned int s = 0; s < klu.status.size(); ++s)
+        EXPECT_EQ(mumps.status[s], klu.status[s])
+          << scene << ", step " << s + 1;
+    }
+}
+
+
+
 // A GMRES that stops at its iteration limit fails the step with the
 // iterations and the residual in one line, and the run fails (exit status,
 // summary.json): never a silent wrong answer.
