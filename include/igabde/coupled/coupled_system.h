@@ -183,16 +183,12 @@ namespace igabde
       IndexSet                       all, owned;
       types::global_dof_index        u_begin = 0, u_end = 0;
       TrilinosWrappers::SparseMatrix matrix;
-      mutable SolverControl          control;
       /// The direct solver (Amesos) on the Newton matrix: the pattern never
       /// changes, so its symbolic factorisation (MUMPS' analysis: the pivot
       /// order) is made once and every Newton iteration factorises the new
       /// values only.
       std::unique_ptr<Epetra_LinearProblem> direct_problem;
       std::unique_ptr<Amesos_BaseSolver>    direct;
-      /// Analyses of the Newton matrix so far (one unless a factorisation
-      /// failed and the next one started afresh).
-      unsigned int n_analyses = 0;
       /// MUMPS' pivot order (PERM_IN) in one process: nested dissection of
       /// the pattern (fill_reducing_order()); kept while MUMPS may read it.
       std::vector<int> pivot_order;
