@@ -259,6 +259,14 @@ namespace igabde
                 space.geometry.control_point(a);
               this->dof_components[dim * space.numbers[a] + c] = c;
             }
+      // With open knot vectors only a face's own control points have a
+      // non-zero trace on it (patch interfaces count too: conservative).
+      this->on_boundary.assign(this->n_unknowns, false);
+      for (const PatchSpace &space : spaces)
+        for (unsigned int f = 0; f < 2 * dim; ++f)
+          for (const unsigned int a : space.geometry.face_control_points(f))
+            for (unsigned int c = 0; c < dim; ++c)
+              this->on_boundary[dim * space.numbers[a] + c] = true;
 
       // Supports: with open knot vectors only the face's control points
       // have a nonzero trace there, and sum R = 1 makes a constant value

@@ -526,6 +526,10 @@ namespace igabde
           }
       }
 
+      this->on_boundary.assign(this->n_unknowns, false);
+      for (const auto i : DoFTools::extract_boundary_dofs(dof_handler))
+        this->on_boundary[i] = true;
+
       // Where the NURBS map is singular (det J = 0 at a cell vertex: the
       // 180-degree corner where the two arcs of the Hertz quarter disc meet,
       // the doubled control point at the corner (L, L) of the plate with

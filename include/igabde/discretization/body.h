@@ -626,6 +626,10 @@ namespace igabde
       std::vector<Point<dim>> dof_locations;
       /// Component of each unknown.
       std::vector<unsigned int> dof_components;
+      /// Whether each unknown's basis function is non-zero somewhere on the
+      /// body's boundary (filled by setup_space(); the pins of free rigid
+      /// modes are chosen away from it, see find_free_rigid_modes()).
+      std::vector<bool> on_boundary;
       /// Supports, homogeneous.
       AffineConstraints<double> constraints;
       /// Supports with the prescribed values at displacement factor 1.
@@ -670,6 +674,14 @@ namespace igabde
     private:
       void
       find_free_rigid_modes();
+
+      /// Per unknown, how strongly the choice of the rigid-mode pins prefers
+      /// it: 1e-3 on the boundary, between 1 and 2 inside, growing with the
+      /// depth (steps through K's pattern to the nearest boundary unknown)
+      /// and, among equally deep ones, with nearness to the centroid; all 1
+      /// when no unknown is interior.
+      std::vector<double>
+      pin_preference() const;
 
       /**
        * @brief The consistent loads @p c (one per rotation axis: z in 2D;
