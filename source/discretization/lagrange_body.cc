@@ -36,6 +36,7 @@
 #include <limits>
 #include <map>
 #include <sstream>
+#include <tuple>
 
 namespace igabde
 {
@@ -102,16 +103,20 @@ namespace igabde
       };
 
       /**
-       * The cell around @p location and the point's unit coordinates in it.
-       * deal.II returns an invalid iterator for a point outside the mesh;
-       * this throws instead, so that Body::contains() can tell the bodies
-       * apart (a probe on Body 2 is first looked for on Body 1).
+       * The cells around @p location and the point's unit coordinates in
+       * each, nearest first: every cell within @p tolerance of the point in
+       * unit coordinates, or the nearest alone when none is. deal.II returns
+       * an invalid iterator for a point outside the mesh; this throws
+       * instead, so that Body::contains() can tell the bodies apart (a probe
+       * on Body 2 is first looked for on Body 1).
        */
       template <int dim>
-      std::pair<typename DoFHandler<dim>::active_cell_iterator, Point<dim>>
-      locate(const GridTools::Cache<dim> &cache,
-             const DoFHandler<dim>       &dof_handler,
-             const Point<dim>            &location)
+      std::vector<
+        std::pair<typename DoFHandler<dim>::active_cell_iterator, Point<dim>>>
+      locate_all(const GridTools::Cache<dim> &cache,
+                 const DoFHandler<dim>       &dof_handler,
+                 const Point<dim>            &location,
+                 const double                 tolerance)
       {
         // Candidates from the cache's tree of cell bounding boxes: the
         // cells whose box holds the point, else the eight nearest boxes
@@ -131,8 +136,10 @@ namespace igabde
         if (candidates.empty())
           tree.query(bgi::nearest(location, 8), std::back_inserter(candidates));
         const Mapping<dim> &mapping = cache.get_mapping();
-        double              best    = std::numeric_limits<double>::max();
-        std::pair<typename Triangulation<dim>::active_cell_iterator, Point<dim>>
+        std::vector<
+          std::tuple<double,
+                     typename Triangulation<dim>::active_cell_iterator,
+                     Point<dim>>>
           found;
         for (const auto &[box, cell] : candidates)
           {
@@ -140,27 +147,33 @@ namespace igabde
               {
                 const Point<dim> unit =
                   mapping.transform_real_to_unit_cell(cell, location);
-                const double distance =
-                  GeometryInfo<dim>::distance_to_unit_cell(unit);
-                if (distance < best)
-                  {
-                    best  = distance;
-                    found = {cell, unit};
-                  }
+                found.emplace_back(GeometryInfo<dim>::distance_to_unit_cell(
+                                     unit),
+                                   cell,
+                                   unit);
               }
             catch (const typename Mapping<dim>::ExcTransformationFailed &)
               {
                 // Newton left the cell's neighbourhood: not this cell.
               }
           }
-        AssertThrow(best <= 1e-3,
+        std::sort(found.begin(), found.end(), [](const auto &a, const auto &b) {
+          return std::get<0>(a) < std::get<0>(b);
+        });
+        AssertThrow(!found.empty() && std::get<0>(found.front()) <= 1e-3,
                     ExcMessage("The point lies outside the body."));
-        return {typename DoFHandler<dim>::active_cell_iterator(
-                  &dof_handler.get_triangulation(),
-                  found.first->level(),
-                  found.first->index(),
-                  &dof_handler),
-                found.second};
+        std::vector<
+          std::pair<typename DoFHandler<dim>::active_cell_iterator, Point<dim>>>
+          cells;
+        for (const auto &[distance, cell, unit] : found)
+          if (cells.empty() || distance <= tolerance)
+            cells.emplace_back(typename DoFHandler<dim>::active_cell_iterator(
+                                 &dof_handler.get_triangulation(),
+                                 cell->level(),
+                                 cell->index(),
+                                 &dof_handler),
+                               unit);
+        return cells;
       }
 
       /**
@@ -829,13 +842,24 @@ namespace igabde
     std::pair<typename DoFHandler<dim>::active_cell_iterator, Point<dim>>
     LagrangeBody<dim>::find_cell(const Point<dim> &location) const
     {
+      return find_cells(location, 0.).front();
+    }
+
+
+
+    template <int dim>
+    std::vector<
+      std::pair<typename DoFHandler<dim>::active_cell_iterator, Point<dim>>>
+    LagrangeBody<dim>::find_cells(const Point<dim> &location,
+                                  const double      tolerance) const
+    {
       // Built once, on first use; its own data structures fill lazily, so
       // every search holds the lock (point searches run from threads).
       std::lock_guard<std::mutex> lock(cache_mutex);
       if (!cache)
         cache =
           std::make_unique<GridTools::Cache<dim>>(triangulation, *mapping);
-      return locate(*cache, dof_handler, location);
+      return locate_all(*cache, dof_handler, location, tolerance);
     }
 
 
@@ -1062,15 +1086,13 @@ namespace igabde
                               const Point<dim>     &location) const
     {
       // The FE_Q stress jumps across cells: at a point on a face, edge or
-      // vertex it is the mean over the cells that hold the point, so that
-      // the value does not depend on which of them a search meets first.
-      const auto first = find_cell(location);
-      const auto cells =
-        GridTools::find_all_active_cells_around_point(*mapping,
-                                                      dof_handler,
-                                                      location,
-                                                      1e-8,
-                                                      first);
+      // vertex it is the mean over the cells that hold the point (within
+      // 1e-8 in unit coordinates), so that the value does not depend on
+      // which of them a search meets first. The cells and unit points come
+      // from the one search of find_cell(): a second search around its cell
+      // (GridTools::find_all_active_cells_around_point) inverted the map on
+      // every neighbour again.
+      const auto              cells = find_cells(location, 1e-8);
       SymmetricTensor<2, dim> sum;
       for (const auto &[cell, unit] : cells)
         {

@@ -182,6 +182,13 @@ namespace igabde
       /// recovered pressures search in a background thread).
       std::pair<typename DoFHandler<dim>::active_cell_iterator, Point<dim>>
       find_cell(const Point<dim> &location) const;
+      /// Every cell holding @p location within @p tolerance in unit
+      /// coordinates, with the point's unit coordinates in it, nearest first
+      /// (the nearest alone when none is that close); throws as
+      /// find_cell().
+      std::vector<
+        std::pair<typename DoFHandler<dim>::active_cell_iterator, Point<dim>>>
+      find_cells(const Point<dim> &location, const double tolerance) const;
       /// The cell of each knot span, per patch (face_point()).
       std::vector<std::map<std::array<unsigned int, dim>,
                            typename DoFHandler<dim>::active_cell_iterator>>
