@@ -15,6 +15,7 @@
 
 #include <Epetra_CrsMatrix.h>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <iomanip>
 #include <sstream>
@@ -585,9 +586,16 @@ namespace igabde
       // the same at every Newton iteration: it is made once. A numeric
       // factorisation that fails after a reused analysis (MUMPS' workspace,
       // estimated at the analysis, can fall short when the pivots change
-      // with the values) is tried once more from a fresh analysis before
-      // the matrix is called singular.
-      for (unsigned int attempt = 0; attempt < 2; ++attempt)
+      // with the values) is tried once more from a fresh analysis. A fresh
+      // one that runs out of workspace (MUMPS' INFOG(1) = -8, -9, -11, -14,
+      // -15, -17, -20: the estimate fell short of the delayed pivots; V7 on
+      // NURBS, full path, 3 ranks) is tried again with the workspace
+      // relaxation ICNTL(14) raised from MUMPS' 20 % to 100 % and 400 %
+      // before the matrix is called singular.
+      const std::array<int, 3> relaxations = {{0, 100, 400}};
+      std::size_t              relaxation  = 0;
+      int                      mumps_code  = 0;
+      for (unsigned int attempt = 0; attempt < 4; ++attempt)
         {
           const bool fresh  = !direct;
           int        status = 0;
@@ -616,6 +624,10 @@ namespace igabde
                       pivot_order = fill_reducing_order();
                       internal::give_mumps_pivot_order(*direct, pivot_order);
                     }
+                  if (relaxations[relaxation] > 0)
+                    internal::set_mumps_workspace_relaxation(
+                      *direct,
+                      relaxations[relaxation]);
                   status = direct->SymbolicFactorization();
                 }
               if (status == 0)
@@ -627,19 +639,32 @@ namespace igabde
             }
           if (status == 0)
             break;
+          mumps_code = direct ? internal::mumps_error(*direct) : 0;
           direct.reset();
           direct_problem.reset();
+          const bool short_of_workspace =
+            mumps_code == -8 || mumps_code == -9 || mumps_code == -11 ||
+            mumps_code == -14 || mumps_code == -15 || mumps_code == -17 ||
+            mumps_code == -20;
+          if (fresh && short_of_workspace &&
+              relaxation + 1 < relaxations.size())
+            {
+              ++relaxation;
+              continue;
+            }
           if (fresh)
             {
               // A singular Newton matrix (e.g. a floating body whose pairs
               // are all open): solve() reports it, the contact solver says
               // why.
-              factorization_error    = "singular";
-              const std::string text = captured.str();
-              const auto        code = text.find("INFOG(1) = ");
-              if (code != std::string::npos)
+              factorization_error =
+                short_of_workspace ?
+                  "out of workspace with ICNTL(14) = " +
+                    std::to_string(relaxations[relaxation]) + " %" :
+                  "singular";
+              if (mumps_code != 0)
                 factorization_error +=
-                  ", MUMPS " + text.substr(code, text.find('\n', code) - code);
+                  ", MUMPS INFOG(1) = " + std::to_string(mumps_code);
               break;
             }
         }
@@ -750,11 +775,18 @@ namespace igabde
         }
       if (!factorization_error.empty())
         {
-          why = "the Newton matrix of the coupled system is singular (" +
-                solver_type +
-                " failed to factorise it: " + factorization_error +
-                "; a floating body whose pairs are all open is held by "
-                "nothing)";
+          if (factorization_error.rfind("out of workspace", 0) == 0)
+            why = "the Newton matrix of the coupled system could not be "
+                  "factorised (" +
+                  solver_type + " ran " + factorization_error +
+                  "; fewer ranks, or Contact/Full system solver = "
+                  "gmres-amg)";
+          else
+            why = "the Newton matrix of the coupled system is singular (" +
+                  solver_type +
+                  " failed to factorise it: " + factorization_error +
+                  "; a floating body whose pairs are all open is held by "
+                  "nothing)";
           return false;
         }
       TrilinosWrappers::MPI::Vector rhs(owned, communicator),

@@ -34,6 +34,25 @@ namespace igabde
         // RINFOG(3): the floating-point operations of the elimination.
         return mumps != nullptr ? mumps->GetRINFOG()[2] : 0.;
       }
+
+
+
+      int
+      mumps_error(Amesos_BaseSolver &solver)
+      {
+        auto *mumps = dynamic_cast<Amesos_Mumps *>(&solver);
+        return mumps != nullptr ? mumps->GetINFOG()[0] : 0;
+      }
+
+
+
+      void
+      set_mumps_workspace_relaxation(Amesos_BaseSolver &solver,
+                                     const int          percent)
+      {
+        if (auto *mumps = dynamic_cast<Amesos_Mumps *>(&solver))
+          mumps->SetICNTL(14, percent);
+      }
     } // namespace internal
   }   // namespace coupled
 } // namespace igabde

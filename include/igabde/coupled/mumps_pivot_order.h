@@ -29,6 +29,22 @@ namespace igabde
        */
       double
       mumps_factorization_flops(Amesos_BaseSolver &solver);
+
+      /**
+       * @brief MUMPS' error code INFOG(1) after the last phase of @p solver
+       * if it is Amesos' MUMPS solver (0: no error), else 0.
+       */
+      int
+      mumps_error(Amesos_BaseSolver &solver);
+
+      /**
+       * @brief Sets MUMPS' workspace relaxation ICNTL(14) (per cent above
+       * the analysis' estimate) of @p solver, before its symbolic
+       * factorisation, if it is Amesos' MUMPS solver.
+       */
+      void
+      set_mumps_workspace_relaxation(Amesos_BaseSolver &solver,
+                                     const int          percent);
     } // namespace internal
   }   // namespace coupled
 } // namespace igabde
