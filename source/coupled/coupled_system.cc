@@ -592,8 +592,8 @@ namespace igabde
       // NURBS, full path, 3 ranks) is tried again with the workspace
       // relaxation ICNTL(14) raised from MUMPS' 20 % to 100 % and 400 %
       // before the matrix is called singular.
+      // The raised relaxation stays for the later analyses of this matrix.
       const std::array<int, 3> relaxations = {{0, 100, 400}};
-      std::size_t              relaxation  = 0;
       int                      mumps_code  = 0;
       for (unsigned int attempt = 0; attempt < 4; ++attempt)
         {
@@ -624,10 +624,10 @@ namespace igabde
                       pivot_order = fill_reducing_order();
                       internal::give_mumps_pivot_order(*direct, pivot_order);
                     }
-                  if (relaxations[relaxation] > 0)
+                  if (relaxations[workspace_relaxation] > 0)
                     internal::set_mumps_workspace_relaxation(
                       *direct,
-                      relaxations[relaxation]);
+                      relaxations[workspace_relaxation]);
                   status = direct->SymbolicFactorization();
                 }
               if (status == 0)
@@ -647,9 +647,9 @@ namespace igabde
             mumps_code == -14 || mumps_code == -15 || mumps_code == -17 ||
             mumps_code == -20;
           if (fresh && short_of_workspace &&
-              relaxation + 1 < relaxations.size())
+              workspace_relaxation + 1 < relaxations.size())
             {
-              ++relaxation;
+              ++workspace_relaxation;
               continue;
             }
           if (fresh)
@@ -660,7 +660,7 @@ namespace igabde
               factorization_error =
                 short_of_workspace ?
                   "out of workspace with ICNTL(14) = " +
-                    std::to_string(relaxations[relaxation]) + " %" :
+                    std::to_string(relaxations[workspace_relaxation]) + " %" :
                   "singular";
               if (mumps_code != 0)
                 factorization_error +=

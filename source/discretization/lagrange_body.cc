@@ -157,9 +157,13 @@ namespace igabde
                 // Newton left the cell's neighbourhood: not this cell.
               }
           }
-        std::sort(found.begin(), found.end(), [](const auto &a, const auto &b) {
-          return std::get<0>(a) < std::get<0>(b);
-        });
+        std::stable_sort(found.begin(),
+                         found.end(),
+                         [](const auto &a, const auto &b) {
+                           return std::get<0>(a) < std::get<0>(b);
+                         });
+        // Stable: among cells at the same distance (a point on a shared
+        // vertex) the tree's first stays first, as find_cell() always chose.
         AssertThrow(!found.empty() && std::get<0>(found.front()) <= 1e-3,
                     ExcMessage("The point lies outside the body."));
         std::vector<

@@ -192,6 +192,9 @@ namespace igabde
       /// MUMPS' pivot order (PERM_IN) in one process: nested dissection of
       /// the pattern (fill_reducing_order()); kept while MUMPS may read it.
       std::vector<int> pivot_order;
+      /// Index into the workspace relaxations MUMPS' analyses take (0: its
+      /// default; raised when a fresh factorisation ran out of workspace).
+      std::size_t workspace_relaxation = 0;
       /// Why the last factorisation failed (empty if it did not).
       std::string factorization_error;
       /// Where progress lines go (nullptr: nowhere).
