@@ -29,8 +29,7 @@ namespace igabde
 
       using dealii::types::blas_int;
 
-      // What the Newton matrix reads of the problem: W (shifted in the
-      // proximal phase) and G.
+      // What the Newton matrix reads of the problem: W and G.
       struct ProblemView
       {
         const Mat   &W;
@@ -39,7 +38,11 @@ namespace igabde
       };
 
       // W's structure: one pass over W, in tiles for the cache, for its
-      // fill and whether it is symmetric, and a sparse copy when sparse.
+      // fill and whether it is symmetric (to rounding: a problem read from
+      // a text file keeps about 1e-13 of asymmetry; a Newton matrix that
+      // treats it as symmetric is off by that much), and a sparse copy
+      // when sparse. The proximal phase's W + shift I is W with the shift
+      // added where it is read: neither W nor the structure is copied.
       struct System
       {
         System(const Mat                             &W,
@@ -66,7 +69,7 @@ namespace igabde
                     if (i > j)
                       max_asym = std::max(max_asym, std::abs(wij - W(j, i)));
                   }
-          symmetric = max_asym <= 1e-14 * max_entry;
+          symmetric = max_asym <= 1e-12 * max_entry;
           fill      = m > 0 ? double(nnz) / (double(m) * m) : 1.;
           switch (linear_algebra)
             {
@@ -93,21 +96,26 @@ namespace igabde
             }
         }
 
-        // W v, from the sparse copy when there is one.
+        // (W + shift I) v, from the sparse copy when there is one.
         Vec
         W_times(const Vec &v) const
         {
-          return sparse ? Vec(Ws * v) : dense_times(problem.W, v);
+          Vec out = sparse ? Vec(Ws * v) : dense_times(problem.W, v);
+          if (shift != 0.)
+            out += shift * v;
+          return out;
         }
 
-        // W^T v
+        // (W + shift I)^T v
         Vec
         WT_times(const Vec &v) const
         {
-          if (sparse)
-            return Ws.transpose() * v;
-          return symmetric ? dense_times(problem.W, v) :
-                             Vec(problem.W.transpose() * v);
+          Vec out = sparse    ? Vec(Ws.transpose() * v) :
+                    symmetric ? dense_times(problem.W, v) :
+                                Vec(problem.W.transpose() * v);
+          if (shift != 0.)
+            out += shift * v;
+          return out;
         }
 
         // A v for a dense A, reading only the columns of the non-zero
@@ -141,6 +149,8 @@ namespace igabde
         /// W is kept and factorised as a sparse matrix (Ws).
         bool           sparse = false;
         RowMajorSparse Ws;
+        /// The proximal shift: the Newton matrix is built of W + shift I.
+        double shift = 0.;
       };
 
 
@@ -327,6 +337,10 @@ namespace igabde
                 for (const Term &e : t)
                   K(e.row, b) += e.a * sys.problem.G(e.source, j - m);
             }
+          if (sys.shift != 0.)
+            for (const Term &e : t)
+              if (position[e.source] >= 0)
+                K(e.row, position[e.source]) += e.a * sys.shift;
           for (unsigned int r = 0; r < nN; ++r)
             {
               const unsigned int i = others[r];
@@ -357,6 +371,7 @@ namespace igabde
                 sys.problem.W.data() + std::size_t(others[b]) * m;
               for (int r = b; r < nN; ++r)
                 S(r, b) = s[r] * col[others[r]] * s[b];
+              S(b, b) += s[b] * s[b] * sys.shift;
             }
           double anorm = 0.; // 1-norm from the lower triangle
           for (int b = 0; b < nN; ++b)
@@ -456,6 +471,10 @@ namespace igabde
                   entries.emplace_back(e.row,
                                        position[it.col()],
                                        e.a * it.value());
+              if (sys.shift != 0. && position[e.source] >= 0)
+                entries.emplace_back(e.row,
+                                     position[e.source],
+                                     e.a * sys.shift);
               for (unsigned int a = 0; a < na; ++a)
                 if (sys.problem.G(e.source, a) != 0.)
                   entries.emplace_back(e.row,
@@ -499,6 +518,9 @@ namespace igabde
                 entries.emplace_back(r,
                                      position[it.col()],
                                      s[r] * it.value() * s[position[it.col()]]);
+          if (sys.shift != 0.)
+            for (unsigned int r = 0; r < nN; ++r)
+              entries.emplace_back(r, r, s[r] * s[r] * sys.shift);
           SparseMatrix S(nN, nN);
           S.setFromTriplets(entries.begin(), entries.end());
           Eigen::SimplicialLDLT<SparseMatrix> ldlt(S);
@@ -583,8 +605,7 @@ namespace igabde
 
 
 
-    /// W, its shifted copy (proximal phase) and the structure of the one
-    /// in use.
+    /// W, the proximal shift and W's structure.
     class CondensedOperator::Storage
     {
     public:
@@ -598,28 +619,18 @@ namespace igabde
         , use_symmetry(use_symmetry)
       {}
 
-      const Mat &
-      current() const
-      {
-        return eps > 0. ? shifted : W;
-      }
-
-      // The structure of the current W for @p d components and G's columns
-      // (built on first use, again after a shift).
+      // The structure of W for @p d components and G's columns (built on
+      // first use), with the current shift.
       const System &
       system(const unsigned int d, const Mat &G)
       {
         if (!sys || sys->d != d || &sys->problem.G != &G)
-          sys = std::make_unique<System>(current(),
-                                         G,
-                                         d,
-                                         linear_algebra,
-                                         sparse_fill);
+          sys = std::make_unique<System>(W, G, d, linear_algebra, sparse_fill);
+        sys->shift = eps;
         return *sys;
       }
 
       const Mat              &W;
-      Mat                     shifted;
       double                  eps = 0.;
       const LinearAlgebra     linear_algebra;
       const double            sparse_fill;
@@ -669,7 +680,7 @@ namespace igabde
     {
       if (storage->sys)
         return storage->sys->W_times(p);
-      return storage->current() * p;
+      return storage->W * p + storage->eps * p;
     }
 
 
@@ -680,7 +691,7 @@ namespace igabde
                                             Vec       &y_w) const
     {
       y_p = storage->sys ? storage->sys->WT_times(y) :
-                           Vec(storage->current().transpose() * y);
+                           Vec(storage->W.transpose() * y + storage->eps * y);
       y_w.resize(0);
     }
 
@@ -690,7 +701,7 @@ namespace igabde
     CondensedOperator::weights(const ContactData &data,
                                const double       factor) const
     {
-      return pair_weights(storage->current(), data.n_components, factor);
+      return pair_weights(storage->W, data.n_components, factor, storage->eps);
     }
 
 
@@ -698,11 +709,14 @@ namespace igabde
     Vec
     CondensedOperator::pair_stiffness() const
     {
-      const Mat         &W = storage->current();
+      const Mat         &W = storage->W;
       const unsigned int m = W.rows();
       Vec                k(m);
       for (unsigned int i = 0; i < m; ++i)
-        k[i] = W(i, i) > 0. ? 1. / W(i, i) : 0.;
+        {
+          const double wii = W(i, i) + storage->eps;
+          k[i]             = wii > 0. ? 1. / wii : 0.;
+        }
       return k;
     }
 
@@ -729,17 +743,17 @@ namespace igabde
     void
     CondensedOperator::set_proximal_shift(const double eps)
     {
-      if (eps == storage->eps)
-        return;
       storage->eps = eps;
-      if (eps > 0.)
-        {
-          storage->shifted = storage->W;
-          storage->shifted.diagonal().array() += eps;
-        }
-      else
-        storage->shifted.resize(0, 0);
-      storage->sys.reset();
+      if (storage->sys)
+        storage->sys->shift = eps;
+    }
+
+
+
+    bool
+    CondensedOperator::proximal_for_singular_start() const
+    {
+      return storage->sys && storage->sys->sparse && storage->sys->symmetric;
     }
 
 

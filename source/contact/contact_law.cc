@@ -52,8 +52,10 @@ namespace igabde
     PairWeights
     pair_weights(const Eigen::MatrixXd &W,
                  const unsigned int     n_components,
-                 const double           factor)
+                 const double           factor,
+                 const double           shift)
     {
+      // The weights of W + shift I (the proximal phase's subproblems).
       const unsigned int d  = n_components;
       const unsigned int nc = d > 0 ? W.rows() / d : 0;
       PairWeights        w;
@@ -61,20 +63,21 @@ namespace igabde
       w.r_t.resize(nc);
       double max_diag = 0.;
       if (W.rows() > 0)
-        max_diag = W.diagonal().maxCoeff();
+        max_diag = W.diagonal().maxCoeff() + shift;
       const double fallback = max_diag > 0. ? factor / max_diag : factor;
       for (unsigned int c = 0; c < nc; ++c)
         {
           const unsigned int o   = c * d;
-          const double       wnn = W(o, o);
+          const double       wnn = W(o, o) + shift;
           w.r_n[c] =
             (wnn > 1e-14 * max_diag && wnn > 0.) ? factor / wnn : fallback;
           double lmax = 0.;
           if (d == 2)
-            lmax = W(o + 1, o + 1);
+            lmax = W(o + 1, o + 1) + shift;
           else if (d == 3)
             {
-              const double a = W(o + 1, o + 1), b = W(o + 2, o + 2),
+              const double a = W(o + 1, o + 1) + shift,
+                           b = W(o + 2, o + 2) + shift,
                            e = 0.5 * (W(o + 1, o + 2) + W(o + 2, o + 1));
               lmax =
                 0.5 * (a + b) + std::sqrt(0.25 * (a - b) * (a - b) + e * e);

@@ -559,6 +559,15 @@ namespace igabde
             }
           else
             singular_streak = 0;
+          if (leave_when_singular_at_start && local_it == 1 &&
+              singular_streak == 1 && op.proximal_for_singular_start())
+            {
+              // No step taken: the iteration is not counted.
+              --result.iterations;
+              --singular_iterations;
+              left_singular_at_start = true;
+              return fail("singular Newton matrix at the start");
+            }
 
           // J dx and J^T F from the operator's products (the law's blocks,
           // G, the displacement equations).

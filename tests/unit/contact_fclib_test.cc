@@ -231,6 +231,62 @@ TEST(ContactFclib, SingularRigidHeapsReachTheFclibTolerance)
 
 
 
+// A granular flow on a wall (FCLIB 2D, 2 020 contacts): the Newton phases
+// stall near 3e-7 and the proximal phase takes over. While its shift was
+// reduced only when the error halved, the outer iterations crawled at a
+// constant shift and 300 iterations ended at 2.9e-7; reduced after every
+// solved subproblem, the problem is solved (96 iterations, 2026-11-27).
+TEST(ContactFclib, ProximalPhaseSolvesTheGranularFlowOnAWall)
+{
+  SKIP_WITHOUT_FCLIB();
+  BNewtonSolver::Settings settings;
+  settings.tolerance      = 1e-8;
+  settings.fclib_stopping = true;
+  settings.max_iterations = 300;
+  const BNewtonSolver  solver(settings);
+  const ContactProblem problem = read_fclib_problem(
+    fclib_file("siconos_dat/fc2d_granularflowonwall_02020_00213.dat"));
+  const BNewtonSolver::Result result = solver.solve(problem);
+  EXPECT_LE(result.residual, 1e-8) << result.summary();
+  const ConditionReport report =
+    check_contact_conditions(problem, result.p, result.u, 1e-6);
+  EXPECT_TRUE(report.passed()) << report.describe();
+}
+
+
+
+// A hyperstatic tower of rigid bodies (FCLIB KaplasTower, 570 contacts, a
+// sparse symmetric W of about half rank): every Newton matrix of the
+// original problem is singular, and Levenberg-Marquardt steps on J^T J
+// took 14 iterations. The sparse symmetric path goes to the proximal phase
+// at the first singular matrix; its subproblems are regular, so no
+// Levenberg-Marquardt step is taken at all.
+TEST(ContactFclib, HyperstaticTowerTakesTheProximalPhaseFromTheStart)
+{
+  SKIP_WITHOUT_FCLIB();
+  BNewtonSolver::Settings settings;
+  settings.tolerance      = 1e-8;
+  settings.fclib_stopping = true;
+  const BNewtonSolver  solver(settings);
+  const ContactProblem problem =
+    read_fclib_problem(fclib_file("siconos_dat/KaplasTower-i1061-4.hdf5.dat"));
+  const BNewtonSolver::Result result = solver.solve(problem);
+  EXPECT_LE(result.residual, 1e-8) << result.summary();
+  EXPECT_NE(result.diagnosis.find("singular Newton matrix at the start"),
+            std::string::npos)
+    << result.diagnosis;
+  EXPECT_TRUE(std::none_of(result.history.begin(),
+                           result.history.end(),
+                           [](const auto &record) {
+                             return record.note.find("lm") != std::string::npos;
+                           }));
+  const ConditionReport report =
+    check_contact_conditions(problem, result.p, result.u, 1e-6);
+  EXPECT_TRUE(report.passed()) << report.describe();
+}
+
+
+
 namespace
 {
   // Three 3D pairs: closed and sticking, closed and slipping, open; W

@@ -63,7 +63,8 @@ namespace igabde
     PairWeights
     pair_weights(const Eigen::MatrixXd &W,
                  const unsigned int     n_components,
-                 const double           factor);
+                 const double           factor,
+                 const double           shift = 0.);
 
     /**
      * @brief The piece of the contact law one pair is on, and the element of

@@ -334,7 +334,13 @@ namespace igabde
       double            best_score = 0.;
       /// Iterations whose Newton matrix was singular (Levenberg-Marquardt
       /// or steepest-descent steps).
-      unsigned int   singular_iterations = 0;
+      unsigned int singular_iterations = 0;
+      /// newton() ends the phase, before any step, when the first Newton
+      /// matrix is singular and the operator prefers the proximal phase
+      /// then (ContactOperator::proximal_for_singular_start()).
+      bool leave_when_singular_at_start = false;
+      /// Set when a phase ended so.
+      bool           left_singular_at_start = false;
       ContactIterate best_x, converged_x;
     };
 
