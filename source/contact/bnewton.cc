@@ -386,9 +386,13 @@ namespace igabde
                                                result.balanced_residual,
                                                result.equilibrium_residual,
                                                disp);
-      result.converged  = (strict || outcome.converged) &&
+      // With fclib_stopping the FCLIB error alone is the test (as the
+      // stopping test); else the balanced error must meet it too.
+      result.converged = (strict || outcome.converged) &&
                          result.p.allFinite() &&
-                         result.balanced_residual <= settings.tolerance;
+                         (settings.fclib_stopping ?
+                            result.residual <= settings.tolerance :
+                            result.balanced_residual <= settings.tolerance);
       if (result.converged)
         result.diagnosis = "converged (" + reasons + ")";
       else if (!result.p.allFinite() || !std::isfinite(result.residual))
