@@ -1,6 +1,8 @@
 #ifndef igabde_coupled_coupled_system_h
 #define igabde_coupled_coupled_system_h
 
+#include <igabde/base/retain_freed_memory.h>
+
 #include <igabde/discretization/body.h>
 
 #include <igabde/contact/contact_path.h>
@@ -154,6 +156,10 @@ namespace igabde
       offset(const unsigned int b) const;
 
     private:
+      /// Freed pages stay with the process while the system lives: every
+      /// Newton iteration's factorisation frees MUMPS' workspace and takes
+      /// it again (first member: made before, released after the rest).
+      base::RetainFreedMemory retain_freed_memory;
       /// The bodies (not owned).
       std::vector<const discretization::Body<dim> *> bodies;
       /// Components per pair, pairs, rigid modes.

@@ -1,0 +1,63 @@
+#ifndef igabde_base_retain_freed_memory_h
+#define igabde_base_retain_freed_memory_h
+
+#include <utility>
+#include <vector>
+
+namespace igabde
+{
+  namespace base
+  {
+    /**
+     * @brief While an object of this class lives, jemalloc keeps the pages
+     * that the program frees instead of returning them to the kernel
+     * (every arena's dirty and muzzy decay set to -1, "never"); the
+     * destructor restores each arena's decay, and with it the purging.
+     *
+     * For loops that free and allocate the same large blocks again: the
+     * full path's Newton iterations factorise the coupled matrix anew each
+     * time, and MUMPS frees its workspace and allocates it again. With
+     * jemalloc's default decay the freed workspace was partly returned
+     * (all of it, at once, in the arena for allocations of 8 MiB and
+     * more), so that the next factorisation faulted its pages in again
+     * and the kernel zeroed them: on V7 with NURBS on the full path every
+     * other factorisation ran at 21-26 instead of 36-40 GFlop/s.
+     *
+     * Does nothing when jemalloc does not serve malloc (looked up at run
+     * time, as base::memory_allocator() does). Not thread-safe against
+     * another object of this class living at the same time in another
+     * thread (the decays are per process).
+     */
+    class RetainFreedMemory
+    {
+    public:
+      RetainFreedMemory();
+      ~RetainFreedMemory();
+
+      RetainFreedMemory(const RetainFreedMemory &) = delete;
+      RetainFreedMemory &
+      operator=(const RetainFreedMemory &) = delete;
+
+      /**
+       * @brief The dirty decay of arena 0 in milliseconds (-1: never;
+       * 0: at once), or -2 without jemalloc. For tests.
+       */
+      static long
+      dirty_decay_of_first_arena();
+
+    private:
+      /// Arena index, dirty decay, muzzy decay as they were.
+      struct Saved
+      {
+        unsigned int index;
+        long         dirty, muzzy;
+      };
+      std::vector<Saved> saved;
+      /// The defaults for new arenas as they were.
+      bool have_defaults = false;
+      long default_dirty = 0, default_muzzy = 0;
+    };
+  } // namespace base
+} // namespace igabde
+
+#endif
