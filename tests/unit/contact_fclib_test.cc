@@ -231,6 +231,30 @@ TEST(ContactFclib, SingularRigidHeapsReachTheFclibTolerance)
 
 
 
+namespace
+{
+  // Solves the FCLIB file @p relative as the benchmarks do (stopped at
+  // FCLIB error 1e-8, 300 iterations) and checks the FCLIB error and the
+  // contact conditions at 1e-6.
+  BNewtonSolver::Result
+  solve_with_fclib_stopping(const std::string &relative)
+  {
+    BNewtonSolver::Settings settings;
+    settings.tolerance           = 1e-8;
+    settings.fclib_stopping      = true;
+    settings.max_iterations      = 300;
+    const ContactProblem problem = read_fclib_problem(fclib_file(relative));
+    const BNewtonSolver::Result result = BNewtonSolver(settings).solve(problem);
+    EXPECT_LE(result.residual, 1e-8) << result.summary();
+    const ConditionReport report =
+      check_contact_conditions(problem, result.p, result.u, 1e-6);
+    EXPECT_TRUE(report.passed()) << report.describe();
+    return result;
+  }
+} // namespace
+
+
+
 // A granular flow on a wall (FCLIB 2D, 2 020 contacts): the Newton phases
 // stall near 3e-7 and the proximal phase takes over. While its shift was
 // reduced only when the error halved, the outer iterations crawled at a
@@ -239,18 +263,8 @@ TEST(ContactFclib, SingularRigidHeapsReachTheFclibTolerance)
 TEST(ContactFclib, ProximalPhaseSolvesTheGranularFlowOnAWall)
 {
   SKIP_WITHOUT_FCLIB();
-  BNewtonSolver::Settings settings;
-  settings.tolerance      = 1e-8;
-  settings.fclib_stopping = true;
-  settings.max_iterations = 300;
-  const BNewtonSolver  solver(settings);
-  const ContactProblem problem = read_fclib_problem(
-    fclib_file("siconos_dat/fc2d_granularflowonwall_02020_00213.dat"));
-  const BNewtonSolver::Result result = solver.solve(problem);
-  EXPECT_LE(result.residual, 1e-8) << result.summary();
-  const ConditionReport report =
-    check_contact_conditions(problem, result.p, result.u, 1e-6);
-  EXPECT_TRUE(report.passed()) << report.describe();
+  solve_with_fclib_stopping(
+    "siconos_dat/fc2d_granularflowonwall_02020_00213.dat");
 }
 
 
@@ -264,14 +278,8 @@ TEST(ContactFclib, ProximalPhaseSolvesTheGranularFlowOnAWall)
 TEST(ContactFclib, HyperstaticTowerTakesTheProximalPhaseFromTheStart)
 {
   SKIP_WITHOUT_FCLIB();
-  BNewtonSolver::Settings settings;
-  settings.tolerance      = 1e-8;
-  settings.fclib_stopping = true;
-  const BNewtonSolver  solver(settings);
-  const ContactProblem problem =
-    read_fclib_problem(fclib_file("siconos_dat/KaplasTower-i1061-4.hdf5.dat"));
-  const BNewtonSolver::Result result = solver.solve(problem);
-  EXPECT_LE(result.residual, 1e-8) << result.summary();
+  const BNewtonSolver::Result result =
+    solve_with_fclib_stopping("siconos_dat/KaplasTower-i1061-4.hdf5.dat");
   EXPECT_NE(result.diagnosis.find("singular Newton matrix at the start"),
             std::string::npos)
     << result.diagnosis;
@@ -280,9 +288,6 @@ TEST(ContactFclib, HyperstaticTowerTakesTheProximalPhaseFromTheStart)
                            [](const auto &record) {
                              return record.note.find("lm") != std::string::npos;
                            }));
-  const ConditionReport report =
-    check_contact_conditions(problem, result.p, result.u, 1e-6);
-  EXPECT_TRUE(report.passed()) << report.describe();
 }
 
 
