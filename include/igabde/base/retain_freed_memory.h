@@ -10,9 +10,11 @@ namespace igabde
   {
     /**
      * @brief While an object of this class lives, jemalloc keeps the pages
-     * that the program frees instead of returning them to the kernel
-     * (every arena's dirty and muzzy decay set to -1, "never"); the
-     * destructor restores each arena's decay, and with it the purging.
+     * of freed blocks of 8 MiB and more instead of returning them to the
+     * kernel (the dirty and muzzy decay of its arena for such blocks set
+     * to -1, "never", if that arena exists); the destructor restores the
+     * decay, and with it the purging. The other arenas keep their
+     * gradual decay.
      *
      * For loops that free and allocate the same large blocks again: the
      * full path's Newton iterations factorise the coupled matrix anew each
@@ -39,11 +41,19 @@ namespace igabde
       operator=(const RetainFreedMemory &) = delete;
 
       /**
-       * @brief The dirty decay of arena 0 in milliseconds (-1: never;
-       * 0: at once), or -2 without jemalloc. For tests.
+       * @brief The dirty decay in milliseconds (-1: never; 0: at once) of
+       * arena @p index, or -2 without jemalloc or without that arena.
+       * For tests.
        */
       static long
-      dirty_decay_of_first_arena();
+      dirty_decay(const unsigned int index);
+
+      /**
+       * @brief The index of the arena for large blocks (the first past
+       * jemalloc's automatic arenas), or -1 without jemalloc.
+       */
+      static int
+      large_block_arena();
 
     private:
       /// Arena index, dirty decay, muzzy decay as they were.
@@ -53,9 +63,6 @@ namespace igabde
         long         dirty, muzzy;
       };
       std::vector<Saved> saved;
-      /// The defaults for new arenas as they were.
-      bool have_defaults = false;
-      long default_dirty = 0, default_muzzy = 0;
     };
   } // namespace base
 } // namespace igabde
