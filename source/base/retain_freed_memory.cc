@@ -102,11 +102,10 @@ namespace igabde
       using namespace retain_freed_memory_detail;
       const mallctl_type mallctl = jemalloc_mallctl();
       long               value   = -2;
-      if (mallctl != nullptr &&
-          !read_decay(mallctl,
-                      "arena." + std::to_string(index) + ".dirty_decay_ms",
-                      value))
-        value = -2;
+      if (mallctl != nullptr)
+        read_decay(mallctl,
+                   "arena." + std::to_string(index) + ".dirty_decay_ms",
+                   value);
       return value;
     }
 

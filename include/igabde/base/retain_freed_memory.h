@@ -1,7 +1,6 @@
 #ifndef igabde_base_retain_freed_memory_h
 #define igabde_base_retain_freed_memory_h
 
-#include <utility>
 #include <vector>
 
 namespace igabde
