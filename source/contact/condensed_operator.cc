@@ -80,7 +80,13 @@ namespace igabde
                 sparse = true;
                 break;
               case CondensedOperator::LinearAlgebra::automatic:
-                sparse = m >= 300 && fill <= sparse_fill;
+                // From a few dozen rows on a sparse W's factorisations beat
+                // LAPACK's (measured on the FCLIB corpus, 2026-11-27, fill
+                // 0.02-0.08: Box_Stacks-i0122, 246 rows, 2.1 -> 0.44 ms per
+                // solve; Box_Stacks-i0035, 93 rows, 0.14 -> 0.06 ms;
+                // FrictionContactProblem00374, 56 rows, 0.027 -> 0.020 ms);
+                // at fill 0.2-0.3 (OneObject, 69-75 rows) they lose 3x.
+                sparse = m >= 48 && fill <= sparse_fill;
                 break;
             }
           if (sparse)

@@ -279,7 +279,7 @@ namespace igabde
       enum class LinearAlgebra
       {
         /// Sparse when W's fill is at most sparse_fill (and W has at least
-        /// 300 rows).
+        /// 48 rows).
         automatic,
         /// Dense LAPACK factorisations (Cholesky or LU).
         dense,

@@ -206,7 +206,7 @@ namespace igabde
       NewtonLinearAlgebra linear_algebra = NewtonLinearAlgebra::automatic;
 
       /**
-       * @brief With NewtonLinearAlgebra::automatic, W (n_rows() >= 300) is
+       * @brief With NewtonLinearAlgebra::automatic, W (n_rows() >= 48) is
        * treated as sparse when its share of non-zero entries is at most
        * this fraction.
        */
