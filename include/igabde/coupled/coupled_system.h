@@ -235,6 +235,14 @@ namespace igabde
       void
       apply_preconditioner(TrilinosWrappers::MPI::Vector       &dst,
                            const TrilinosWrappers::MPI::Vector &src) const;
+
+      /// GMRES with P on the Newton matrix to @p relative_tolerance of
+      /// |rhs|; false with the reason in @p why if it does not converge.
+      bool
+      solve_krylov(const TrilinosWrappers::MPI::Vector &rhs,
+                   TrilinosWrappers::MPI::Vector       &x,
+                   const double                         relative_tolerance,
+                   std::string                         &why) const;
     };
 
     /**
