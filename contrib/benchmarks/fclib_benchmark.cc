@@ -162,12 +162,15 @@ main(int argc, char **argv)
                 << " | " << std::setprecision(3) << mu_min;
       if (mu_max > mu_min)
         std::cout << "-" << mu_max;
-      std::cout << " | " << r.iterations << " | " << std::scientific
-                << std::setprecision(1) << r.residual << " | "
-                << r.balanced_residual << " | " << (ok ? "yes" : "no") << " | "
-                << (checks ? "pass" : "FAIL") << " | " << std::fixed
-                << std::setprecision(ms < 10. ? 3 : 1) << ms << " | "
-                << diagnosis << " |" << std::defaultfloat << std::endl;
+      std::cout << " | " << r.iterations;
+      if (r.sweeps > 0)
+        std::cout << " + " << r.sweeps << " sweeps";
+      std::cout << " | " << std::scientific << std::setprecision(1)
+                << r.residual << " | " << r.balanced_residual << " | "
+                << (ok ? "yes" : "no") << " | " << (checks ? "pass" : "FAIL")
+                << " | " << std::fixed << std::setprecision(ms < 10. ? 3 : 1)
+                << ms << " | " << diagnosis << " |" << std::defaultfloat
+                << std::endl;
     }
   std::cout << "\nsolved (relative natural map <= 1e-8): 3D " << solved[3]
             << "/" << attempted[3] << ", 2D " << solved[2] << "/"

@@ -279,18 +279,49 @@ namespace igabde
           // Phase 1: Newton with the chosen radius; on a path that
           // prefers it, a singular first Newton matrix hands over to the
           // proximal phase (phase 4) at once.
-          const FrictionRadius radius         = settings.radius;
-          ContactIterate       x1             = x;
-          driver.leave_when_singular_at_start = settings.proximal;
-          outcome                             = driver.newton(data,
-                                  bde_law(op, data, r_factor, radius),
-                                  x1,
-                                  settings.tolerance,
-                                  phase_name("newton", radius),
-                                  true,
-                                  settings.max_iterations);
-          driver.leave_when_singular_at_start = false;
-          reasons = phase_name("newton", radius) + ": " + outcome.reason;
+          const FrictionRadius radius = settings.radius;
+          // Phase 0: a few Gauss-Seidel sweeps where W is sparse (rigid
+          // bodies: each contact coupled to the few that share its
+          // bodies), each a pass over W's non-zeros, far cheaper than one
+          // Newton factorisation; where they do not solve the problem, the
+          // Newton phases start from the start as without them.
+          const auto *Ws = op.sparse_flexibility(data);
+          if (settings.gauss_seidel_first_sweeps > 0 && Ws != nullptr &&
+              na == 0 && op.dense_flexibility() != nullptr)
+            {
+              ContactIterate     xg     = x;
+              unsigned int       sweeps = 0;
+              GaussSeidelOptions first;
+              first.max_sweeps         = settings.gauss_seidel_first_sweeps;
+              first.check_every        = 1;
+              first.offer_best         = false;
+              first.quit_when_too_slow = true;
+              outcome                  = gauss_seidel_phase(driver,
+                                           data,
+                                           bde_law(op, data, r_factor, radius),
+                                           *op.dense_flexibility(),
+                                           Ws,
+                                           xg,
+                                           first,
+                                           sweeps);
+              result.sweeps += sweeps;
+              reasons = "gauss-seidel first: " + outcome.reason;
+            }
+          if (!outcome.converged)
+            {
+              ContactIterate x1                   = x;
+              driver.leave_when_singular_at_start = settings.proximal;
+              outcome                             = driver.newton(data,
+                                      bde_law(op, data, r_factor, radius),
+                                      x1,
+                                      settings.tolerance,
+                                      phase_name("newton", radius),
+                                      true,
+                                      settings.max_iterations);
+              driver.leave_when_singular_at_start = false;
+              reasons += (reasons.empty() ? "" : "; ") +
+                         phase_name("newton", radius) + ": " + outcome.reason;
+            }
           const bool proximal_now = driver.left_singular_at_start;
           // Phase 2: the other radius, from the best iterate.
           if (!outcome.converged && !proximal_now && data.has_friction() &&
@@ -343,14 +374,18 @@ namespace igabde
               op.set_proximal_shift(0.);
               ContactIterate     xg     = driver.have_best ? driver.best_x : x;
               unsigned int       sweeps = 0;
-              const PhaseOutcome gs     = gauss_seidel_phase(
+              GaussSeidelOptions options;
+              options.max_sweeps    = settings.gauss_seidel_sweeps;
+              const PhaseOutcome gs = gauss_seidel_phase(
                 driver,
                 data,
                 bde_law(op, data, settings.r_factor, settings.radius),
                 *W,
+                nullptr,
                 xg,
-                settings.gauss_seidel_sweeps,
+                options,
                 sweeps);
+              result.sweeps += sweeps;
               outcome = gs;
               reasons += "; gauss-seidel: " + gs.reason;
             }

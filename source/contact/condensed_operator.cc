@@ -746,6 +746,15 @@ namespace igabde
 
 
 
+    const Eigen::SparseMatrix<double, Eigen::RowMajor> *
+    CondensedOperator::sparse_flexibility(const ContactData &data) const
+    {
+      const System &sys = storage->system(data.n_components, data.G);
+      return sys.sparse ? &sys.Ws : nullptr;
+    }
+
+
+
     void
     CondensedOperator::set_proximal_shift(const double eps)
     {

@@ -51,8 +51,11 @@ namespace igabde
     {
       std::ostringstream s;
       s << (converged ? "converged" : "NOT converged") << " after "
-        << iterations << " iterations, relative natural-map residual "
-        << std::scientific << std::setprecision(4) << residual << " (balanced "
+        << iterations << " iterations";
+      if (sweeps > 0)
+        s << " and " << sweeps << " Gauss-Seidel sweeps";
+      s << ", relative natural-map residual " << std::scientific
+        << std::setprecision(4) << residual << " (balanced "
         << balanced_residual << ")";
       if (alpha.size() > 0)
         s << ", equilibrium residual " << equilibrium_residual;

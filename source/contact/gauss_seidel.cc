@@ -64,26 +64,122 @@ namespace igabde
 
 
 
+    bool
+    solve_local_pair_law(const PairLawModel &law,
+                         const ContactData  &data,
+                         const unsigned int  c,
+                         const double       *A,
+                         const double       *c_u,
+                         double             *p)
+    {
+      const unsigned int d = data.n_components;
+      Eigen::Vector3d    x = Eigen::Vector3d::Zero(), u, H, x_try, u_try, H_try;
+      Eigen::Matrix3d    Aw = Eigen::Matrix3d::Identity();
+      for (unsigned int a = 0; a < d; ++a)
+        {
+          x[a] = p[a];
+          for (unsigned int b = 0; b < d; ++b)
+            Aw(a, b) = A[a * d + b];
+        }
+      PairPiece  piece;
+      const auto evaluate = [&](const Eigen::Vector3d &y,
+                                Eigen::Vector3d       &uy,
+                                Eigen::Vector3d       &Hy,
+                                PairPiece             *py) {
+        uy.setZero();
+        Hy.setZero();
+        for (unsigned int a = 0; a < d; ++a)
+          {
+            uy[a] = c_u[a];
+            for (unsigned int b = 0; b < d; ++b)
+              uy[a] += Aw(a, b) * y[b];
+          }
+        law.evaluate(data, c, y.data(), uy.data(), Hy.data(), py);
+        return Hy.head(d).squaredNorm();
+      };
+      double theta = evaluate(x, u, H, &piece);
+      // H is exactly 0 on a solution of the piecewise linear branches
+      // (open, stick, closed) and to rounding on a slip one: stop at the
+      // rounding of H's terms.
+      const auto small = [&](const double th) {
+        const double scale =
+          std::max(x.head(d).cwiseAbs().maxCoeff(),
+                   u.head(d).cwiseAbs().maxCoeff() *
+                     std::max(1., piece.A.cwiseAbs().maxCoeff()));
+        return std::sqrt(th) <= 1e-14 * scale;
+      };
+      for (unsigned int it = 0; it < 30; ++it)
+        {
+          if (theta == 0. || small(theta))
+            {
+              for (unsigned int a = 0; a < d; ++a)
+                p[a] = x[a];
+              return true;
+            }
+          Eigen::Matrix3d J = Eigen::Matrix3d::Identity();
+          J.topLeftCorner(d, d) =
+            piece.A.topLeftCorner(d, d) * Aw.topLeftCorner(d, d) +
+            piece.B.topLeftCorner(d, d);
+          const Eigen::FullPivLU<Eigen::Matrix3d> lu(J);
+          if (!lu.isInvertible())
+            return false;
+          Eigen::Vector3d rhs      = Eigen::Vector3d::Zero();
+          rhs.head(d)              = -H.head(d);
+          const Eigen::Vector3d dx = lu.solve(rhs);
+          // Armijo backtracking on |H|^2.
+          double    t = 1., theta_try = 0.;
+          PairPiece piece_try;
+          bool      accepted = false;
+          for (unsigned int k = 0; k < 20 && !accepted; ++k, t *= 0.5)
+            {
+              x_try     = x + t * dx;
+              theta_try = evaluate(x_try, u_try, H_try, &piece_try);
+              accepted  = theta_try <= (1. - 1e-4 * t) * theta;
+            }
+          if (!accepted)
+            return false;
+          x     = x_try;
+          u     = u_try;
+          H     = H_try;
+          piece = piece_try;
+          theta = theta_try;
+        }
+      if (!small(theta))
+        return false;
+      for (unsigned int a = 0; a < d; ++a)
+        p[a] = x[a];
+      return true;
+    }
+
+
+
     PhaseOutcome
     gauss_seidel_phase(NewtonDriver          &driver,
                        const ContactData     &data,
                        const PairLawModel    &law,
                        const Eigen::MatrixXd &W,
-                       ContactIterate        &x,
-                       const unsigned int     max_sweeps,
-                       unsigned int          &sweeps)
+                       const Eigen::SparseMatrix<double, Eigen::RowMajor> *Ws,
+                       ContactIterate                                     &x,
+                       const GaussSeidelOptions &options,
+                       unsigned int             &sweeps)
     {
-      const unsigned int d = data.n_components;
+      const unsigned int d          = data.n_components;
+      const unsigned int max_sweeps = options.max_sweeps;
       PhaseOutcome       outcome;
-      outcome.reason    = "sweep limit (" + std::to_string(max_sweeps) + ")";
-      sweeps            = 0;
-      Eigen::VectorXd u = W * x.p + data.q;
-      double          A[4], c[2], p_new[2];
+      outcome.reason = "sweep limit (" + std::to_string(max_sweeps) + ")";
+      sweeps         = 0;
+      // With a dense W the running u = W p + q, updated by columns; with a
+      // sparse W each pair's u is read from its rows when it is visited.
+      Eigen::VectorXd u;
+      if (Ws == nullptr)
+        u = W * x.p + data.q;
+      double A[9], c[3], p_new[3];
       // The error at the last check, and the best one at the last mark (every
       // 100 sweeps).
       double       best         = std::numeric_limits<double>::infinity();
       double       best_at_mark = best;
       unsigned int mark         = 0;
+      double       last_wanted  = best;
       while (sweeps < max_sweeps)
         {
           for (unsigned int i = 0; i < data.n_contacts; ++i)
@@ -91,7 +187,18 @@ namespace igabde
               const unsigned int r = i * d;
               for (unsigned int a = 0; a < d; ++a)
                 {
-                  c[a] = u(r + a);
+                  if (Ws == nullptr)
+                    c[a] = u(r + a);
+                  else
+                    {
+                      c[a] = data.q(r + a);
+                      for (Eigen::SparseMatrix<double,
+                                               Eigen::RowMajor>::InnerIterator
+                             it(*Ws, r + a);
+                           it;
+                           ++it)
+                        c[a] += it.value() * x.p(it.col());
+                    }
                   for (unsigned int b = 0; b < d; ++b)
                     {
                       A[a * d + b] = W(r + a, r + b);
@@ -99,20 +206,26 @@ namespace igabde
                     }
                 }
               const double mu = data.has_friction() ? data.mu[i] : 0.;
-              if (!solve_local_pair(d, A, c, mu, p_new))
+              for (unsigned int b = 0; b < d; ++b)
+                p_new[b] = x.p(r + b);
+              const bool solved =
+                d <= 2 ? solve_local_pair(d, A, c, mu, p_new) :
+                         solve_local_pair_law(law, data, i, A, c, p_new);
+              if (!solved)
                 continue;
               for (unsigned int b = 0; b < d; ++b)
                 {
                   const double dp = p_new[b] - x.p(r + b);
                   if (dp != 0.)
                     {
-                      u.noalias() += W.col(r + b) * dp;
+                      if (Ws == nullptr)
+                        u.noalias() += W.col(r + b) * dp;
                       x.p(r + b) = p_new[b];
                     }
                 }
             }
           ++sweeps;
-          if (sweeps % 10 != 0 && sweeps != max_sweeps)
+          if (sweeps % options.check_every != 0 && sweeps != max_sweeps)
             continue;
           // The error of the exact law, from u = W p + q recomputed by the
           // stopping test. The running u is not re-synchronised with it:
@@ -130,7 +243,8 @@ namespace igabde
                                                  balanced,
                                                  eq,
                                                  disp);
-          driver.offer_best(x, balanced, eq);
+          if (options.offer_best)
+            driver.offer_best(x, balanced, eq);
           if (driver.settings.log)
             driver.log() << "  nsgs sweep " << sweeps << ": error " << err
                          << ", balanced " << balanced << '\n';
@@ -147,7 +261,22 @@ namespace igabde
               outcome.reason = "non-finite error";
               break;
             }
-          best = std::min(best, balanced);
+          // The error the stopping test asks for.
+          const double wanted =
+            driver.settings.fclib_stopping ? err : std::max(err, balanced);
+          if (options.quit_when_too_slow && sweeps > options.check_every)
+            {
+              const double rate = wanted / last_wanted;
+              if (!(rate < 1.) || wanted * std::pow(rate, max_sweeps - sweeps) >
+                                    driver.settings.tolerance)
+                {
+                  outcome.reason = "too slow (the error fell by " +
+                                   std::to_string(rate) + " per check)";
+                  break;
+                }
+            }
+          last_wanted = wanted;
+          best        = std::min(best, balanced);
           if (sweeps - mark >= 100)
             {
               if (best > 0.5 * best_at_mark)

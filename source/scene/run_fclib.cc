@@ -263,12 +263,15 @@ namespace igabde
         contact::check_contact_conditions(problem, result.p, result.u);
 
       log << "  B-Newton: " << (solved ? "solved" : "not solved") << " after "
-          << result.iterations << " iterations, FCLIB error " << std::scientific
-          << std::setprecision(4) << error << " (balanced "
-          << result.balanced_residual << ")" << std::defaultfloat
-          << std::setprecision(6) << ", open/stick/slip/closed "
-          << result.n_open << "/" << result.n_stick << "/" << result.n_slip
-          << "/" << result.n_closed
+          << result.iterations << " iterations"
+          << (result.sweeps > 0 ? " and " + std::to_string(result.sweeps) +
+                                    " Gauss-Seidel sweeps" :
+                                  std::string())
+          << ", FCLIB error " << std::scientific << std::setprecision(4)
+          << error << " (balanced " << result.balanced_residual << ")"
+          << std::defaultfloat << std::setprecision(6)
+          << ", open/stick/slip/closed " << result.n_open << "/"
+          << result.n_stick << "/" << result.n_slip << "/" << result.n_closed
           << (solved ? std::string() : ": " + result.diagnosis) << std::endl;
 
       summary["status"]           = solved ? "ok" : "failed";
@@ -279,6 +282,7 @@ namespace igabde
       summary["tolerance"]        = settings.tolerance;
       summary["max_iterations"]   = settings.max_iterations;
       summary["iterations"]       = result.iterations;
+      summary["sweeps"]           = result.sweeps;
       summary["n_open"]           = result.n_open;
       summary["n_stick"]          = result.n_stick;
       summary["n_slip"]           = result.n_slip;

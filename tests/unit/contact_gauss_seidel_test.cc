@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <random>
 
@@ -144,4 +145,151 @@ TEST(ContactGaussSeidel, PhaseGivesTheNewtonAnswerOnA2DProblem)
   settings.gauss_seidel_sweeps   = 0;
   const BNewtonSolver::Result no = BNewtonSolver(settings).solve(problem);
   EXPECT_FALSE(no.converged) << no.diagnosis;
+}
+
+
+
+namespace
+{
+  // solve_local_pair_law() on one 3D pair u = A p + c with the B-Newton's
+  // own law (Christensen-Pang radius), from p = 0.
+  std::array<double, 3>
+  solve_3d_pair(const Eigen::Matrix3d &A,
+                const Eigen::Vector3d &c,
+                const double           mu,
+                bool                  &solved)
+  {
+    ContactProblem problem;
+    problem.n_components = 3;
+    problem.n_contacts   = 1;
+    problem.W            = A;
+    problem.q            = c;
+    problem.mu.assign(1, mu);
+    const CondensedOperator op(problem.W);
+    const BdeLaw            law(op.weights(problem, 1.),
+                     op.weights(problem, 1.),
+                     FrictionRadius::christensen_pang);
+    std::array<double, 9>   a;
+    for (unsigned int i = 0; i < 3; ++i)
+      for (unsigned int j = 0; j < 3; ++j)
+        a[3 * i + j] = A(i, j);
+    std::array<double, 3> p = {{0., 0., 0.}};
+    solved =
+      solve_local_pair_law(law, problem, 0, a.data(), c.data(), p.data());
+    return p;
+  }
+
+  // Coulomb's law at (p, u = A p + c): u_n >= 0, p_n >= 0, u_n p_n = 0,
+  // |p_t| <= mu p_n, and p_t = -mu p_n u_t / |u_t| where u_t != 0.
+  void
+  expect_law_3d(const Eigen::Matrix3d       &A,
+                const Eigen::Vector3d       &c,
+                const double                 mu,
+                const std::array<double, 3> &p_array,
+                const double                 tol)
+  {
+    const Eigen::Vector3d p(p_array[0], p_array[1], p_array[2]);
+    const Eigen::Vector3d u = A * p + c;
+    EXPECT_GE(u[0], -tol);
+    EXPECT_GE(p[0], -tol);
+    EXPECT_NEAR(u[0] * p[0], 0., tol);
+    EXPECT_LE(p.tail(2).norm(), mu * p[0] + tol);
+    if (u.tail(2).norm() > tol)
+      {
+        const Eigen::Vector2d slip = -mu * p[0] * u.tail(2).normalized();
+        EXPECT_NEAR(p[1], slip[0], tol);
+        EXPECT_NEAR(p[2], slip[1], tol);
+      }
+  }
+} // namespace
+
+
+
+// The local 3D solver against hand-derived pairs, A = diag(2, 1, 1),
+// mu = 0.5, each c built from its answer:
+//  - open: c_n = 0.1 >= 0, so p = 0;
+//  - stick: p* = (1, 0.2, -0.1), |p_t| = 0.22 <= 0.5, c = -A p*;
+//  - slip: p* = (1, -0.3, -0.4) (|p_t| = mu p_n, against u_t = (0.3, 0.4)):
+//    c_n = -2 gives u_n = 0, c_t = u_t - p_t = (0.6, 0.8); the stick
+//    candidate -A^-1 c = (1, -0.6, -0.8) lies outside the cone.
+// Then 200 random pairs (A = I + B B^T / 3 with B uniform in [-1, 1], c
+// uniform in [-1, 1]^3, mu in [0.1, 1]) against the law's conditions, and
+// the 2D branch of the solver against the exact 2D solver. The local
+// Newton stops at rounding (1e-14 of the pair's terms); 1e-10 leaves
+// margin for A's conditioning (eigenvalues between 1 and 3).
+TEST(ContactGaussSeidel, LocalPairLawSolves3DPairs)
+{
+  const Eigen::Matrix3d A    = Eigen::Vector3d(2., 1., 1.).asDiagonal();
+  const double          mu   = 0.5;
+  bool                  done = false;
+
+  const auto open = solve_3d_pair(A, Eigen::Vector3d(0.1, 3., -1.), mu, done);
+  ASSERT_TRUE(done);
+  EXPECT_EQ(open[0], 0.);
+  EXPECT_EQ(open[1], 0.);
+  EXPECT_EQ(open[2], 0.);
+
+  const auto stick =
+    solve_3d_pair(A, Eigen::Vector3d(-2., -0.2, 0.1), mu, done);
+  ASSERT_TRUE(done);
+  EXPECT_NEAR(stick[0], 1., 1e-13);
+  EXPECT_NEAR(stick[1], 0.2, 1e-13);
+  EXPECT_NEAR(stick[2], -0.1, 1e-13);
+
+  const Eigen::Vector3d c_slip(-2., 0.6, 0.8);
+  const auto            slip = solve_3d_pair(A, c_slip, mu, done);
+  ASSERT_TRUE(done);
+  EXPECT_NEAR(slip[0], 1., 1e-12);
+  EXPECT_NEAR(slip[1], -0.3, 1e-12);
+  EXPECT_NEAR(slip[2], -0.4, 1e-12);
+  expect_law_3d(A, c_slip, mu, slip, 1e-12);
+
+  std::mt19937                           gen(11);
+  std::uniform_real_distribution<double> dist(-1., 1.);
+  unsigned int                           n_solved = 0;
+  for (unsigned int k = 0; k < 200; ++k)
+    {
+      Eigen::Matrix3d B;
+      for (unsigned int i = 0; i < 9; ++i)
+        B(i / 3, i % 3) = dist(gen);
+      const Eigen::Matrix3d Ak =
+        Eigen::Matrix3d::Identity() + B * B.transpose() / 3.;
+      const Eigen::Vector3d ck(dist(gen), dist(gen), dist(gen));
+      const double          muk = 0.55 + 0.45 * dist(gen);
+      SCOPED_TRACE(k);
+      const auto p = solve_3d_pair(Ak, ck, muk, done);
+      if (!done)
+        continue;
+      ++n_solved;
+      expect_law_3d(Ak, ck, muk, p, 1e-10);
+    }
+  // A local Newton may fail on a kink (the phase then keeps the pair's
+  // old force); on well-conditioned pairs that is the exception.
+  EXPECT_GE(n_solved, 190u);
+
+  // 2D: the same law's branch against the exact solver (the first test's
+  // pairs).
+  ContactProblem problem;
+  problem.n_components = 2;
+  problem.n_contacts   = 1;
+  problem.W.resize(2, 2);
+  problem.W << 2., 0.5, 0.5, 1.;
+  problem.q = Eigen::Vector2d(-1.75, 0.3);
+  problem.mu.assign(1, 0.5);
+  const CondensedOperator op(problem.W);
+  const BdeLaw            law(op.weights(problem, 1.),
+                   op.weights(problem, 1.),
+                   FrictionRadius::christensen_pang);
+  const double            A2[4] = {2., 0.5, 0.5, 1.};
+  for (const Eigen::Vector2d &c2 : {Eigen::Vector2d(-2.1, -0.7),
+                                    Eigen::Vector2d(-1.75, 0.3),
+                                    Eigen::Vector2d(-2.25, -1.3),
+                                    Eigen::Vector2d(0.1, 3.)})
+    {
+      double exact[2] = {0., 0.}, newton[2] = {0., 0.};
+      ASSERT_TRUE(solve_local_pair(2, A2, c2.data(), 0.5, exact));
+      ASSERT_TRUE(solve_local_pair_law(law, problem, 0, A2, c2.data(), newton));
+      EXPECT_NEAR(newton[0], exact[0], 1e-13);
+      EXPECT_NEAR(newton[1], exact[1], 1e-13);
+    }
 }

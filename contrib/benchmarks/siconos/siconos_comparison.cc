@@ -94,11 +94,13 @@ namespace
 
   struct Outcome
   {
-    bool        ran        = false;
-    double      error      = 1.;
-    double      ms         = 0.;
-    int         iterations = 0;
-    double      tolerance  = 0.;
+    bool   ran        = false;
+    double error      = 1.;
+    double ms         = 0.;
+    int    iterations = 0;
+    /// igabde's Gauss-Seidel sweeps (not counted in iterations).
+    int         sweeps    = 0;
+    double      tolerance = 0.;
     std::string note;
   };
 
@@ -282,8 +284,10 @@ namespace
       return "no: " + o.note + " | — | —";
     std::ostringstream s;
     s << (o.error <= 1e-8 ? "yes" : "no") << " (" << std::scientific
-      << std::setprecision(0) << o.error << ") | " << o.iterations << " | "
-      << std::fixed << std::setprecision(o.ms < 10 ? 2 : 0) << o.ms;
+      << std::setprecision(0) << o.error << ") | " << o.iterations;
+    if (o.sweeps > 0)
+      s << " + " << o.sweeps << " sweeps";
+    s << " | " << std::fixed << std::setprecision(o.ms < 10 ? 2 : 0) << o.ms;
     return s.str();
   }
 } // namespace
@@ -461,6 +465,7 @@ main(int argc, char **argv)
         }
       ours.ran        = true;
       ours.iterations = r.iterations;
+      ours.sweeps     = r.sweeps;
       ours.error      = fclib_error(problem, r.p);
 
       const bool    three = problem.n_components == 3;

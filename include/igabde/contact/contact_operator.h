@@ -5,6 +5,7 @@
 #include <igabde/contact/contact_problem.h>
 
 #include <Eigen/Dense>
+#include <Eigen/SparseCore>
 
 #include <memory>
 #include <string>
@@ -195,6 +196,20 @@ namespace igabde
         return nullptr;
       }
 
+      /**
+       * @brief W in compressed rows, unshifted, where the operator keeps W
+       * sparse for @p data's components (mostly zero: a condensed W of
+       * rigid bodies, each contact coupled to the few that share its
+       * bodies); nullptr otherwise. A nonsmooth Gauss-Seidel sweep over
+       * it costs one pass over W's non-zero entries.
+       */
+      virtual const Eigen::SparseMatrix<double, Eigen::RowMajor> *
+      sparse_flexibility(const ContactData &data) const
+      {
+        (void)data;
+        return nullptr;
+      }
+
       /** @brief Whether newton_step() is iterative (inexact Newton). */
       virtual bool
       iterative() const
@@ -325,6 +340,9 @@ namespace igabde
 
       const Eigen::MatrixXd *
       dense_flexibility() const override;
+
+      const Eigen::SparseMatrix<double, Eigen::RowMajor> *
+      sparse_flexibility(const ContactData &data) const override;
 
       void
       set_proximal_shift(const double eps) override;

@@ -59,6 +59,11 @@ namespace igabde
       Eigen::VectorXd alpha;
       /** @brief Iterations done (all phases). */
       unsigned int iterations = 0;
+      /**
+       * @brief Nonsmooth Gauss-Seidel sweeps done (all phases; not counted
+       * in @p iterations).
+       */
+      unsigned int sweeps = 0;
       /** @brief Final relative natural-map error (FCLIB, /|q|). */
       double residual = 0.;
       /** @brief Final balanced_natural_map_error(). */
@@ -201,6 +206,17 @@ namespace igabde
        * frictionless, no floating bodies; 0: no such phase).
        */
       unsigned int gauss_seidel_sweeps = 2000;
+
+      /**
+       * @brief Sweeps of the nonsmooth Gauss-Seidel phase tried before
+       * the Newton phases where W is kept sparse (no floating bodies; 0:
+       * none). The error is measured after every sweep; if the sweeps do
+       * not solve the problem, Newton starts from the start as without
+       * them. Each costs a pass over W's non-zeros: ten cost less than one
+       * sparse factorisation of the Newton matrix on the FCLIB rigid-body
+       * problems.
+       */
+      unsigned int gauss_seidel_first_sweeps = 10;
 
       /** @brief Storage and factorisation of the Newton matrix. */
       NewtonLinearAlgebra linear_algebra = NewtonLinearAlgebra::automatic;

@@ -29,16 +29,58 @@ namespace igabde
                      double            *p);
 
     /**
+     * @brief The local problem of one pair in any dimension, H(p) = 0 for
+     * the pair's law @p law (pair @p c of @p data) at u = A p + c_u: a
+     * damped semismooth Newton on the pair's three (or two, one) unknowns,
+     * whose matrix is the law's piece, dH = A_piece du + B_piece dp, with
+     * du = A dp; from the pair's current @p p. Used where the branches
+     * have no closed form (3D friction: the slip direction).
+     * @param A The pair's diagonal block of W (row-major, d x d).
+     * @return false if it does not converge in 30 steps or a step finds no
+     * decrease (the pair's p is then left as it was).
+     */
+    bool
+    solve_local_pair_law(const PairLawModel &law,
+                         const ContactData  &data,
+                         const unsigned int  c,
+                         const double       *A,
+                         const double       *c_u,
+                         double             *p);
+
+    /** @brief How a Gauss-Seidel phase runs. */
+    struct GaussSeidelOptions
+    {
+      /// Sweeps at most.
+      unsigned int max_sweeps = 2000;
+      /// The stopping test every this many sweeps.
+      unsigned int check_every = 10;
+      /// Whether the iterates are offered to the driver as its best.
+      bool offer_best = true;
+      /**
+       * Whether the phase ends as soon as the error's rate over the last
+       * check, kept up to max_sweeps, would not reach the tolerance (a
+       * first try that is to cost little where it does not succeed).
+       */
+      bool quit_when_too_slow = false;
+    };
+
+    /**
      * @brief The nonsmooth Gauss-Seidel phase (NSGS; Jean and Moreau's
-     * method, Siconos' FC2D_NSGS) on u = W p + q: sweeps over the pairs,
-     * each pair's p solved exactly (solve_local_pair()) with the others'
-     * forces fixed, u updated by that pair's columns of W (O(n) per pair,
-     * O(n^2) per sweep). Slow (linear) but monotone on symmetric positive
-     * definite W where Newton's active sets cycle. The error is measured
-     * with the driver's stopping test every ten sweeps; the phase ends when
-     * it passes, after @p max_sweeps sweeps, at the time limit, or when the
-     * error has not halved in 100 sweeps (stall). 2D friction or
-     * frictionless, no floating bodies.
+     * method, Siconos' NSGS) on u = W p + q: sweeps over the pairs, each
+     * pair's p solved with the others' forces fixed (2D and frictionless:
+     * exactly, solve_local_pair(); 3D: solve_local_pair_law()). With a
+     * dense W, u is kept and updated by the pair's columns (O(n) per pair,
+     * O(n^2) per sweep); with a sparse W (@p Ws), the pair's u is read
+     * from its rows (a sweep is one pass over W's non-zeros). Slow
+     * (linear) but monotone on symmetric positive definite W where
+     * Newton's active sets cycle, and fast where W is nearly block
+     * diagonal (stacks of rigid bodies). The error is measured with the
+     * driver's stopping test every options.check_every sweeps; the phase
+     * ends when it passes, after options.max_sweeps sweeps, at the time
+     * limit, or when the error has not halved in 100 sweeps (stall). No
+     * floating bodies.
+     * @param W The dense W (its diagonal blocks are read in both cases).
+     * @param Ws W in compressed rows, or nullptr.
      * @param x The start (the driver's best iterate), the result on return.
      * @param sweeps The sweeps done.
      */
@@ -47,9 +89,10 @@ namespace igabde
                        const ContactData     &data,
                        const PairLawModel    &law,
                        const Eigen::MatrixXd &W,
-                       ContactIterate        &x,
-                       const unsigned int     max_sweeps,
-                       unsigned int          &sweeps);
+                       const Eigen::SparseMatrix<double, Eigen::RowMajor> *Ws,
+                       ContactIterate                                     &x,
+                       const GaussSeidelOptions &options,
+                       unsigned int             &sweeps);
   } // namespace contact
 } // namespace igabde
 
