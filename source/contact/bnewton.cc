@@ -309,16 +309,15 @@ namespace igabde
             }
           if (!outcome.converged)
             {
-              ContactIterate x1                   = x;
-              driver.leave_when_singular_at_start = settings.proximal;
-              outcome                             = driver.newton(data,
+              ContactIterate x1 = x;
+              outcome           = driver.newton(data,
                                       bde_law(op, data, r_factor, radius),
                                       x1,
                                       settings.tolerance,
                                       phase_name("newton", radius),
                                       true,
-                                      settings.max_iterations);
-              driver.leave_when_singular_at_start = false;
+                                      settings.max_iterations,
+                                      settings.proximal);
               reasons += (reasons.empty() ? "" : "; ") +
                          phase_name("newton", radius) + ": " + outcome.reason;
             }

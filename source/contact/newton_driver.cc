@@ -390,7 +390,8 @@ namespace igabde
                          const double        tolerance,
                          const std::string  &phase,
                          const bool          on_original,
-                         const unsigned int  budget)
+                         const unsigned int  budget,
+                         const bool          leave_when_singular_at_start)
     {
       const double       sigma = settings.armijo_sigma;
       const double       beta  = settings.armijo_beta;

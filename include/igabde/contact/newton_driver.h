@@ -244,7 +244,11 @@ namespace igabde
        * @brief One Newton phase on @p data (the original, or a proximal
        * subproblem) from @p x, to @p tolerance, at most @p budget
        * iterations; @p on_original: iterates are candidates for the
-       * answer.
+       * answer. With @p leave_when_singular_at_start the phase ends before
+       * any step when its first Newton matrix is singular and the operator
+       * prefers the proximal phase then
+       * (ContactOperator::proximal_for_singular_start();
+       * left_singular_at_start is set).
        */
       PhaseOutcome
       newton(const ContactData  &data,
@@ -253,7 +257,8 @@ namespace igabde
              const double        tolerance,
              const std::string  &phase,
              const bool          on_original,
-             const unsigned int  budget);
+             const unsigned int  budget,
+             const bool          leave_when_singular_at_start = false);
 
       /**
        * @brief The stopping test at x (see the class documentation); the
@@ -335,11 +340,8 @@ namespace igabde
       /// Iterations whose Newton matrix was singular (Levenberg-Marquardt
       /// or steepest-descent steps).
       unsigned int singular_iterations = 0;
-      /// newton() ends the phase, before any step, when the first Newton
-      /// matrix is singular and the operator prefers the proximal phase
-      /// then (ContactOperator::proximal_for_singular_start()).
-      bool leave_when_singular_at_start = false;
-      /// Set when a phase ended so.
+      /// Set when a phase asked to leave when its first Newton matrix is
+      /// singular ended so (newton()).
       bool           left_singular_at_start = false;
       ContactIterate best_x, converged_x;
     };
