@@ -75,7 +75,11 @@ namespace igabde
      *    the phase ends with "line-search failure";
      *  - a phase also ends on stagnation: no 0.1 % decrease of the best
      *    theta in Settings::stall_iterations iterations.
-     * Phases: (1) Newton with Settings::radius; (2) if that ends without
+     * Phases: (0) where the operator keeps W sparse and no body floats, at
+     * most Settings::gauss_seidel_first_sweeps nonsmooth Gauss-Seidel
+     * sweeps from the start, left as soon as their rate would not reach the
+     * tolerance; if they do not converge, phase 1 starts from the start;
+     * (1) Newton with Settings::radius; (2) if that ends without
      * convergence and Settings::switch_radius, Newton with the other radius
      * from the best iterate so far; (2b) if Settings::switch_radius and
      * r_factor is more than ten times away from 1, Newton with r_factor = 1
@@ -89,8 +93,10 @@ namespace igabde
      * Settings::proximal, proximal-point outer iterations (Acary et al.
      * 2018, PPA-NSN): the subproblem W + eps I, q - eps p_k (centred on the
      * current iterate, strongly monotone) is solved by Newton, eps starting
-     * at max_i W_ii and divided by 10 after every outer step that halved
-     * the error, multiplied by 10 after a failed inner solve. The Newton
+     * at max_i W_ii, divided by 10 after every solved subproblem and
+     * multiplied by 10 after a failed inner solve; on a sparse symmetric W
+     * a singular first Newton matrix of phase 1 hands over to it at once
+     * (ContactOperator::proximal_for_singular_start()). The Newton
      * phases share the iteration budget Settings::max_iterations (inner
      * iterations count).
      *
@@ -101,6 +107,8 @@ namespace igabde
      * displacement units and may be unreachable in floating point when
      * they are scaled very differently), and (with floating bodies)
      * |G^T p - b| <= tol * max(|b|, |G^T| |p|); tol = Settings::tolerance.
+     * With Settings::fclib_stopping the FCLIB measure alone decides (the
+     * balanced error's rounding-floor clause does not apply).
      * Otherwise the result says why (Result::diagnosis): iteration limit,
      * stall, line-search failure, non-finite values, time limit. The
      * returned p, u are the best iterate seen, never a diverged one.
