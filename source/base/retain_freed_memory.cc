@@ -61,11 +61,10 @@ namespace igabde
       // freed at once. The automatic arenas keep their gradual decay:
       // retaining their pages too cost about 6 % of peak memory on the
       // contact-patch family's full path and gained nothing.
-      unsigned int n_auto = 0;
-      size                = sizeof(n_auto);
-      if (mallctl("opt.narenas", &n_auto, &size, nullptr, 0) != 0)
+      const int first = large_block_arena();
+      if (first < 0)
         return;
-      for (unsigned int i = n_auto; i < n; ++i)
+      for (unsigned int i = first; i < n; ++i)
         {
           const std::string arena = "arena." + std::to_string(i) + ".";
           Saved             s{i, 0, 0};
