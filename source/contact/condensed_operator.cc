@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numeric>
 #include <string>
 
 namespace igabde
@@ -37,12 +38,12 @@ namespace igabde
         unsigned int n_contacts;
       };
 
-      // W's structure: one pass over W, in tiles for the cache, for its
-      // fill and whether it is symmetric (to rounding: a problem read from
-      // a text file keeps about 1e-13 of asymmetry; a Newton matrix that
-      // treats it as symmetric is off by that much), and a sparse copy
-      // when sparse. The proximal phase's W + shift I is W with the shift
-      // added where it is read: neither W nor the structure is copied.
+      // W's structure: whether it is symmetric (to rounding: a problem
+      // read from a text file keeps about 1e-13 of asymmetry; a Newton
+      // matrix that treats it as symmetric is off by that much), and a
+      // sparse copy when sparse. The proximal phase's W + shift I is W
+      // with the shift added where it is read: neither W nor the structure
+      // is copied.
       struct System
       {
         System(const Mat                             &W,
@@ -55,7 +56,87 @@ namespace igabde
           , m(W.rows())
           , na(G.cols())
         {
-          std::size_t        nnz       = 0;
+          // From a few dozen rows on a sparse W's factorisations beat
+          // LAPACK's (measured on the FCLIB corpus, 2026-11-27, fill
+          // 0.02-0.08: Box_Stacks-i0122, 246 rows, 2.1 -> 0.44 ms per
+          // solve; Box_Stacks-i0035, 93 rows, 0.14 -> 0.06 ms;
+          // FrictionContactProblem00374, 56 rows, 0.027 -> 0.020 ms); at
+          // fill 0.2-0.3 (OneObject, 69-75 rows) they lose 3x.
+          const bool automatic =
+            linear_algebra == CondensedOperator::LinearAlgebra::automatic;
+          const std::size_t limit =
+            automatic ? static_cast<std::size_t>(sparse_fill * m * m) :
+                        std::size_t(m) * m;
+          if (linear_algebra == CondensedOperator::LinearAlgebra::sparse ||
+              (automatic && m >= 48))
+            sparse = sparse_copy(W, limit);
+          if (!sparse)
+            symmetric = dense_symmetric(W);
+        }
+
+        // A compressed copy of W, in one pass in W's column order, given
+        // up as soon as it holds more than `limit` non-zeros (a dense W:
+        // after a tenth of it). W's symmetry then follows from the copy:
+        // W is symmetric exactly when its compressed rows (Ws) are its
+        // compressed columns. A separate scan of W for its fill and
+        // symmetry, and a copy through sorted triplets, took two thirds
+        // of a one-sweep solve of Box_Stacks-i0035 (93 rows).
+        bool
+        sparse_copy(const Mat &W, const std::size_t limit)
+        {
+          std::vector<int>    start(m + 1, 0), rows;
+          std::vector<double> values;
+          double              max_entry = 0.;
+          for (unsigned int j = 0; j < m; ++j)
+            {
+              for (unsigned int i = 0; i < m; ++i)
+                if (const double wij = W(i, j); wij != 0.)
+                  {
+                    rows.push_back(i);
+                    values.push_back(wij);
+                    max_entry = std::max(max_entry, std::abs(wij));
+                  }
+              if (rows.size() > limit)
+                return false;
+              start[j + 1] = rows.size();
+            }
+          const Eigen::Map<const Eigen::SparseMatrix<double>> by_columns(
+            m,
+            m,
+            rows.size(),
+            start.data(),
+            rows.data(),
+            values.data());
+          Ws                    = by_columns;
+          const std::size_t nnz = rows.size();
+          if (std::equal(start.begin(), start.end(), Ws.outerIndexPtr()) &&
+              std::equal(rows.begin(), rows.end(), Ws.innerIndexPtr()))
+            {
+              double max_asym = 0.;
+              for (std::size_t k = 0; k < nnz; ++k)
+                max_asym =
+                  std::max(max_asym, std::abs(values[k] - Ws.valuePtr()[k]));
+              symmetric = max_asym <= 1e-12 * max_entry;
+            }
+          else
+            {
+              // Different patterns: an entry and its mirror, one of them
+              // zero (or rounding below the other's exact zero).
+              const Eigen::SparseMatrix<double> difference =
+                by_columns -
+                Eigen::SparseMatrix<double>(by_columns.transpose());
+              symmetric =
+                difference.nonZeros() == 0 ||
+                difference.coeffs().cwiseAbs().maxCoeff() <= 1e-12 * max_entry;
+            }
+          return true;
+        }
+
+        // W's symmetry from a pass over the dense W, in tiles for the
+        // cache.
+        bool
+        dense_symmetric(const Mat &W) const
+        {
           double             max_entry = 0., max_asym = 0.;
           const unsigned int tile = 64;
           for (unsigned int jb = 0; jb < m; jb += tile)
@@ -64,42 +145,11 @@ namespace igabde
                 for (unsigned int i = ib; i < std::min(m, ib + tile); ++i)
                   {
                     const double wij = W(i, j);
-                    nnz += wij != 0.;
-                    max_entry = std::max(max_entry, std::abs(wij));
+                    max_entry        = std::max(max_entry, std::abs(wij));
                     if (i > j)
                       max_asym = std::max(max_asym, std::abs(wij - W(j, i)));
                   }
-          symmetric = max_asym <= 1e-12 * max_entry;
-          fill      = m > 0 ? double(nnz) / (double(m) * m) : 1.;
-          switch (linear_algebra)
-            {
-              case CondensedOperator::LinearAlgebra::dense:
-                sparse = false;
-                break;
-              case CondensedOperator::LinearAlgebra::sparse:
-                sparse = true;
-                break;
-              case CondensedOperator::LinearAlgebra::automatic:
-                // From a few dozen rows on a sparse W's factorisations beat
-                // LAPACK's (measured on the FCLIB corpus, 2026-11-27, fill
-                // 0.02-0.08: Box_Stacks-i0122, 246 rows, 2.1 -> 0.44 ms per
-                // solve; Box_Stacks-i0035, 93 rows, 0.14 -> 0.06 ms;
-                // FrictionContactProblem00374, 56 rows, 0.027 -> 0.020 ms);
-                // at fill 0.2-0.3 (OneObject, 69-75 rows) they lose 3x.
-                sparse = m >= 48 && fill <= sparse_fill;
-                break;
-            }
-          if (sparse)
-            {
-              std::vector<Eigen::Triplet<double>> entries;
-              entries.reserve(nnz);
-              for (unsigned int j = 0; j < m; ++j)
-                for (unsigned int i = 0; i < m; ++i)
-                  if (W(i, j) != 0.)
-                    entries.emplace_back(i, j, W(i, j));
-              Ws.resize(m, m);
-              Ws.setFromTriplets(entries.begin(), entries.end());
-            }
+          return max_asym <= 1e-12 * max_entry;
         }
 
         // (W + shift I) v, from the sparse copy when there is one.
@@ -148,10 +198,8 @@ namespace igabde
 
         ProblemView        problem;
         const unsigned int d, m, na;
-        /// W is exactly symmetric (to 1e-14 of its largest entry).
+        /// W is symmetric (to 1e-12 of its largest entry).
         bool symmetric = false;
-        /// Share of non-zero entries of W.
-        double fill = 1.;
         /// W is kept and factorised as a sparse matrix (Ws).
         bool           sparse = false;
         RowMajorSparse Ws;
