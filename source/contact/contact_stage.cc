@@ -254,6 +254,15 @@ namespace igabde
 
 
     template <int dim>
+    bool
+    ContactStage<dim>::solves_with_bodies() const
+    {
+      return contact_path->solves_with_bodies();
+    }
+
+
+
+    template <int dim>
     std::vector<discretization::PointOperator<dim>>
     ContactStage<dim>::factorization_interface(const unsigned int b) const
     {

@@ -66,7 +66,7 @@ namespace igabde
       /// identity (umfpack and cg-amg).
       SparseMatrix<double> constrained_matrix;
       /// LU path (Linear solver = umfpack).
-      SparseDirectUMFPACK direct_solver;
+      std::unique_ptr<SparseDirectUMFPACK> direct_solver;
       /// Iterative path (Linear solver = cg-amg): the constrained matrix as
       /// a Trilinos matrix and its ML algebraic multigrid preconditioner.
       std::unique_ptr<TrilinosWrappers::SparseMatrix>    amg_matrix;
@@ -253,6 +253,20 @@ namespace igabde
                                   u.size(),
                                   layout.root,
                                   layout.world);
+    }
+
+
+
+    template <int dim>
+    void
+    Body<dim>::release_factorization()
+    {
+      if (linear_solver->cholesky)
+        linear_solver->cholesky->release();
+      linear_solver->direct_solver.reset();
+      linear_solver->amg.reset();
+      linear_solver->amg_matrix.reset();
+      linear_solver->constrained_matrix.clear();
     }
 
 
@@ -1376,8 +1390,12 @@ namespace igabde
           linear_solver->amg->initialize(*linear_solver->amg_matrix, data);
         }
       else
-        linear_solver->direct_solver.initialize(
-          linear_solver->constrained_matrix);
+        {
+          linear_solver->direct_solver =
+            std::make_unique<SparseDirectUMFPACK>();
+          linear_solver->direct_solver->initialize(
+            linear_solver->constrained_matrix);
+        }
     }
 
 
@@ -1436,7 +1454,7 @@ namespace igabde
             Vector<double> &v = rhs_and_solutions[k];
             AssertDimension(v.size(), n_unknowns);
             solve_constraints.set_zero(v);
-            linear_solver->direct_solver.solve(v);
+            linear_solver->direct_solver->solve(v);
             solve_constraints.set_zero(v);
           }
       };

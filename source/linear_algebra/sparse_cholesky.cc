@@ -132,6 +132,10 @@ namespace igabde
       bool member = true;
       /// Entries of the factor (MUMPS' count, or of S when dense only).
       double entries = 0.;
+      /// MUMPS' flop count, kept by release().
+      double flops = 0.;
+      /// release() was called: no solves.
+      bool released = false;
 
       /// Global index of each free unknown (MUMPS' numbering minus one).
       std::vector<types::global_dof_index> free_dofs;
@@ -224,6 +228,7 @@ namespace igabde
       d.communicator = communicator;
       d.host         = (Utilities::MPI::this_mpi_process(communicator) == 0);
       d.member       = true;
+      d.released     = false;
       const types::global_dof_index n = matrix.m();
       AssertDimension(eliminated.size(), n);
 
@@ -508,6 +513,9 @@ namespace igabde
     {
       const int n_s = n_interface();
       const int m   = c.n();
+      AssertThrow(
+        !data->released,
+        ExcMessage("SparseCholesky::interface_flexibility() after release()."));
       AssertDimension(c.m(), static_cast<unsigned int>(n_s));
       FullMatrix<double> result(m, m);
       if (m == 0 || n_s == 0)
@@ -549,9 +557,11 @@ namespace igabde
       const unsigned int nrhs = rhs_and_solutions.size();
       if (nrhs == 0)
         return;
-      AssertThrow(d.member,
-                  ExcMessage("SparseCholesky::solve() on a rank that holds "
-                             "no part of the factorisation."));
+      AssertThrow(d.member && !d.released,
+                  ExcMessage(d.released ?
+                               "SparseCholesky::solve() after release()." :
+                               "SparseCholesky::solve() on a rank that holds "
+                               "no part of the factorisation."));
       const unsigned int n_free = d.free_dofs.size();
       const unsigned int n_s    = d.interface.size();
 
@@ -629,7 +639,27 @@ namespace igabde
     double
     SparseCholesky::factor_flops() const
     {
-      return (data->mumps_alive ? data->id.rinfog[2] : 0.);
+      return (data->mumps_alive ? data->id.rinfog[2] : data->flops);
+    }
+
+
+
+    void
+    SparseCholesky::release()
+    {
+      Data &d = *data;
+      if (d.mumps_alive)
+        d.flops = d.id.rinfog[2];
+      d.release();
+      d.released = true;
+      // Swapped with empty ones: clear() would keep the memory.
+      std::vector<types::global_dof_index>().swap(d.free_dofs);
+      std::vector<MUMPS_INT>().swap(d.reduced_index);
+      std::vector<MUMPS_INT>().swap(d.rows);
+      std::vector<MUMPS_INT>().swap(d.cols);
+      std::vector<double>().swap(d.values);
+      std::vector<double>().swap(d.schur_factor);
+      d.schur = FullMatrix<double>();
     }
   } // namespace linear_algebra
 } // namespace igabde

@@ -272,6 +272,12 @@ namespace igabde
             body->ensure_assembled();
         }
       factorize_bodies(contact_stage.get());
+      // The full path factorises the coupled system on its own: the
+      // bodies' factors have served their load cases, and would otherwise
+      // stay in memory beside the coupled system's.
+      if (!contact_stage->solves_with_bodies())
+        for (auto &body : bodies)
+          body->release_factorization();
       Timer clock;
       contact_stage->prepare(timer);
       if (parameters.output.progress)

@@ -236,10 +236,11 @@ namespace igabde
             // The coupled system: both bodies' matrices again (Trilinos'
             // copy) and, direct, MUMPS' LU of the whole: L and U, of the
             // bodies pressed face to face and factorised as one, in the
-            // nested-dissection order: one and a half times the bodies'
-            // estimated factors together (three before that order; the 3D
-            // contact-patch family's peak memory against this estimate:
-            // doc/performance.md).
+            // nested-dissection order: 1.75 times the bodies' estimated
+            // factors together (three before that order; 1.5 while the
+            // bodies' own factors stayed in memory beside it and covered
+            // the rest; the 3D contact-patch family's peak memory against
+            // this estimate: doc/performance.md).
             double matrix = 0., factor = 0.;
             for (const auto &b : e.bodies)
               {
@@ -250,7 +251,7 @@ namespace igabde
               bytes_per_matrix_entry * matrix +
               (c.full_system_solver == coupled::Solver::gmres_amg ?
                  12. * matrix :
-                 bytes_per_factor_entry * 1.5 * factor);
+                 bytes_per_factor_entry * 1.75 * factor);
             e.automatic_path = (c.path == contact::Path::automatic &&
                                 c.algorithm == contact::Algorithm::bde);
             if (c.path == contact::Path::full ||
@@ -293,8 +294,12 @@ namespace igabde
     double
     SizeEstimate::total_bytes(const contact::Path p) const
     {
-      return bytes_process + bytes_matrix + bytes_factor + bytes_output +
-             (p == contact::Path::full ? bytes_coupled : bytes_dense);
+      // On the full path the bodies free their factors once their load
+      // cases are solved, before the coupled system is set up: the two
+      // are not held at the same time.
+      return bytes_process + bytes_matrix + bytes_output +
+             (p == contact::Path::full ? std::max(bytes_factor, bytes_coupled) :
+                                         bytes_factor + bytes_dense);
     }
 
 

@@ -137,3 +137,44 @@ TEST(SparseCholesky, SchurComplementAndSolveMatchDenseAlgebra)
     for (unsigned int i = 0; i < n; ++i)
       EXPECT_NEAR(rhs2[k][i], rhs[k][i], 1e-12);
 }
+
+
+
+TEST(SparseCholesky, ReleaseKeepsTheReportsAndRefusesSolves)
+{
+  // The full contact path frees the bodies' factors once their load cases
+  // are solved: the factor's size and flops stay for summary.json, a solve
+  // is refused with a message instead of reading freed memory, and the
+  // object factorises again afterwards.
+  const Chain       chain;
+  std::vector<bool> eliminated(n, false);
+  eliminated[0]                                        = true;
+  const std::vector<types::global_dof_index> interface = {10, 20};
+
+  igabde::linear_algebra::SparseCholesky cholesky;
+  cholesky.initialize(chain.matrix, eliminated, interface);
+  const double entries = cholesky.factor_entries();
+  const double flops   = cholesky.factor_flops();
+  ASSERT_GT(entries, 0.);
+  ASSERT_GT(flops, 0.);
+  std::vector<Vector<double>> before(1, Vector<double>(n));
+  for (unsigned int i = 0; i < n; ++i)
+    before[0][i] = std::cos(0.2 * i);
+  const std::vector<Vector<double>> rhs = before;
+  cholesky.solve(before);
+
+  cholesky.release();
+  EXPECT_EQ(cholesky.factor_entries(), entries);
+  EXPECT_EQ(cholesky.factor_flops(), flops);
+  EXPECT_EQ(cholesky.n_interface(), interface.size());
+  std::vector<Vector<double>> after = rhs;
+  EXPECT_THROW(cholesky.solve(after), ExceptionBase);
+  FullMatrix<double> C(interface.size(), 1);
+  C(0, 0) = 1.;
+  EXPECT_THROW(cholesky.interface_flexibility(C), ExceptionBase);
+
+  cholesky.initialize(chain.matrix, eliminated, interface);
+  cholesky.solve(after);
+  for (unsigned int i = 0; i < n; ++i)
+    EXPECT_EQ(after[0][i], before[0][i]);
+}

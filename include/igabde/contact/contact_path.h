@@ -94,6 +94,14 @@ namespace igabde
       {
         return 0.;
       }
+
+      /**
+       * @brief Whether prepare() and add_response() solve with the bodies'
+       * factorisations; where not, the bodies may free them once their
+       * load cases are solved.
+       */
+      virtual bool
+      solves_with_bodies() const = 0;
     };
 
 
@@ -136,6 +144,13 @@ namespace igabde
 
       std::string
       description(const CondensedContact<dim> &contact) const override;
+
+      /** @brief True: the condensation and the field recovery solve. */
+      bool
+      solves_with_bodies() const override
+      {
+        return true;
+      }
 
     private:
       const std::vector<const discretization::Body<dim> *> bodies;
@@ -186,6 +201,13 @@ namespace igabde
       /** @brief Nonzeros of the coupled Newton matrix. */
       double
       n_nonzeros() const override;
+
+      /** @brief False: the coupled system is factorised on its own. */
+      bool
+      solves_with_bodies() const override
+      {
+        return false;
+      }
 
     private:
       const std::vector<const discretization::Body<dim> *> bodies;

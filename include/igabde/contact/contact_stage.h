@@ -202,6 +202,14 @@ namespace igabde
       factorization_interface(const unsigned int b) const;
 
       /**
+       * @brief Whether the bodies' factorisations serve after their load
+       * cases (the condensation, the field recovery); false on the full
+       * path, which factorises the coupled system on its own.
+       */
+      bool
+      solves_with_bodies() const;
+
+      /**
        * @brief Forms the contact problem on the path build_pairs() chose
        * (the bodies must be factorised) and reports what was formed.
        */

@@ -265,6 +265,17 @@ namespace igabde
       share_factorization();
 
       /**
+       * @brief Frees the factorisation (MUMPS' factor and its copy of K, S;
+       * UMFPACK's LU; the AMG hierarchy) once the load cases are solved
+       * and no more solves will come: the full contact path factorises
+       * the coupled system itself and reads the external solutions only.
+       * The factor's size and flops stay for reports. Collective on the
+       * layout's world.
+       */
+      void
+      release_factorization();
+
+      /**
        * @brief The flexibility of point-force patterns:
        * F(i, j) = d_i . u_j(x_i), where u_j solves K u_j = f_j for the unit
        * force @p directions[j] at the point of @p operators[j] (with the

@@ -133,6 +133,16 @@ namespace igabde
       void
       solve(std::vector<Vector<double>> &rhs_and_solutions) const;
 
+      /**
+       * @brief Frees the factorisation (MUMPS' instance, the copy of the
+       * matrix handed to it, S and its factor), keeping the interface and
+       * the factor's size and flop count for reports; solve() and
+       * interface_flexibility() are then unavailable. Collective on the
+       * factorisation's communicator.
+       */
+      void
+      release();
+
       /// Entries of the sparse factor (MUMPS' estimate after factorisation).
       double
       factor_entries() const;

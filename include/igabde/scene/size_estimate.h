@@ -68,7 +68,9 @@ namespace igabde
       double
       total_bytes() const;
 
-      /// total_bytes() if the contact blocks were those of @p p.
+      /// total_bytes() if the contact blocks were those of @p p (on the
+      /// full path the larger of the bodies' factors and the coupled
+      /// system: the bodies free their factors before it is set up).
       double
       total_bytes(const contact::Path p) const;
 
