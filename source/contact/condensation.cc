@@ -174,6 +174,9 @@ namespace igabde
           for (unsigned int i = 0; i < m * nc; ++i)
             for (unsigned int j = 0; j < m * nc; ++j)
               FL(i, j) += Fb(i, j);
+          // Dense blocks of the contact unknowns squared each (B2 at
+          // 16x64x16: 0.1 GB): none is kept longer than it serves.
+          flexibilities[b] = FullMatrix<double>();
           if (progress)
             log << "  contact: " << bodies[b]->name() << " condensed onto "
                 << m * nc << " pair directions"
@@ -218,23 +221,39 @@ namespace igabde
                                  ": every contact pair is held by supports on "
                                  "both sides; nothing can touch."));
       ContactProblem &problem = result.problem;
-      Eigen::MatrixXd W(m * keep.size(), m * keep.size());
+      Eigen::MatrixXd W;
+      if (keep.size() == nc)
+        W = std::move(FL);
+      else
+        {
+          W.resize(m * keep.size(), m * keep.size());
+          for (unsigned int i = 0; i < keep.size(); ++i)
+            for (unsigned int j = 0; j < keep.size(); ++j)
+              W.block(m * i, m * j, m, m) =
+                FL.block(m * keep[i], m * keep[j], m, m);
+          FL = Eigen::MatrixXd();
+        }
       problem.G.resize(m * keep.size(), GL.cols());
       for (unsigned int i = 0; i < keep.size(); ++i)
         {
           result.pairs.push_back(pair_list[keep[i]]);
-          for (unsigned int j = 0; j < keep.size(); ++j)
-            W.block(m * i, m * j, m, m) =
-              FL.block(m * keep[i], m * keep[j], m, m);
           problem.G.middleRows(m * i, m) = GL.middleRows(m * keep[i], m);
         }
-      result.asymmetry =
-        (W - W.transpose()).norm() / std::max(W.norm(), 1e-300);
-      W = 0.5 * (W + W.transpose());
+      // |W - W^T| / |W|, and W made exactly symmetric, in place.
+      const double w_norm    = W.norm();
+      double       asymmetry = 0.;
+      for (Eigen::Index j = 0; j < W.cols(); ++j)
+        for (Eigen::Index i = j + 1; i < W.rows(); ++i)
+          {
+            const double d = W(i, j) - W(j, i);
+            asymmetry += 2. * d * d;
+            W(i, j) = W(j, i) = 0.5 * (W(i, j) + W(j, i));
+          }
+      result.asymmetry = std::sqrt(asymmetry) / std::max(w_norm, 1e-300);
 
       problem.n_contacts   = result.pairs.size();
       problem.n_components = m;
-      problem.W            = W;
+      problem.W            = std::move(W);
       problem.q            = Eigen::VectorXd::Zero(m * result.pairs.size());
       problem.mu.assign(result.pairs.size(), friction);
       problem.name = context;

@@ -407,7 +407,7 @@ namespace igabde
                   }
             }
           FullMatrix<double> F0 =
-            linear_solver->cholesky->interface_flexibility(C);
+            linear_solver->cholesky->interface_flexibility(std::move(C));
           correct_for_held_modes(operators, directions, F0);
           return F0;
         }

@@ -111,18 +111,13 @@ namespace igabde
       const std::vector<types::global_dof_index> &
       interface_dofs() const;
 
-      /// The Schur complement onto the interface (dense, symmetric; on the
-      /// host of the factorisation's communicator).
-      const FullMatrix<double> &
-      schur_complement() const;
-
       /**
        * @brief C^T S^{-1} C for the columns @p c given on the interface
        * unknowns (rows in the order of interface_dofs()): the flexibility
        * of the load patterns C, equal to C^T K^{-1} C.
        */
       FullMatrix<double>
-      interface_flexibility(const FullMatrix<double> &c) const;
+      interface_flexibility(FullMatrix<double> c) const;
 
       /**
        * @brief Solves K u = f for every vector (in place), all at once;
