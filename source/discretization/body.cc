@@ -12,6 +12,7 @@
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/base/thread_management.h>
 
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
 #include <deal.II/lac/solver_cg.h>
 #include <deal.II/lac/solver_control.h>
 #include <deal.II/lac/sparse_direct.h>
@@ -267,6 +268,44 @@ namespace igabde
       linear_solver->amg.reset();
       linear_solver->amg_matrix.reset();
       linear_solver->constrained_matrix.clear();
+    }
+
+
+
+    template <int dim>
+    void
+    Body<dim>::keep_reaction_rows_only()
+    {
+      if (!assembled ||
+          settings.linear_solver != discretization::LinearSolver::direct)
+        return;
+      // The rows support_reaction() and face_motion_reaction() read.
+      std::vector<bool> keep(n_unknowns, false);
+      for (types::global_dof_index i = 0; i < n_unknowns; ++i)
+        keep[i] = constraints.is_constrained(i);
+      for (const auto &dofs : dirichlet_dofs)
+        for (const auto i : dofs)
+          keep[i] = true;
+      DynamicSparsityPattern rows(n_unknowns, n_unknowns);
+      for (types::global_dof_index i = 0; i < n_unknowns; ++i)
+        if (keep[i])
+          for (auto entry = sparsity.begin(i); entry != sparsity.end(i);
+               ++entry)
+            rows.add(i, entry->column());
+      reaction_sparsity = std::make_unique<SparsityPattern>();
+      reaction_sparsity->copy_from(rows);
+      SparseMatrix<double> reduced(*reaction_sparsity);
+      for (types::global_dof_index i = 0; i < n_unknowns; ++i)
+        if (keep[i])
+          for (auto entry = system_matrix.begin(i);
+               entry != system_matrix.end(i);
+               ++entry)
+            reduced.set(i, entry->column(), entry->value());
+      system_matrix.clear();
+      sparsity.reinit(0, 0, 0);
+      system_matrix.reinit(*reaction_sparsity);
+      system_matrix.copy_from(reduced);
+      reduced_to_reaction_rows = true;
     }
 
 
@@ -596,6 +635,9 @@ namespace igabde
     {
       Assert(assembled && !assembled_share,
              ExcMessage("K is not assembled on this rank."));
+      AssertThrow(!reduced_to_reaction_rows,
+                  ExcMessage("K was reduced to its reaction rows "
+                             "(keep_reaction_rows_only())."));
       return system_matrix;
     }
 

@@ -190,6 +190,11 @@ namespace igabde
                 std::vector<discretization::PointOperator<dim>>());
             seconds[b] = clock.wall_time();
             flops[b]   = bodies[b]->factor_flops();
+            // Without contact or on the condensed path, K is read from now
+            // on only in the support reactions: its other rows go before
+            // the next body factorises.
+            if (stage == nullptr || stage->solves_with_bodies())
+              bodies[b]->keep_reaction_rows_only();
           }
       for (auto &body : bodies)
         body->share_factorization();
