@@ -395,26 +395,38 @@ namespace igabde
 
     template <int dim>
     nlohmann::json
-    geometry_record(const BodyParameters &body,
-                    const unsigned int    degree,
-                    const unsigned int    n_control_points)
+    body_record(const BodyParameters            &parameters,
+                const unsigned int               degree,
+                const discretization::Body<dim> &body)
     {
       // The measure of the exact geometry, from its patches before
       // Subdivisions and Refinements (the same map with the fewest spans:
       // the quadrature cost does not grow with the mesh).
       std::array<unsigned int, dim>        subdivisions;
       const nurbs::MultiPatchGeometry<dim> coarse =
-        make_geometry<dim>(body, "", degree, &subdivisions);
+        make_geometry<dim>(parameters, "", degree, &subdivisions);
       double measure = 0.;
       for (const auto &patch : coarse.patches)
         measure += nurbs::patch_measure(patch);
+      // Control points of the analysis space: a NURBS body's glued ones,
+      // the geometry map's of a (single-patch) Lagrange body.
+      const unsigned int n_control_points =
+        body.n_patches() == 1 ? body.geometry_patch(0).n_control_points() :
+                                static_cast<unsigned int>(body.n_dofs() / dim);
       return nlohmann::json{{"geometry",
-                             body.geometry == Geometry::file ?
-                               body.geometry_file :
-                               to_string(body.geometry)},
+                             parameters.geometry == Geometry::file ?
+                               parameters.geometry_file :
+                               to_string(parameters.geometry)},
                             {"patches", coarse.patches.size()},
                             {"control_points", n_control_points},
-                            {"measure", measure}};
+                            {"measure", measure},
+                            {"name", body.name()},
+                            {"n_dofs",
+                             static_cast<unsigned long long>(body.n_dofs())},
+                            {"n_elements", body.n_elements()},
+                            {"matrix_entries", body.n_matrix_entries()},
+                            {"free_rigid_modes", body.free_rigid_mode_names()},
+                            {"held_rigid_modes", body.held_rigid_mode_names()}};
     }
 
 
@@ -444,9 +456,13 @@ namespace igabde
 
 
     template nlohmann::json
-    geometry_record<2>(const BodyParameters &, unsigned int, unsigned int);
+    body_record(const BodyParameters &,
+                unsigned int,
+                const discretization::Body<2> &);
     template nlohmann::json
-    geometry_record<3>(const BodyParameters &, unsigned int, unsigned int);
+    body_record(const BodyParameters &,
+                unsigned int,
+                const discretization::Body<3> &);
     template void
     export_geometry<2>(const discretization::Body<2> &, const std::string &);
     template void

@@ -133,26 +133,12 @@ namespace igabde
       nlohmann::json per_body = nlohmann::json::array();
       for (unsigned int b = 0; b < bodies.size(); ++b)
         {
-          const auto &body = bodies[b];
-          // Control points of the analysis space: a NURBS body's glued
-          // ones, the geometry map's of a (single-patch) Lagrange body.
-          nlohmann::json entry =
-            geometry_record<dim>(b == 0 ? parameters.body1 : parameters.body2,
-                                 parameters.discretization.degree,
-                                 body->n_patches() == 1 ?
-                                   body->geometry_patch(0).n_control_points() :
-                                   static_cast<unsigned int>(body->n_dofs() /
-                                                             dim));
-          entry.update(nlohmann::json{
-            {"name", body->name()},
-            {"n_dofs", static_cast<unsigned long long>(body->n_dofs())},
-            {"n_elements", body->n_elements()},
-            {"matrix_entries", body->n_matrix_entries()},
-            {"free_rigid_modes", body->free_rigid_mode_names()},
-            {"held_rigid_modes", body->held_rigid_mode_names()}});
-          per_body.push_back(entry);
+          per_body.push_back(
+            body_record<dim>(b == 0 ? parameters.body1 : parameters.body2,
+                             parameters.discretization.degree,
+                             *bodies[b]));
           if (parameters.output.export_geometry && root)
-            export_geometry(*body, output_directory);
+            export_geometry(*bodies[b], output_directory);
         }
       summary["bodies"] = per_body;
 

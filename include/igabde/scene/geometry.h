@@ -58,18 +58,19 @@ namespace igabde
                         const std::string    &where);
 
     /**
-     * @brief What summary.json says of a body's geometry: its source
+     * @brief What summary.json says of @p body: its geometry's source
      * (the built-in shape or the file as the scene names it), patches,
-     * @p n_control_points (the analysis space's, glued), and measure (area
-     * or volume of the exact geometry, nurbs::patch_measure() summed over
-     * the body's patches elevated to @p degree before Subdivisions and
-     * Refinements).
+     * control points (the analysis space's, glued; a Lagrange body's
+     * geometry map's) and measure (area or volume of the exact geometry,
+     * nurbs::patch_measure() summed over the body's patches elevated to
+     * @p degree before Subdivisions and Refinements), then its name,
+     * unknowns, elements, matrix entries and rigid modes.
      */
     template <int dim>
     nlohmann::json
-    geometry_record(const BodyParameters &body,
-                    const unsigned int    degree,
-                    const unsigned int    n_control_points);
+    body_record(const BodyParameters            &parameters,
+                const unsigned int               degree,
+                const discretization::Body<dim> &body);
 
     /**
      * @brief Writes the analysis geometry of @p body (every patch after

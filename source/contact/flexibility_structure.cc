@@ -1,0 +1,174 @@
+#include <igabde/contact/flexibility_structure.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace igabde
+{
+  namespace contact
+  {
+    namespace internal
+    {
+      FlexibilityStructure::FlexibilityStructure(
+        const Mat                             &W,
+        const Mat                             &G,
+        const unsigned int                     d,
+        const CondensedOperator::LinearAlgebra linear_algebra,
+        const double                           sparse_fill)
+        : problem{W, G, d > 0 ? static_cast<unsigned int>(W.rows()) / d : 0}
+        , d(d)
+        , m(W.rows())
+        , na(G.cols())
+      {
+        // From a few dozen rows on a sparse W's factorisations beat
+        // LAPACK's (measured on the FCLIB corpus, 2026-11-27, fill
+        // 0.02-0.08: Box_Stacks-i0122, 246 rows, 2.1 -> 0.44 ms per
+        // solve; Box_Stacks-i0035, 93 rows, 0.14 -> 0.06 ms;
+        // FrictionContactProblem00374, 56 rows, 0.027 -> 0.020 ms); at
+        // fill 0.2-0.3 (OneObject, 69-75 rows) they lose 3x.
+        const bool automatic =
+          linear_algebra == CondensedOperator::LinearAlgebra::automatic;
+        const std::size_t limit =
+          automatic ? static_cast<std::size_t>(sparse_fill * m * m) :
+                      std::size_t(m) * m;
+        if (linear_algebra == CondensedOperator::LinearAlgebra::sparse ||
+            (automatic && m >= 48))
+          sparse = sparse_copy(W, limit);
+        if (!sparse)
+          symmetric = dense_symmetric(W);
+      }
+
+
+
+      // A compressed copy of W, in one pass in W's column order, given
+      // up as soon as it holds more than `limit` non-zeros (a dense W:
+      // after a tenth of it). W's symmetry then follows from the copy:
+      // W is symmetric exactly when its compressed rows (Ws) are its
+      // compressed columns. A separate scan of W for its fill and
+      // symmetry, and a copy through sorted triplets, took two thirds
+      // of a one-sweep solve of Box_Stacks-i0035 (93 rows).
+      bool
+      FlexibilityStructure::sparse_copy(const Mat &W, const std::size_t limit)
+      {
+        std::vector<int>    start(m + 1, 0), rows;
+        std::vector<double> values;
+        double              max_entry = 0.;
+        for (unsigned int j = 0; j < m; ++j)
+          {
+            for (unsigned int i = 0; i < m; ++i)
+              if (const double wij = W(i, j); wij != 0.)
+                {
+                  rows.push_back(i);
+                  values.push_back(wij);
+                  max_entry = std::max(max_entry, std::abs(wij));
+                }
+            if (rows.size() > limit)
+              return false;
+            start[j + 1] = rows.size();
+          }
+        const Eigen::Map<const Eigen::SparseMatrix<double>> by_columns(
+          m,
+          m,
+          rows.size(),
+          start.data(),
+          rows.data(),
+          values.data());
+        Ws                    = by_columns;
+        const std::size_t nnz = rows.size();
+        if (std::equal(start.begin(), start.end(), Ws.outerIndexPtr()) &&
+            std::equal(rows.begin(), rows.end(), Ws.innerIndexPtr()))
+          {
+            double max_asym = 0.;
+            for (std::size_t k = 0; k < nnz; ++k)
+              max_asym =
+                std::max(max_asym, std::abs(values[k] - Ws.valuePtr()[k]));
+            symmetric = max_asym <= 1e-12 * max_entry;
+          }
+        else
+          {
+            // Different patterns: an entry and its mirror, one of them
+            // zero (or rounding below the other's exact zero).
+            const Eigen::SparseMatrix<double> difference =
+              by_columns - Eigen::SparseMatrix<double>(by_columns.transpose());
+            symmetric =
+              difference.nonZeros() == 0 ||
+              difference.coeffs().cwiseAbs().maxCoeff() <= 1e-12 * max_entry;
+          }
+        return true;
+      }
+
+
+
+      // W's symmetry from a pass over the dense W, in tiles for the
+      // cache.
+      bool
+      FlexibilityStructure::dense_symmetric(const Mat &W) const
+      {
+        double             max_entry = 0., max_asym = 0.;
+        const unsigned int tile = 64;
+        for (unsigned int jb = 0; jb < m; jb += tile)
+          for (unsigned int ib = 0; ib < m; ib += tile)
+            for (unsigned int j = jb; j < std::min(m, jb + tile); ++j)
+              for (unsigned int i = ib; i < std::min(m, ib + tile); ++i)
+                {
+                  const double wij = W(i, j);
+                  max_entry        = std::max(max_entry, std::abs(wij));
+                  if (i > j)
+                    max_asym = std::max(max_asym, std::abs(wij - W(j, i)));
+                }
+        return max_asym <= 1e-12 * max_entry;
+      }
+
+
+
+      // (W + shift I) v, from the sparse copy when there is one.
+      FlexibilityStructure::Vec
+      FlexibilityStructure::W_times(const Vec &v) const
+      {
+        Vec out = sparse ? Vec(Ws * v) : dense_times(problem.W, v);
+        if (shift != 0.)
+          out += shift * v;
+        return out;
+      }
+
+
+
+      // (W + shift I)^T v
+      FlexibilityStructure::Vec
+      FlexibilityStructure::WT_times(const Vec &v) const
+      {
+        Vec out = sparse    ? Vec(Ws.transpose() * v) :
+                  symmetric ? dense_times(problem.W, v) :
+                              Vec(problem.W.transpose() * v);
+        if (shift != 0.)
+          out += shift * v;
+        return out;
+      }
+
+
+
+      // A v for a dense A, reading only the columns of the non-zero
+      // entries of v: the forces of open pairs are zero, and on large
+      // problems (10 000 rows: 800 MB of W) reading W is the cost of a
+      // product, not its flops. Below 8 MiB (1 024 rows), where A stays
+      // in the caches, Eigen's blocked product is as fast and is kept.
+      FlexibilityStructure::Vec
+      FlexibilityStructure::dense_times(const Mat &A, const Vec &v)
+      {
+        if (A.size() < (Eigen::Index(1) << 20))
+          return A * v;
+        Eigen::Index nonzero = 0;
+        for (Eigen::Index j = 0; j < v.size(); ++j)
+          nonzero += (v[j] != 0.);
+        if (4 * nonzero > 3 * v.size())
+          return A * v;
+        Vec out = Vec::Zero(A.rows());
+        for (Eigen::Index j = 0; j < v.size(); ++j)
+          if (v[j] != 0.)
+            out.noalias() += v[j] * A.col(j);
+        return out;
+      }
+    } // namespace internal
+  }   // namespace contact
+} // namespace igabde
