@@ -1,3 +1,4 @@
+#include <igabde/base/retain_freed_memory.h>
 #include <igabde/base/utilities.h>
 #include <igabde/linear_algebra/sparse_cholesky.h>
 
@@ -496,7 +497,11 @@ namespace igabde
                   status = direct->SymbolicFactorization();
                 }
               if (status == 0)
-                status = direct->NumericFactorization();
+                {
+                  // The workspace on small pages (base::WithoutHugePages).
+                  const base::WithoutHugePages small_pages;
+                  status = direct->NumericFactorization();
+                }
             }
           catch (const std::exception &)
             {
