@@ -23,6 +23,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace igabde
 {
@@ -301,10 +302,8 @@ namespace igabde
                entry != system_matrix.end(i);
                ++entry)
             reduced.set(i, entry->column(), entry->value());
-      system_matrix.clear();
+      system_matrix = std::move(reduced);
       sparsity.reinit(0, 0, 0);
-      system_matrix.reinit(*reaction_sparsity);
-      system_matrix.copy_from(reduced);
       reduced_to_reaction_rows = true;
     }
 
