@@ -3,7 +3,6 @@
 #include <cstddef>
 #include <dlfcn.h>
 #include <string>
-#include <sys/prctl.h>
 #include <sys/types.h>
 
 namespace igabde
@@ -122,31 +121,6 @@ namespace igabde
           mallctl("opt.narenas", &n_auto, &size, nullptr, 0) != 0)
         return -1;
       return static_cast<int>(n_auto);
-    }
-
-
-
-    WithoutHugePages::WithoutHugePages()
-      : previous(prctl(PR_GET_THP_DISABLE, 0, 0, 0, 0))
-    {
-      if (previous == 0)
-        prctl(PR_SET_THP_DISABLE, 1, 0, 0, 0);
-    }
-
-
-
-    WithoutHugePages::~WithoutHugePages()
-    {
-      if (previous == 0)
-        prctl(PR_SET_THP_DISABLE, 0, 0, 0, 0);
-    }
-
-
-
-    bool
-    WithoutHugePages::huge_pages_allowed()
-    {
-      return prctl(PR_GET_THP_DISABLE, 0, 0, 0, 0) == 0;
     }
   } // namespace base
 } // namespace igabde

@@ -1,4 +1,3 @@
-#include <igabde/base/retain_freed_memory.h>
 #include <igabde/base/utilities.h>
 #include <igabde/linear_algebra/sparse_cholesky.h>
 
@@ -497,11 +496,7 @@ namespace igabde
                   status = direct->SymbolicFactorization();
                 }
               if (status == 0)
-                {
-                  // The workspace on small pages (base::WithoutHugePages).
-                  const base::WithoutHugePages small_pages;
-                  status = direct->NumericFactorization();
-                }
+                status = direct->NumericFactorization();
             }
           catch (const std::exception &)
             {

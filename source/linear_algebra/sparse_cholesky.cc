@@ -1,4 +1,3 @@
-#include <igabde/base/retain_freed_memory.h>
 #include <igabde/linear_algebra/sparse_cholesky.h>
 
 #include <deal.II/base/exceptions.h>
@@ -415,8 +414,6 @@ namespace igabde
           d.id.job = 2;
           for (unsigned int attempt = 0;; ++attempt)
             {
-              // MUMPS' workspace on small pages (base::WithoutHugePages).
-              const base::WithoutHugePages small_pages;
               dmumps_c(&d.id);
               if ((d.id.infog[0] == -8 || d.id.infog[0] == -9) && attempt < 4)
                 {

@@ -4,16 +4,13 @@
 // jemalloc's own mallctl. This test binary is linked with jemalloc as the
 // executables are (jemalloc cannot be loaded later: its thread-local
 // storage is initial-exec), and only where the build uses jemalloc; the
-// unit tests keep the system allocator. base::WithoutHugePages is read
-// back through the kernel's /proc/self/status.
+// unit tests keep the system allocator.
 
 #include <igabde/base/retain_freed_memory.h>
 
 #include <gtest/gtest.h>
 
-#include <fstream>
 #include <memory>
-#include <string>
 #include <vector>
 
 using igabde::base::RetainFreedMemory;
@@ -54,47 +51,4 @@ TEST(RetainFreedMemory, KeepsLargeFreedBlocksWhileItLivesAndRestoresTheDecay)
     EXPECT_EQ(RetainFreedMemory::dirty_decay(large), -1);
   }
   EXPECT_EQ(RetainFreedMemory::dirty_decay(large), before);
-}
-
-
-
-namespace without_huge_pages_test
-{
-  // The kernel's own account of the process: "THP_enabled:" in
-  // /proc/self/status (Linux 5.0 and later), -1 where it is not shown.
-  int
-  thp_enabled_in_status()
-  {
-    std::ifstream status("/proc/self/status");
-    std::string   line;
-    while (std::getline(status, line))
-      if (line.rfind("THP_enabled:", 0) == 0)
-        return std::stoi(line.substr(12));
-    return -1;
-  }
-} // namespace without_huge_pages_test
-
-
-
-TEST(WithoutHugePages, TurnsTransparentHugePagesOffWhileItLivesAndRestores)
-{
-  using igabde::base::WithoutHugePages;
-  using without_huge_pages_test::thp_enabled_in_status;
-  if (thp_enabled_in_status() != 1)
-    GTEST_SKIP() << "the kernel does not show THP_enabled, or the process "
-                    "started with transparent huge pages off";
-  EXPECT_TRUE(WithoutHugePages::huge_pages_allowed());
-  {
-    const WithoutHugePages outer;
-    EXPECT_EQ(thp_enabled_in_status(), 0);
-    EXPECT_FALSE(WithoutHugePages::huge_pages_allowed());
-    {
-      // Nested: the inner one found them off and leaves them off.
-      const WithoutHugePages inner;
-      EXPECT_EQ(thp_enabled_in_status(), 0);
-    }
-    EXPECT_EQ(thp_enabled_in_status(), 0);
-  }
-  EXPECT_EQ(thp_enabled_in_status(), 1);
-  EXPECT_TRUE(WithoutHugePages::huge_pages_allowed());
 }

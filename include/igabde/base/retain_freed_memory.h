@@ -63,46 +63,6 @@ namespace igabde
       };
       std::vector<Saved> saved;
     };
-
-    /**
-     * @brief While an object of this class lives, the kernel gives the
-     * process no new transparent huge pages (prctl's PR_SET_THP_DISABLE;
-     * pages already mapped stay as they are); the destructor restores the
-     * setting found.
-     *
-     * For the sparse factorisation: MUMPS touches its workspace front by
-     * front, once, and with the huge pages that jemalloc asks for
-     * (jemalloc_options.cc: thp:always) the kernel zeroes and maps 2 MiB at
-     * a time. Measured on this project's 2-core machine (2026-11-28,
-     * alternating runs, doc/performance.md): B2 at 16x64x16 per beam
-     * factorised in 21.0 s (median) on small pages against 26.0 s on huge
-     * ones, 25.9 against 29.9 s in a second set; the kernel's time 3-7 s
-     * lower in every pair; B2 at 8x16x8 the same within the runs' spread.
-     * The dense contact phases (condensation, B-Newton) keep the huge
-     * pages, which halve their time there; solves with the factor read it
-     * through small pages (0.2-0.4 s slower field recovery on B2 at
-     * 16x64x16).
-     *
-     * The setting is the process's: not for two threads at once.
-     */
-    class WithoutHugePages
-    {
-    public:
-      WithoutHugePages();
-      ~WithoutHugePages();
-
-      WithoutHugePages(const WithoutHugePages &) = delete;
-      WithoutHugePages &
-      operator=(const WithoutHugePages &) = delete;
-
-      /** @brief Whether the process may get new huge pages now. */
-      static bool
-      huge_pages_allowed();
-
-    private:
-      /// PR_GET_THP_DISABLE as it was (-1: unknown, nothing to restore).
-      int previous;
-    };
   } // namespace base
 } // namespace igabde
 
