@@ -380,7 +380,7 @@ namespace igabde
                 data,
                 bde_law(op, data, settings.r_factor, settings.radius),
                 *W,
-                nullptr,
+                Ws,
                 xg,
                 options,
                 sweeps);
