@@ -282,8 +282,7 @@ TEST(ContactFclib, GaussSeidelPhaseSolvesWhereNewtonCycles)
     solve_with_fclib_stopping("siconos_dat/FrictionContactProblem00727.dat");
   EXPECT_TRUE(result.converged) << result.summary();
   EXPECT_GT(result.sweeps, 10u) << result.summary();
-  EXPECT_NE(result.diagnosis.find("gauss-seidel: converged"),
-            std::string::npos)
+  EXPECT_NE(result.diagnosis.find("gauss-seidel: converged"), std::string::npos)
     << result.diagnosis;
 }
 
