@@ -154,10 +154,11 @@ namespace igabde
             ;
           else if (sys.sparse)
             {
-              const SparseMatrix K = sparse_matrix();
+              const RowMajorSparse K_rows = sparse_rows();
+              const SparseMatrix   K      = K_rows;
               if (!try_lu || !sparse_lu(K, rhs, dN))
                 {
-                  dN = sparse_lm(K, rhs, lm_relative);
+                  dN = sparse_lm(K, K_rows, rhs, lm_relative);
                   note += "lm ";
                 }
             }
@@ -352,48 +353,73 @@ namespace igabde
           return KtK.selfadjointView<Eigen::Lower>().ldlt().solve(d);
         }
 
-        SparseMatrix
-        sparse_matrix() const
+        // The reduced Newton matrix by rows: row r is sum_t a_t Ws(source_t,
+        // N) (with the shift and G) plus B's entries, accumulated in that
+        // order (the order in which triplets once added them, so the
+        // entries are the same to the bit), each row's columns sorted and
+        // appended: no triplet list to sort. By rows it is also K^T by
+        // columns, which the normal equations read.
+        RowMajorSparse
+        sparse_rows() const
         {
-          const unsigned int                  nN = others.size();
-          std::vector<Eigen::Triplet<double>> entries;
-          for (const Term &e : terms())
-            {
-              for (RowMajorSparse::InnerIterator it(sys.Ws, e.source); it; ++it)
-                if (position[it.col()] >= 0)
-                  entries.emplace_back(e.row,
-                                       position[it.col()],
-                                       e.a * it.value());
-              if (sys.shift != 0. && position[e.source] >= 0)
-                entries.emplace_back(e.row,
-                                     position[e.source],
-                                     e.a * sys.shift);
-              for (unsigned int a = 0; a < na; ++a)
-                if (sys.problem.G(e.source, a) != 0.)
-                  entries.emplace_back(e.row,
-                                       position[m + a],
-                                       e.a * sys.problem.G(e.source, a));
-            }
+          const unsigned int      nN = others.size();
+          const std::vector<Term> t  = terms();
+          std::vector<double>     value(nN, 0.);
+          std::vector<int>        mark(nN, -1), columns;
+          std::size_t             nnz = 0;
+          for (const Term &e : t)
+            nnz += sys.Ws.outerIndexPtr()[e.source + 1] -
+                   sys.Ws.outerIndexPtr()[e.source] + 1;
+          RowMajorSparse K(nN, nN);
+          K.reserve(nnz + std::size_t(d) * nN);
+          std::size_t e = 0; // the terms are in the order of their rows
           for (unsigned int r = 0; r < nN; ++r)
             {
+              columns.clear();
+              const auto add = [&](const int column, const double v) {
+                if (mark[column] != int(r))
+                  {
+                    mark[column]  = r;
+                    value[column] = v;
+                    columns.push_back(column);
+                  }
+                else
+                  value[column] += v;
+              };
+              for (; e < t.size() && t[e].row == r; ++e)
+                {
+                  const Term &term = t[e];
+                  for (RowMajorSparse::InnerIterator it(sys.Ws, term.source);
+                       it;
+                       ++it)
+                    if (position[it.col()] >= 0)
+                      add(position[it.col()], term.a * it.value());
+                  if (sys.shift != 0. && position[term.source] >= 0)
+                    add(position[term.source], term.a * sys.shift);
+                  for (unsigned int a = 0; a < na; ++a)
+                    if (sys.problem.G(term.source, a) != 0.)
+                      add(position[m + a],
+                          term.a * sys.problem.G(term.source, a));
+                }
               const unsigned int i = others[r];
               if (i < m)
                 {
                   const unsigned int c = i / d, k = i % d, o = c * d;
                   for (unsigned int l = 0; l < d; ++l)
                     if (branches[c].B(k, l) != 0. && position[o + l] >= 0)
-                      entries.emplace_back(r,
-                                           position[o + l],
-                                           branches[c].B(k, l));
+                      add(position[o + l], branches[c].B(k, l));
                 }
               else
                 for (unsigned int b = 0; b < nN; ++b)
                   if (static_cast<unsigned int>(others[b]) < m &&
                       sys.problem.G(others[b], i - m) != 0.)
-                    entries.emplace_back(r, b, sys.problem.G(others[b], i - m));
+                    add(b, sys.problem.G(others[b], i - m));
+              std::sort(columns.begin(), columns.end());
+              K.startVec(r);
+              for (const int column : columns)
+                K.insertBack(r, column) = value[column];
             }
-          SparseMatrix K(nN, nN);
-          K.setFromTriplets(entries.begin(), entries.end());
+          K.finalize();
           return K;
         }
 
@@ -471,9 +497,10 @@ namespace igabde
         // slower here than the simplicial LDL^T: on KaplasTower 0.66 s
         // against 0.46 s over the 17 iterations.)
         Vec
-        sparse_lm(const SparseMatrix &K,
-                  const Vec          &rhs,
-                  const double        lm_relative) const
+        sparse_lm(const SparseMatrix   &K,
+                  const RowMajorSparse &K_rows,
+                  const Vec            &rhs,
+                  const double          lm_relative) const
         {
           // The lower triangle of K^T K, column by column (Gustavson:
           // column j sums K's rows r scaled by K(r, j), in the order of
@@ -483,8 +510,7 @@ namespace igabde
           // two sorting copies Eigen's general product makes
           // (Capsules-i100-1090: 51 -> 48 ms per solve; the product and
           // the analysis were two thirds of its iterations' time).
-          const SparseMatrix        Kt = K.transpose(); // column r: row r of K
-          const Eigen::Index        n  = K.cols();
+          const Eigen::Index        n = K.cols();
           std::vector<double>       value(n, 0.);
           std::vector<Eigen::Index> mark(n, -1);
           std::vector<Eigen::Index> column;
@@ -499,7 +525,8 @@ namespace igabde
               column.push_back(j);
               bool diagonal_touched = false;
               for (SparseMatrix::InnerIterator kr(K, j); kr; ++kr)
-                for (SparseMatrix::InnerIterator it(Kt, kr.index()); it; ++it)
+                for (RowMajorSparse::InnerIterator it(K_rows, kr.index()); it;
+                     ++it)
                   if (const Eigen::Index i = it.index(); i >= j)
                     {
                       const double x = it.value() * kr.value();
@@ -543,7 +570,7 @@ namespace igabde
               cache.inner.assign(inner, inner + KtK.nonZeros());
             }
           cache.ldlt.factorize(KtK);
-          return cache.ldlt.solve(Kt * rhs);
+          return cache.ldlt.solve(K_rows.transpose() * rhs);
         }
 
         const System              &sys;
