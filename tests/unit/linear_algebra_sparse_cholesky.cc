@@ -145,6 +145,66 @@ TEST(SparseCholesky, SchurComplementAndSolveMatchDenseAlgebra)
 
 
 
+// Point operators touch a few of the face's unknowns each: for a C with at
+// most a tenth of its entries non-zero, C^T S^{-1} C is formed from S^{-1}
+// and C's compressed columns instead of L^{-1} C. Against the dense
+// reference (K_ff^{-1})_II, on an interface of 19 unknowns with 30
+// columns of one or two entries (45 of C's 570 entries).
+TEST(SparseCholesky, SparseLoadPatternsMatchDenseAlgebra)
+{
+  const Chain       chain;
+  std::vector<bool> eliminated(n, false);
+  eliminated[0] = eliminated[n - 1] = true;
+  std::vector<unsigned int> free;
+  for (unsigned int i = 0; i < n; ++i)
+    if (!eliminated[i])
+      free.push_back(i);
+  std::vector<types::global_dof_index> interface;
+  for (unsigned int i = 1; i < n - 1; i += 2)
+    interface.push_back(i);
+  const unsigned int n_s = interface.size(), m = 30;
+  ASSERT_EQ(n_s, 19u);
+
+  igabde::linear_algebra::SparseCholesky cholesky;
+  cholesky.initialize(chain.matrix, eliminated, interface);
+
+  Eigen::MatrixXd Kf(free.size(), free.size());
+  for (unsigned int a = 0; a < free.size(); ++a)
+    for (unsigned int b = 0; b < free.size(); ++b)
+      Kf(a, b) = chain.dense(free[a], free[b]);
+  const Eigen::MatrixXd Kf_inv   = Kf.inverse();
+  const auto            position = [&](const unsigned int i) {
+    return std::find(free.begin(), free.end(), i) - free.begin();
+  };
+  Eigen::MatrixXd inv_II(n_s, n_s);
+  for (unsigned int a = 0; a < n_s; ++a)
+    for (unsigned int b = 0; b < n_s; ++b)
+      inv_II(a, b) = Kf_inv(position(interface[a]), position(interface[b]));
+
+  FullMatrix<double> C(n_s, m);
+  Eigen::MatrixXd    Ce       = Eigen::MatrixXd::Zero(n_s, m);
+  unsigned int       nonzeros = 0;
+  for (unsigned int j = 0; j < m; ++j)
+    for (unsigned int k = 0; k <= j % 2; ++k)
+      {
+        const unsigned int a = (7 * j + 5 * k) % n_s;
+        const double       v = (k == 1 ? -0.7 : 1.) * (1. + 0.1 * j);
+        nonzeros += (C(a, j) == 0.);
+        C(a, j) += v;
+        Ce(a, j) += v;
+      }
+  ASSERT_LE(10 * nonzeros, n_s * m);
+  const FullMatrix<double> F       = cholesky.interface_flexibility(C);
+  const Eigen::MatrixXd    F_dense = Ce.transpose() * inv_II * Ce;
+  for (unsigned int i = 0; i < m; ++i)
+    for (unsigned int j = 0; j < m; ++j)
+      {
+        EXPECT_NEAR(F(i, j), F_dense(i, j), 1e-12 * F_dense.norm());
+        EXPECT_EQ(F(i, j), F(j, i));
+      }
+}
+
+
 TEST(SparseCholesky, ReleaseKeepsTheReportsAndRefusesSolves)
 {
   // The full contact path frees the bodies' factors once their load cases
