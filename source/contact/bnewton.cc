@@ -310,14 +310,16 @@ namespace igabde
           if (!outcome.converged)
             {
               ContactIterate x1 = x;
-              outcome           = driver.newton(data,
-                                      bde_law(op, data, r_factor, radius),
-                                      x1,
-                                      settings.tolerance,
-                                      phase_name("newton", radius),
-                                      true,
-                                      settings.max_iterations,
-                                      settings.proximal);
+              outcome =
+                driver.newton(data,
+                              bde_law(op, data, r_factor, radius),
+                              x1,
+                              settings.tolerance,
+                              phase_name("newton", radius),
+                              true,
+                              settings.max_iterations,
+                              settings.proximal,
+                              data.has_friction() && settings.switch_radius);
               reasons += (reasons.empty() ? "" : "; ") +
                          phase_name("newton", radius) + ": " + outcome.reason;
             }

@@ -391,10 +391,14 @@ namespace igabde
                          const std::string  &phase,
                          const bool          on_original,
                          const unsigned int  budget,
-                         const bool          leave_when_singular_at_start)
+                         const bool          leave_when_singular_at_start,
+                         const bool          leave_when_cycling)
     {
-      const double       sigma = settings.armijo_sigma;
-      const double       beta  = settings.armijo_beta;
+      // Iterations without progress among a few revisited active sets
+      // after which a phase with leave_when_cycling ends.
+      const unsigned int cycling_window = 10;
+      const double       sigma          = settings.armijo_sigma;
+      const double       beta           = settings.armijo_beta;
       const unsigned int m = data.n_rows(), na = data.n_alpha();
       const unsigned int d = data.n_components;
 
@@ -506,6 +510,21 @@ namespace igabde
             return fail("stall (no decrease of |H| in " +
                         std::to_string(settings.stall_iterations) +
                         " iterations)");
+          else if (leave_when_cycling &&
+                   local_it - last_progress >= cycling_window &&
+                   sets.size() >= cycling_window)
+            {
+              // The last iterations' active sets: a few, revisited.
+              std::vector<std::vector<int>> last(sets.end() - cycling_window,
+                                                 sets.end());
+              std::sort(last.begin(), last.end());
+              last.erase(std::unique(last.begin(), last.end()), last.end());
+              if (last.size() >= 2 && 2 * last.size() <= cycling_window)
+                return fail("stall (cycling between " +
+                            std::to_string(last.size()) +
+                            " active sets without progress in " +
+                            std::to_string(cycling_window) + " iterations)");
+            }
 
           ++local_it;
           ++result.iterations;
