@@ -288,6 +288,26 @@ TEST(ContactFclib, GaussSeidelPhaseSolvesWhereNewtonCycles)
 
 
 
+// Spheres in a box (FCLIB, a global problem: 256 contacts, mu 0.1): the first
+// radius's Newton iterations cycle among three active sets (pairs 16 and 22
+// change state) without progress. The first phase ends after ten such
+// iterations instead of twenty, and the other radius solves the problem from
+// the best iterate (69 iterations in all instead of 103).
+TEST(ContactFclib, CyclingFirstPhaseHandsOverToTheOtherRadius)
+{
+  SKIP_WITHOUT_FCLIB();
+  const BNewtonSolver::Result result = solve_with_fclib_stopping(
+    "hdf5_global/spheres-in-a-box-98-i10000-256-10.hdf5");
+  EXPECT_TRUE(result.converged) << result.summary();
+  EXPECT_NE(result.diagnosis.find("newton-cp: stall (cycling between"),
+            std::string::npos)
+    << result.diagnosis;
+  EXPECT_NE(result.diagnosis.find("newton-ac: converged"), std::string::npos)
+    << result.diagnosis;
+}
+
+
+
 // A hyperstatic tower of rigid bodies (FCLIB KaplasTower, 570 contacts, a
 // sparse symmetric W of about half rank): every Newton matrix of the
 // original problem is singular, and Levenberg-Marquardt steps on J^T J
