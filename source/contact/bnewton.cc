@@ -366,7 +366,9 @@ namespace igabde
           // solved exactly (condensed path, 2D or frictionless, no
           // floating bodies); before the proximal phase, which costs more
           // where both apply (FrictionContactProblem00727: 0.47 s with
-          // the proximal phase first, 0.07 s without).
+          // the proximal phase first, 0.07 s without). On a sparse W each
+          // pair's u is read from its rows of the sparse copy (00727:
+          // 75 -> 41 ms against the dense W's columns).
           const Eigen::MatrixXd *W = op.dense_flexibility();
           if (!outcome.converged && !proximal_now &&
               settings.gauss_seidel_sweeps > 0 && W != nullptr && na == 0 &&

@@ -46,6 +46,26 @@ namespace igabde
 
 
       /**
+       * The number of distinct active sets among the last @p w of @p sets
+       * when they cycle: at least two, each revisited on average (at most
+       * w / 2 of them); 0 otherwise.
+       */
+      unsigned int
+      cycle_length(const std::vector<std::vector<int>> &sets,
+                   const unsigned int                   w)
+      {
+        std::vector<std::vector<int>> distinct(sets.end() - w, sets.end());
+        std::sort(distinct.begin(), distinct.end());
+        distinct.erase(std::unique(distinct.begin(), distinct.end()),
+                       distinct.end());
+        return distinct.size() >= 2 && 2 * distinct.size() <= w ?
+                 distinct.size() :
+                 0;
+      }
+
+
+
+      /**
        * What a failed phase involves, for its diagnosis: pairs with
        * non-finite forces or residuals; else, if the last active sets of
        * the phase repeat (fewer distinct sets than half the window), a cycle
@@ -74,12 +94,10 @@ namespace igabde
                                  static_cast<unsigned int>(sets.size()));
         if (w >= 4)
           {
-            std::vector<std::vector<int>> last(sets.end() - w, sets.end());
-            std::vector<std::vector<int>> distinct = last;
-            std::sort(distinct.begin(), distinct.end());
-            distinct.erase(std::unique(distinct.begin(), distinct.end()),
-                           distinct.end());
-            if (distinct.size() >= 2 && 2 * distinct.size() <= w)
+            const std::vector<std::vector<int>> last(sets.end() - w,
+                                                     sets.end());
+            if (const unsigned int n_distinct = cycle_length(sets, w);
+                n_distinct > 0)
               {
                 for (unsigned int c = 0; c < n_contacts; ++c)
                   for (const auto &set : last)
@@ -88,7 +106,7 @@ namespace igabde
                         involved.push_back(c);
                         break;
                       }
-                return "; cycling between " + std::to_string(distinct.size()) +
+                return "; cycling between " + std::to_string(n_distinct) +
                        " active sets in the last " + std::to_string(w) +
                        " iterations, changing the state of " +
                        pair_list_text(involved);
@@ -514,14 +532,11 @@ namespace igabde
                    local_it - last_progress >= cycling_window &&
                    sets.size() >= cycling_window)
             {
-              // The last iterations' active sets: a few, revisited.
-              std::vector<std::vector<int>> last(sets.end() - cycling_window,
-                                                 sets.end());
-              std::sort(last.begin(), last.end());
-              last.erase(std::unique(last.begin(), last.end()), last.end());
-              if (last.size() >= 2 && 2 * last.size() <= cycling_window)
+              if (const unsigned int n_distinct =
+                    cycle_length(sets, cycling_window);
+                  n_distinct > 0)
                 return fail("stall (cycling between " +
-                            std::to_string(last.size()) +
+                            std::to_string(n_distinct) +
                             " active sets without progress in " +
                             std::to_string(cycling_window) + " iterations)");
             }

@@ -74,7 +74,8 @@ namespace igabde
      *    else a steepest-descent line search is tried; if that fails too
      *    the phase ends with "line-search failure";
      *  - a phase also ends on stagnation: no 0.1 % decrease of the best
-     *    theta in Settings::stall_iterations iterations.
+     *    theta in Settings::stall_iterations iterations, or (phase 1 when
+     *    phase 2 follows) in ten iterations whose active sets cycle.
      * Phases: (0) where the operator keeps W sparse and no body floats, at
      * most Settings::gauss_seidel_first_sweeps nonsmooth Gauss-Seidel
      * sweeps from the start, left as soon as their rate would not reach the
