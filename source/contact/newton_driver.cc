@@ -7,6 +7,7 @@
 #include <deque>
 #include <iostream>
 #include <limits>
+#include <optional>
 
 namespace igabde
 {
@@ -665,11 +666,19 @@ namespace igabde
             return g;
           };
 
-          const ContactIterate grad = apply_JT(F);
-          Vec                  du;
-          ContactIterate       Jdx;
-          double               slope         = 0.;
-          bool                 gradient_step = false;
+          // The steepest-descent direction J^T F, formed only when the
+          // Newton direction is refused (one product with W^T saved in
+          // every iteration that keeps it).
+          std::optional<ContactIterate> gradient;
+          const auto                    grad = [&]() -> const ContactIterate                    &{
+            if (!gradient)
+              gradient = apply_JT(F);
+            return *gradient;
+          };
+          Vec            du;
+          ContactIterate Jdx;
+          double         slope         = 0.;
+          bool           gradient_step = false;
           if (solved)
             {
               Jdx   = apply_J(dx, du);
@@ -683,11 +692,11 @@ namespace igabde
                           !(slope < -1e-8 * std::sqrt(2. * theta) *
                                       std::sqrt(squared_norm(Jdx)))))
             {
-              dx.p          = -grad.p;
-              dx.alpha      = -grad.alpha;
-              dx.w          = -grad.w;
+              dx.p          = -grad().p;
+              dx.alpha      = -grad().alpha;
+              dx.w          = -grad().w;
               Jdx           = apply_J(dx, du);
-              slope         = -squared_norm(grad);
+              slope         = -squared_norm(grad());
               gradient_step = true;
               rec.note += "gradient ";
             }
@@ -742,11 +751,11 @@ namespace igabde
                 }
               if (!accepted && !gradient_step)
                 {
-                  dx.p          = -grad.p;
-                  dx.alpha      = -grad.alpha;
-                  dx.w          = -grad.w;
+                  dx.p          = -grad().p;
+                  dx.alpha      = -grad().alpha;
+                  dx.w          = -grad().w;
                   Jdx           = apply_J(dx, du);
-                  slope         = -squared_norm(grad);
+                  slope         = -squared_norm(grad());
                   gradient_step = true;
                   rec.note += "gradient ";
                 }
