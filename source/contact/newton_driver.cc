@@ -380,6 +380,34 @@ namespace igabde
       Vec            u;
       ContactIterate F;
       evaluate(data, law, x, u, F, nullptr);
+      return stopping_test(data,
+                           law,
+                           x,
+                           u,
+                           F,
+                           tolerance,
+                           at_rounding_floor,
+                           err,
+                           balanced,
+                           eq,
+                           disp);
+    }
+
+
+
+    bool
+    NewtonDriver::stopping_test(const ContactData    &data,
+                                const PairLawModel   &law,
+                                const ContactIterate &x,
+                                const Vec            &u,
+                                const ContactIterate &F,
+                                const double          tolerance,
+                                const bool            at_rounding_floor,
+                                double               &err,
+                                double               &balanced,
+                                double               &eq,
+                                double               &disp) const
+    {
       law.errors(data, x.p, u, F.p, err, balanced);
       double absolute;
       eq               = relative_equilibrium_error(data, x.p, absolute);
@@ -477,6 +505,8 @@ namespace igabde
           const bool done = stopping_test(data,
                                           law,
                                           x,
+                                          u,
+                                          F,
                                           tolerance,
                                           at_floor,
                                           err,

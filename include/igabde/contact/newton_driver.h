@@ -284,6 +284,24 @@ namespace igabde
                     double               &disp) const;
 
       /**
+       * @brief As above, with @p u and @p F at @p x already evaluated
+       * (evaluate()): the Newton loop has them, and a second evaluation
+       * would cost a product with W per iteration.
+       */
+      bool
+      stopping_test(const ContactData     &data,
+                    const PairLawModel    &law,
+                    const ContactIterate  &x,
+                    const Eigen::VectorXd &u,
+                    const ContactIterate  &F,
+                    const double           tolerance,
+                    const bool             at_rounding_floor,
+                    double                &err,
+                    double                &balanced,
+                    double                &eq,
+                    double                &disp) const;
+
+      /**
        * @brief u, the law's residual F and (if @p pieces) the pieces at
        * @p x, with the directions held by supports on both sides taken
        * out of the law (p = 0 there); returns theta = |F|^2 / 2.
