@@ -311,7 +311,11 @@ namespace
       << std::setprecision(0) << o.error << ") | " << o.iterations;
     if (o.sweeps > 0)
       s << " + " << o.sweeps << " sweeps";
-    s << " | " << std::fixed << std::setprecision(o.ms < 10 ? 2 : 0) << o.ms;
+    s << " | " << std::fixed
+      << std::setprecision(o.ms < 0.1 ? 4 :
+                           o.ms < 10  ? 2 :
+                                        0)
+      << o.ms;
     return s.str();
   }
 } // namespace
@@ -458,6 +462,7 @@ main(int argc, char **argv)
             << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
                "---|\n";
   unsigned int             solved[4] = {0, 0, 0, 0}, attempted = 0;
+  unsigned int             both_solve = 0, fastest = 0, within_two = 0;
   std::vector<std::string> skipped;
   for (const auto &path : files)
     {
@@ -530,6 +535,18 @@ main(int argc, char **argv)
           Outcome();
       frictionContactProblem_free(fcp);
 
+      // Speed against Siconos' fastest solver that solved it too.
+      double best_siconos = std::numeric_limits<double>::max();
+      for (const Outcome *o : {&nsn, &nsgs, &prox})
+        if (o->ran && o->error <= 1e-8)
+          best_siconos = std::min(best_siconos, o->ms);
+      if (ours.error <= 1e-8 &&
+          best_siconos < std::numeric_limits<double>::max())
+        {
+          ++both_solve;
+          fastest += ours.ms <= best_siconos;
+          within_two += ours.ms <= 2. * best_siconos;
+        }
       solved[0] += ours.error <= 1e-8;
       solved[1] += nsn.error <= 1e-8;
       solved[2] += nsgs.error <= 1e-8;
@@ -544,5 +561,10 @@ main(int argc, char **argv)
             << solved[2] << ", PROX " << solved[3] << " (3D only)\nleft out:\n";
   for (const std::string &s : skipped)
     std::cout << "  " << s << '\n';
+  std::cout << "speed: of the " << both_solve
+            << " problems igabde and a Siconos solver both solve, igabde is "
+               "the fastest on "
+            << fastest << " and within 2x of Siconos' fastest on " << within_two
+            << '\n';
   return 0;
 }
