@@ -3,6 +3,7 @@
 
 #include <igabde/contact/bnewton.h>
 #include <igabde/contact/condition_check.h>
+#include <igabde/contact/contact_law.h>
 #include <igabde/contact/contact_problem.h>
 
 #include <gtest/gtest.h>
@@ -656,4 +657,68 @@ TEST(ContactBNewton, SparsePathWithFloatingBody)
       EXPECT_NEAR(result.alpha[0], 6.5, 1e-12);
       EXPECT_EQ(result.p.tail(nc - 1).norm(), 0.);
     }
+}
+
+
+
+// A heap of rigid bodies: 80 contacts among 30 bodies, W = H H^T of rank
+// 90 in 240 rows, sparse (contacts couple where they share a body). Every
+// reduced Newton matrix is singular, so both storages take
+// Levenberg-Marquardt steps, (K^T K + lambda I) d = K^T rhs: the dense one
+// forms K^T K by BLAS (syrk), the sparse one column by column from K's
+// compressed rows. The two are the same step, so the first iterations'
+// residuals must agree to rounding (amplified by 1/lambda, at most 1e10 of
+// max diag K^T K: 1e-5 relative), and both must solve the problem.
+TEST(ContactBNewton, SparseAndDenseLevenbergMarquardtStepsAgree)
+{
+  const unsigned int                     nc = 80, n_bodies = 30;
+  std::mt19937                           gen(3);
+  std::uniform_real_distribution<double> dist(-1., 1.);
+  std::uniform_int_distribution<int>     body(0, n_bodies - 1);
+  Eigen::MatrixXd H = Eigen::MatrixXd::Zero(3 * nc, 3 * n_bodies);
+  for (unsigned int c = 0; c < nc; ++c)
+    {
+      const int b1 = c % n_bodies;
+      int       b2 = body(gen);
+      if (b2 == b1)
+        b2 = (b1 + 1) % n_bodies;
+      for (unsigned int i = 0; i < 3; ++i)
+        for (unsigned int j = 0; j < 3; ++j)
+          {
+            H(3 * c + i, 3 * b1 + j) = (i == j ? 1. : 0.) + 0.3 * dist(gen);
+            H(3 * c + i, 3 * b2 + j) = -((i == j ? 1. : 0.) + 0.3 * dist(gen));
+          }
+    }
+  const Eigen::MatrixXd W = H * H.transpose();
+  Eigen::VectorXd       p_star(3 * nc);
+  for (unsigned int c = 0; c < nc; ++c)
+    {
+      p_star[3 * c]     = 1. + 0.5 * dist(gen);
+      p_star[3 * c + 1] = 0.2 * p_star[3 * c] * dist(gen);
+      p_star[3 * c + 2] = 0.2 * p_star[3 * c] * dist(gen);
+    }
+  const ContactProblem problem =
+    make_problem(3, W, -W * p_star, std::vector<double>(nc, 0.5));
+
+  std::vector<BNewtonSolver::Result> results;
+  for (const auto la :
+       {NewtonLinearAlgebra::dense, NewtonLinearAlgebra::sparse})
+    {
+      BNewtonSolver::Settings settings = path_settings(la, false);
+      settings.fclib_stopping          = true;
+      results.push_back(BNewtonSolver(settings).solve(problem));
+      const BNewtonSolver::Result &result = results.back();
+      SCOPED_TRACE(la == NewtonLinearAlgebra::dense ? "dense" : "sparse");
+      EXPECT_TRUE(result.converged) << result.summary();
+      EXPECT_LE(relative_natural_map_error(problem, result.p, result.u), 1e-8);
+      unsigned int lm_steps = 0;
+      for (const auto &record : result.history)
+        lm_steps += record.note.find("lm") != std::string::npos;
+      EXPECT_GT(lm_steps, 0u) << "no Levenberg-Marquardt step taken";
+    }
+  const auto &dense = results[0].history, &sparse = results[1].history;
+  ASSERT_GE(std::min(dense.size(), sparse.size()), 3u);
+  for (unsigned int k = 1; k < 3; ++k)
+    EXPECT_NEAR(sparse[k].residual, dense[k].residual, 1e-5 * dense[k].residual)
+      << "iteration " << k;
 }
