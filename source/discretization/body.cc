@@ -277,7 +277,7 @@ namespace igabde
     void
     Body<dim>::keep_reaction_rows_only()
     {
-      if (!assembled ||
+      if (!assembled || reduced_to_reaction_rows ||
           settings.linear_solver != discretization::LinearSolver::direct)
         return;
       // The rows support_reaction() and face_motion_reaction() read.
@@ -311,7 +311,8 @@ namespace igabde
 
     template <int dim>
     void
-    Body<dim>::factorize(const std::vector<PointOperator<dim>> &interface)
+    Body<dim>::factorize(const std::vector<PointOperator<dim>> &interface,
+                         const bool keep_reaction_rows)
     {
       if (!factorizes_here())
         return;
@@ -331,20 +332,12 @@ namespace igabde
             if (touched[i] && !solve_constraints.is_constrained(i))
               interface_dofs.push_back(i);
         }
-      factorize_matrix(interface_dofs);
-      // The pinned responses K^+ C_h serve the Schur-complement
-      // flexibility's correction only (correct_for_held_modes()).
-      held_response.clear();
-      if (has_schur_complement() && !held_loads.empty())
-        {
-          held_response = held_loads;
-          solve_pinned(held_response);
-        }
-
       // Superposition: one load case per load history (history 0 the
       // external loads of the load factors, 1 the prescribed displacements
       // of the displacement factors, 2.. named histories), each scaled by
-      // its own factor along the load path.
+      // its own factor along the load path. Their right-hand sides first:
+      // K lift is the last product with the whole K, whose other rows may
+      // then go as soon as the factorisation has read it.
       const unsigned int          n_h = history_rhs.size();
       std::vector<Vector<double>> columns(history_rhs);
       std::vector<Vector<double>> lifts(n_h, Vector<double>(n_unknowns));
@@ -359,6 +352,23 @@ namespace igabde
           }
       for (unsigned int h = 0; h < n_h; ++h)
         columns[h] -= stiffness_times(lifts[h]);
+
+      factorize_matrix(interface_dofs,
+                       keep_reaction_rows ? std::function<void()>([this]() {
+                         keep_reaction_rows_only();
+                       }) :
+                                            std::function<void()>());
+      if (keep_reaction_rows)
+        keep_reaction_rows_only();
+      // The pinned responses K^+ C_h serve the Schur-complement
+      // flexibility's correction only (correct_for_held_modes()).
+      held_response.clear();
+      if (has_schur_complement() && !held_loads.empty())
+        {
+          held_response = held_loads;
+          solve_pinned(held_response);
+        }
+
       solve_in_group(columns);
       u_history = columns;
       for (unsigned int h = 0; h < n_h; ++h)
@@ -1365,7 +1375,8 @@ namespace igabde
     template <int dim>
     void
     Body<dim>::factorize_matrix(
-      const std::vector<types::global_dof_index> &interface_dofs)
+      const std::vector<types::global_dof_index> &interface_dofs,
+      const std::function<void()>                &matrix_read)
     {
       if (settings.linear_solver == discretization::LinearSolver::direct)
         {
@@ -1387,7 +1398,8 @@ namespace igabde
                                                 Order::nested_dissection :
                                                 Order::minimum_degree,
                                               layout.group,
-                                              assembled_share);
+                                              assembled_share,
+                                              matrix_read);
           return;
         }
 

@@ -222,7 +222,8 @@ namespace igabde
       const std::vector<types::global_dof_index> &interface,
       const PivotOrder                            pivot_order,
       const MPI_Comm                              communicator,
-      const bool                                  distributed_values)
+      const bool                                  distributed_values,
+      const std::function<void()>                &matrix_read)
     {
       Data &d = *data;
       d.release();
@@ -259,6 +260,8 @@ namespace igabde
               d.schur(a, b) = matrix.el(interface[a], interface[b]);
           if (distributed_values)
             Utilities::MPI::sum(d.schur, communicator, d.schur);
+          if (matrix_read)
+            matrix_read();
         }
       else
         {
@@ -362,6 +365,9 @@ namespace igabde
               d.id.jcn = d.cols.data();
               d.id.a   = d.values.data();
             }
+
+          if (matrix_read)
+            matrix_read();
 
           std::vector<MUMPS_INT> schur_list(n_s);
           if (n_s > 0)

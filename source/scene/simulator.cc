@@ -169,18 +169,17 @@ namespace igabde
           {
             Timer clock;
             // What the contact path needs of the body (a Schur interface on
-            // the contact face, or nothing).
+            // the contact face, or nothing). Without contact or on the
+            // condensed path, K is read after its factorisation only in the
+            // support reactions: its other rows go as soon as MUMPS has
+            // read it.
             bodies[b]->factorize(
               stage != nullptr ?
                 stage->factorization_interface(b) :
-                std::vector<discretization::PointOperator<dim>>());
+                std::vector<discretization::PointOperator<dim>>(),
+              stage == nullptr || stage->solves_with_bodies());
             seconds[b] = clock.wall_time();
             flops[b]   = bodies[b]->factor_flops();
-            // Without contact or on the condensed path, K is read from now
-            // on only in the support reactions: its other rows go before
-            // the next body factorises.
-            if (stage == nullptr || stage->solves_with_bodies())
-              bodies[b]->keep_reaction_rows_only();
           }
       for (auto &body : bodies)
         body->share_factorization();

@@ -222,9 +222,16 @@ namespace igabde
        * the Schur complement of K onto the unknowns those operators touch,
        * so that flexibility() costs a dense solve on the contact face
        * instead of one sparse solve per column.
+       *
+       * With @p keep_reaction_rows, K keeps only the rows the support
+       * reactions read (keep_reaction_rows_only()) from the moment the
+       * factorisation has read it, before the numerical factorisation:
+       * the path that reads K no more afterwards (the condensed one,
+       * or no contact) frees the rest where the memory peaks.
        */
       void
-      factorize(const std::vector<PointOperator<dim>> &interface = {});
+      factorize(const std::vector<PointOperator<dim>> &interface = {},
+                bool keep_reaction_rows                          = false);
 
       /**
        * @brief Sets where the assembly and the factorisation run (before
@@ -775,7 +782,8 @@ namespace igabde
 
       void
       factorize_matrix(
-        const std::vector<types::global_dof_index> &interface_dofs);
+        const std::vector<types::global_dof_index> &interface_dofs,
+        const std::function<void()>                &matrix_read = {});
 
       /// Scene description (owned; body.h only forward-declares it).
       std::unique_ptr<const BodyDescription<dim>> body_description;

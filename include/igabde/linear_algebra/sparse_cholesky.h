@@ -7,6 +7,7 @@
 #include <deal.II/lac/sparse_matrix.h>
 #include <deal.II/lac/vector.h>
 
+#include <functional>
 #include <memory>
 #include <mpi.h>
 #include <vector>
@@ -84,6 +85,10 @@ namespace igabde
        * @param distributed_values each rank's @p matrix holds a share of
        * K's values (same sparsity pattern on every rank); K is their sum
        * (MUMPS' distributed assembled input).
+       * @param matrix_read called on every rank once @p matrix has been
+       * read, before the numerical factorisation: @p matrix is not read
+       * after it, so the caller may free it there (where the memory
+       * peaks).
        */
       void
       initialize(const SparseMatrix<double>                 &matrix,
@@ -91,7 +96,8 @@ namespace igabde
                  const std::vector<types::global_dof_index> &interface,
                  PivotOrder     order        = PivotOrder::cheaper_of_both,
                  const MPI_Comm communicator = MPI_COMM_SELF,
-                 const bool     distributed_values = false);
+                 const bool     distributed_values        = false,
+                 const std::function<void()> &matrix_read = {});
 
       /**
        * @brief Hands the interface, the Cholesky factor of S and the factor
