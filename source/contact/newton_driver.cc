@@ -375,39 +375,16 @@ namespace igabde
                                 double               &err,
                                 double               &balanced,
                                 double               &eq,
-                                double               &disp) const
+                                double               &disp,
+                                const Vec            *u_at_x,
+                                const ContactIterate *F_at_x) const
     {
-      Vec            u;
-      ContactIterate F;
-      evaluate(data, law, x, u, F, nullptr);
-      return stopping_test(data,
-                           law,
-                           x,
-                           u,
-                           F,
-                           tolerance,
-                           at_rounding_floor,
-                           err,
-                           balanced,
-                           eq,
-                           disp);
-    }
-
-
-
-    bool
-    NewtonDriver::stopping_test(const ContactData    &data,
-                                const PairLawModel   &law,
-                                const ContactIterate &x,
-                                const Vec            &u,
-                                const ContactIterate &F,
-                                const double          tolerance,
-                                const bool            at_rounding_floor,
-                                double               &err,
-                                double               &balanced,
-                                double               &eq,
-                                double               &disp) const
-    {
+      Vec            u_here;
+      ContactIterate F_here;
+      if (u_at_x == nullptr || F_at_x == nullptr)
+        evaluate(data, law, x, u_here, F_here, nullptr);
+      const Vec            &u = u_at_x && F_at_x ? *u_at_x : u_here;
+      const ContactIterate &F = u_at_x && F_at_x ? *F_at_x : F_here;
       law.errors(data, x.p, u, F.p, err, balanced);
       double absolute;
       eq               = relative_equilibrium_error(data, x.p, absolute);
@@ -505,14 +482,14 @@ namespace igabde
           const bool done = stopping_test(data,
                                           law,
                                           x,
-                                          u,
-                                          F,
                                           tolerance,
                                           at_floor,
                                           err,
                                           balanced,
                                           eq,
-                                          disp);
+                                          disp,
+                                          &u,
+                                          &F);
           if (on_original)
             offer_best(x, balanced, eq);
 

@@ -270,36 +270,23 @@ namespace igabde
       /**
        * @brief The stopping test at x (see the class documentation); the
        * error measures go to @p err, @p balanced, @p eq (floating-body
-       * equilibrium) and @p disp (displacement equations).
-       */
-      bool
-      stopping_test(const ContactData    &data,
-                    const PairLawModel   &law,
-                    const ContactIterate &x,
-                    const double          tolerance,
-                    const bool            at_rounding_floor,
-                    double               &err,
-                    double               &balanced,
-                    double               &eq,
-                    double               &disp) const;
-
-      /**
-       * @brief As above, with @p u and @p F at @p x already evaluated
-       * (evaluate()): the Newton loop has them, and a second evaluation
-       * would cost a product with W per iteration.
+       * equilibrium) and @p disp (displacement equations). @p u_at_x and
+       * @p F_at_x, when given, are u and the law's residual at @p x as
+       * evaluate() returns them (the Newton loop has them: evaluating
+       * again would cost a product with W per iteration).
        */
       bool
       stopping_test(const ContactData     &data,
                     const PairLawModel    &law,
                     const ContactIterate  &x,
-                    const Eigen::VectorXd &u,
-                    const ContactIterate  &F,
                     const double           tolerance,
                     const bool             at_rounding_floor,
                     double                &err,
                     double                &balanced,
                     double                &eq,
-                    double                &disp) const;
+                    double                &disp,
+                    const Eigen::VectorXd *u_at_x = nullptr,
+                    const ContactIterate  *F_at_x = nullptr) const;
 
       /**
        * @brief u, the law's residual F and (if @p pieces) the pieces at
