@@ -7,7 +7,6 @@
 #include <deque>
 #include <iostream>
 #include <limits>
-#include <optional>
 
 namespace igabde
 {
@@ -95,11 +94,11 @@ namespace igabde
                                  static_cast<unsigned int>(sets.size()));
         if (w >= 4)
           {
-            const std::vector<std::vector<int>> last(sets.end() - w,
-                                                     sets.end());
             if (const unsigned int n_distinct = cycle_length(sets, w);
                 n_distinct > 0)
               {
+                const std::vector<std::vector<int>> last(sets.end() - w,
+                                                         sets.end());
                 for (unsigned int c = 0; c < n_contacts; ++c)
                   for (const auto &set : last)
                     if (c < set.size() && set[c] != last.front()[c])
@@ -379,12 +378,13 @@ namespace igabde
                                 const Vec            *u_at_x,
                                 const ContactIterate *F_at_x) const
     {
+      const bool     given = (u_at_x != nullptr && F_at_x != nullptr);
       Vec            u_here;
       ContactIterate F_here;
-      if (u_at_x == nullptr || F_at_x == nullptr)
+      if (!given)
         evaluate(data, law, x, u_here, F_here, nullptr);
-      const Vec            &u = u_at_x && F_at_x ? *u_at_x : u_here;
-      const ContactIterate &F = u_at_x && F_at_x ? *F_at_x : F_here;
+      const Vec            &u = given ? *u_at_x : u_here;
+      const ContactIterate &F = given ? *F_at_x : F_here;
       law.errors(data, x.p, u, F.p, err, balanced);
       double absolute;
       eq               = relative_equilibrium_error(data, x.p, absolute);
@@ -673,19 +673,23 @@ namespace igabde
             return g;
           };
 
-          // The steepest-descent direction J^T F, formed only when the
-          // Newton direction is refused (one product with W^T saved in
-          // every iteration that keeps it).
-          std::optional<ContactIterate> gradient;
-          const auto                    grad = [&]() -> const ContactIterate                    &{
-            if (!gradient)
-              gradient = apply_JT(F);
-            return *gradient;
-          };
           Vec            du;
           ContactIterate Jdx;
           double         slope         = 0.;
           bool           gradient_step = false;
+          // Steepest descent -J^T F, taken at most once per iteration and
+          // formed only then (one product with W^T saved in every
+          // iteration that keeps the Newton direction).
+          const auto take_gradient_step = [&]() {
+            const ContactIterate grad = apply_JT(F);
+            dx.p                      = -grad.p;
+            dx.alpha                  = -grad.alpha;
+            dx.w                      = -grad.w;
+            Jdx                       = apply_J(dx, du);
+            slope                     = -squared_norm(grad);
+            gradient_step             = true;
+            rec.note += "gradient ";
+          };
           if (solved)
             {
               Jdx   = apply_J(dx, du);
@@ -698,15 +702,7 @@ namespace igabde
           if (!solved || (settings.line_search &&
                           !(slope < -1e-8 * std::sqrt(2. * theta) *
                                       std::sqrt(squared_norm(Jdx)))))
-            {
-              dx.p          = -grad().p;
-              dx.alpha      = -grad().alpha;
-              dx.w          = -grad().w;
-              Jdx           = apply_J(dx, du);
-              slope         = -squared_norm(grad());
-              gradient_step = true;
-              rec.note += "gradient ";
-            }
+            take_gradient_step();
 
           // --- line search (non-monotone Armijo)
           theta_memory.push_back(theta);
@@ -757,15 +753,7 @@ namespace igabde
                   rec.note += "full-step ";
                 }
               if (!accepted && !gradient_step)
-                {
-                  dx.p          = -grad().p;
-                  dx.alpha      = -grad().alpha;
-                  dx.w          = -grad().w;
-                  Jdx           = apply_J(dx, du);
-                  slope         = -squared_norm(grad());
-                  gradient_step = true;
-                  rec.note += "gradient ";
-                }
+                take_gradient_step();
               else
                 break;
             }

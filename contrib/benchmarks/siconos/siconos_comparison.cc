@@ -124,6 +124,26 @@ namespace
     return std::max<long>(1, (W.array() != 0.).count());
   }
 
+  /// A Siconos problem owning @p W and copies of q and mu (Siconos frees
+  /// them with the problem).
+  FrictionContactProblem *
+  with_q_and_mu(const ContactProblem &problem, NumericsMatrix *W)
+  {
+    const int n = problem.n_rows();
+    auto     *q = static_cast<double *>(malloc(n * sizeof(double)));
+    auto     *mu =
+      static_cast<double *>(malloc(problem.n_contacts * sizeof(double)));
+    std::copy(problem.q.data(), problem.q.data() + n, q);
+    std::copy(problem.mu.begin(), problem.mu.end(), mu);
+    return frictionContactProblem_new_with_data(problem.n_components,
+                                                problem.n_contacts,
+                                                W,
+                                                q,
+                                                mu);
+  }
+
+
+
   /// The problem in Siconos' sparse-block storage (blocks of the
   /// contact's size, the exact zeros of W left out): the storage its local
   /// solvers are written for.
@@ -140,16 +160,7 @@ namespace
     SparseBlockStructuredMatrix *blocks = SBM_new();
     SBM_from_csparse(d, NM_csc(triplets), blocks);
     NM_free(triplets);
-    auto *q = static_cast<double *>(malloc(n * sizeof(double)));
-    auto *mu =
-      static_cast<double *>(malloc(problem.n_contacts * sizeof(double)));
-    std::copy(problem.q.data(), problem.q.data() + n, q);
-    std::copy(problem.mu.begin(), problem.mu.end(), mu);
-    return frictionContactProblem_new_with_data(d,
-                                                problem.n_contacts,
-                                                NM_new_SBM(n, n, blocks),
-                                                q,
-                                                mu);
+    return with_q_and_mu(problem, NM_new_SBM(n, n, blocks));
   }
 
   /// The problem with W in Siconos' dense (column-major) storage.
@@ -161,16 +172,7 @@ namespace
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i)
         matrix->matrix0[i + static_cast<std::size_t>(j) * n] = problem.W(i, j);
-    auto *q = static_cast<double *>(malloc(n * sizeof(double)));
-    auto *mu =
-      static_cast<double *>(malloc(problem.n_contacts * sizeof(double)));
-    std::copy(problem.q.data(), problem.q.data() + n, q);
-    std::copy(problem.mu.begin(), problem.mu.end(), mu);
-    return frictionContactProblem_new_with_data(problem.n_components,
-                                                problem.n_contacts,
-                                                matrix,
-                                                q,
-                                                mu);
+    return with_q_and_mu(problem, matrix);
   }
 
   /// What a solve in the child process reports to the parent.
