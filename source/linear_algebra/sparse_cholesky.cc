@@ -498,8 +498,6 @@ namespace igabde
       Utilities::MPI::broadcast(&n_s, 1, root, world);
       d.interface.resize(n_s);
       Utilities::MPI::broadcast(d.interface.data(), n_s, root, world);
-      d.schur_factor.resize(n_s * n_s);
-      Utilities::MPI::broadcast(d.schur_factor.data(), n_s * n_s, root, world);
       Utilities::MPI::broadcast(&d.entries, 1, root, world);
       // A rank that never called initialize() (it holds no MUMPS instance)
       // has the factor of S only.
@@ -533,6 +531,10 @@ namespace igabde
       AssertThrow(
         !data->released,
         ExcMessage("SparseCholesky::interface_flexibility() after release()."));
+      AssertThrow(data->schur_factor.size() == std::size_t(n_s) * n_s,
+                  ExcMessage("SparseCholesky::interface_flexibility() on a "
+                             "rank that does not hold the factor of S (only "
+                             "the host does)."));
       AssertDimension(c.m(), static_cast<unsigned int>(n_s));
       FullMatrix<double> result(m, m);
       if (m == 0 || n_s == 0)

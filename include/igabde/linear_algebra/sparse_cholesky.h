@@ -37,9 +37,9 @@ namespace igabde
      * told otherwise): its first rank, the host, holds the matrix, the
      * right-hand sides, the solutions and S (MUMPS' centralised input and
      * Schur complement); the other ranks take part in every call and hold
-     * their share of the factor. share() hands the Cholesky factor of S to
-     * ranks outside the communicator, so that interface_flexibility() works
-     * there too.
+     * their share of the factor. share() hands the interface (not S's
+     * factor, n_s^2 values that only the host reads) to ranks outside the
+     * communicator, so that they know the Schur interface.
      */
     class SparseCholesky
     {
@@ -100,11 +100,13 @@ namespace igabde
                  const std::function<void()> &matrix_read = {});
 
       /**
-       * @brief Hands the interface, the Cholesky factor of S and the factor
-       * size from the world rank @p root (the host of the communicator the
-       * factorisation ran on) to every rank of @p world (collective on
-       * @p world). A rank that did not factorise can then call
-       * interface_flexibility() but not solve().
+       * @brief Hands the interface and the factor size from the world rank
+       * @p root (the host of the communicator the factorisation ran on) to
+       * every rank of @p world (collective on @p world). The Cholesky factor
+       * of S stays where it was computed (the host, or every rank when S is
+       * the whole free block): interface_flexibility() and solve() run
+       * there. B2 at 16x64x16: 0.1 GB per body that the other ranks would
+       * hold at the height of their memory use.
        */
       void
       share(const MPI_Comm world, const unsigned int root);
