@@ -267,6 +267,19 @@ namespace igabde
                 S(r, b) = s[r] * col[others[r]] * s[b];
               S(b, b) += s[b] * s[b] * sys.shift;
             }
+          if (nN <= linear_algebra::DenseLU::small_size)
+            {
+              // Eigen in place: on tiny matrices OpenBLAS' per-call cost
+              // (buffer lock, LAPACK's condition estimate) exceeds the
+              // arithmetic (one-contact FCLIB problems).
+              const Eigen::LLT<Eigen::Ref<Mat>, Eigen::Lower> llt(S);
+              if (llt.info() != Eigen::Success || !(llt.rcond() > min_rcond))
+                return false;
+              dN = rhs.cwiseQuotient(s);
+              llt.solveInPlace(dN);
+              dN = dN.cwiseProduct(s);
+              return dN.allFinite();
+            }
           double anorm = 0.; // 1-norm from the lower triangle
           for (int b = 0; b < nN; ++b)
             {

@@ -18,8 +18,22 @@ namespace igabde
       const blas_int n = LU.rows();
       for (blas_int j = 0; j < n; ++j)
         anorm = std::max(anorm, LU.col(j).cwiseAbs().sum());
-      if (n > 0)
-        dealii::getrf(&n, &n, LU.data(), &n, pivots.data(), &info);
+      if (n == 0)
+        return;
+      if (n > small_size)
+        {
+          dealii::getrf(&n, &n, LU.data(), &n, pivots.data(), &info);
+          return;
+        }
+      const Eigen::PartialPivLU<Eigen::Ref<Eigen::MatrixXd>> lu(LU);
+      const auto &indices = lu.permutationP().indices();
+      for (blas_int i = 0; i < n; ++i)
+        pivots[indices[i]] = i;
+      // dgetrf's info: the first exactly zero pivot (Eigen leaves its
+      // column unscaled and goes on).
+      for (blas_int i = 0; i < n && info == 0; ++i)
+        if (LU(i, i) == 0.)
+          info = i + 1;
     }
 
 
@@ -90,6 +104,16 @@ namespace igabde
         return false;
       if (n == 0)
         return true;
+      if (n <= small_size)
+        {
+          Eigen::VectorXd x(n);
+          for (blas_int i = 0; i < n; ++i)
+            x[i] = b[pivots[i]];
+          LU.triangularView<Eigen::UnitLower>().solveInPlace(x);
+          LU.triangularView<Eigen::Upper>().solveInPlace(x);
+          b = std::move(x);
+          return b.allFinite();
+        }
       const blas_int nrhs   = 1;
       blas_int       status = 0;
       dealii::getrs("N",

@@ -50,18 +50,25 @@ TEST(DenseLU, HilbertConditionNumberWithinTheEstimatorsBound)
     }
 }
 
-// A random non-symmetric system solved against the product it came from.
-TEST(DenseLU, SolvesARandomSystem)
+// Random non-symmetric systems solved against the product they came from,
+// at sizes on both sides of small_size (Eigen below, LAPACK above). The
+// rows of a diagonally dominant matrix are reversed, so that no
+// factorisation without row interchanges would be accurate: the pivots
+// must be found and applied.
+TEST(DenseLU, SolvesRandomSystemsThatNeedPivoting)
 {
-  const int             n = 200;
-  const Eigen::MatrixXd A =
-    Eigen::MatrixXd::Random(n, n) + n * Eigen::MatrixXd::Identity(n, n);
-  const Eigen::VectorXd x = Eigen::VectorXd::Random(n);
-  Eigen::VectorXd       b = A * x;
-  const DenseLU         lu(A);
-  ASSERT_TRUE(lu.factorized());
-  ASSERT_TRUE(lu.solve_in_place(b));
-  EXPECT_LT((b - x).norm(), 1e-12 * x.norm());
+  for (const int n : {3, 17, DenseLU::small_size, DenseLU::small_size + 1, 200})
+    {
+      const Eigen::MatrixXd dominant =
+        Eigen::MatrixXd::Random(n, n) + n * Eigen::MatrixXd::Identity(n, n);
+      const Eigen::MatrixXd A = dominant.colwise().reverse();
+      const Eigen::VectorXd x = Eigen::VectorXd::Random(n);
+      Eigen::VectorXd       b = A * x;
+      const DenseLU         lu(A);
+      ASSERT_TRUE(lu.factorized()) << "n = " << n;
+      ASSERT_TRUE(lu.solve_in_place(b)) << "n = " << n;
+      EXPECT_LT((b - x).norm(), 1e-12 * x.norm()) << "n = " << n;
+    }
 }
 
 // An exactly singular matrix: dgetrf reports the zero pivot, rcond() is

@@ -15,7 +15,10 @@ namespace igabde
      * @brief LU factorisation with partial pivoting of a dense square
      * matrix by LAPACK (dgetrf through deal.II's lapack_templates.h:
      * blocked, BLAS-3), with the reciprocal condition number of the matrix
-     * in the 1-norm estimated from the factors.
+     * in the 1-norm estimated from the factors. Matrices of at most
+     * small_size rows are factorised by Eigen instead (the same
+     * algorithm, unblocked): on them OpenBLAS' per-call cost (its buffer
+     * lock and thread check) exceeds the arithmetic.
      *
      * deal.II 9.4 wraps no dgecon, so rcond() is LAPACK's estimate done by
      * hand: Higham's estimate of |A^-1|_1 (dlacn2: Hager's method, at most
@@ -26,6 +29,9 @@ namespace igabde
     class DenseLU
     {
     public:
+      /// Largest size factorised by Eigen rather than LAPACK.
+      static constexpr int small_size = 32;
+
       /// @brief Factorises @p A (taken by value: the factors replace it).
       explicit DenseLU(Eigen::MatrixXd A);
 
@@ -48,7 +54,10 @@ namespace igabde
       solve_in_place(Eigen::VectorXd &b) const;
 
     private:
-      Eigen::MatrixXd                      LU;
+      Eigen::MatrixXd LU;
+      /// LAPACK's row interchanges (1-based), or for a small matrix the
+      /// row permutation P of P A = L U (0-based: row i of P A is row
+      /// pivots[i] of A).
       std::vector<dealii::types::blas_int> pivots;
       double                               anorm = 0.;
       dealii::types::blas_int              info  = 0;
