@@ -10,7 +10,7 @@
 //                     out (default 6000: our dense W)
 //   --max-iterations  Siconos' iteration budget (default 1000 for the
 //                     Newton and proximal solvers, 10 times that for NSGS)
-//   --verify FILE [--agree TOL]
+//   --verify FILE [--agree TOL]   (in any order)
 //                     instead of the table: hand the FCLIB local problem
 //                     FILE (e.g. a scene's Output/FCLIB export) to Siconos
 //                     (3D: PROX and NSN-AC; 2D: Lemke's pivoting method and
@@ -415,9 +415,10 @@ main(int argc, char **argv)
   std::string folder = "../shared/fclib/data";
   if (const char *env = std::getenv("IGABDE_FCLIB_DIR"))
     folder = env;
-  std::string only;
+  std::string only, verify_file;
   long        max_rows       = 6000;
   int         max_iterations = 1000;
+  double      agreement      = 0.;
   for (int i = 1; i < argc; ++i)
     {
       const std::string a = argv[i];
@@ -428,16 +429,25 @@ main(int argc, char **argv)
       else if (a == "--max-iterations" && i + 1 < argc)
         max_iterations = std::stoi(argv[++i]);
       else if (a == "--verify" && i + 1 < argc)
+        verify_file = argv[++i];
+      else if (a == "--agree" && i + 1 < argc)
+        agreement = std::stod(argv[++i]);
+      else if (a.rfind("--", 0) == 0)
         {
-          const std::string file      = argv[++i];
-          double            agreement = 0.;
-          if (i + 2 < argc && std::string(argv[i + 1]) == "--agree")
-            agreement = std::stod(argv[i + 2]);
-          return verify(file, agreement);
+          std::cerr << "siconos_comparison: unknown option or missing value: "
+                    << a << " (see the usage at the top of the source)\n";
+          return 2;
         }
       else
         folder = a;
     }
+  if (agreement != 0. && verify_file.empty())
+    {
+      std::cerr << "siconos_comparison: --agree needs --verify FILE\n";
+      return 2;
+    }
+  if (!verify_file.empty())
+    return verify(verify_file, agreement);
   if (!std::filesystem::is_directory(folder))
     {
       std::cerr << "siconos_comparison: no folder '" << folder << "'\n";
