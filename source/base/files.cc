@@ -120,13 +120,24 @@ namespace igabde
     void
     BackgroundWriter::add(std::function<void()> job)
     {
-      jobs.emplace_back(group, dealii::Threads::new_task([this, job]() {
+      jobs.emplace_back(group,
+                        dealii::Threads::new_task([this, job, g = group]() {
                           const auto start = std::chrono::steady_clock::now();
-                          job();
+                          std::exception_ptr error;
+                          try
+                            {
+                              job();
+                            }
+                          catch (...)
+                            {
+                              error = std::current_exception();
+                            }
                           const std::chrono::duration<double> taken =
                             std::chrono::steady_clock::now() - start;
                           std::lock_guard<std::mutex> lock(mutex);
                           job_seconds += taken.count();
+                          if (error)
+                            errors.emplace_back(g, error);
                         }));
     }
 
@@ -168,6 +179,20 @@ namespace igabde
             }
       jobs.swap(kept);
       joined_through = std::max(joined_through, last);
+      {
+        // The jobs of these groups have ended: their errors, first come
+        // first, are the waiter's.
+        std::lock_guard<std::mutex> lock(mutex);
+        for (const auto &error : errors)
+          if (error.first <= last && !first)
+            first = error.second;
+        errors.erase(std::remove_if(errors.begin(),
+                                    errors.end(),
+                                    [last](const auto &error) {
+                                      return error.first <= last;
+                                    }),
+                     errors.end());
+      }
       if (first)
         std::rethrow_exception(first);
     }

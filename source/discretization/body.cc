@@ -23,6 +23,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <exception>
 #include <utility>
 
 namespace igabde
@@ -1550,16 +1551,29 @@ namespace igabde
           solve_range(0, n);
           return;
         }
-      Threads::TaskGroup<void> tasks;
+      // What a chunk throws is kept here: deal.II 9.4's join() does not
+      // rethrow a void task's exception.
+      std::vector<std::exception_ptr> errors(n_chunks);
+      Threads::TaskGroup<void>        tasks;
       for (std::size_t c = 0; c < n_chunks; ++c)
         {
           const std::size_t begin = c * n / n_chunks;
           const std::size_t end   = (c + 1) * n / n_chunks;
-          tasks += Threads::new_task([&solve_range, begin, end]() {
-            solve_range(begin, end);
+          tasks += Threads::new_task([&solve_range, &errors, c, begin, end]() {
+            try
+              {
+                solve_range(begin, end);
+              }
+            catch (...)
+              {
+                errors[c] = std::current_exception();
+              }
           });
         }
       tasks.join_all();
+      for (const auto &error : errors)
+        if (error)
+          std::rethrow_exception(error);
     }
 
 

@@ -108,6 +108,27 @@ TEST(NoSilentWrongAnswer, NonFiniteResultsAreAFailure)
 
 
 
+TEST(NoSilentWrongAnswer, AnOutputFileThatCannotBeWrittenFailsTheRun)
+{
+  // The fields' VTU is written by a background job; a folder with a file
+  // in it holds its name, so it cannot be opened. The job's error was
+  // lost (deal.II 9.4's Task<void>::join() does not rethrow it): the run
+  // said "ok" with the file missing.
+  const Scratch s("unwritable");
+  std::filesystem::create_directories(
+    cli::join(s.path, "out/solution-body1-0001.vtu/keep"));
+  const auto r =
+    run_igabde(scene("v5-hertz-2d.prm") + " --set 'Output/Directory=out'",
+               s.path);
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_TRUE(contains(r.output, "solution-body1-0001.vtu' for writing"))
+    << r.output;
+  const std::string summary = read_file(cli::join(s.path, "out/summary.json"));
+  EXPECT_TRUE(contains(summary, "\"status\": \"failed\"")) << summary;
+}
+
+
+
 TEST(NoSilentWrongAnswer, MalformedSceneFilesAreOneLineErrors)
 {
   const Scratch s("malformed");

@@ -4,6 +4,7 @@
 #include <deal.II/base/data_out_base.h>
 #include <deal.II/base/thread_management.h>
 
+#include <exception>
 #include <fstream>
 #include <functional>
 #include <mutex>
@@ -119,8 +120,13 @@ namespace igabde
 
       /// Each job with its group.
       std::vector<std::pair<unsigned int, dealii::Threads::Task<void>>> jobs;
-      unsigned int       group          = 0;
-      unsigned int       joined_through = 0;
+      /// What the jobs threw, with their group. Kept here because
+      /// deal.II 9.4's Task<void>::join() does not rethrow a task's
+      /// exception (its void result is never read from the future): an
+      /// output file that could not be written ended as a silent "ok".
+      std::vector<std::pair<unsigned int, std::exception_ptr>> errors;
+      unsigned int                                             group = 0;
+      unsigned int       joined_through                              = 0;
       mutable std::mutex mutex;
       double             job_seconds = 0.;
     };
