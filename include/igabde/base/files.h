@@ -125,8 +125,9 @@ namespace igabde
       /// exception (its void result is never read from the future): an
       /// output file that could not be written ended as a silent "ok".
       std::vector<std::pair<unsigned int, std::exception_ptr>> errors;
-      unsigned int                                             group = 0;
-      unsigned int       joined_through                              = 0;
+
+      unsigned int       group          = 0;
+      unsigned int       joined_through = 0;
       mutable std::mutex mutex;
       double             job_seconds = 0.;
     };
