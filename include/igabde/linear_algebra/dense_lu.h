@@ -17,8 +17,8 @@ namespace igabde
      * blocked, BLAS-3), with the reciprocal condition number of the matrix
      * in the 1-norm estimated from the factors. Matrices of at most
      * small_size rows are factorised by Eigen instead (the same
-     * algorithm, unblocked): on them OpenBLAS' per-call cost (its buffer
-     * lock and thread check) exceeds the arithmetic.
+     * algorithm, partial pivoting): on them OpenBLAS' per-call cost (its
+     * buffer lock and thread check) exceeds the arithmetic.
      *
      * deal.II 9.4 wraps no dgecon, so rcond() is LAPACK's estimate done by
      * hand: Higham's estimate of |A^-1|_1 (dlacn2: Hager's method, at most
