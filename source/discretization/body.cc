@@ -359,8 +359,6 @@ namespace igabde
                          keep_reaction_rows_only();
                        }) :
                                             std::function<void()>());
-      if (keep_reaction_rows)
-        keep_reaction_rows_only();
       // The pinned responses K^+ C_h serve the Schur-complement
       // flexibility's correction only (correct_for_held_modes()).
       held_response.clear();

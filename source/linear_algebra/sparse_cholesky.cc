@@ -499,8 +499,8 @@ namespace igabde
       d.interface.resize(n_s);
       Utilities::MPI::broadcast(d.interface.data(), n_s, root, world);
       Utilities::MPI::broadcast(&d.entries, 1, root, world);
-      // A rank that never called initialize() (it holds no MUMPS instance)
-      // has the factor of S only.
+      // A rank that never called initialize() holds no MUMPS instance and
+      // no factor of S: the interface and the sizes only.
       if (!d.mumps_alive && !d.dense_only && !is_root)
         d.member = false;
     }
