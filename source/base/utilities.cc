@@ -237,6 +237,53 @@ namespace igabde
 
 
 
+    namespace
+    {
+      // OpenBLAS' thread-count functions, looked up once (null where the
+      // BLAS behind libblas.so.3 is not OpenBLAS).
+      struct OpenBlasThreads
+      {
+        using get_type = int (*)();
+        using set_type = void (*)(int);
+        get_type get   = reinterpret_cast<get_type>(
+          dlsym(RTLD_DEFAULT, "openblas_get_num_threads"));
+        set_type set = reinterpret_cast<set_type>(
+          dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
+      };
+
+      const OpenBlasThreads &
+      openblas_threads()
+      {
+        static const OpenBlasThreads functions;
+        return functions;
+      }
+    } // namespace
+
+
+
+    SerialDenseAlgebra::SerialDenseAlgebra(const std::size_t rows)
+    {
+      const OpenBlasThreads &openblas = openblas_threads();
+      if (rows >= serial_dense_rows || openblas.get == nullptr ||
+          openblas.set == nullptr)
+        return;
+      const int threads = openblas.get();
+      if (threads <= 1)
+        return;
+      openblas.set(1);
+      previous = threads;
+    }
+
+
+
+    SerialDenseAlgebra::~SerialDenseAlgebra()
+    {
+      if (previous > 0)
+        openblas_threads().set(previous);
+    }
+
+
+
     LightMpiSingleton::LightMpiSingleton()
     {
       for (const char *launcher_variable :

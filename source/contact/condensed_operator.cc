@@ -1,3 +1,4 @@
+#include <igabde/base/utilities.h>
 #include <igabde/linear_algebra/dense_lu.h>
 
 #include <igabde/contact/contact_operator.h>
@@ -139,7 +140,9 @@ namespace igabde
           const unsigned int nN = others.size();
           if (nN == 0)
             return dx;
-          Vec rhs(nN);
+          // Matrices of a few hundred rows factorise faster on one thread.
+          const base::SerialDenseAlgebra serial(nN);
+          Vec                            rhs(nN);
           {
             Vec dt = Vec::Zero(n);
             for (const int i : trivial)

@@ -1,3 +1,4 @@
+#include <igabde/base/utilities.h>
 #include <igabde/linear_algebra/dense_lu.h>
 
 #include <deal.II/lac/lapack_templates.h>
@@ -22,6 +23,7 @@ namespace igabde
         return;
       if (n > small_size)
         {
+          const base::SerialDenseAlgebra serial(n);
           dealii::getrf(&n, &n, LU.data(), &n, pivots.data(), &info);
           return;
         }

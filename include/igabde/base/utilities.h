@@ -5,6 +5,7 @@
 #include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>
 
+#include <cstddef>
 #include <string>
 #include <utility>
 #include <vector>
@@ -143,6 +144,38 @@ namespace igabde
      */
     unsigned int
     limit_dense_threads_per_rank();
+
+    /**
+     * @brief OpenBLAS on one thread while this object lives, if the dense
+     * matrix at hand has fewer than serial_dense_rows rows; restored at
+     * the end of the scope.
+     *
+     * Below that size OpenBLAS' second thread costs more than it brings
+     * (measured on the 2-core machine, best of many calls: Cholesky of 64
+     * rows 4.5 µs on one thread against 14.4 µs on two, 300 rows 247
+     * against 282 µs, 600 rows 1 744 against 1 456 µs; LU alike), and the
+     * contact Newton factorises matrices of tens to hundreds of rows many
+     * times. Does nothing where the BLAS is not OpenBLAS or already runs
+     * on one thread. Meant for the thread that runs the contact solve:
+     * OpenBLAS' thread count is the process's, so a BLAS call another
+     * thread makes meanwhile runs on one thread too (the same answer).
+     */
+    class SerialDenseAlgebra
+    {
+    public:
+      /** Rows from which two threads pay off. */
+      static constexpr std::size_t serial_dense_rows = 500;
+
+      explicit SerialDenseAlgebra(const std::size_t rows);
+      ~SerialDenseAlgebra();
+      SerialDenseAlgebra(const SerialDenseAlgebra &) = delete;
+      SerialDenseAlgebra &
+      operator=(const SerialDenseAlgebra &) = delete;
+
+    private:
+      /** The thread count to restore (0: nothing changed). */
+      int previous = 0;
+    };
   } // namespace base
 } // namespace igabde
 
