@@ -162,23 +162,16 @@ namespace igabde
     void
     BackgroundWriter::join_through(const unsigned int last)
     {
-      std::exception_ptr                                                first;
+      // A job keeps what it threw (add()): join() only waits.
       std::vector<std::pair<unsigned int, dealii::Threads::Task<void>>> kept;
       for (auto &job : jobs)
         if (job.first > last)
           kept.push_back(std::move(job));
         else
-          try
-            {
-              job.second.join();
-            }
-          catch (...)
-            {
-              if (!first)
-                first = std::current_exception();
-            }
+          job.second.join();
       jobs.swap(kept);
       joined_through = std::max(joined_through, last);
+      std::exception_ptr first;
       {
         // The jobs of these groups have ended: their errors, first come
         // first, are the waiter's.
