@@ -46,6 +46,7 @@
 
 #include <Eigen/Dense>
 
+#include "option_value.h"
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -236,6 +237,8 @@ namespace
 int
 main(int argc, char **argv)
 {
+  using igabde::benchmarks::option_value;
+  const std::string         tool  = "bnewton_scaling";
   std::vector<unsigned int> pairs = {169, 441, 900, 2025, 3364};
   std::vector<std::string>  cases = {"hertz-mindlin",
                                      "flat-punch",
@@ -250,17 +253,17 @@ main(int argc, char **argv)
         {
           pairs.clear();
           for (const std::string &p : split(argv[++i]))
-            pairs.push_back(std::stoul(p));
+            pairs.push_back(option_value<unsigned int>(tool, arg, p));
         }
       else if (arg == "--cases" && more)
         cases = split(argv[++i]);
       else if (arg == "--fclib" && more)
         files.push_back(argv[++i]);
       else if (arg == "--repeat" && more)
-        repetitions = std::stoul(argv[++i]);
+        repetitions = option_value<unsigned int>(tool, arg, argv[++i]);
       else if (i == 1 && !arg.empty() &&
                arg.find_first_not_of("0123456789") == std::string::npos)
-        pairs = {static_cast<unsigned int>(std::stoul(arg))};
+        pairs = {option_value<unsigned int>(tool, "pairs", arg)};
       else
         {
           std::cerr << "bnewton_scaling: unknown argument '" << arg

@@ -12,6 +12,7 @@
 
 #include <deal.II/base/mpi.h>
 
+#include "option_value.h"
 #include <cmath>
 #include <cstdlib>
 #include <iomanip>
@@ -21,6 +22,8 @@
 int
 main(int argc, char **argv)
 {
+  using igabde::benchmarks::option_value;
+  const std::string tool = "convergence_study";
   // MUMPS (the direct solver) runs on MPI_COMM_SELF.
   const igabde::base::LightMpiSingleton    light_mpi_singleton;
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
@@ -34,8 +37,8 @@ main(int argc, char **argv)
   const std::string  scene  = argv[1];
   const std::string  type   = argv[2];
   const std::string  degree = argv[3];
-  const unsigned int first  = std::atoi(argv[4]);
-  const unsigned int last   = std::atoi(argv[5]);
+  const unsigned int first = option_value<unsigned int>(tool, "FIRST", argv[4]);
+  const unsigned int last  = option_value<unsigned int>(tool, "LAST", argv[5]);
 
   std::cout << "| refinements | elements | DOFs | L2 error | rate | energy "
                "error | rate | setup s | total s |\n"

@@ -24,6 +24,7 @@
 #include <igabde/contact/contact_problem.h>
 #include <igabde/contact/fclib_reader.h>
 
+#include "option_value.h"
 #include <algorithm>
 #include <chrono>
 #include <cstdlib>
@@ -38,7 +39,9 @@ using namespace igabde::contact;
 int
 main(int argc, char **argv)
 {
-  std::string folder = "../shared/fclib/data";
+  using igabde::benchmarks::option_value;
+  const std::string tool   = "fclib_benchmark";
+  std::string       folder = "../shared/fclib/data";
   if (const char *env = std::getenv("IGABDE_FCLIB_DIR"))
     folder = env;
   std::string              only;
@@ -53,16 +56,22 @@ main(int argc, char **argv)
       else if (a == "--log")
         log = true;
       else if (a == "--repeat" && i + 1 < argc)
-        repeat = std::max(1, std::stoi(argv[++i]));
+        repeat = std::max(1, option_value<int>(tool, a, argv[++i]));
       else
         args.push_back(a);
     }
   if (args.size() > 0)
     folder = args[0];
   const unsigned int max_iterations =
-    args.size() > 1 ? std::stoi(args[1]) : 300;
-  const double seconds  = args.size() > 2 ? std::stod(args[2]) : 60.;
-  const long   max_rows = args.size() > 3 ? std::stol(args[3]) : 6000;
+    args.size() > 1 ?
+      option_value<unsigned int>(tool, "max_iterations", args[1]) :
+      300;
+  const double seconds =
+    args.size() > 2 ?
+      option_value<double>(tool, "seconds_per_problem", args[2]) :
+      60.;
+  const long max_rows =
+    args.size() > 3 ? option_value<long>(tool, "max_rows", args[3]) : 6000;
 
   if (!std::filesystem::is_directory(folder))
     {

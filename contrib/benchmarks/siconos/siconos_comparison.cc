@@ -46,6 +46,7 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "../option_value.h"
 #include <algorithm>
 #include <chrono>
 #include <csignal>
@@ -412,7 +413,9 @@ namespace
 int
 main(int argc, char **argv)
 {
-  std::string folder = "../shared/fclib/data";
+  using igabde::benchmarks::option_value;
+  const std::string tool   = "siconos_comparison";
+  std::string       folder = "../shared/fclib/data";
   if (const char *env = std::getenv("IGABDE_FCLIB_DIR"))
     folder = env;
   std::string only, verify_file;
@@ -425,13 +428,13 @@ main(int argc, char **argv)
       if (a == "--only" && i + 1 < argc)
         only = argv[++i];
       else if (a == "--max-rows" && i + 1 < argc)
-        max_rows = std::stol(argv[++i]);
+        max_rows = option_value<long>(tool, a, argv[++i]);
       else if (a == "--max-iterations" && i + 1 < argc)
-        max_iterations = std::stoi(argv[++i]);
+        max_iterations = option_value<int>(tool, a, argv[++i]);
       else if (a == "--verify" && i + 1 < argc)
         verify_file = argv[++i];
       else if (a == "--agree" && i + 1 < argc)
-        agreement = std::stod(argv[++i]);
+        agreement = option_value<double>(tool, a, argv[++i]);
       else if (a.rfind("--", 0) == 0)
         {
           std::cerr << "siconos_comparison: unknown option or missing value: "
