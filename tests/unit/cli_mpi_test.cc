@@ -7,7 +7,6 @@
 
 #include "cli_helpers.h"
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -90,24 +89,22 @@ TEST(CliMpi, ARunThatFailsEndsEveryRankAndSaysFailed)
 // One rank fails alone: its piece of the VTU output cannot be written (a
 // folder with a file in it holds the piece's name), while the other ranks
 // go on into the run's last collective call. The failing rank's message,
-// a non-zero status, no summary saying ok, and every rank ended within
-// seconds (the 10 s the parallel runs promise: a lost error would leave
-// the others waiting until the timeout). Before the output jobs' errors
-// were kept by the writer, this run ended with status 0 and "ok".
+// a non-zero status, no summary saying ok, and every rank ended (a lost
+// error leaves the others waiting in the collective call until mpirun's
+// timeout, status 124; how soon they end is measured, not tested: no timed
+// tests). Before the output jobs' errors were kept by the writer, this run
+// ended with status 0 and "ok".
 TEST(CliMpi, AFileOneRankCannotWriteEndsEveryRankWithItsMessage)
 {
   cli::ScratchFolder folder("mpi", "one-rank-fails");
   const std::string  out = cli::join(folder.path, "out");
   std::filesystem::create_directories(
     cli::join(out, "solution-body1-0001.2.vtu/keep"));
-  const auto start = std::chrono::steady_clock::now();
   const auto r =
     cli::run_in(folder.path,
                 mpirun(cli::join(std::string(IGABDE_SOURCE_DIR),
                                  "prm/v5-hertz-2d.prm") +
                        " --quiet --set 'Output/Directory=" + out + "'"));
-  const std::chrono::duration<double> taken =
-    std::chrono::steady_clock::now() - start;
   EXPECT_NE(r.status, 0) << r.output;
   EXPECT_NE(r.status, 124) << "mpirun hung:\n" << r.output;
   EXPECT_NE(r.output.find("igabde: error: [rank 2 of 3] cannot open '"),
@@ -115,7 +112,6 @@ TEST(CliMpi, AFileOneRankCannotWriteEndsEveryRankWithItsMessage)
     << r.output;
   EXPECT_NE(r.output.find("solution-body1-0001.2.vtu"), std::string::npos)
     << r.output;
-  EXPECT_LT(taken.count(), 10.) << r.output;
   std::ifstream in(cli::join(out, "summary.json"));
   ASSERT_TRUE(in);
   EXPECT_NE(nlohmann::json::parse(in)["status"], "ok");
