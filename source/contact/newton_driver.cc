@@ -475,9 +475,13 @@ namespace igabde
           // The FCLIB error may be out of reach in floating point when
           // forces and displacements have very different scales: accept
           // the balanced error alone once Newton stops converging
-          // quadratically (|F| decreased less than 2x in the last step).
-          const bool at_floor = local_it > 0 && theta > 0.25 * last_theta;
-          last_theta          = theta;
+          // quadratically (|F| decreased less than 2x in the last step), or
+          // once F is exactly zero: no step can lower it further (B1 with
+          // degree-1 NURBS reaches H = 0 at its ninth step while the FCLIB
+          // error is held at 1.4e-9 by the forces' rounding, and stalled).
+          const bool at_floor =
+            local_it > 0 && (theta == 0. || theta > 0.25 * last_theta);
+          last_theta = theta;
           double     err, balanced, eq, disp;
           const bool done = stopping_test(data,
                                           law,
