@@ -11,6 +11,7 @@
 #include <deal.II/base/multithread_info.h>
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/base/thread_management.h>
+#include <deal.II/base/timer.h>
 
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 #include <deal.II/lac/solver_cg.h>
@@ -24,6 +25,8 @@
 #include <algorithm>
 #include <cmath>
 #include <exception>
+#include <iomanip>
+#include <ostream>
 #include <utility>
 
 namespace igabde
@@ -1525,8 +1528,21 @@ namespace igabde
         {
           // CG to a relative residual of Linear tolerance; one column after
           // the other (the ML preconditioner is not shared across threads).
-          for (auto &v : rhs_and_solutions)
+          const bool   report = progress_stream != nullptr && n >= 100;
+          Timer        clock;
+          unsigned int tenths = 0;
+          for (std::size_t k = 0; k < n; ++k)
             {
+              if (report && 10 * k >= (tenths + 1) * n)
+                {
+                  ++tenths;
+                  *progress_stream
+                    << "  [progress] " << name() << ": CG with AMG, " << k
+                    << " of " << n << " columns, " << std::setprecision(3)
+                    << clock.wall_time() << " s" << std::setprecision(6)
+                    << std::endl;
+                }
+              Vector<double> &v = rhs_and_solutions[k];
               AssertDimension(v.size(), n_unknowns);
               solve_constraints.set_zero(v);
               const Vector<double> rhs = v;
@@ -1572,6 +1588,15 @@ namespace igabde
       for (const auto &error : errors)
         if (error)
           std::rethrow_exception(error);
+    }
+
+
+
+    template <int dim>
+    void
+    Body<dim>::set_progress_stream(std::ostream *stream)
+    {
+      progress_stream = stream;
     }
 
 

@@ -74,6 +74,11 @@ namespace igabde
       exact  = make_exact_solution<dim>(parameters, scene_file);
       bodies = create_bodies<dim>(parameters, scene_file, exact);
       pvd_records.resize(bodies.size());
+      for (auto &body : bodies)
+        body->set_progress_stream(parameters.output.progress &&
+                                      pcout.is_active() ?
+                                    &pcout.get_stream() :
+                                    nullptr);
 
       // Under MPI each body is assembled and factorised by its own group of
       // ranks (the groups at the same time); the others receive its loads.

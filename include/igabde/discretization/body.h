@@ -21,6 +21,7 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <iosfwd>
 #include <limits>
 #include <map>
 #include <memory>
@@ -293,6 +294,15 @@ namespace igabde
        */
       void
       keep_reaction_rows_only();
+
+      /**
+       * @brief Where solves one column after the other (CG with AMG, which
+       * may take minutes for the contact columns) report how far they are:
+       * a line at every tenth of at least 100 columns. nullptr (the
+       * default, and on every rank but the one that prints) stays silent.
+       */
+      void
+      set_progress_stream(std::ostream *stream);
 
       /**
        * @brief The flexibility of point-force patterns:
@@ -794,6 +804,8 @@ namespace igabde
       struct LinearSolver;
       std::unique_ptr<LinearSolver> linear_solver;
       ParallelLayout                layout;
+      /// set_progress_stream().
+      std::ostream *progress_stream = nullptr;
       /// Whether K and the load vectors were assembled on this rank.
       bool assembled = false;
       /// Whether K holds this rank's share of the group's cells only (the
