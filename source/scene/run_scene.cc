@@ -204,7 +204,12 @@ namespace igabde
         // each other, a load nothing can balance) is an input error too.
         catch (const base::ExcInput &e)
           {
-            return fail(simulator, base::exception_message(e), 2);
+            // Named by the scene file like the reader's errors, also when
+            // found while the bodies are built.
+            std::string message = base::exception_message(e);
+            if (message.rfind(scene_file, 0) != 0)
+              message = scene_file + ": " + message;
+            return fail(simulator, message, 2);
           }
         catch (const ExceptionBase &e)
           {

@@ -49,8 +49,16 @@ TEST(NoSilentWrongAnswer, DegreeBelowTheExactGeometryIsRefused)
     run_igabde(scene("v5-hertz-2d.prm") + " --set 'Discretization/Degree=1'"
                                           " --set 'Output/Directory=out'",
                s.path);
-  EXPECT_NE(r.status, 0);
+  // Bad input, found when the body is built: exit status 2 and the one
+  // line names the scene file like the reader's errors.
+  EXPECT_EQ(r.status, 2) << r.output;
   EXPECT_TRUE(contains(r.output, "below the degree 2")) << r.output;
+  EXPECT_TRUE(contains(r.output,
+                       "igabde: error: " +
+                         cli::join(std::string(IGABDE_SOURCE_DIR),
+                                   "prm/v5-hertz-2d.prm") +
+                         ": Discretization/Degree = 1"))
+    << r.output;
   EXPECT_FALSE(
     contains(read_file(cli::join(s.path, "out/summary.json")), "\"ok\""));
 }
