@@ -64,11 +64,20 @@ namespace igabde
       const double E  = material.youngs_modulus;
       const double nu = material.poisson_ratio;
       const double k  = a * a * p / (b * b - a * a);
+      // u_r = r eps_tt from the hoop strain of the stresses below: plane
+      // strain (and the 3D cylinder with its ends held) eps_tt = ((1 - nu)
+      // s_tt - nu s_rr) (1 + nu) / E, plane stress eps_tt = (s_tt - nu
+      // s_rr) / E. The stresses do not depend on the model.
+      const bool plane_stress =
+        dim == 2 &&
+        material.plane_model == elasticity::PlaneModel::plane_stress;
 
       elasticity::ExactSolution<dim> exact;
       exact.displacement = [=](const Point<dim> &x) {
-        const double r   = std::hypot(x[0], x[1]);
-        const double u_r = (1. + nu) * k / E * ((1. - 2. * nu) * r + b * b / r);
+        const double r = std::hypot(x[0], x[1]);
+        const double u_r =
+          plane_stress ? k / E * ((1. - nu) * r + (1. + nu) * b * b / r) :
+                         (1. + nu) * k / E * ((1. - 2. * nu) * r + b * b / r);
         Tensor<1, dim> u;
         u[0] = u_r * x[0] / r;
         u[1] = u_r * x[1] / r;

@@ -22,7 +22,9 @@ namespace igabde
 
     /**
      * @brief Lame's solution: thick cylinder a <= r <= b about the z axis
-     * under internal pressure @p p, plane strain (in 3D: w = 0).
+     * under internal pressure @p p: in 2D plane strain or plane stress as
+     * @p material's plane model says, in 3D with the ends held (w = 0,
+     * plane strain).
      */
     template <int dim>
     elasticity::ExactSolution<dim>
