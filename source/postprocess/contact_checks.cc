@@ -68,6 +68,32 @@ namespace igabde
 
 
 
+    template <int dim>
+    double
+    dundurs_beta(const elasticity::IsotropicMaterial<dim> &body1,
+                 const elasticity::IsotropicMaterial<dim> *body2)
+    {
+      const auto kappa = [](const elasticity::IsotropicMaterial<dim> &m) {
+        const double nu = m.poisson_ratio;
+        return dim == 2 &&
+                   m.plane_model == elasticity::PlaneModel::plane_stress ?
+                 (3. - nu) / (1. + nu) :
+                 3. - 4. * nu;
+      };
+      const double k1 = kappa(body1);
+      if (body2 == nullptr)
+        return -(k1 - 1.) / (k1 + 1.);
+      const double k2 = kappa(*body2);
+      const double g1 =
+        body1.youngs_modulus / (2. * (1. + body1.poisson_ratio));
+      const double g2 =
+        body2->youngs_modulus / (2. * (1. + body2->poisson_ratio));
+      return (g1 * (k2 - 1.) - g2 * (k1 - 1.)) /
+             (g1 * (k2 + 1.) + g2 * (k1 + 1.));
+    }
+
+
+
     HertzCheck::Result
     HertzCheck::evaluate(const std::vector<contact::PairState<2>> &pairs) const
     {
@@ -343,5 +369,11 @@ namespace igabde
     template double
     effective_modulus<3>(const elasticity::IsotropicMaterial<3> &,
                          const elasticity::IsotropicMaterial<3> *);
+    template double
+    dundurs_beta<2>(const elasticity::IsotropicMaterial<2> &,
+                    const elasticity::IsotropicMaterial<2> *);
+    template double
+    dundurs_beta<3>(const elasticity::IsotropicMaterial<3> &,
+                    const elasticity::IsotropicMaterial<3> *);
   } // namespace postprocess
 } // namespace igabde

@@ -559,6 +559,35 @@ namespace igabde
                   warnings.push_back(w);
                 }
             };
+          // Hertz's and Johnson's solutions are frictionless. Friction leaves
+          // them exact only between similar bodies (Dundurs beta = 0); between
+          // dissimilar ones (a rigid plane, other moduli) it changes the
+          // contact (Spence's problem), so the check's differences are not
+          // the discretisation's alone (|beta| below 1e-3: negligible).
+          const auto friction_note = [&](const std::string &reference) {
+            std::vector<std::string> note;
+            const double             beta =
+              postprocess::dundurs_beta<dim>(bodies[0]->material(),
+                                             bodies.size() > 1 ?
+                                               &bodies[1]->material() :
+                                               nullptr);
+            if (parameters.contact.friction_coefficient > 0. &&
+                std::abs(beta) >= 1e-3)
+              {
+                std::ostringstream w;
+                w << "Checks/Hertz: " << reference
+                  << " solution is frictionless; "
+                     "with Contact/Friction coefficient = "
+                  << parameters.contact.friction_coefficient
+                  << " between dissimilar bodies (Dundurs beta = "
+                  << std::setprecision(3) << beta
+                  << ") friction changes the contact (Spence's problem), "
+                     "so the differences to it are not the "
+                     "discretisation's alone";
+                note.push_back(w.str());
+              }
+            return note;
+          };
           if (parameters.checks.hertz_line_load > 0.)
             {
               if constexpr (dim == 2)
@@ -589,6 +618,7 @@ namespace igabde
                         << r.profile_l2_error << std::setprecision(6)
                         << std::endl;
                   report_warnings(r.warnings);
+                  report_warnings(friction_note("Johnson's"));
                 }
             }
           if (parameters.checks.hertz_point_load > 0.)
@@ -624,6 +654,7 @@ namespace igabde
                         << std::setprecision(3) << r.profile_l2_error
                         << std::setprecision(6) << std::endl;
                   report_warnings(r.warnings);
+                  report_warnings(friction_note("Hertz's"));
                 }
             }
         }

@@ -6,6 +6,7 @@
 // differences (step h = 1e-4 times the radius: truncation about 1e-8
 // relative, rounding about 1e-12).
 
+#include <igabde/postprocess/contact_checks.h>
 #include <igabde/postprocess/exact_solutions.h>
 
 #include <gtest/gtest.h>
@@ -134,4 +135,41 @@ TEST(ExactSolutions, KirschDisplacementAndStressObeyHookesLawOfEachModel)
                           Point<2>(r * std::cos(t), r * std::sin(t)),
                           r);
     }
+}
+
+
+
+TEST(HertzReference, DundursBetaVanishesForSimilarBodiesAndMatchesJohnsonsForm)
+{
+  // Whether friction can change a Hertz contact (the warning beside the
+  // Hertz checks): Dundurs' beta, against Johnson's form of it in terms of
+  // the compliances, |beta| = |(1 - 2 nu_1) / G_1 - (1 - 2 nu_2) / G_2| /
+  // (2 ((1 - nu_1) / G_1 + (1 - nu_2) / G_2)) (plane strain and 3D).
+  using igabde::postprocess::dundurs_beta;
+  IsotropicMaterial<3> a, b;
+  a.youngs_modulus = 1000.;
+  a.poisson_ratio  = 0.3;
+  b                = a;
+  EXPECT_EQ(dundurs_beta<3>(a, &b), 0.);
+  b.youngs_modulus = 3000.;
+  b.poisson_ratio  = 0.2;
+  const auto g     = [](const IsotropicMaterial<3> &m) {
+    return m.youngs_modulus / (2. * (1. + m.poisson_ratio));
+  };
+  const double johnson =
+    std::abs((1. - 2. * a.poisson_ratio) / g(a) -
+             (1. - 2. * b.poisson_ratio) / g(b)) /
+    (2. * ((1. - a.poisson_ratio) / g(a) + (1. - b.poisson_ratio) / g(b)));
+  EXPECT_NEAR(std::abs(dundurs_beta<3>(a, &b)), johnson, 1e-14);
+  // A rigid obstacle is the limit of an ever stiffer second body:
+  // -(1 - 2 nu) / (2 (1 - nu)) = -0.2857 for nu = 0.3.
+  b.youngs_modulus = 1e15;
+  EXPECT_NEAR(dundurs_beta<3>(a, nullptr), dundurs_beta<3>(a, &b), 1e-10);
+  EXPECT_NEAR(dundurs_beta<3>(a, nullptr), -0.4 / 1.4, 1e-14);
+  // Plane stress: kappa = (3 - nu) / (1 + nu), beta = -(1 - nu) / 2 against
+  // a rigid plane (nu = 0.3: -0.35).
+  IsotropicMaterial<2> s;
+  s.poisson_ratio = 0.3;
+  s.plane_model   = PlaneModel::plane_stress;
+  EXPECT_NEAR(dundurs_beta<2>(s, nullptr), -0.35, 1e-14);
 }

@@ -38,6 +38,21 @@ namespace igabde
                       const elasticity::IsotropicMaterial<dim> *body2);
 
     /**
+     * @brief Dundurs' second constant of two bodies in contact,
+     * beta = (G_1 (kappa_2 - 1) - G_2 (kappa_1 - 1)) / (G_1 (kappa_2 + 1)
+     * + G_2 (kappa_1 + 1)), kappa = 3 - 4 nu (plane strain and 3D) or
+     * (3 - nu) / (1 + nu) (plane stress), G the shear modulus; @p body2
+     * nullptr is a rigid obstacle: beta = -(kappa_1 - 1) / (kappa_1 + 1).
+     * Zero when normal pressure makes no tangential mismatch of the two
+     * surfaces (similar bodies): only then does friction leave Hertz's
+     * frictionless solution unchanged (Johnson, Contact Mechanics §5.4).
+     */
+    template <int dim>
+    double
+    dundurs_beta(const elasticity::IsotropicMaterial<dim> &body1,
+                 const elasticity::IsotropicMaterial<dim> *body2);
+
+    /**
      * @brief The 2D Hertz line contact of a cylinder of radius R pressed by
      * the line load P (Johnson, Contact Mechanics §4.2):
      * a = sqrt(4 P R / (pi E*)), p(x) = p0 sqrt(1 - x^2/a^2),
