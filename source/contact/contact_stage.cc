@@ -308,6 +308,8 @@ namespace igabde
       if (contact.asymmetry > 1e-8)
         log << "  contact: warning: flexibility asymmetry " << contact.asymmetry
             << std::endl;
+      for (const std::string &w : summary().warnings)
+        log << "  warning: " << w << std::endl;
       x.p               = Eigen::VectorXd::Zero(problem.n_rows());
       x.alpha           = Eigen::VectorXd::Zero(problem.n_alpha());
       x.w               = Eigen::VectorXd::Zero(contact_path->op().n_dofs());
@@ -655,6 +657,22 @@ namespace igabde
       s.estimated_full_seconds      = estimated_full_seconds;
       s.cost_inputs                 = path_cost_inputs();
       s.coupled_nonzeros = contact_path ? contact_path->n_nonzeros() : 0.;
+      // More contact unknowns than the face unknowns the pairs move: the
+      // flexibility's rank is at most the latter, so the contact rows are
+      // redundant and the pair forces not unique (their resultant is). A
+      // sufficient condition only (Gauss placement: p + 1 pairs a span).
+      double face_unknowns = 0.;
+      for (const double n : s.cost_inputs.face_unknowns)
+        face_unknowns += n;
+      if (s.cost_inputs.contact_unknowns > face_unknowns + 0.5)
+        s.warnings.push_back(
+          std::to_string(static_cast<long>(s.cost_inputs.contact_unknowns)) +
+          " contact unknowns on " +
+          std::to_string(static_cast<long>(face_unknowns)) +
+          " face unknowns: the contact rows are redundant, so the pair "
+          "forces are not unique (their resultant is) and the pair "
+          "pressures may oscillate; Contact/Pair placement = greville "
+          "gives one pair per face control point");
       return s;
     }
 

@@ -284,6 +284,9 @@ namespace igabde
               << std::setprecision(6) << std::endl;
       const contact::ContactSummary s = contact_stage->summary();
       record_setup(parameters, &s, body_force, summary);
+      run_summary.warnings.insert(run_summary.warnings.end(),
+                                  s.warnings.begin(),
+                                  s.warnings.end());
     }
 
 

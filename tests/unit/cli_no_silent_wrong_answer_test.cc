@@ -65,6 +65,38 @@ TEST(NoSilentWrongAnswer, DegreeBelowTheExactGeometryIsRefused)
 
 
 
+TEST(NoSilentWrongAnswer, RedundantPairsAreAWarning)
+{
+  // V5's quarter disc: 64 spans of degree 2 on the arc, 66 control points
+  // with 2 components, of which the symmetry support holds one (x on the
+  // axis): 131 face unknowns. Gauss placement puts p + 1 = 3 frictionless
+  // pairs in each span, 192 contact unknowns: more rows than the
+  // flexibility's rank can reach, so the pair forces are not unique.
+  // Greville placement (66 pairs) is not redundant.
+  for (const std::string placement : {"gauss", "greville"})
+    {
+      SCOPED_TRACE(placement);
+      const Scratch     s("redundant-" + placement);
+      const auto        r = run_igabde(scene("v5-hertz-2d.prm") +
+                                  " --quiet --set 'Output/Write vtu=false'"
+                                         " --set 'Contact/Pair placement=" +
+                                  placement + "' --set 'Output/Directory=out'",
+                                s.path);
+      const std::string summary =
+        read_file(cli::join(s.path, "out/summary.json"));
+      const bool warned =
+        contains(summary,
+                 "192 contact unknowns on 131 face unknowns: the "
+                 "contact rows are redundant");
+      EXPECT_EQ(warned, placement == "gauss") << summary;
+      EXPECT_EQ(contains(r.output, "warning: 192 contact unknowns"),
+                placement == "gauss")
+        << r.output;
+    }
+}
+
+
+
 TEST(NoSilentWrongAnswer, KilledRunLeavesNoOldOkSummary)
 {
   // A finished run, then a second run into the same folder killed while it

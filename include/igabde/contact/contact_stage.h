@@ -153,6 +153,9 @@ namespace igabde
       double estimated_condensed_seconds = 0., estimated_full_seconds = 0.;
       /// The inputs of that cost model for the pairs kept.
       PathCostInputs cost_inputs;
+      /// What the set-up noticed that makes a figure not mean what it
+      /// seems (redundant_pairs_warning()); summary.json's warnings.
+      std::vector<std::string> warnings;
     };
 
     /**
