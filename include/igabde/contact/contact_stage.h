@@ -154,7 +154,8 @@ namespace igabde
       /// The inputs of that cost model for the pairs kept.
       PathCostInputs cost_inputs;
       /// What the set-up noticed that makes a figure not mean what it
-      /// seems (redundant_pairs_warning()); summary.json's warnings.
+      /// seems (more contact unknowns than face unknowns: redundant rows);
+      /// summary.json's warnings.
       std::vector<std::string> warnings;
     };
 

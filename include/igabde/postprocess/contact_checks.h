@@ -45,7 +45,8 @@ namespace igabde
      * nullptr is a rigid obstacle: beta = -(kappa_1 - 1) / (kappa_1 + 1).
      * Zero when normal pressure makes no tangential mismatch of the two
      * surfaces (similar bodies): only then does friction leave Hertz's
-     * frictionless solution unchanged (Johnson, Contact Mechanics §5.4).
+     * frictionless solution unchanged (Dundurs; Spence's frictional
+     * Hertz problem otherwise).
      */
     template <int dim>
     double
