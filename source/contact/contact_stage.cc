@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
+#include <numeric>
 #include <sstream>
 
 namespace igabde
@@ -119,10 +120,31 @@ namespace igabde
       const ContactSurface<dim> &master =
         obstacle ? static_cast<const ContactSurface<dim> &>(*obstacle) :
                    *master_face;
-      pair_list = pairing->make_pairs(*bodies[0],
+      pair_list   = pairing->make_pairs(*bodies[0],
                                       settings.slave_faces,
                                       master,
                                       settings.context);
+      cost_inputs = compute_path_cost_inputs();
+      // More contact unknowns than the face unknowns the pairs move: the
+      // flexibility's rank is at most the latter, so the contact rows are
+      // redundant and the pair forces not unique (their resultant is). A
+      // sufficient condition only (Gauss placement: p + 1 pairs a span).
+      // Directions held on both sides are zero rows the solvers leave
+      // out, and do not count.
+      const double face_unknowns =
+        std::accumulate(cost_inputs.face_unknowns.begin(),
+                        cost_inputs.face_unknowns.end(),
+                        0.);
+      const unsigned int moving = n_moving_contact_unknowns();
+      setup_warnings.clear();
+      if (moving > face_unknowns + 0.5)
+        setup_warnings.push_back(
+          std::to_string(moving) + " contact unknowns on " +
+          std::to_string(static_cast<long>(face_unknowns)) +
+          " face unknowns: the contact rows are redundant, so the pair "
+          "forces are not unique (their resultant is) and the pair "
+          "pressures may oscillate; Contact/Pair placement = greville "
+          "gives one pair per face control point");
 
       // The path: penalty methods solve the full system (as ANSYS does);
       // the BDE takes the path asked for, or under auto the one the cost
@@ -153,8 +175,7 @@ namespace igabde
       else if (path == Path::automatic)
         {
           const PathCostEstimate e =
-            estimate_path_costs(path_cost_inputs(),
-                                PathCostConstants::measured());
+            estimate_path_costs(cost_inputs, PathCostConstants::measured());
           path                        = e.path;
           path_why                    = e.reason;
           estimated_condensed_seconds = e.condensed_seconds;
@@ -212,7 +233,7 @@ namespace igabde
 
     template <int dim>
     PathCostInputs
-    ContactStage<dim>::path_cost_inputs() const
+    ContactStage<dim>::compute_path_cost_inputs() const
     {
       PathCostInputs inputs;
       inputs.contact_unknowns = m * pair_list.size();
@@ -240,6 +261,33 @@ namespace igabde
         PathCostConstants::measured().iterations_per_step *
         std::max(1u, settings.n_load_steps);
       return inputs;
+    }
+
+
+
+    template <int dim>
+    unsigned int
+    ContactStage<dim>::n_moving_contact_unknowns() const
+    {
+      const unsigned int n_sides = obstacle ? 1u : 2u;
+      unsigned int       moving  = 0;
+      for (const auto &pair : pair_list)
+        for (unsigned int k = 0; k < m; ++k)
+          {
+            bool moves = false;
+            for (unsigned int side = 0; side < n_sides && !moves; ++side)
+              {
+                const auto &op = side == 0 ? pair.op1 : pair.op2;
+                for (unsigned int j = 0; j < op.weights.size() && !moves; ++j)
+                  for (unsigned int c = 0; c < dim; ++c)
+                    if (op.weights[j] != 0. &&
+                        std::abs(pair.frame[k][c]) > 1e-12 &&
+                        !bodies[side]->is_held(op.dofs[j][c]))
+                      moves = true;
+              }
+            moving += moves;
+          }
+      return moving;
     }
 
 
@@ -308,7 +356,7 @@ namespace igabde
       if (contact.asymmetry > 1e-8)
         log << "  contact: warning: flexibility asymmetry " << contact.asymmetry
             << std::endl;
-      for (const std::string &w : summary().warnings)
+      for (const std::string &w : setup_warnings)
         log << "  warning: " << w << std::endl;
       x.p               = Eigen::VectorXd::Zero(problem.n_rows());
       x.alpha           = Eigen::VectorXd::Zero(problem.n_alpha());
@@ -655,24 +703,9 @@ namespace igabde
       s.path_reason                 = path_why;
       s.estimated_condensed_seconds = estimated_condensed_seconds;
       s.estimated_full_seconds      = estimated_full_seconds;
-      s.cost_inputs                 = path_cost_inputs();
+      s.cost_inputs                 = cost_inputs;
       s.coupled_nonzeros = contact_path ? contact_path->n_nonzeros() : 0.;
-      // More contact unknowns than the face unknowns the pairs move: the
-      // flexibility's rank is at most the latter, so the contact rows are
-      // redundant and the pair forces not unique (their resultant is). A
-      // sufficient condition only (Gauss placement: p + 1 pairs a span).
-      double face_unknowns = 0.;
-      for (const double n : s.cost_inputs.face_unknowns)
-        face_unknowns += n;
-      if (s.cost_inputs.contact_unknowns > face_unknowns + 0.5)
-        s.warnings.push_back(
-          std::to_string(static_cast<long>(s.cost_inputs.contact_unknowns)) +
-          " contact unknowns on " +
-          std::to_string(static_cast<long>(face_unknowns)) +
-          " face unknowns: the contact rows are redundant, so the pair "
-          "forces are not unique (their resultant is) and the pair "
-          "pressures may oscillate; Contact/Pair placement = greville "
-          "gives one pair per face control point");
+      s.warnings         = setup_warnings;
       return s;
     }
 

@@ -225,14 +225,6 @@ namespace igabde
       path() const;
 
       /**
-       * @brief The inputs of the cost model of Contact/Path = auto for the
-       * pairs built (face unknowns from the pair operators, factor entries
-       * and load steps from the settings).
-       */
-      PathCostInputs
-      path_cost_inputs() const;
-
-      /**
        * @brief Solves a load step at load factor @p load_factor
        * (which scales the loads that the equilibrium of floating bodies
        * balances): on entry @p u holds each body's displacement under the
@@ -336,6 +328,23 @@ namespace igabde
       Tensor<1, dim>
       global_force(const unsigned int i, const Eigen::VectorXd &p) const;
 
+      /**
+       * @brief The inputs of the cost model of Contact/Path = auto for the
+       * pairs built (face unknowns from the pair operators, factor entries
+       * and load steps from the settings).
+       */
+      PathCostInputs
+      compute_path_cost_inputs() const;
+
+      /**
+       * @brief The contact unknowns whose direction moves some unknown not
+       * held by supports, on either side: a direction held on both sides
+       * (the tangent of a pair on a symmetry plane) is a zero row of the
+       * flexibility and is not counted.
+       */
+      unsigned int
+      n_moving_contact_unknowns() const;
+
       const ContactSettings                                          settings;
       const std::vector<std::unique_ptr<discretization::Body<dim>>> &bodies;
       const std::unique_ptr<Obstacle<dim>>                           obstacle;
@@ -357,6 +366,9 @@ namespace igabde
       std::string prepare_section, solver_section, solver_label;
       /// Contact/Path = auto: the cost model's estimates (seconds).
       double estimated_condensed_seconds = 0., estimated_full_seconds = 0.;
+      /// The cost model's inputs and the set-up's warnings (prepare()).
+      PathCostInputs           cost_inputs;
+      std::vector<std::string> setup_warnings;
 
       /// The last solve's unknowns (w: the contact part of the
       /// displacement on the full path).
