@@ -539,13 +539,7 @@ namespace igabde
             problem.q(m * i + s) =
               U(m * i + s) - previous_external(m * i + s) - carry(m * i + s);
         }
-      // The loads floating bodies must balance: every history at its
-      // factor.
-      problem.b = Eigen::VectorXd::Zero(contact.rigid_mode_loads.size());
-      for (unsigned int h = 0;
-           h < factors.size() && h < contact.rigid_mode_history_loads.cols();
-           ++h)
-        problem.b -= factors[h] * contact.rigid_mode_history_loads.col(h);
+      problem.b = rigid_mode_load(factors);
 
       ContactSolverResult solution;
       {
@@ -652,6 +646,78 @@ namespace igabde
           }
       }
       return result;
+    }
+
+
+
+    template <int dim>
+    Eigen::VectorXd
+    ContactStage<dim>::rigid_mode_load(const std::vector<double> &factors) const
+    {
+      // The loads floating bodies must balance: every history at its
+      // factor.
+      Eigen::VectorXd b =
+        Eigen::VectorXd::Zero(contact.rigid_mode_loads.size());
+      for (unsigned int h = 0;
+           h < factors.size() && h < contact.rigid_mode_history_loads.cols();
+           ++h)
+        b -= factors[h] * contact.rigid_mode_history_loads.col(h);
+      return b;
+    }
+
+
+
+    template <int dim>
+    std::string
+    ContactStage<dim>::unbalanceable_load(
+      const std::vector<double> &factors) const
+    {
+      const ContactProblem &problem = contact.problem;
+      if (problem.n_alpha() == 0)
+        return "";
+      const Eigen::VectorXd b     = rigid_mode_load(factors);
+      double                scale = 0.;
+      for (unsigned int h = 0;
+           h < factors.size() && h < contact.rigid_mode_history_loads.cols();
+           ++h)
+        scale +=
+          std::abs(factors[h]) * contact.rigid_mode_history_loads.col(h).norm();
+      for (unsigned int a = 0; a < problem.n_alpha(); ++a)
+        {
+          if (!(std::abs(b(a)) > 1e-8 * scale))
+            continue;
+          // The work of pair i's force on mode a ranges over
+          // p_n [G_n - mu |G_t|, G_n + mu |G_t|] for p_n >= 0.
+          double lowest = 0., highest = 0., largest = 0.;
+          for (unsigned int i = 0; i < problem.n_contacts; ++i)
+            {
+              const double normal     = problem.G(m * i, a);
+              double       tangential = 0.;
+              for (unsigned int s = 1; s < m; ++s)
+                tangential += problem.G(m * i + s, a) * problem.G(m * i + s, a);
+              tangential = problem.mu[i] * std::sqrt(tangential);
+              lowest     = std::min(lowest, normal - tangential);
+              highest    = std::max(highest, normal + tangential);
+              largest    = std::max(largest, std::abs(normal) + tangential);
+            }
+          const double negligible = 1e-12 * largest;
+          if ((b(a) > 0. && highest > negligible) ||
+              (b(a) < 0. && lowest < -negligible))
+            continue;
+          Eigen::Index main = 0;
+          contact.alpha_basis.col(a).cwiseAbs().maxCoeff(&main);
+          const auto [body, k] = contact.alpha_modes[main];
+          return "the load drives Body " + std::to_string(body + 1) +
+                 "'s free rigid mode '" +
+                 bodies[body]->free_rigid_mode_names()[k] +
+                 "' in a direction no contact pair can resist (pairs only "
+                 "push: along their normals, with friction inside Coulomb's "
+                 "cone), so no equilibrium exists; the body is pulled off "
+                 "the surface it rests on. Reverse the load (Load path), "
+                 "hold the mode with a support (Supports) or change the "
+                 "contact faces";
+        }
+      return "";
     }
 
 

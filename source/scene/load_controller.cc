@@ -39,6 +39,13 @@ namespace igabde
         {f1, 0}};
       std::vector<double> f = f0;
       f.resize(f1.size(), 0.);
+      // A load no contact can balance: no step cut helps (the loads contact
+      // can balance form a convex cone; with the last step's load and f1's
+      // in it, every load between is).
+      const std::string unbalanced = stage.unbalanceable_load(f1);
+      AssertThrow(unbalanced.empty(),
+                  base::ExcInput(context + ": load step " +
+                                 std::to_string(step) + ": " + unbalanced));
       while (!targets.empty())
         {
           const auto [ft, depth] = targets.back();

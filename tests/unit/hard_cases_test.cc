@@ -608,6 +608,44 @@ TEST(HardCase, LoadNoContactCanCarryStopsWithADiagnosis)
 
 
 
+TEST(HardCase, LoadPullingAFloatingBodyOffStopsWithADiagnosis)
+{
+  // Tutorial 1's half disc rests on the rigid plane y = 0 held by contact
+  // alone; its load, (0, -3.75) on the cut, at factor -1 pulls it up, the
+  // direction the plane pushes it too: the translation y's equilibrium
+  // sum p_n + 3.75 * 16 = 0 has no solution with p_n >= 0 (friction adds
+  // nothing along y on a flat plane). Found before the step's Newton, with
+  // the step before kept; no step cut is tried.
+  for (const std::string sets :
+       {std::string("--set 'Load path/Load factors=1, -1'"),
+        std::string("--set 'Load path/Load factors=1, -1' "
+                    "--set 'Contact/Friction coefficient=0.3' "
+                    "--set 'Contact/Path=full'")})
+    {
+      SCOPED_TRACE(sets);
+      const SceneRun run =
+        run_scene("pulloff", "tutorial-1-disc-on-plane.prm", sets);
+      EXPECT_EQ(run.status, 2) << run.output;
+      EXPECT_EQ(run.summary.at("status"), "failed");
+      EXPECT_NE(run.output.find("load step 2: the load drives Body 1's free "
+                                "rigid mode 'translation y' in a direction "
+                                "no contact pair can resist"),
+                std::string::npos)
+        << run.output;
+      EXPECT_EQ(run.output.find("halving the increment"), std::string::npos)
+        << run.output;
+      ASSERT_EQ(run.summary.at("load_steps").size(), 1u) << run.summary;
+      const json &step = run.summary.at("load_steps")[0];
+      EXPECT_EQ(step.at("step"), 1);
+      // The first step balanced the downward load on the cut, 3.75 * 16.
+      EXPECT_NEAR(step.at("total_contact_force")[1].get<double>(),
+                  60.,
+                  1e-6 * 60.);
+    }
+}
+
+
+
 TEST(HardCase, BeamScenesThroughTheHardList)
 {
   // B1 (flat contact z = 1, coarse 12x2x2 per beam) and B2 (curved

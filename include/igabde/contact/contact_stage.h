@@ -248,6 +248,21 @@ namespace igabde
                  TimerOutput                 &timer);
 
       /**
+       * @brief Why the loads at @p factors (as in solve_step()) cannot be
+       * balanced by any contact forces, or an empty string. A free rigid
+       * mode (a column of G) whose load the pairs can only push against in
+       * the other direction (every pair's normal force, with its
+       * tangential force inside Coulomb's cone, does work of one sign on
+       * it) has no equilibrium, whatever the gaps and the flexibility: a
+       * body pulled off the surface it rests on. A sufficient condition
+       * for no solution (one mode at a time), never a false alarm; no
+       * step cut helps, since the set of loads contact can balance is a
+       * cone.
+       */
+      std::string
+      unbalanceable_load(const std::vector<double> &factors) const;
+
+      /**
        * @brief The state a load step starts from (forces, rigid-mode
        * amplitudes, the bodies' contact displacement on the full path,
        * the friction history), to retry a step.
@@ -327,6 +342,11 @@ namespace igabde
 
       Tensor<1, dim>
       global_force(const unsigned int i, const Eigen::VectorXd &p) const;
+
+      /// The loads the free rigid modes must balance at @p factors (the
+      /// equilibrium's right-hand side b, G^T p = b).
+      Eigen::VectorXd
+      rigid_mode_load(const std::vector<double> &factors) const;
 
       /**
        * @brief The inputs of the cost model of Contact/Path = auto for the
