@@ -422,6 +422,7 @@ namespace igabde
                                           exact,
                                           pairs ? &*pairs : nullptr,
                                           u,
+                                          factors,
                                           pcout,
                                           run_summary);
             }

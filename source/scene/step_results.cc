@@ -491,13 +491,64 @@ namespace igabde
       const std::optional<discretization::ExactSolution<dim>>       &exact,
       const std::vector<contact::PairState<dim>>                    *pairs,
       const std::vector<Vector<double>>                             &u,
+      const std::vector<double>                                     &factors,
       ConditionalOStream                                            &pcout,
       RunSummary                                                    &summary)
     {
-      nlohmann::json checks = nlohmann::json::object();
-      if (exact)
+      nlohmann::json           checks = nlohmann::json::object();
+      std::vector<std::string> warnings;
+      const auto               report_warnings =
+        [&](const std::vector<std::string> &messages) {
+          for (const std::string &w : messages)
+            {
+              pcout << "  warning: " << w << std::endl;
+              warnings.push_back(w);
+            }
+        };
+      // The checks' references (exact solutions, the uniform pressure, the
+      // Hertz loads) are for every load history at factor 1. The last
+      // step's factors scale them when every history that loads or moves a
+      // body has the same factor lambda (elasticity is linear, and the
+      // Hertz references follow their load); otherwise none applies.
+      std::vector<double> acting;
+      for (const auto &body : bodies)
+        for (unsigned int h = 0; h < body->n_histories(); ++h)
+          if (body->description().acts_in_history(h))
+            acting.push_back(h < factors.size() ? factors[h] : 0.);
+      const bool common =
+        std::all_of(acting.begin(), acting.end(), [&](const double f) {
+          return f == acting.front();
+        });
+      const double lambda = acting.empty() ? 1. : acting.front();
+      const bool   contact_checks =
+        pairs != nullptr && (parameters.checks.uniform_pressure > 0. ||
+                             parameters.checks.hertz_line_load > 0. ||
+                             parameters.checks.hertz_point_load > 0.);
+      const bool any_check        = exact || contact_checks;
+      const bool references_apply = common && lambda != 0.;
+      if (any_check && !references_apply)
         {
-          const auto norms = bodies[0]->compute_errors(u[0], *exact);
+          std::ostringstream w;
+          w << "Checks: the references are for the loads at factor 1, and "
+            << (common ? "the last step's factors are 0" :
+                         "the last step's load histories have different "
+                         "factors (Load path)")
+            << ", so no check is evaluated; end the load path with every "
+               "factor at 1 (or all at one value, which scales the "
+               "references)";
+          report_warnings({w.str()});
+        }
+      else if (any_check && lambda != 1.)
+        {
+          checks["reference_factor"] = lambda;
+          pcout << "  checks: the references scaled by the last step's factor "
+                << lambda << std::endl;
+        }
+      if (exact && references_apply)
+        {
+          Vector<double> scaled = u[0];
+          scaled /= lambda;
+          const auto norms = bodies[0]->compute_errors(scaled, *exact);
           AssertThrow(std::isfinite(norms.l2_relative) &&
                         std::isfinite(norms.energy_relative),
                       ExcMessage("the error norms are not finite (overflow "
@@ -512,14 +563,18 @@ namespace igabde
                 << std::defaultfloat << std::setprecision(6) << std::endl;
         }
 
-      std::vector<std::string> warnings;
-      if (pairs != nullptr)
+      if (contact_checks && references_apply && lambda < 0.)
+        report_warnings(
+          {"Checks: the contact checks' references are for a pressing load, "
+           "and the last step's factors are negative, so they are not "
+           "evaluated"});
+      if (pairs != nullptr && references_apply && lambda > 0.)
         {
           if (parameters.checks.uniform_pressure > 0.)
             {
               const double worst = postprocess::pressure_uniformity<dim>(
                 *pairs,
-                parameters.checks.uniform_pressure);
+                lambda * parameters.checks.uniform_pressure);
               checks["pressure_uniformity"] = worst;
               // Below 1e-10 the figure is round-off: said, not printed.
               pcout << "  pressure uniformity max |p_i/p - 1| "
@@ -551,14 +606,6 @@ namespace igabde
                 parameters.contact.slave_faces.front()),
               *pairs);
           };
-          const auto report_warnings =
-            [&](const std::vector<std::string> &messages) {
-              for (const std::string &w : messages)
-                {
-                  pcout << "  warning: " << w << std::endl;
-                  warnings.push_back(w);
-                }
-            };
           // Hertz's and Johnson's solutions are frictionless. Friction leaves
           // them exact only between similar bodies (Dundurs beta = 0); between
           // dissimilar ones (a rigid plane, other moduli) it changes the
@@ -593,7 +640,7 @@ namespace igabde
               if constexpr (dim == 2)
                 {
                   postprocess::HertzCheck hertz;
-                  hertz.line_load = parameters.checks.hertz_line_load;
+                  hertz.line_load = lambda * parameters.checks.hertz_line_load;
                   set_hertz_inputs(hertz);
                   const auto r                     = hertz.evaluate(*pairs);
                   checks["hertz_half_width"]       = r.half_width;
@@ -626,7 +673,7 @@ namespace igabde
               if constexpr (dim == 3)
                 {
                   postprocess::HertzPointCheck hertz;
-                  hertz.load = parameters.checks.hertz_point_load;
+                  hertz.load = lambda * parameters.checks.hertz_point_load;
                   set_hertz_inputs(hertz);
                   const auto r                         = hertz.evaluate(*pairs);
                   checks["hertz_contact_radius"]       = r.contact_radius;
@@ -828,6 +875,7 @@ namespace igabde
       const std::optional<discretization::ExactSolution<2>> &,
       const std::vector<contact::PairState<2>> *,
       const std::vector<Vector<double>> &,
+      const std::vector<double> &,
       ConditionalOStream &,
       RunSummary &);
     template void
@@ -838,6 +886,7 @@ namespace igabde
       const std::optional<discretization::ExactSolution<3>> &,
       const std::vector<contact::PairState<3>> *,
       const std::vector<Vector<double>> &,
+      const std::vector<double> &,
       ConditionalOStream &,
       RunSummary &);
   } // namespace scene

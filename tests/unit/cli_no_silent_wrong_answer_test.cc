@@ -7,6 +7,7 @@
 
 #include "cli_helpers.h"
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -149,6 +150,107 @@ TEST(NoSilentWrongAnswer, FrictionalHertzChecksBetweenDissimilarBodiesWarn)
     EXPECT_FALSE(contains(summary, "redundant")) << summary;
   }
 }
+
+
+namespace
+{
+  /// Runs prm/@p file with @p sets into a scratch folder; its summary.json.
+  nlohmann::json
+  run_summary(const std::string &name,
+              const std::string &file,
+              const std::string &sets)
+  {
+    const Scratch s(name);
+    const auto    r =
+      run_igabde(scene(file) + " --quiet --set 'Output/Write vtu=false' " +
+                   sets + " --set 'Output/Directory=out'",
+                 s.path);
+    EXPECT_EQ(r.status, 0) << r.output;
+    return nlohmann::json::parse(
+      read_file(cli::join(s.path, "out/summary.json")));
+  }
+} // namespace
+
+
+
+TEST(NoSilentWrongAnswer, ChecksAtALastFactorOtherThanOneScaleTheirReferences)
+{
+  // The checks' references are for the loads at factor 1; a load path
+  // ending at 0.5 compared the field with them as they were (V2: errors of
+  // 50 %, V3: pressure 50 % off uniform, status ok).
+  {
+    // Linear elasticity: the relative errors at any factor are those at 1.
+    const nlohmann::json one = run_summary("lame1", "v2-lame-cylinder.prm", "");
+    const nlohmann::json half =
+      run_summary("lame05",
+                  "v2-lame-cylinder.prm",
+                  "--set 'Load path/Load factors=0.5'");
+    EXPECT_EQ(half["checks"]["reference_factor"], 0.5) << half.dump(1);
+    for (const char *norm : {"l2_error", "energy_error"})
+      EXPECT_NEAR(half["checks"][norm].get<double>(),
+                  one["checks"][norm].get<double>(),
+                  1e-8 * one["checks"][norm].get<double>())
+        << norm;
+  }
+  {
+    // The patch test: uniform pressure 0.5 at half the load, to rounding.
+    const nlohmann::json half =
+      run_summary("patch05",
+                  "v3-contact-patch-2d.prm",
+                  "--set 'Load path/Load factors=0.5'");
+    EXPECT_LT(half["checks"]["pressure_uniformity"].get<double>(), 1e-8)
+      << half.dump(1);
+  }
+  {
+    // V5 at half the load, P = 120 N/m (R = 8, E* = E / (1 - nu^2)):
+    // Johnson's a = sqrt(4 P R / (pi E*)). The load histories that do not
+    // act (the displacement factor: V5 prescribes no displacement) do not
+    // count, whatever their factor.
+    const nlohmann::json half =
+      run_summary("hertz05",
+                  "v5-hertz-2d.prm",
+                  "--set 'Load path/Load factors=0.5' "
+                  "--set 'Load path/Displacement factors=0.2'");
+    const double e_star = 1000. / (1. - 0.3 * 0.3);
+    const double a      = std::sqrt(4. * 120. * 8. / (M_PI * e_star));
+    EXPECT_NEAR(half["checks"]["hertz_half_width_exact"].get<double>(),
+                a,
+                1e-12 * a)
+      << half.dump(1);
+    // The moment estimate is within a pair spacing of a.
+    EXPECT_LT(half["checks"]["hertz_half_width_moment_error"].get<double>(),
+              half["checks"]["hertz_edge_pair_spacing"].get<double>() / a)
+      << half.dump(1);
+    EXPECT_FALSE(half.contains("warnings")) << half.dump(1);
+  }
+}
+
+
+
+TEST(NoSilentWrongAnswer,
+     ChecksAtLoadHistoriesOfDifferentFactorsAreNotEvaluated)
+{
+  // Tutorial 2 ends with its two acting histories (press, shift) at
+  // different factors: no factor scales the check's reference, so the
+  // check is left out with a warning instead of a figure against the
+  // wrong load. With both ending at 1 the check is evaluated.
+  const std::string    check = "--set 'Checks/Hertz line load=60' ";
+  const nlohmann::json differ =
+    run_summary("histories-differ",
+                "tutorial-2-partial-slip.prm",
+                check + "--set 'Load path/Histories=press: 1, 1, 1, 1, 1; "
+                        "shift: 0, 0.25, 0.5, 0.75, 0.5'");
+  EXPECT_FALSE(differ["checks"].contains("hertz_half_width")) << differ.dump(1);
+  ASSERT_TRUE(differ.contains("warnings")) << differ.dump(1);
+  EXPECT_TRUE(contains(differ["warnings"].dump(),
+                       "different factors (Load path), so no check is "
+                       "evaluated"))
+    << differ["warnings"].dump(1);
+  const nlohmann::json same =
+    run_summary("histories-same", "tutorial-2-partial-slip.prm", check);
+  EXPECT_TRUE(same["checks"].contains("hertz_half_width")) << same.dump(1);
+}
+
 
 
 TEST(NoSilentWrongAnswer, KilledRunLeavesNoOldOkSummary)

@@ -232,6 +232,39 @@ namespace igabde
           n = std::max(n, p.history + 1);
         return n;
       }
+
+      /// Whether load history @p h loads or moves the body: a traction,
+      /// point load or moment of it, a prescribed displacement of it that
+      /// is not zero, or (history 0) a body force.
+      bool
+      acts_in_history(const unsigned int h) const
+      {
+        const auto moves = [](const auto &components, const auto &value) {
+          for (unsigned int c = 0; c < dim; ++c)
+            if (components[c] && value[c] != 0.)
+              return true;
+          return false;
+        };
+        for (const auto &d : dirichlet)
+          if (d.history == h)
+            for (unsigned int c = 0; c < dim; ++c)
+              if (d.components[c] && (d.value[c] != 0. || d.field[c]))
+                return true;
+        for (const auto &p : point_supports)
+          if (p.history == h && moves(p.components, p.value))
+            return true;
+        for (const auto &t : tractions)
+          if (t.history == h)
+            return true;
+        for (const auto &p : point_loads)
+          if (p.history == h)
+            return true;
+        for (const auto &m : moments)
+          if (m.history == h)
+            return true;
+        return h == 0 &&
+               (body_force.norm() > 0. || static_cast<bool>(body_force_field));
+      }
     };
   } // namespace discretization
 } // namespace igabde

@@ -168,6 +168,7 @@ namespace igabde
       const std::optional<discretization::ExactSolution<dim>>       &exact,
       const std::vector<contact::PairState<dim>>                    *pairs,
       const std::vector<Vector<double>>                             &u,
+      const std::vector<double>                                     &factors,
       ConditionalOStream                                            &log,
       RunSummary                                                    &summary);
   } // namespace scene
