@@ -628,8 +628,10 @@ namespace igabde
         return *sys;
       }
 
-      const Mat              &W;
-      double                  eps = 0.;
+      const Mat &W;
+      /// W's largest diagonal entry (pair_row_is_held(); < 0: not yet).
+      double                  max_diagonal = -1.;
+      double                  eps          = 0.;
       const LinearAlgebra     linear_algebra;
       const double            sparse_fill;
       const bool              use_symmetry;
@@ -655,6 +657,23 @@ namespace igabde
 
 
     CondensedOperator::~CondensedOperator() = default;
+
+
+
+    bool
+    CondensedOperator::pair_row_is_held(const unsigned int row) const
+    {
+      // A direction held by supports on both sides moves nothing: its row
+      // and column of W vanish (W is positive semi-definite, so a zero
+      // diagonal entry means a zero row), to round-off of the largest
+      // diagonal entry, the threshold condense() leaves whole pairs out by.
+      const Mat &W = storage->W;
+      AssertIndexRange(row, W.rows());
+      if (storage->max_diagonal < 0.)
+        storage->max_diagonal =
+          W.rows() > 0 ? W.diagonal().cwiseAbs().maxCoeff() : 0.;
+      return std::abs(W(row, row)) <= 1e-8 * storage->max_diagonal;
+    }
 
 
 

@@ -646,6 +646,35 @@ TEST(HardCase, LoadPullingAFloatingBodyOffStopsWithADiagnosis)
 
 
 
+TEST(HardCase, SimilarBodiesWithHighFrictionKeepHertzsSolution)
+{
+  // V7's sphere and block are of one material (Dundurs' beta = 0): under a
+  // normal load their surfaces move alike tangentially, so friction
+  // changes nothing and Hertz's solution stays the reference whatever mu
+  // (Johnson, Contact Mechanics, 5.2). Weighted-gap pairs on the symmetry
+  // planes have a tangent that moves only held unknowns (to the dual
+  // basis' round-off): such directions must be held, not left to a
+  // Newton matrix that is singular whenever they stick (mu = 100 did not
+  // converge in any step cut).
+  for (const char *mu : {"0.3", "100"})
+    {
+      SCOPED_TRACE(std::string("mu = ") + mu);
+      const SceneRun run =
+        run_scene(std::string("v7mu") + mu,
+                  "v7-sphere-on-block.prm",
+                  std::string("--set 'Contact/Friction coefficient=") + mu +
+                    "'");
+      expect_converged(run);
+      EXPECT_EQ(run.summary.at("load_steps")[0].at("step_cuts"), 0);
+      // The bounds of the frictionless V7 test (ContactV7Hertz).
+      const json &checks = run.summary.at("checks");
+      EXPECT_LT(checks.at("hertz_contact_radius_error").get<double>(), 0.02);
+      EXPECT_LT(checks.at("hertz_peak_pressure_error").get<double>(), 0.02);
+    }
+}
+
+
+
 TEST(HardCase, BeamScenesThroughTheHardList)
 {
   // B1 (flat contact z = 1, coarse 12x2x2 per beam) and B2 (curved

@@ -174,9 +174,11 @@ namespace igabde
 
       /**
        * @brief Whether direction @p row of the pairs is held by supports
-       * on both sides: no displacement moves it (an empty row of C) and
-       * its force enters no body's equations. Always false on the
-       * condensed path, which leaves such pairs out when it condenses.
+       * on both sides: no displacement moves it (an empty row of C on the
+       * full path, a zero row of W on the condensed path) and its force
+       * enters no body's equations. Pairs held in every direction are left
+       * out when the path is prepared; a pair on a symmetry plane keeps
+       * its other directions. False unless the path says so.
        */
       virtual bool
       pair_row_is_held(const unsigned int row) const
@@ -343,6 +345,11 @@ namespace igabde
 
       const Eigen::SparseMatrix<double, Eigen::RowMajor> *
       sparse_flexibility(const ContactData &data) const override;
+
+      /// A zero diagonal entry of W (to 1e-12 of the largest): the
+      /// direction moves nothing (held by supports on both sides).
+      bool
+      pair_row_is_held(const unsigned int row) const override;
 
       void
       set_proximal_shift(const double eps) override;
