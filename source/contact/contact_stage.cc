@@ -555,6 +555,29 @@ namespace igabde
       StepResult<dim> result;
       result.converged = solution.converged;
       result.diagnosis = solution.diagnosis;
+      // One of the BDE's two measures (the relative and the balanced
+      // natural-map residual) meets the tolerance and rounding holds the
+      // other above it, where forces and displacements are of very
+      // different scales: a tolerance below what double precision reaches
+      // here. A cut of the load scales both alike; a looser tolerance
+      // accepts this solution.
+      const double tolerance = settings.solver.bnewton.tolerance;
+      const double stuck =
+        std::max(solution.residual, solution.balanced_residual);
+      if (!solution.converged && settings.solver.algorithm == Algorithm::bde &&
+          std::min(solution.residual, solution.balanced_residual) <=
+            tolerance &&
+          stuck > tolerance && solution.equilibrium_residual <= tolerance)
+        {
+          std::ostringstream advice;
+          advice << std::setprecision(2) << "Contact/Tolerance = " << tolerance
+                 << " is below what rounding lets this problem reach: the "
+                 << (solution.residual > tolerance ? "relative" : "balanced")
+                 << " natural-map residual stays at " << stuck
+                 << " while the other meets it; a Contact/Tolerance above "
+                 << stuck << " accepts this solution";
+          result.advice = advice.str();
+        }
       // Where the pairs the failure involves are (numbered as in the
       // contact CSV files).
       if (!solution.converged && !solution.pairs_involved.empty())

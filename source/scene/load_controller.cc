@@ -67,7 +67,7 @@ namespace igabde
               continue;
             }
           stage.restore_state(state);
-          if (depth >= max_cuts)
+          if (depth >= max_cuts || !outcome.last.advice.empty())
             return outcome;
           log << "  contact solve did not converge: halving the increment "
                  "(cut "

@@ -352,16 +352,12 @@ namespace igabde
               if (record.failed)
                 {
                   run_summary.load_steps.push_back(record);
-                  AssertThrow(
-                    false,
-                    ExcMessage(
-                      scene_file + ": load step " + std::to_string(s + 1) +
-                      ": the contact solver did not converge: " +
-                      record.diagnosis +
-                      ". Try more load steps (Load path/Number of steps) or "
-                      "step cuts (Contact/Max step cuts), a larger "
-                      "Contact/Max iterations, or check that the bodies are "
-                      "supported."));
+                  AssertThrow(false,
+                              ExcMessage(
+                                scene_file + ": load step " +
+                                std::to_string(s + 1) +
+                                ": the contact solver did not converge: " +
+                                record.diagnosis + ". " + record.advice));
                 }
             }
           check_finite_displacements<dim>(bodies, u, s + 1);

@@ -55,6 +55,12 @@ namespace igabde
           // The failed step's figures stay next to the finished steps.
           record.failed    = true;
           record.diagnosis = last.diagnosis;
+          record.advice =
+            last.advice.empty() ?
+              "Try more load steps (Load path/Number of steps) or step cuts "
+              "(Contact/Max step cuts), a larger Contact/Max iterations, or "
+              "check that the bodies are supported." :
+              last.advice + ".";
         }
     }
 

@@ -16,7 +16,9 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <iomanip>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -616,7 +618,7 @@ TEST(HardCase, LoadPullingAFloatingBodyOffStopsWithADiagnosis)
   // sum p_n + 3.75 * 16 = 0 has no solution with p_n >= 0 (friction adds
   // nothing along y on a flat plane). Found before the step's Newton, with
   // the step before kept; no step cut is tried.
-  for (const std::string sets :
+  for (const std::string &sets :
        {std::string("--set 'Load path/Load factors=1, -1'"),
         std::string("--set 'Load path/Load factors=1, -1' "
                     "--set 'Contact/Friction coefficient=0.3' "
@@ -671,6 +673,41 @@ TEST(HardCase, SimilarBodiesWithHighFrictionKeepHertzsSolution)
       EXPECT_LT(checks.at("hertz_contact_radius_error").get<double>(), 0.02);
       EXPECT_LT(checks.at("hertz_peak_pressure_error").get<double>(), 0.02);
     }
+}
+
+
+
+TEST(HardCase, ToleranceBelowTheRoundingFloorSaysSo)
+{
+  // B1 asks for 1e-14: the balanced residual reaches 2e-17, the relative
+  // natural-map residual (FCLIB's) stays near 2e-10, held there by
+  // rounding (forces of about 1e5 against gaps of 1e-6). Before, every cut
+  // of the load repeated the same failure and the run advised more load
+  // steps. Now it stops at once and names the tolerance that accepts the
+  // solution, which the second run checks.
+  const SceneRun run = run_scene("floor",
+                                 "b1-cantilever-beams.prm",
+                                 "--set 'Contact/Tolerance=1e-14'");
+  EXPECT_EQ(run.status, 1) << run.output;
+  EXPECT_EQ(run.summary.at("status"), "failed");
+  EXPECT_EQ(run.output.find("halving the increment"), std::string::npos)
+    << run.output;
+  const std::string said = "a Contact/Tolerance above ";
+  const auto        at   = run.output.find(said);
+  ASSERT_NE(at, std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("Contact/Tolerance = 1e-14 is below what "
+                            "rounding lets this problem reach"),
+            std::string::npos)
+    << run.output;
+  const double floor = std::stod(run.output.substr(at + said.size()));
+  EXPECT_GT(floor, 1e-14);
+  std::ostringstream looser_tolerance;
+  looser_tolerance << std::setprecision(3) << 2. * floor;
+  const SceneRun looser =
+    run_scene("floor-looser",
+              "b1-cantilever-beams.prm",
+              "--set 'Contact/Tolerance=" + looser_tolerance.str() + "'");
+  expect_converged(looser);
 }
 
 

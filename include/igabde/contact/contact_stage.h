@@ -73,8 +73,11 @@ namespace igabde
     template <int dim>
     struct StepResult
     {
-      bool         converged = false;
-      std::string  diagnosis;
+      bool        converged = false;
+      std::string diagnosis;
+      /// What to change when the solve failed and no cut of the load
+      /// helps (empty: the usual advice applies).
+      std::string  advice;
       unsigned int iterations = 0;
       double       residual   = 0.;
       unsigned int n_open = 0, n_stick = 0, n_slip = 0, n_closed = 0;

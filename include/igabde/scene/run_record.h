@@ -78,6 +78,8 @@ namespace igabde
       /// A step whose contact solve failed: why (and no forces).
       bool        failed = false;
       std::string diagnosis;
+      /// What to change (the solver's advice, or the usual one).
+      std::string advice;
       /// Finished contact steps.
       std::optional<double> condition_check_max_violation;
 
