@@ -99,59 +99,6 @@ TEST(NoSilentWrongAnswer, RedundantPairsAreAWarning)
 
 
 
-TEST(NoSilentWrongAnswer, FrictionalHertzChecksBetweenDissimilarBodiesWarn)
-{
-  // Friction leaves Hertz's and Johnson's frictionless solutions exact only
-  // between similar bodies. V5's disc on a rigid plane (plane strain,
-  // nu = 0.3) has Dundurs' beta = -(1 - 2 nu) / (2 (1 - nu)) = -0.2857:
-  // with mu = 0.3 its Hertz check must say so. V7's sphere on a block of
-  // the same material (beta = 0) keeps its check without the warning.
-  // Neither is redundant: V5 with friction has 66 pairs of 2 unknowns on
-  // 131 face unknowns, but the tangent of the pair on the symmetry axis
-  // moves only the held x unknown (a zero row, left out), so 131 count.
-  const std::string note = "Dundurs beta = ";
-  {
-    const Scratch s("dundurs-v5");
-    const auto    r = run_igabde(scene("v5-hertz-2d.prm") +
-                                " --quiet --set 'Output/Write vtu=false'"
-                                   " --set 'Contact/Friction coefficient=0.3'"
-                                   " --set 'Output/Directory=out'",
-                              s.path);
-    ASSERT_EQ(r.status, 0) << r.output;
-    const nlohmann::json summary =
-      nlohmann::json::parse(read_file(cli::join(s.path, "out/summary.json")));
-    ASSERT_TRUE(summary.contains("warnings")) << summary.dump(1);
-    std::vector<std::string> dundurs;
-    for (const auto &w : summary["warnings"])
-      {
-        const std::string text = w.get<std::string>();
-        EXPECT_FALSE(contains(text, "redundant")) << text;
-        if (contains(text, note))
-          dundurs.push_back(text);
-      }
-    ASSERT_EQ(dundurs.size(), 1u) << summary["warnings"].dump(1);
-    const double nu = 0.3;
-    const double beta =
-      std::stod(dundurs[0].substr(dundurs[0].find(note) + note.size()));
-    EXPECT_NEAR(beta, -(1. - 2. * nu) / (2. * (1. - nu)), 1e-3);
-  }
-  {
-    const Scratch s("dundurs-v7");
-    const auto    r = run_igabde(scene("v7-sphere-on-block.prm") +
-                                " --quiet --set 'Output/Write vtu=false'"
-                                   " --set 'Contact/Friction coefficient=0.3'"
-                                   " --set 'Output/Directory=out'",
-                              s.path);
-    ASSERT_EQ(r.status, 0) << r.output;
-    const std::string summary =
-      read_file(cli::join(s.path, "out/summary.json"));
-    EXPECT_TRUE(contains(summary, "hertz_contact_radius_error")) << summary;
-    EXPECT_FALSE(contains(summary, note)) << summary;
-    EXPECT_FALSE(contains(summary, "redundant")) << summary;
-  }
-}
-
-
 namespace
 {
   /// Runs prm/@p file with @p sets into a scratch folder; its summary.json.
@@ -170,6 +117,51 @@ namespace
       read_file(cli::join(s.path, "out/summary.json")));
   }
 } // namespace
+
+
+
+TEST(NoSilentWrongAnswer, FrictionalHertzChecksBetweenDissimilarBodiesWarn)
+{
+  // Friction leaves Hertz's and Johnson's frictionless solutions exact only
+  // between similar bodies. V5's disc on a rigid plane (plane strain,
+  // nu = 0.3) has Dundurs' beta = -(1 - 2 nu) / (2 (1 - nu)) = -0.2857:
+  // with mu = 0.3 its Hertz check must say so. V7's sphere on a block of
+  // the same material (beta = 0) keeps its check without the warning.
+  // Neither is redundant: V5 with friction has 66 pairs of 2 unknowns on
+  // 131 face unknowns, but the tangent of the pair on the symmetry axis
+  // moves only the held x unknown (a zero row, left out), so 131 count.
+  const std::string note = "Dundurs beta = ";
+  {
+    const nlohmann::json summary =
+      run_summary("dundurs-v5",
+                  "v5-hertz-2d.prm",
+                  "--set 'Contact/Friction coefficient=0.3'");
+    ASSERT_TRUE(summary.contains("warnings")) << summary.dump(1);
+    std::vector<std::string> dundurs;
+    for (const auto &w : summary["warnings"])
+      {
+        const std::string text = w.get<std::string>();
+        EXPECT_FALSE(contains(text, "redundant")) << text;
+        if (contains(text, note))
+          dundurs.push_back(text);
+      }
+    ASSERT_EQ(dundurs.size(), 1u) << summary["warnings"].dump(1);
+    const double nu = 0.3;
+    const double beta =
+      std::stod(dundurs[0].substr(dundurs[0].find(note) + note.size()));
+    EXPECT_NEAR(beta, -(1. - 2. * nu) / (2. * (1. - nu)), 1e-3);
+  }
+  {
+    const std::string summary =
+      run_summary("dundurs-v7",
+                  "v7-sphere-on-block.prm",
+                  "--set 'Contact/Friction coefficient=0.3'")
+        .dump();
+    EXPECT_TRUE(contains(summary, "hertz_contact_radius_error")) << summary;
+    EXPECT_FALSE(contains(summary, note)) << summary;
+    EXPECT_FALSE(contains(summary, "redundant")) << summary;
+  }
+}
 
 
 

@@ -657,8 +657,9 @@ TEST(HardCase, SimilarBodiesWithHighFrictionKeepHertzsSolution)
   // planes have a tangent that moves only held unknowns (to the dual
   // basis' round-off): such directions must be held, not left to a
   // Newton matrix that is singular whenever they stick (mu = 100 did not
-  // converge in any step cut).
-  for (const char *mu : {"0.3", "100"})
+  // converge in any step cut; mu = 0.3, which converged in 97 iterations,
+  // runs in NoSilentWrongAnswer.FrictionalHertzChecksBetween...).
+  for (const char *mu : {"100"})
     {
       SCOPED_TRACE(std::string("mu = ") + mu);
       const SceneRun run =
