@@ -665,8 +665,11 @@ namespace igabde
     {
       // A direction held by supports on both sides moves nothing: its row
       // and column of W vanish (W is positive semi-definite, so a zero
-      // diagonal entry means a zero row), to round-off of the largest
-      // diagonal entry, the threshold condense() leaves whole pairs out by.
+      // diagonal entry means a zero row). Weighted-gap pairs leave round-off
+      // and mortar tails there (V7: 1e-12 to 1e-10 of the largest diagonal
+      // entry), hence 1e-8: such a direction moves by less than 1e-8 of
+      // what the same force moves elsewhere. condense() leaves out whole
+      // pairs at 1e-12.
       const Mat &W = storage->W;
       AssertIndexRange(row, W.rows());
       if (storage->max_diagonal < 0.)

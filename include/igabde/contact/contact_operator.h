@@ -346,8 +346,8 @@ namespace igabde
       const Eigen::SparseMatrix<double, Eigen::RowMajor> *
       sparse_flexibility(const ContactData &data) const override;
 
-      /// A zero diagonal entry of W (to 1e-12 of the largest): the
-      /// direction moves nothing (held by supports on both sides).
+      /// A diagonal entry of W at most 1e-8 of the largest: the direction
+      /// moves (next to) nothing, held by supports on both sides.
       bool
       pair_row_is_held(const unsigned int row) const override;
 
