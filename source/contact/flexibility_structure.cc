@@ -33,7 +33,7 @@ namespace igabde
           automatic ? static_cast<std::size_t>(sparse_fill * m * m) :
                       std::size_t(m) * m;
         if (linear_algebra == CondensedOperator::LinearAlgebra::sparse ||
-            (automatic && m >= 48))
+            (automatic && m >= CondensedOperator::min_sparse_rows))
           sparse = sparse_copy(W, limit);
         if (!sparse)
           symmetric = dense_symmetric(W);

@@ -100,12 +100,13 @@ namespace igabde
       double theta = evaluate(x, u, H, &piece);
       // H is exactly 0 on a solution of the piecewise linear branches
       // (open, stick, closed) and to rounding on a slip one: stop at the
-      // rounding of H's terms.
+      // rounding of H's terms, forces (p, and A u with A = dH/du in force
+      // per displacement), so that the test does not change when forces or
+      // displacements are scaled.
       const auto small = [&](const double th) {
-        const double scale =
-          std::max(x.head(d).cwiseAbs().maxCoeff(),
-                   u.head(d).cwiseAbs().maxCoeff() *
-                     std::max(1., piece.A.cwiseAbs().maxCoeff()));
+        const double scale = std::max(x.head(d).cwiseAbs().maxCoeff(),
+                                      u.head(d).cwiseAbs().maxCoeff() *
+                                        piece.A.cwiseAbs().maxCoeff());
         return std::sqrt(th) <= 1e-14 * scale;
       };
       for (unsigned int it = 0; it < 30; ++it)

@@ -179,8 +179,9 @@ TEST(CliFclib, BadInputEndsWithOneLineAndAnUnsolvedProblemSaysWhy)
   problem.n_components = 3;
   problem.W            = Eigen::MatrixXd::Identity(6, 6);
   problem.W(0, 3) = problem.W(3, 0) = 0.5;
+  problem.W(1, 4) = problem.W(4, 1) = 0.5;
   problem.q.resize(6);
-  problem.q << -1., 0.5, 0.2, -0.5, -0.3, 0.4;
+  problem.q << -1., 0.5, 0.2, -1., -0.3, 0.4;
   problem.mu = {0.3, 0.6};
   igabde::postprocess::write_fclib_local(problem,
                                          nullptr,
@@ -197,8 +198,9 @@ TEST(CliFclib, BadInputEndsWithOneLineAndAnUnsolvedProblemSaysWhy)
       << run.output;
   }
   {
-    // One iteration from zero cannot solve a problem with a closed,
-    // coupled pair.
+    // One Gauss-Seidel sweep and one Newton iteration cannot solve two
+    // closed pairs coupled in their normal and tangential directions (the
+    // sweep leaves the first pair's gap open by W_03 p_1 = 0.25).
     const auto run =
       cli::run_igabde("--fclib two.hdf5 --quiet --set Output/Directory=out "
                       "--set 'Contact/Max iterations=1'",

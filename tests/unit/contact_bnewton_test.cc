@@ -489,6 +489,36 @@ TEST(ContactBNewton, IllPosedReportsNotConverged)
 
 
 
+// A problem of one contact is its own local problem: the first Gauss-Seidel
+// sweep solves it exactly, without a Newton iteration, and gives Newton's
+// answer (the same solver without the sweep), on a coupled W, in every
+// state of the pair.
+TEST(ContactBNewton, OneContactIsSolvedByOneSweep)
+{
+  const Eigen::MatrixXd W = random_spd(3, 11);
+  for (const Eigen::Vector3d q : {Eigen::Vector3d(-1., -0.8, -0.6),
+                                  Eigen::Vector3d(-1., -0.05, 0.02),
+                                  Eigen::Vector3d(0.5, -0.3, 0.1)})
+    {
+      SCOPED_TRACE("q = " + std::to_string(q[0]) + ", " + std::to_string(q[1]) +
+                   ", " + std::to_string(q[2]));
+      const ContactProblem        problem = make_problem(3, W, q, {0.5});
+      const BNewtonSolver::Result swept   = BNewtonSolver().solve(problem);
+      expect_solution_ok(problem, swept);
+      EXPECT_EQ(swept.iterations, 0u);
+      EXPECT_EQ(swept.sweeps, 1u);
+      BNewtonSolver::Settings newton_only;
+      newton_only.gauss_seidel_first_sweeps = 0;
+      const BNewtonSolver::Result newton =
+        BNewtonSolver(newton_only).solve(problem);
+      expect_solution_ok(problem, newton);
+      EXPECT_LE((swept.p - newton.p).norm(), 1e-10 * (1. + newton.p.norm()));
+      EXPECT_EQ(swept.status[0], newton.status[0]);
+    }
+}
+
+
+
 // The history is printed with the column header and one line per
 // iteration.
 TEST(ContactBNewton, HistoryPrinting)
@@ -499,12 +529,15 @@ TEST(ContactBNewton, HistoryPrinting)
                                               {0.5});
   std::ostringstream      log;
   BNewtonSolver::Settings settings;
-  settings.log                       = true;
-  settings.log_stream                = &log;
+  settings.log        = true;
+  settings.log_stream = &log;
+  // Newton's history: one contact is solved by a first Gauss-Seidel sweep
+  // (its own local problem) without a Newton iteration.
+  settings.gauss_seidel_first_sweeps = 0;
   const BNewtonSolver::Result result = BNewtonSolver(settings).solve(problem);
   EXPECT_TRUE(result.converged);
   // One line per iteration and a last one with the final residual.
-  EXPECT_EQ(result.history.size(), result.iterations + 1);
+  ASSERT_EQ(result.history.size(), result.iterations + 1);
   EXPECT_LE(result.history.back().residual, settings.tolerance);
   std::ostringstream out;
   result.print_history(out);

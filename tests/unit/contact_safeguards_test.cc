@@ -54,8 +54,11 @@ namespace
   {
     BNewtonSettings s; // tolerance 1e-10, as in a scene
     s.max_iterations = 300;
-    s.switch_radius  = switch_radius;
-    s.proximal       = proximal;
+    // The phases after Newton from the start are tested: on so small a W
+    // a first Gauss-Seidel sweep would start Newton from its iterate.
+    s.gauss_seidel_first_sweeps = 0;
+    s.switch_radius             = switch_radius;
+    s.proximal                  = proximal;
     return s;
   }
 

@@ -80,6 +80,10 @@ namespace igabde
      * most Settings::gauss_seidel_first_sweeps nonsmooth Gauss-Seidel
      * sweeps from the start, left as soon as their rate would not reach the
      * tolerance; if they do not converge, phase 1 starts from the start;
+     * where W is small (fewer than CondensedOperator::min_sparse_rows rows)
+     * and no body floats, one sweep (it solves a problem of one contact
+     * exactly), and if it does not converge, phase 1 starts from its
+     * iterate;
      * (1) Newton with Settings::radius; (2) if that ends without
      * convergence and Settings::switch_radius, Newton with the other radius
      * from the best iterate so far; (2b) if Settings::switch_radius and

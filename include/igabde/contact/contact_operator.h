@@ -296,13 +296,20 @@ namespace igabde
       enum class LinearAlgebra
       {
         /// Sparse when W's fill is at most sparse_fill (and W has at least
-        /// 48 rows).
+        /// min_sparse_rows rows).
         automatic,
         /// Dense LAPACK factorisations (Cholesky or LU).
         dense,
         /// Eigen sparse factorisations (SimplicialLDLT or SparseLU).
         sparse
       };
+
+      /**
+       * @brief Below this many rows W is always stored dense: a sparse
+       * factorisation's set-up costs more than LAPACK's on so small a
+       * matrix, whatever the fill.
+       */
+      static constexpr unsigned int min_sparse_rows = 48;
 
       /**
        * @brief Keeps a reference to @p W (n x n, symmetric or not).

@@ -210,11 +210,11 @@ namespace igabde
       /**
        * @brief Sweeps of the nonsmooth Gauss-Seidel phase tried before
        * the Newton phases where W is kept sparse (no floating bodies; 0:
-       * none). The error is measured after every sweep; if the sweeps do
-       * not solve the problem, Newton starts from the start as without
-       * them. Each costs a pass over W's non-zeros: ten cost less than one
-       * sparse factorisation of the Newton matrix on the FCLIB rigid-body
-       * problems.
+       * none; on a small dense W one sweep, if this is not 0). The error is
+       * measured after every sweep; if the sweeps do not solve the problem,
+       * Newton starts from the start as without them. Each costs a pass over
+       * W's non-zeros: ten cost less than one sparse factorisation of the
+       * Newton matrix on the FCLIB rigid-body problems.
        */
       unsigned int gauss_seidel_first_sweeps = 10;
 

@@ -40,8 +40,9 @@ namespace igabde
         /**
          * @brief Reads the structure of @p W for @p d components per pair
          * and the rigid-mode columns @p G: the sparse copy where
-         * @p linear_algebra asks for it, or (automatic) from 48 rows on
-         * when at most @p sparse_fill of W's entries are non-zero.
+         * @p linear_algebra asks for it, or (automatic) from
+         * CondensedOperator::min_sparse_rows rows on when at most @p
+         * sparse_fill of W's entries are non-zero.
          */
         FlexibilityStructure(const Mat                       &W,
                              const Mat                       &G,
