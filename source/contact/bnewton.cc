@@ -272,6 +272,10 @@ namespace igabde
       PhaseOutcome outcome;
       std::string  reasons;
       double       r_factor = settings.r_factor;
+      // The law of phases 0 and 1 and of the answer's measures (its
+      // weights are formed once: on a problem of a few contacts they are
+      // a part of the solve's time worth keeping).
+      const BdeLaw law = bde_law(op, data, settings.r_factor, settings.radius);
       if (m + na == 0)
         outcome.converged = true;
       else
@@ -312,7 +316,7 @@ namespace igabde
               first.quit_when_too_slow = true;
               outcome                  = gauss_seidel_phase(driver,
                                            data,
-                                           bde_law(op, data, r_factor, radius),
+                                           law,
                                            *op.dense_flexibility(),
                                            Ws,
                                            xg,
@@ -328,7 +332,7 @@ namespace igabde
               ContactIterate x1 = x_newton;
               outcome =
                 driver.newton(data,
-                              bde_law(op, data, r_factor, radius),
+                              law,
                               x1,
                               settings.tolerance,
                               phase_name("newton", radius),
@@ -395,15 +399,14 @@ namespace igabde
               unsigned int       sweeps = 0;
               GaussSeidelOptions options;
               options.max_sweeps    = settings.gauss_seidel_sweeps;
-              const PhaseOutcome gs = gauss_seidel_phase(
-                driver,
-                data,
-                bde_law(op, data, settings.r_factor, settings.radius),
-                *W,
-                Ws,
-                xg,
-                options,
-                sweeps);
+              const PhaseOutcome gs = gauss_seidel_phase(driver,
+                                                         data,
+                                                         law,
+                                                         *W,
+                                                         Ws,
+                                                         xg,
+                                                         options,
+                                                         sweeps);
               result.sweeps += sweeps;
               outcome = gs;
               reasons += "; gauss-seidel: " + gs.reason;
@@ -425,21 +428,21 @@ namespace igabde
       const ContactIterate xr = outcome.converged ? driver.converged_x :
                                 driver.have_best  ? driver.best_x :
                                                     x;
-      const BdeLaw         final_law =
-        bde_law(op, data, settings.r_factor, settings.radius);
       // The answer, its measures and the status of every pair with the
       // phase-1 radius.
-      driver.finish(data, final_law, xr);
-      double     disp;
-      const bool strict = driver.stopping_test(data,
-                                               final_law,
+      const ContactIterate F = driver.finish(data, law, xr);
+      double               disp;
+      const bool           strict = driver.stopping_test(data,
+                                               law,
                                                xr,
                                                settings.tolerance,
                                                false,
                                                result.residual,
                                                result.balanced_residual,
                                                result.equilibrium_residual,
-                                               disp);
+                                               disp,
+                                               &result.u,
+                                               &F);
       // With fclib_stopping the FCLIB error alone is the test (as the
       // stopping test); else the balanced error must meet it too.
       result.converged = (strict || outcome.converged) &&

@@ -40,48 +40,53 @@ namespace igabde
     void
     ContactData::check_consistency() const
     {
-      const std::string where =
-        "ContactProblem" + (name.empty() ? std::string() : " '" + name + "'");
+      // Built only when a check fails (AssertThrow evaluates its message
+      // then): a solve of a few contacts takes microseconds.
+      const auto where = [this]() {
+        return "ContactProblem" +
+               (name.empty() ? std::string() : " '" + name + "'");
+      };
       AssertThrow(n_components >= 1 && n_components <= 3,
-                  dealii::ExcMessage(where +
+                  dealii::ExcMessage(where() +
                                      ": n_components must be 1, 2 or "
                                      "3, not " +
                                      std::to_string(n_components)));
       const Eigen::Index m = n_rows();
       AssertThrow(q.size() == m,
-                  dealii::ExcMessage(where + ": q must have " +
+                  dealii::ExcMessage(where() + ": q must have " +
                                      std::to_string(m) + " entries, has " +
                                      std::to_string(q.size())));
       AssertThrow(q.allFinite(),
-                  dealii::ExcMessage(where + ": q has non-finite entries"));
+                  dealii::ExcMessage(where() + ": q has non-finite entries"));
       if (has_friction())
         {
           AssertThrow(mu.size() == n_contacts,
                       dealii::ExcMessage(
-                        where + ": mu must have one entry per contact (" +
+                        where() + ": mu must have one entry per contact (" +
                         std::to_string(n_contacts) + "), has " +
                         std::to_string(mu.size())));
           for (unsigned int i = 0; i < mu.size(); ++i)
             AssertThrow(std::isfinite(mu[i]) && mu[i] >= 0.,
-                        dealii::ExcMessage(where + ": mu[" + std::to_string(i) +
+                        dealii::ExcMessage(where() + ": mu[" +
+                                           std::to_string(i) +
                                            "] must be finite and >= 0"));
         }
       else
         AssertThrow(mu.empty() || mu.size() == n_contacts,
-                    dealii::ExcMessage(where + ": mu has the wrong size"));
+                    dealii::ExcMessage(where() + ": mu has the wrong size"));
       if (G.size() > 0 || b.size() > 0)
         {
           AssertThrow(G.rows() == m,
-                      dealii::ExcMessage(where + ": G must have " +
+                      dealii::ExcMessage(where() + ": G must have " +
                                          std::to_string(m) + " rows, has " +
                                          std::to_string(G.rows())));
           AssertThrow(b.size() == G.cols(),
                       dealii::ExcMessage(
-                        where + ": b must have one entry per column of G (" +
+                        where() + ": b must have one entry per column of G (" +
                         std::to_string(G.cols()) + "), has " +
                         std::to_string(b.size())));
           AssertThrow(G.allFinite() && b.allFinite(),
-                      dealii::ExcMessage(where +
+                      dealii::ExcMessage(where() +
                                          ": G or b has non-finite entries"));
         }
     }
@@ -92,16 +97,20 @@ namespace igabde
     ContactProblem::check_consistency() const
     {
       ContactData::check_consistency();
-      const std::string where =
-        "ContactProblem" + (name.empty() ? std::string() : " '" + name + "'");
+      // Built only when a check fails (AssertThrow evaluates its message
+      // then): a solve of a few contacts takes microseconds.
+      const auto where = [this]() {
+        return "ContactProblem" +
+               (name.empty() ? std::string() : " '" + name + "'");
+      };
       const Eigen::Index m = n_rows();
       AssertThrow(W.rows() == m && W.cols() == m,
                   dealii::ExcMessage(
-                    where + ": W must be " + std::to_string(m) + " x " +
+                    where() + ": W must be " + std::to_string(m) + " x " +
                     std::to_string(m) + ", is " + std::to_string(W.rows()) +
                     " x " + std::to_string(W.cols())));
       AssertThrow(W.allFinite(),
-                  dealii::ExcMessage(where + ": W has non-finite entries"));
+                  dealii::ExcMessage(where() + ": W has non-finite entries"));
     }
 
 

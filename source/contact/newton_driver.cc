@@ -239,7 +239,7 @@ namespace igabde
 
 
 
-    void
+    ContactIterate
     NewtonDriver::finish(const ContactData    &data,
                          const PairLawModel   &law,
                          const ContactIterate &x) const
@@ -264,6 +264,7 @@ namespace igabde
       for (unsigned int c = 0; c < data.n_contacts; ++c)
         result.max_penetration =
           std::max(result.max_penetration, -result.u[c * data.n_components]);
+      return F;
     }
 
 

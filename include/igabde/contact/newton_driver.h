@@ -317,9 +317,10 @@ namespace igabde
        * @brief The answer @p x into the result: p, alpha, w, u, the status
        * of every pair under @p law, and the exact conditions' measures
        * (FCLIB natural map, balanced, equilibrium) and the largest
-       * penetration.
+       * penetration. Returns the residual of @p law at @p x (for a
+       * stopping test at the answer without evaluating it again).
        */
-      void
+      ContactIterate
       finish(const ContactData    &data,
              const PairLawModel   &law,
              const ContactIterate &x) const;
