@@ -496,9 +496,12 @@ TEST(ContactBNewton, IllPosedReportsNotConverged)
 TEST(ContactBNewton, OneContactIsSolvedByOneSweep)
 {
   const Eigen::MatrixXd W = random_spd(3, 11);
-  for (const Eigen::Vector3d q : {Eigen::Vector3d(-1., -0.8, -0.6),
-                                  Eigen::Vector3d(-1., -0.05, 0.02),
-                                  Eigen::Vector3d(0.5, -0.3, 0.1)})
+  // Each gap and load with the state it puts the pair in (mu = 0.5).
+  const std::vector<std::pair<Eigen::Vector3d, ContactStatus>> cases = {
+    {Eigen::Vector3d(-1., -0.8, -0.6), ContactStatus::slip},
+    {Eigen::Vector3d(-1., -0.05, 0.02), ContactStatus::stick},
+    {Eigen::Vector3d(0.5, -0.3, 0.1), ContactStatus::open}};
+  for (const auto &[q, state] : cases)
     {
       SCOPED_TRACE("q = " + std::to_string(q[0]) + ", " + std::to_string(q[1]) +
                    ", " + std::to_string(q[2]));
@@ -513,7 +516,8 @@ TEST(ContactBNewton, OneContactIsSolvedByOneSweep)
         BNewtonSolver(newton_only).solve(problem);
       expect_solution_ok(problem, newton);
       EXPECT_LE((swept.p - newton.p).norm(), 1e-10 * (1. + newton.p.norm()));
-      EXPECT_EQ(swept.status[0], newton.status[0]);
+      EXPECT_EQ(swept.status[0], state);
+      EXPECT_EQ(newton.status[0], state);
     }
 }
 
