@@ -327,48 +327,37 @@ namespace igabde
               if (Ws == nullptr && xg.p.allFinite())
                 x_newton = std::move(xg);
             }
+          // Whether phase 2 (r at the scale 1) will run, when phase 1
+          // fails: a phase another follows ends early when it cycles.
+          const bool r_far = std::abs(std::log10(settings.r_factor)) > 1.;
           if (!outcome.converged)
             {
               ContactIterate x1 = x_newton;
-              outcome =
-                driver.newton(data,
-                              law,
-                              x1,
-                              settings.tolerance,
-                              phase_name("newton", radius),
-                              true,
-                              settings.max_iterations,
-                              settings.proximal,
-                              data.has_friction() && settings.switch_radius);
+              outcome           = driver.newton(data,
+                                      law,
+                                      x1,
+                                      settings.tolerance,
+                                      phase_name("newton", radius),
+                                      true,
+                                      settings.max_iterations,
+                                      settings.proximal,
+                                      settings.switch_radius &&
+                                        (data.has_friction() || r_far),
+                                      settings.switch_radius && r_far);
               reasons += (reasons.empty() ? "" : "; ") +
                          phase_name("newton", radius) + ": " + outcome.reason;
             }
           const bool proximal_now = driver.left_singular_at_start;
-          // Phase 2: the other radius, from the best iterate.
-          if (!outcome.converged && !proximal_now && data.has_friction() &&
-              settings.switch_radius && !driver.out_of_iterations() &&
-              !driver.out_of_time())
-            {
-              ContactIterate x2 = driver.have_best ? driver.best_x : x;
-              outcome =
-                driver.newton(data,
-                              bde_law(op, data, r_factor, other(radius)),
-                              x2,
-                              settings.tolerance,
-                              phase_name("newton", other(radius)),
-                              true,
-                              settings.max_iterations);
-              reasons += "; " + phase_name("newton", other(radius)) + ": " +
-                         outcome.reason;
-            }
-          // Phase 2b: r from the flexibility alone (c = 1), when the
+          // Phase 2: r from the flexibility alone (c = 1), when the
           // chosen factor is far from it. The solution does not depend on
           // r, but the merit |H|^2 weighs the displacement rows by r: with
           // c = 1e-4 (B1) the line search hardly sees the penetration and
           // the active sets cycle; c = 1 balances force and displacement.
+          // Before the other radius, which cycles as the first did at the
+          // same c (V4 with r scale 1e6: 109 iterations of the other
+          // radius without progress, then 2 at c = 1).
           if (!outcome.converged && !proximal_now && settings.switch_radius &&
-              std::abs(std::log10(settings.r_factor)) > 1. &&
-              !driver.out_of_iterations() && !driver.out_of_time())
+              r_far && !driver.out_of_iterations() && !driver.out_of_time())
             {
               r_factor          = 1.;
               ContactIterate x3 = driver.have_best ? driver.best_x : x;
@@ -381,6 +370,27 @@ namespace igabde
                                       settings.max_iterations);
               reasons +=
                 "; " + phase_name("newton-r1", radius) + ": " + outcome.reason;
+            }
+          // Phase 2b: the other radius, from the best iterate (at c = 1
+          // when phase 2 ran).
+          if (!outcome.converged && !proximal_now && data.has_friction() &&
+              settings.switch_radius && !driver.out_of_iterations() &&
+              !driver.out_of_time())
+            {
+              const std::string name =
+                phase_name(r_factor == settings.r_factor ? "newton" :
+                                                           "newton-r1",
+                           other(radius));
+              ContactIterate x2 = driver.have_best ? driver.best_x : x;
+              outcome =
+                driver.newton(data,
+                              bde_law(op, data, r_factor, other(radius)),
+                              x2,
+                              settings.tolerance,
+                              name,
+                              true,
+                              settings.max_iterations);
+              reasons += "; " + name + ": " + outcome.reason;
             }
           // Phase 3: nonsmooth Gauss-Seidel, where its local problems are
           // solved exactly (condensed path, 2D or frictionless, no

@@ -417,15 +417,28 @@ namespace igabde
                          const bool          on_original,
                          const unsigned int  budget,
                          const bool          leave_when_singular_at_start,
-                         const bool          leave_when_cycling)
+                         const bool          leave_when_cycling,
+                         const bool          leave_when_crawling)
     {
       // Iterations without progress among a few revisited active sets
       // after which a phase with leave_when_cycling ends.
       const unsigned int cycling_window = 10;
-      const double       sigma          = settings.armijo_sigma;
-      const double       beta           = settings.armijo_beta;
-      const unsigned int m = data.n_rows(), na = data.n_alpha();
-      const unsigned int d = data.n_components;
+      // A phase with leave_when_crawling ends when the best theta fell by
+      // less than 10 % in cycling_window iterations. Newton near a solution
+      // gains far more per iteration; a crawl is a merit whose scale the
+      // line search cannot follow (the load-history block on the full path
+      // with Contact/r scale = 1e6: steps of 1e-3 to 1e-6 for 100
+      // iterations; now 14 of them, then 3 at the scale 1). Not a rule for
+      // every phase another follows: after the first radius of the rigid
+      // stacks of FCLIB, such stretches end in convergence
+      // (spheres-in-a-box: 69 iterations; with the rule the other radius
+      // takes over and fails in 300).
+      const double        crawl_factor = 0.9;
+      std::vector<double> best_thetas; // best_theta before each iteration
+      const double        sigma = settings.armijo_sigma;
+      const double        beta  = settings.armijo_beta;
+      const unsigned int  m = data.n_rows(), na = data.n_alpha();
+      const unsigned int  d = data.n_components;
 
       std::deque<double> theta_memory;
       NewtonBlocks       pieces;
@@ -553,6 +566,14 @@ namespace igabde
                             " active sets without progress in " +
                             std::to_string(cycling_window) + " iterations)");
             }
+          if (leave_when_crawling && local_it >= cycling_window &&
+              best_theta >
+                crawl_factor * best_thetas[local_it - cycling_window])
+            return fail(
+              "stall (the merit fell by less than " +
+              std::to_string(std::lround(100. * (1. - crawl_factor))) +
+              " % in " + std::to_string(cycling_window) + " iterations)");
+          best_thetas.push_back(best_theta);
 
           ++local_it;
           ++result.iterations;

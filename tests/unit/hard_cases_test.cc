@@ -308,6 +308,39 @@ TEST(HardCase, BdeRadiusScaledBy1e4And1em4GivesTheSameSolution)
 
 
 
+TEST(HardCase, BdeRadiusScaledBy1e6ConvergesToTheSameSolution)
+{
+  // At r x 1e6 the merit |H|^2 weighs the displacement rows 1e12 times the
+  // force rows: Newton's line search crawls (steps of 1e-3 to 1e-6) or
+  // the active sets cycle, in the first radius and in the other alike.
+  // The phase at r from the flexibility alone must follow the first one
+  // before the budget is spent. Sliding block (friction, condensed path,
+  // eleven steps) and the load-history block (frictionless, full path):
+  // each step the same forces and sets as at r x 1.
+  struct Case
+  {
+    const char *scene;
+    const char *sets;
+  };
+  for (const Case &c : {Case{"v4-sliding-block.prm", ""},
+                        Case{"load-histories-block.prm",
+                             "--set 'Discretization/Type=lagrange' "
+                             "--set 'Contact/Path=full' "}})
+    {
+      SCOPED_TRACE(c.scene);
+      const SceneRun base = run_scene("r1e6base", c.scene, c.sets);
+      expect_converged(base);
+      const SceneRun scaled =
+        run_scene("r1e6",
+                  c.scene,
+                  std::string(c.sets) + "--set 'Contact/r scale=1e6'");
+      expect_converged(scaled);
+      expect_forces_scale(base, scaled, 1.);
+    }
+}
+
+
+
 TEST(HardCase, NewtonResidualExactlyZeroAtTheRoundingFloorConverges)
 {
   // B1 with degree-1 NURBS: forces of 1e5 N against gaps of 1e-6 m hold

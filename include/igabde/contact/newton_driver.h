@@ -255,6 +255,9 @@ namespace igabde
        * Capsules-i100-1090 56 -> 50); the last phases keep the full
        * stall window, since one of them may still converge after such a
        * stretch (a radius-switch hard case does).
+       * With @p leave_when_crawling (a phase at a user's r scale far from
+       * 1, which the scale 1 follows) it ends when the best theta fell by
+       * less than 10 % in those ten iterations.
        */
       PhaseOutcome
       newton(const ContactData  &data,
@@ -265,7 +268,8 @@ namespace igabde
              const bool          on_original,
              const unsigned int  budget,
              const bool          leave_when_singular_at_start = false,
-             const bool          leave_when_cycling           = false);
+             const bool          leave_when_cycling           = false,
+             const bool          leave_when_crawling          = false);
 
       /**
        * @brief The stopping test at x (see the class documentation); the
