@@ -6,8 +6,6 @@
 #include <algorithm>
 #include <cmath>
 #include <iostream>
-#include <limits>
-#include <sstream>
 
 namespace igabde
 {
@@ -425,11 +423,8 @@ namespace igabde
           if (!outcome.converged && settings.proximal &&
               !driver.out_of_iterations() && !driver.out_of_time())
             {
-              const PhaseOutcome prox =
-                proximal_phase(driver, data, x, r_factor);
-              if (!outcome.converged)
-                outcome = prox;
-              reasons += "; proximal: " + prox.reason;
+              outcome = proximal_phase(driver, data, x, r_factor);
+              reasons += "; proximal: " + outcome.reason;
             }
         }
 

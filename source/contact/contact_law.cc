@@ -315,21 +315,6 @@ namespace igabde
 
 
     double
-    balanced_natural_map_error(const ContactProblem  &problem,
-                               const Eigen::VectorXd &p,
-                               const Eigen::VectorXd &u)
-    {
-      return balanced_natural_map_error(problem,
-                                        pair_weights(problem.W,
-                                                     problem.n_components,
-                                                     1.),
-                                        p,
-                                        u);
-    }
-
-
-
-    double
     balanced_natural_map_error(const ContactData     &problem,
                                const PairWeights     &weights,
                                const Eigen::VectorXd &p,

@@ -137,16 +137,6 @@ namespace igabde
 
 
     ContactProblem
-    ContactProblem::with_friction(const double new_mu) const
-    {
-      ContactProblem copy = *this;
-      copy.mu.assign(n_contacts, new_mu);
-      return copy;
-    }
-
-
-
-    ContactProblem
     ContactProblem::scaled(const double force_factor,
                            const double displacement_factor) const
     {

@@ -9,22 +9,11 @@
 #include <igabde/contact/path_cost.h>
 
 #include <string>
-#include <vector>
 
 namespace igabde
 {
   namespace contact
   {
-    std::vector<std::string>
-    available_contact_solvers()
-    {
-      return {to_string(Algorithm::bde),
-              to_string(Algorithm::penalty),
-              to_string(Algorithm::augmented_lagrange)};
-    }
-
-
-
     std::string
     to_string(const Algorithm algorithm)
     {

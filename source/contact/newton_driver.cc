@@ -221,8 +221,7 @@ namespace igabde
                                ContactOperator       &op,
                                const BNewtonSettings &settings,
                                ContactSolverResult   &result)
-      : original(original)
-      , op(op)
+      : op(op)
       , settings(settings)
       , result(result)
       , start(std::chrono::steady_clock::now())

@@ -267,15 +267,6 @@ namespace igabde
 
 
     template <int dim>
-    std::string
-    NodeToNodePairing<dim>::name() const
-    {
-      return "node-to-node";
-    }
-
-
-
-    template <int dim>
     discretization::SurfacePoint<dim>
     NodeToNodePairing<dim>::facing_point(
       const discretization::SurfacePoint<dim> &s,
@@ -300,15 +291,6 @@ namespace igabde
           " (nearest at distance " + std::to_string(distance) +
           "); use Contact/Pairing = node-to-surface."));
       return nearest;
-    }
-
-
-
-    template <int dim>
-    std::string
-    NodeToSurfacePairing<dim>::name() const
-    {
-      return "node-to-surface";
     }
 
 

@@ -518,15 +518,6 @@ namespace igabde
 
 
     template <int dim>
-    std::string
-    WeightedGapPairing<dim>::name() const
-    {
-      return dual ? "weighted-gap" : "weighted-gap-standard";
-    }
-
-
-
-    template <int dim>
     std::vector<ContactPair<dim>>
     WeightedGapPairing<dim>::make_pairs(
       const discretization::Body<dim>       &slave_body,

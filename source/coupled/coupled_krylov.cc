@@ -262,15 +262,6 @@ namespace igabde
 
 
 
-    template <int dim>
-    bool
-    CoupledSystem<dim>::iterative() const
-    {
-      return krylov;
-    }
-
-
-
     template void
     CoupledSystem<2>::setup_krylov();
     template bool
@@ -284,8 +275,6 @@ namespace igabde
       const TrilinosWrappers::MPI::Vector &) const;
     template unsigned int
     CoupledSystem<2>::linear_iterations() const;
-    template bool
-    CoupledSystem<2>::iterative() const;
     template void
     CoupledSystem<3>::setup_krylov();
     template bool
@@ -299,7 +288,5 @@ namespace igabde
       const TrilinosWrappers::MPI::Vector &) const;
     template unsigned int
     CoupledSystem<3>::linear_iterations() const;
-    template bool
-    CoupledSystem<3>::iterative() const;
   } // namespace coupled
 } // namespace igabde

@@ -202,15 +202,6 @@ namespace igabde
 
 
     template <int dim>
-    unsigned int
-    CoupledSystem<dim>::offset(const unsigned int b) const
-    {
-      return offsets[b];
-    }
-
-
-
-    template <int dim>
     const Eigen::VectorXd &
     CoupledSystem<dim>::element_pair_stiffness() const
     {

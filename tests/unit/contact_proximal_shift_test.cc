@@ -115,7 +115,9 @@ namespace proximal_shift_test
     // keeps the condition number moderate; 1e-10 allows it up to 1e6.
     EXPECT_LE(relative(ds.p, dr.p), 1e-10);
     if (data.n_alpha() > 0)
-      EXPECT_LE(relative(ds.alpha, dr.alpha), 1e-10);
+      {
+        EXPECT_LE(relative(ds.alpha, dr.alpha), 1e-10);
+      }
 
     Vec ys, yr, ws_, wr_;
     shifted.displacement_adjoint(p, ys, ws_);

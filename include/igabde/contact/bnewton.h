@@ -49,10 +49,12 @@ namespace igabde
      *    Gamma = (R/|z|)(I - zhat zhat^T): B_tt = I - Gamma,
      *    A_tt = r_t Gamma, B_tn = -mu zhat, and for AC also
      *    A_tn = mu r_n zhat.
-     *  - floating-body tie rule: if n_alpha > 0 and no contact is closed,
-     *    the alpha columns of J vanish; the contact with the smallest
-     *    r_n u_n - p_n is then taken in the closed branch (exactly a tie
-     *    after touching_alpha()).
+     *  - floating-body tie rule (BdeLaw::tie_rule()): with n_alpha > 0 the
+     *    alpha columns of J are tied down only by the rows of G of closed
+     *    and sticking pairs; while these do not span every column, the
+     *    pairs with the smallest r_n u_n - p_n take the closed branch, then
+     *    closed pairs the stick branch (the first is exactly a tie after
+     *    touching_alpha()).
      * The Newton solve is the path's (ContactOperator::newton_step(): on
      * the condensed path the rows with A = 0 and B = identity are
      * eliminated and the rest factorised by Cholesky or LU, densely or
@@ -75,7 +77,9 @@ namespace igabde
      *    the phase ends with "line-search failure";
      *  - a phase also ends on stagnation: no 0.1 % decrease of the best
      *    theta in Settings::stall_iterations iterations, or (phase 1 when
-     *    phase 2 follows) in ten iterations whose active sets cycle.
+     *    another phase follows) in ten iterations whose active sets cycle,
+     *    or (phase 1 when phase 2 follows) less than 10 % decrease in ten
+     *    iterations.
      * Phases: (0) where the operator keeps W sparse and no body floats, at
      * most Settings::gauss_seidel_first_sweeps nonsmooth Gauss-Seidel
      * sweeps from the start, left as soon as their rate would not reach the
@@ -85,11 +89,12 @@ namespace igabde
      * exactly), and if it does not converge, phase 1 starts from its
      * iterate;
      * (1) Newton with Settings::radius; (2) if that ends without
-     * convergence and Settings::switch_radius, Newton with the other radius
-     * from the best iterate so far; (2b) if Settings::switch_radius and
-     * r_factor is more than ten times away from 1, Newton with r_factor = 1
-     * (r from the flexibility alone; the solution does not depend on r, the
-     * merit function does), from the best iterate; (3) if still not
+     * convergence, Settings::switch_radius and r_factor is more than ten
+     * times away from 1, Newton with r_factor = 1 (r from the flexibility
+     * alone; the solution does not depend on r, the merit function does),
+     * from the best iterate so far; (2b) if still not converged and
+     * Settings::switch_radius, Newton with the other radius from the best
+     * iterate (at r_factor = 1 if phase 2 ran); (3) if still not
      * converged, on the condensed path with 2D friction or none and no
      * floating bodies: nonsmooth Gauss-Seidel sweeps from the best iterate
      * (gauss_seidel_phase(), at most Settings::gauss_seidel_sweeps, a
@@ -123,9 +128,6 @@ namespace igabde
     public:
       /** @brief Solver parameters (see BNewtonSettings). */
       using Settings = BNewtonSettings;
-
-      /** @brief One line of the iteration history. */
-      using IterationRecord = ContactIterationRecord;
 
       /** @brief Outcome of a solve. */
       using Result = ContactSolverResult;

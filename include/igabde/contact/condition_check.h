@@ -40,9 +40,11 @@ namespace igabde
      *  - compression: max(-p_n, 0) / F;
      *  - complementarity: min(|p_n| / F, |u_n| / D);
      *  - Coulomb cone: max(|p_t| - mu p_n, 0) / F;
-     *  - slip direction, where |u_t| / D > tolerance:
-     *    |p_t + mu max(p_n, 0) u_t / |u_t|| / F (p_t opposes the slip and
-     *    lies on the cone boundary);
+     *  - slip direction, where |u_t| > 0 and mu p_n > 0: the smaller of
+     *    |p_t + mu p_n u_t / |u_t|| / F (p_t opposes the slip and lies on
+     *    the cone boundary) and its displacement form
+     *    |u_t + |u_t| p_t / (mu p_n)| / D (a slip lost in the rounding of
+     *    u_t changes the answer by that slip only);
      *  - equilibrium of floating bodies: max |G^T p - b| / max(max|b|,
      *    F max|G|).
      * A condition fails when its violation exceeds the tolerance.

@@ -205,18 +205,10 @@ namespace igabde
      * vanishes exactly where natural_map_error() does, and is unchanged when
      * forces and displacements are rescaled independently (the FCLIB error
      * is not: with W, q scaled by 1e6 it weights force errors by 1e-6).
-     * Falls back to division by |p| when |q| is about zero.
-     */
-    double
-    balanced_natural_map_error(const ContactProblem  &problem,
-                               const Eigen::VectorXd &p,
-                               const Eigen::VectorXd &u);
-
-    /**
-     * @brief The balanced error with the stiffness scale rho_c given
-     * (@p unit_weights .r_n, the weights at factor 1 of the operator that
-     * relates u to p: 1/W_nn on the condensed path, the pair stiffness of
-     * the underlying elements on the full path).
+     * Falls back to division by |p| when |q| is about zero. The stiffness
+     * scale rho_c is given (@p unit_weights .r_n, the weights at factor 1
+     * of the operator that relates u to p: 1/W_nn on the condensed path,
+     * the pair stiffness of the underlying elements on the full path).
      */
     double
     balanced_natural_map_error(const ContactData     &problem,

@@ -212,13 +212,6 @@ namespace igabde
         return nullptr;
       }
 
-      /** @brief Whether newton_step() is iterative (inexact Newton). */
-      virtual bool
-      iterative() const
-      {
-        return false;
-      }
-
       /**
        * @brief What one Newton step reports besides the increment.
        */

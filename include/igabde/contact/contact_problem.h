@@ -111,13 +111,6 @@ namespace igabde
                             const Eigen::VectorXd &alpha = {}) const;
 
       /**
-       * @brief The same problem with all friction coefficients set to @p
-       * new_mu (used for the mu sweeps).
-       */
-      ContactProblem
-      with_friction(const double new_mu) const;
-
-      /**
        * @brief The problem with W, q scaled by @p displacement_factor and
        * b, (implicitly) p scaled by @p force_factor: W -> W * d / f,
        * q -> q * d, G -> G * d (alpha unchanged), b -> b * f. The solution

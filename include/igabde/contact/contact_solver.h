@@ -53,7 +53,10 @@ namespace igabde
     {
       /** @brief Contact forces (best iterate), n_rows(). */
       Eigen::VectorXd p;
-      /** @brief Relative displacements W p + q + G alpha. */
+      /**
+       * @brief Relative displacements: W p + q + G alpha on the condensed
+       * path, C w + q + G alpha on the full path.
+       */
       Eigen::VectorXd u;
       /** @brief Floating-body amplitudes (empty without G). */
       Eigen::VectorXd alpha;
@@ -304,13 +307,6 @@ namespace igabde
     /** @brief The solver @p settings.algorithm names. */
     std::unique_ptr<ContactSolver>
     create_contact_solver(const ContactSolverSettings &settings);
-
-    /**
-     * @brief The algorithms create_contact_solver() can make, by the names
-     * the scene writes (Contact/Algorithm).
-     */
-    std::vector<std::string>
-    available_contact_solvers();
   } // namespace contact
 } // namespace igabde
 

@@ -230,7 +230,8 @@ namespace igabde
     {
     public:
       /**
-       * @param original The problem whose iterates count as answers.
+       * @param original The problem whose pair directions held by supports
+       * on both sides are found once (held).
        * @param op The path (its proximal shift may be changed by phases).
        * @param settings Tolerances, limits, line search, log.
        * @param result Receives the history and iteration count.
@@ -345,7 +346,6 @@ namespace igabde
       std::ostream &
       log() const;
 
-      const ContactData                    &original;
       ContactOperator                      &op;
       const BNewtonSettings                &settings;
       ContactSolverResult                  &result;

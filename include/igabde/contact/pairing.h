@@ -57,10 +57,6 @@ namespace igabde
     public:
       virtual ~PairingStrategy() = default;
 
-      /// The name the factory knows the strategy by.
-      virtual std::string
-      name() const = 0;
-
       /**
        * @brief The pairs of the patch faces @p slave_faces of @p slave_body
        * (Body 1: one face, or several of a multi-patch body forming one
@@ -127,10 +123,6 @@ namespace igabde
     template <int dim>
     class NodeToNodePairing : public PointPairing<dim>
     {
-    public:
-      std::string
-      name() const override;
-
     protected:
       discretization::SurfacePoint<dim>
       facing_point(const discretization::SurfacePoint<dim> &s,
@@ -148,10 +140,6 @@ namespace igabde
     template <int dim>
     class NodeToSurfacePairing : public PointPairing<dim>
     {
-    public:
-      std::string
-      name() const override;
-
     protected:
       discretization::SurfacePoint<dim>
       facing_point(const discretization::SurfacePoint<dim> &s,
@@ -202,9 +190,6 @@ namespace igabde
        * and locations are N_j-weighted in both.
        */
       explicit WeightedGapPairing(const bool dual = true);
-
-      std::string
-      name() const override;
 
       std::vector<ContactPair<dim>>
       make_pairs(const discretization::Body<dim>       &slave_body,

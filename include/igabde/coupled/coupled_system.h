@@ -132,9 +132,6 @@ namespace igabde
       unsigned int
       linear_iterations() const override;
 
-      bool
-      iterative() const override;
-
       const Eigen::VectorXd &
       element_pair_stiffness() const override;
 
@@ -150,10 +147,6 @@ namespace igabde
        */
       void
       report_progress_to(std::ostream *stream);
-
-      /** @brief First unknown of body @p b in w. */
-      unsigned int
-      offset(const unsigned int b) const;
 
     private:
       /// Freed pages stay with the process while the system lives: every
