@@ -153,37 +153,31 @@ namespace igabde
 
 
     Eigen::VectorXd
-    touching_alpha(const ContactData     &problem,
-                   const Eigen::VectorXd &alpha0,
-                   const Eigen::VectorXd &direction)
+    touching_alpha(const ContactData &problem)
     {
       const unsigned int n_alpha = problem.n_alpha();
       AssertThrow(n_alpha > 0,
                   dealii::ExcMessage(
                     "touching_alpha: the problem has no floating bodies"));
-      Eigen::VectorXd alpha =
-        alpha0.size() > 0 ? alpha0 : Eigen::VectorXd::Zero(n_alpha);
-      Eigen::VectorXd s = direction.size() > 0 ? direction : -problem.b;
-      AssertThrow(alpha.size() == n_alpha && s.size() == n_alpha,
-                  dealii::ExcMessage("touching_alpha: alpha0 or direction "
-                                     "has the wrong size"));
+      Eigen::VectorXd       alpha = Eigen::VectorXd::Zero(n_alpha);
+      const Eigen::VectorXd s     = -problem.b;
       // No load on the rigid modes (a body driven by prescribed
-      // displacements whose free modes are unloaded): alpha0 is the start.
+      // displacements whose free modes are unloaded): zero is the start.
       if (!(s.norm() > 0.))
         return alpha;
 
-      const unsigned int    nc    = problem.n_components;
-      const Eigen::VectorXd u0    = problem.q + problem.G * alpha; // u at p = 0
-      const Eigen::VectorXd slope = problem.G * s;
-      const double          slope_scale = slope.cwiseAbs().maxCoeff();
-      double                t = std::numeric_limits<double>::infinity();
+      const unsigned int     nc          = problem.n_components;
+      const Eigen::VectorXd &u0          = problem.q; // u at p = 0, alpha = 0
+      const Eigen::VectorXd  slope       = problem.G * s;
+      const double           slope_scale = slope.cwiseAbs().maxCoeff();
+      double                 t = std::numeric_limits<double>::infinity();
       for (unsigned int i = 0; i < problem.n_contacts; ++i)
         {
           const double g = slope[i * nc];
           if (g < -1e-14 * slope_scale)
             t = std::min(t, u0[i * nc] / (-g));
         }
-      // No pair closes along the direction: alpha0 is the start too.
+      // No pair closes along the direction: zero is the start too.
       if (std::isfinite(t))
         alpha += t * s;
       return alpha;
@@ -193,7 +187,6 @@ namespace igabde
 
     bool
     resting_alpha(const ContactData         &problem,
-                  const Eigen::VectorXd     &alpha0,
                   Eigen::VectorXd           &alpha,
                   std::vector<unsigned int> &active)
     {
@@ -208,10 +201,7 @@ namespace igabde
       const Vec &b = problem.b;
       if (!(b.norm() > 0.) || n == 0)
         return false;
-      Vec x = alpha0.size() > 0 ? alpha0 : Vec::Zero(na);
-      AssertThrow(x.size() == na,
-                  dealii::ExcMessage("resting_alpha: alpha0 has the wrong "
-                                     "size"));
+      Vec x = Vec::Zero(na);
 
       // Constraint rows a_i = G_n row i, values c_i = q_n + a_i^T x, bounds.
       Mat A(n, na);

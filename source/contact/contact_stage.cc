@@ -445,7 +445,7 @@ namespace igabde
       if (has_previous)
         x0.alpha = x.alpha;
       else if (problem.n_alpha() > 0 &&
-               !resting_alpha(problem, {}, x0.alpha, resting))
+               !resting_alpha(problem, x0.alpha, resting))
         x0.alpha = touching_alpha(problem);
       x0.w = has_previous ? x.w : Eigen::VectorXd::Zero(op.n_dofs());
       // Nothing touches in the undeformed geometry: the pairs on which the

@@ -351,7 +351,7 @@ TEST(ContactBNewton, RestingAlphaFindsTheRigidRestPositionByHand)
 
       Eigen::VectorXd           alpha;
       std::vector<unsigned int> active;
-      ASSERT_TRUE(resting_alpha(problem, {}, alpha, active));
+      ASSERT_TRUE(resting_alpha(problem, alpha, active));
       EXPECT_EQ(active, (std::vector<unsigned int>{4, 5}));
       const double ga    = 1. - std::sqrt(1. - 0.05 * 0.05);
       const double gb    = 1. - std::sqrt(1. - 0.15 * 0.15);
@@ -363,7 +363,7 @@ TEST(ContactBNewton, RestingAlphaFindsTheRigidRestPositionByHand)
 
       problem.b            = Eigen::Vector2d(-1., 0.);
       Eigen::VectorXd away = alpha;
-      EXPECT_FALSE(resting_alpha(problem, {}, away, active));
+      EXPECT_FALSE(resting_alpha(problem, away, active));
       EXPECT_EQ(away, alpha);
     }
 }

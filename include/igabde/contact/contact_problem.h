@@ -126,9 +126,9 @@ namespace igabde
      * @brief Floating-body start: alpha such that the closest pair just
      * touches when p = 0.
      *
-     * Moves alpha from @p alpha0 along @p direction (default -b, the
-     * direction in which the load b drives the rigid modes into the
-     * supports: moving along -b changes the normal gaps by -G_n b, whose
+     * Moves alpha from zero along -b (the direction in which the load b
+     * drives the rigid modes into the supports: moving along -b changes
+     * the normal gaps by -G_n b, whose
      * p-weighted sum is -|b|^2 < 0 at any solution) until the first normal
      * gap u_n = q_n + G_n alpha among the pairs that close along this
      * direction reaches zero. If a pair already penetrates, the step is
@@ -138,16 +138,12 @@ namespace igabde
      * closed by the solver (see BNewtonSolver, "floating-body tie rule").
      *
      * @param problem The problem (must have n_alpha() > 0).
-     * @param alpha0 Starting alpha (size n_alpha(), or empty for zero).
-     * @param direction Search direction in alpha space (empty for -b).
      * @return alpha with min over closing pairs of u_n(p = 0) equal to 0;
-     * @p alpha0 (or zero) when the direction is zero (no load on the rigid
-     * modes) or no pair closes along it.
+     * zero when b is zero (no load on the rigid modes) or no pair closes
+     * along -b.
      */
     Eigen::VectorXd
-    touching_alpha(const ContactData     &problem,
-                   const Eigen::VectorXd &alpha0    = {},
-                   const Eigen::VectorXd &direction = {});
+    touching_alpha(const ContactData &problem);
 
 
 
@@ -160,7 +156,7 @@ namespace igabde
      *   minimise b^T alpha  subject to  u_n(alpha) = q_n + G_n alpha >= l_n
      * @endcode
      * (the potential energy of the loads b on the rigid modes, the pairs
-     * kept out of the obstacle; l_n = min(0, u_n(alpha0)), so that pairs
+     * kept out of the obstacle; l_n = min(0, u_n(0)), so that pairs
      * penetrating at the start do not make it infeasible), whose dual is
      * G_n^T p = b, p >= 0: the rigid bodies' equilibrium. Solved by a
      * primal active-set method (one constraint enters or leaves per
@@ -172,7 +168,6 @@ namespace igabde
      * it about which it would roll).
      *
      * @param problem The problem (must have n_alpha() > 0).
-     * @param alpha0 Starting alpha (size n_alpha(), or empty for zero).
      * @param alpha On success the resting alpha; unchanged otherwise.
      * @param active On success the pairs that hold the rest position.
      * @return false if the normal rows cannot hold the load (the program is
@@ -181,7 +176,6 @@ namespace igabde
      */
     bool
     resting_alpha(const ContactData         &problem,
-                  const Eigen::VectorXd     &alpha0,
                   Eigen::VectorXd           &alpha,
                   std::vector<unsigned int> &active);
 
