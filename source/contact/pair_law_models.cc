@@ -1,8 +1,6 @@
 #include <igabde/contact/newton_driver.h>
 
 #include <algorithm>
-#include <cmath>
-#include <limits>
 
 namespace igabde
 {

@@ -3,16 +3,8 @@
 
 #include <igabde/contact/pairing.h>
 
-#include <deal.II/base/quadrature_lib.h>
-
-#include <Eigen/Dense>
-
 #include <algorithm>
-#include <array>
-#include <boost/math/tools/toms748_solve.hpp>
 #include <cmath>
-#include <limits>
-#include <map>
 #include <numeric>
 #include <sstream>
 

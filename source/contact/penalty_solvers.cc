@@ -4,9 +4,6 @@
 
 #include <deal.II/base/exceptions.h>
 
-#include <algorithm>
-#include <cmath>
-#include <iostream>
 #include <limits>
 #include <sstream>
 
