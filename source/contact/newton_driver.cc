@@ -432,8 +432,9 @@ namespace igabde
       // stacks of FCLIB, such stretches end in convergence
       // (spheres-in-a-box: 69 iterations; with the rule the other radius
       // takes over and fails in 300).
-      const double        crawl_factor = 0.9;
-      std::vector<double> best_thetas; // best_theta before each iteration
+      const double crawl_factor = 0.9;
+      // best_theta after each iteration's test (kept with leave_when_crawling)
+      std::vector<double> best_thetas;
       const double        sigma = settings.armijo_sigma;
       const double        beta  = settings.armijo_beta;
       const unsigned int  m = data.n_rows(), na = data.n_alpha();
@@ -572,7 +573,8 @@ namespace igabde
               "stall (the merit fell by less than " +
               std::to_string(std::lround(100. * (1. - crawl_factor))) +
               " % in " + std::to_string(cycling_window) + " iterations)");
-          best_thetas.push_back(best_theta);
+          if (leave_when_crawling)
+            best_thetas.push_back(best_theta);
 
           ++local_it;
           ++result.iterations;

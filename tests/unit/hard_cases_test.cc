@@ -314,9 +314,10 @@ TEST(HardCase, BdeRadiusScaledBy1e6ConvergesToTheSameSolution)
   // force rows: Newton's line search crawls (steps of 1e-3 to 1e-6) or
   // the active sets cycle, in the first radius and in the other alike.
   // The phase at r from the flexibility alone must follow the first one
-  // before the budget is spent. Sliding block (friction, condensed path,
-  // eleven steps) and the load-history block (frictionless, full path):
-  // each step the same forces and sets as at r x 1.
+  // before the budget is spent. Sliding block (mu = 0.4, condensed path,
+  // eleven steps: the first radius cycles) and the load-history block
+  // (mu = 0.4, Lagrange, full path: the first radius crawls): each step
+  // the same forces and sets as at r x 1.
   struct Case
   {
     const char *scene;
