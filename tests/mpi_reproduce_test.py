@@ -2,9 +2,10 @@
 """igabde under mpirun gives the one-process answer.
 
 Runs scenes of prm/ once as a single process and once with
-`mpirun --oversubscribe -np N` (N ranks on the machine's cores), each into
-a scratch folder removed afterwards, and compares the two summary.json files
-with contrib/utilities/compare-summaries at 1e-10 relative: every physical
+`mpirun --oversubscribe -np N` for each N asked (N ranks on the machine's
+cores), each into a scratch folder removed afterwards, and compares each
+N's summary.json with the one-process one using
+contrib/utilities/compare-summaries at 1e-10 relative: every physical
 figure (displacements, contact forces, pressures, gaps, probe values,
 errors) must agree; timings, iteration counts and the process layout are
 not compared, nor the bookkeeping that moves with the thread count even in
@@ -34,7 +35,7 @@ pressure uniformity and the largest slide are themselves differences or
 ratios in units of a scale: they are compared absolutely, at the same
 1e-8.
 
-Usage: tests/mpi_reproduce_test.py IGABDE N [--all] [--paths P,...]
+Usage: tests/mpi_reproduce_test.py IGABDE N[,N...] [--all] [--paths P,...]
                                    [--skip SCENE:DISC:PATH]...
                                    [--only SCENE:DISC:PATH]...
   --all: every scene of prm/ with both discretisations and the three
@@ -44,6 +45,7 @@ Usage: tests/mpi_reproduce_test.py IGABDE N [--all] [--paths P,...]
   --paths: only these paths (e.g. condensed,full).
   --skip: leave out one case (repeatable).
   --only: run only this case (repeatable).
+Several rank counts (e.g. 2,3) share each case's one-process run.
 """
 
 import json
@@ -139,7 +141,8 @@ def main():
     if len(sys.argv) < 3:
         print(__doc__)
         return 2
-    igabde, n = sys.argv[1], int(sys.argv[2])
+    igabde = sys.argv[1]
+    rank_counts = [int(n) for n in sys.argv[2].split(",")]
     options = sys.argv[3:]
     cases = every_scene() if "--all" in options else QUICK
     for k, option in enumerate(options[:-1]):
@@ -156,55 +159,67 @@ def main():
     if shutil.which("mpirun") is None:
         print("mpirun not found")
         return 77
-    mpirun, env = mpirun_command(n)
+    _, env = mpirun_command(1)
     failures = 0
     with tempfile.TemporaryDirectory(prefix="igabde-mpi-reproduce-") as tmp:
         for scene, disc, path in cases:
-            name = f"{scene} {disc} {path}"
             one = os.path.join(tmp, f"{scene}-{disc}-{path}-1")
-            many = os.path.join(tmp, f"{scene}-{disc}-{path}-{n}")
             krylov = (path == "gmres-amg")
             tight = ["--set", "Contact/Tolerance=1e-12"] if krylov else []
             status1, log1 = run([igabde], env, scene, disc,
                                 "full" if krylov else path, one, tight)
-            status_n, log_n = run(mpirun + [igabde], env, scene, disc, path,
-                                  many, tight)
-            if status1 != status_n:
-                print(f"FAIL {name}: exit status {status1} with one process, "
-                      f"{status_n} with {n} ranks\n{log1}\n{log_n}")
-                failures += 1
-                continue
-            if status1 != 0:
-                # A scene refused for this combination (e.g. a path the
-                # scene does not allow) must be refused alike.
-                print(f"both refused {name} (status {status1})")
-                continue
-            with open(os.path.join(many, "summary.json")) as f:
-                summary = json.load(f)
-            layout_ok = summary.get("mpi_ranks") == n and \
-                len(summary.get("ranks", [])) == n
-            n_bodies = len(summary.get("bodies", []))
-            if layout_ok and n_bodies == 2:
-                layout_ok = all(len(r["factorises"]) == 1
-                                for r in summary["ranks"])
-            if not layout_ok:
-                print(f"FAIL {name}: summary.json's mpi_ranks/ranks do not "
-                      f"describe {n} ranks: {summary.get('mpi_ranks')}, "
-                      f"{summary.get('ranks')}")
-                failures += 1
-            c = subprocess.run(
-                [sys.executable, COMPARE,
-                 os.path.join(one, "summary.json"),
-                 os.path.join(many, "summary.json")] + BOOKKEEPING +
-                ["--force-scale", str(FORCE_SCALE.get(scene, 0.0))] +
-                (KRYLOV_COMPARISON if krylov else []),
-                stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
-            print(f"{'ok  ' if c.returncode == 0 else 'FAIL'} {name}: "
-                  f"{c.stdout.strip()}")
-            failures += (c.returncode != 0)
-    print(f"{len(cases) - failures} of {len(cases)} cases agree "
-          f"with {n} ranks")
+            for n in rank_counts:
+                failures += compare(igabde, n, scene, disc, path, tmp, env,
+                                    status1, log1, one, tight)
+    count = len(cases) * len(rank_counts)
+    print(f"{count - failures} of {count} cases agree with "
+          f"{' and '.join(str(n) for n in rank_counts)} ranks")
     return 1 if failures else 0
+
+
+def compare(igabde, n, scene, disc, path, tmp, env, status1, log1, one,
+            tight):
+    """Runs one case on n ranks and compares it with the one-process run
+    in the folder one; returns the number of failures (0 or 1)."""
+    name = f"{scene} {disc} {path} on {n} ranks"
+    mpirun, _ = mpirun_command(n)
+    many = os.path.join(tmp, f"{scene}-{disc}-{path}-{n}")
+    krylov = (path == "gmres-amg")
+    status_n, log_n = run(mpirun + [igabde], env, scene, disc, path,
+                          many, tight)
+    if status1 != status_n:
+        print(f"FAIL {name}: exit status {status1} with one process, "
+              f"{status_n} with {n} ranks\n{log1}\n{log_n}")
+        return 1
+    if status1 != 0:
+        # A scene refused for this combination (e.g. a path the scene does
+        # not allow) must be refused alike.
+        print(f"both refused {name} (status {status1})")
+        return 0
+    with open(os.path.join(many, "summary.json")) as f:
+        summary = json.load(f)
+    layout_ok = summary.get("mpi_ranks") == n and \
+        len(summary.get("ranks", [])) == n
+    n_bodies = len(summary.get("bodies", []))
+    if layout_ok and n_bodies == 2:
+        layout_ok = all(len(r["factorises"]) == 1
+                        for r in summary["ranks"])
+    failures = 0
+    if not layout_ok:
+        print(f"FAIL {name}: summary.json's mpi_ranks/ranks do not "
+              f"describe {n} ranks: {summary.get('mpi_ranks')}, "
+              f"{summary.get('ranks')}")
+        failures = 1
+    c = subprocess.run(
+        [sys.executable, COMPARE,
+         os.path.join(one, "summary.json"),
+         os.path.join(many, "summary.json")] + BOOKKEEPING +
+        ["--force-scale", str(FORCE_SCALE.get(scene, 0.0))] +
+        (KRYLOV_COMPARISON if krylov else []),
+        stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    print(f"{'ok  ' if c.returncode == 0 else 'FAIL'} {name}: "
+          f"{c.stdout.strip()}", flush=True)
+    return max(failures, int(c.returncode != 0))
 
 
 if __name__ == "__main__":

@@ -528,7 +528,9 @@ TEST(HardCase, FloatingHalfDiscRunsForEverySpanCount)
 
 TEST(HardCase, FloatingHalfDiscOnTheFullPathAndWithFriction)
 {
-  for (const unsigned int arc : {400u, 401u, 800u, 801u})
+  // Both parities from 400 spans, where the full path once stalled at full
+  // load (the condensed path runs 800 and 1600 above).
+  for (const unsigned int arc : {400u, 401u})
     {
       SCOPED_TRACE("full path, arc spans " + std::to_string(arc));
       expect_hertz(

@@ -177,17 +177,18 @@ TEST(SizeGuard, NamesTheLargestRefinementThatFits)
 
 TEST(SizeGuard, AutoTakesTheFullPathWhenTheCondensedDoesNotFit)
 {
-  // A 3D contact patch of 5 184 pairs (plates of 70x70x1 spans): the
-  // condensed path's dense blocks (Schur complements of 15 552 face
-  // unknowns per plate) outweigh the full path's sparse LU. With Contact/Path =
+  // A 3D contact patch of 2 704 pairs (plates of 50x50x1 spans): the
+  // condensed path's dense blocks (Schur complements of 8 112 face
+  // unknowns per plate) outweigh the full path's sparse LU (estimates of
+  // 2.56 and 1.85 GiB; the two cross near 35x35 spans). With Contact/Path =
   // full the estimate counts no dense block; with auto and a memory between the
   // two paths' needs, the run takes the full path and says why; below both, it
   // is refused.
   dealii::ParameterHandler                               prm;
   const std::vector<std::pair<std::string, std::string>> slab = {
     {"Discretization/Refinements", "0"},
-    {"Body 1/Subdivisions", "70,70,1"},
-    {"Body 2/Subdivisions", "70,70,1"},
+    {"Body 1/Subdivisions", "50,50,1"},
+    {"Body 2/Subdivisions", "50,50,1"},
     {"Body 1/Upper corner", "1,1,0.2"},
     {"Body 2/Lower corner", "0,0,-0.2"}};
   const auto parameters =
