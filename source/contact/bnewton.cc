@@ -41,7 +41,13 @@ namespace igabde
               const double           r_factor,
               const FrictionRadius   radius)
       {
-        return BdeLaw(op.weights(data, r_factor), op.weights(data, 1.), radius);
+        const PairWeights unit = op.weights(data, 1.);
+        // The weights at the user's scale are the unit ones at the default
+        // scale 1 (formed once: on a problem of a few contacts they are a
+        // part of the solve's time).
+        return BdeLaw(r_factor == 1. ? unit : op.weights(data, r_factor),
+                      unit,
+                      radius);
       }
     } // namespace
 
@@ -433,9 +439,10 @@ namespace igabde
       const ContactIterate xr = outcome.converged ? driver.converged_x :
                                 driver.have_best  ? driver.best_x :
                                                     x;
-      // The answer, its measures and the status of every pair with the
-      // phase-1 radius.
-      const ContactIterate F = driver.finish(data, law, xr);
+      // The answer and the status of every pair with the phase-1 radius;
+      // its measures from the stopping test (the law's errors are the
+      // exact conditions' measures: FCLIB's, balanced at the unit scale).
+      const ContactIterate F = driver.finish(data, law, xr, false);
       double               disp;
       const bool           strict = driver.stopping_test(data,
                                                law,

@@ -65,6 +65,44 @@ namespace igabde
 
 
     bool
+    solve_local_pair_open_or_stick(const double *A,
+                                   const double *c,
+                                   const double  mu,
+                                   double       *p)
+    {
+      if (c[0] >= 0.)
+        {
+          p[0] = p[1] = p[2] = 0.;
+          return true;
+        }
+      // A p = -c by cofactors (A = W_ii, symmetric positive definite where
+      // the pair moves its bodies).
+      const double m00 = A[4] * A[8] - A[5] * A[7];
+      const double m01 = A[2] * A[7] - A[1] * A[8];
+      const double m02 = A[1] * A[5] - A[2] * A[4];
+      const double det = A[0] * m00 + A[3] * m01 + A[6] * m02;
+      if (!(det > 0.))
+        return false;
+      const double m10 = A[5] * A[6] - A[3] * A[8];
+      const double m11 = A[0] * A[8] - A[2] * A[6];
+      const double m12 = A[2] * A[3] - A[0] * A[5];
+      const double m20 = A[3] * A[7] - A[4] * A[6];
+      const double m21 = A[1] * A[6] - A[0] * A[7];
+      const double m22 = A[0] * A[4] - A[1] * A[3];
+      const double pn  = -(m00 * c[0] + m01 * c[1] + m02 * c[2]) / det;
+      const double pt1 = -(m10 * c[0] + m11 * c[1] + m12 * c[2]) / det;
+      const double pt2 = -(m20 * c[0] + m21 * c[1] + m22 * c[2]) / det;
+      if (!(pn >= 0.) || !(std::hypot(pt1, pt2) <= mu * pn))
+        return false;
+      p[0] = pn;
+      p[1] = pt1;
+      p[2] = pt2;
+      return true;
+    }
+
+
+
+    bool
     solve_local_pair_law(const PairLawModel &law,
                          const ContactData  &data,
                          const unsigned int  c,
@@ -167,8 +205,7 @@ namespace igabde
       const unsigned int d          = data.n_components;
       const unsigned int max_sweeps = options.max_sweeps;
       PhaseOutcome       outcome;
-      outcome.reason = "sweep limit (" + std::to_string(max_sweeps) + ")";
-      sweeps         = 0;
+      sweeps = 0;
       // With a dense W the running u = W p + q, updated by columns; with a
       // sparse W each pair's u is read from its rows when it is visited.
       Eigen::VectorXd u;
@@ -211,7 +248,8 @@ namespace igabde
                 p_new[b] = x.p(r + b);
               const bool solved =
                 d <= 2 ? solve_local_pair(d, A, c, mu, p_new) :
-                         solve_local_pair_law(law, data, i, A, c, p_new);
+                         solve_local_pair_open_or_stick(A, c, mu, p_new) ||
+                           solve_local_pair_law(law, data, i, A, c, p_new);
               if (!solved)
                 continue;
               for (unsigned int b = 0; b < d; ++b)
@@ -296,6 +334,10 @@ namespace igabde
               break;
             }
         }
+      // Every other end names its reason (the string only where the phase
+      // ends: on a problem of one contact it is a part of the solve's time).
+      if (outcome.reason.empty())
+        outcome.reason = "sweep limit (" + std::to_string(max_sweeps) + ")";
       return outcome;
     }
   } // namespace contact

@@ -241,7 +241,8 @@ namespace igabde
     ContactIterate
     NewtonDriver::finish(const ContactData    &data,
                          const PairLawModel   &law,
-                         const ContactIterate &x) const
+                         const ContactIterate &x,
+                         const bool            measures) const
     {
       result.p     = x.p;
       result.alpha = data.n_alpha() > 0 ? x.alpha : Vec();
@@ -253,12 +254,18 @@ namespace igabde
       for (const PairPiece &piece : pieces)
         result.status.push_back(piece.status);
       count_status(result);
-      result.residual = relative_natural_map_error(data, x.p, result.u);
-      result.balanced_residual =
-        balanced_natural_map_error(data, op.weights(data, 1.), x.p, result.u);
-      double absolute;
-      result.equilibrium_residual =
-        relative_equilibrium_error(data, x.p, absolute);
+      if (measures)
+        {
+          result.residual = relative_natural_map_error(data, x.p, result.u);
+          result.balanced_residual =
+            balanced_natural_map_error(data,
+                                       op.weights(data, 1.),
+                                       x.p,
+                                       result.u);
+          double absolute;
+          result.equilibrium_residual =
+            relative_equilibrium_error(data, x.p, absolute);
+        }
       result.max_penetration = 0.;
       for (unsigned int c = 0; c < data.n_contacts; ++c)
         result.max_penetration =

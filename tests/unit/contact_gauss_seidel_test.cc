@@ -94,6 +94,47 @@ TEST(ContactGaussSeidel, LocalPairSolvesEachBranchByHand)
 
 
 
+// The 3D open and stick branches in closed form, on a non-symmetric A (each
+// cofactor enters; A = W_ii is symmetric in use) with every entry distinct:
+// A = [3 0.4 -0.2; 0.1 2 0.3; -0.5 0.2 1.5], mu = 0.5. Each c is built from
+// the answer:
+//  - stick: p* = (1, 0.2, -0.1), |p_t| = 0.224 <= 0.5, c = -A p*
+//    = -(3.1, 0.47, -0.61);
+//  - open: c_n = 0.2 >= 0, p = 0;
+//  - slip: p* = (1, 0.6, 0) would be the stick solution of c = -A p*, but
+//    |p_t| = 0.6 > 0.5: not this function's branch, p is left as it was;
+//  - A of determinant -1 (a negative normal flexibility): refused.
+TEST(ContactGaussSeidel, LocalPairOpenOrStickIn3DByHand)
+{
+  const double A[9] = {3., 0.4, -0.2, 0.1, 2., 0.3, -0.5, 0.2, 1.5};
+  const double mu   = 0.5;
+  double       p[3] = {7., 7., 7.};
+
+  const double stick[3] = {-3.1, -0.47, 0.61};
+  ASSERT_TRUE(solve_local_pair_open_or_stick(A, stick, mu, p));
+  EXPECT_NEAR(p[0], 1., 1e-14);
+  EXPECT_NEAR(p[1], 0.2, 1e-14);
+  EXPECT_NEAR(p[2], -0.1, 1e-14);
+
+  const double open[3] = {0.2, -1., 1.};
+  ASSERT_TRUE(solve_local_pair_open_or_stick(A, open, mu, p));
+  EXPECT_EQ(p[0], 0.);
+  EXPECT_EQ(p[1], 0.);
+  EXPECT_EQ(p[2], 0.);
+
+  const double slip[3] = {-3.24, -1.3, 0.38};
+  double       q[3]    = {7., 8., 9.};
+  EXPECT_FALSE(solve_local_pair_open_or_stick(A, slip, mu, q));
+  EXPECT_EQ(q[0], 7.);
+  EXPECT_EQ(q[1], 8.);
+  EXPECT_EQ(q[2], 9.);
+
+  const double negative[9] = {-1., 0., 0., 0., 1., 0., 0., 0., 1.};
+  EXPECT_FALSE(solve_local_pair_open_or_stick(negative, stick, mu, q));
+}
+
+
+
 // A 2D problem of 40 pairs (W = I + 0.5 B B^T / n with B uniform in
 // [-1, 1]: symmetric, eigenvalues between 1 and about 1.7; half the pairs
 // pressed in; mu = 0.3): BNewtonSolver with a budget of one Newton iteration

@@ -29,6 +29,23 @@ namespace igabde
                      double            *p);
 
     /**
+     * @brief The local problem of one pair in 3D (solve_local_pair()'s
+     * conventions) where its solution is open or sticks, in closed form:
+     * p = 0 if c_n >= 0; else p = -A^{-1} c if that p has p_n >= 0 and
+     * |p_t| <= mu p_n. The slip branch has no closed form (its direction
+     * solves a nonlinear equation where A couples the tangents):
+     * solve_local_pair_law() takes it.
+     * @param A The pair's diagonal block of W (row-major, 3 x 3).
+     * @return false (p untouched) if neither branch holds or A is not
+     * positive definite.
+     */
+    bool
+    solve_local_pair_open_or_stick(const double *A,
+                                   const double *c,
+                                   const double  mu,
+                                   double       *p);
+
+    /**
      * @brief The local problem of one pair in any dimension, H(p) = 0 for
      * the pair's law @p law (pair @p c of @p data) at u = A p + c_u: a
      * damped semismooth Newton on the pair's three (or two, one) unknowns,
@@ -68,7 +85,8 @@ namespace igabde
      * @brief The nonsmooth Gauss-Seidel phase (NSGS; Jean and Moreau's
      * method, Siconos' NSGS) on u = W p + q: sweeps over the pairs, each
      * pair's p solved with the others' forces fixed (2D and frictionless:
-     * exactly, solve_local_pair(); 3D: solve_local_pair_law()). With a
+     * exactly, solve_local_pair(); 3D: open and stick exactly,
+     * solve_local_pair_open_or_stick(), slip by solve_local_pair_law()). With a
      * dense W, u is kept and updated by the pair's columns (O(n) per pair,
      * O(n^2) per sweep); with a sparse W (@p Ws), the pair's u is read
      * from its rows (a sweep is one pass over W's non-zeros). Slow

@@ -320,15 +320,17 @@ namespace igabde
 
       /**
        * @brief The answer @p x into the result: p, alpha, w, u, the status
-       * of every pair under @p law, and the exact conditions' measures
-       * (FCLIB natural map, balanced, equilibrium) and the largest
-       * penetration. Returns the residual of @p law at @p x (for a
-       * stopping test at the answer without evaluating it again).
+       * of every pair under @p law, the largest penetration and, with
+       * @p measures, the exact conditions' measures (FCLIB natural map,
+       * balanced, equilibrium; a caller whose stopping test at the answer
+       * writes them passes false). Returns the residual of @p law at @p x
+       * (for a stopping test at the answer without evaluating it again).
        */
       ContactIterate
       finish(const ContactData    &data,
              const PairLawModel   &law,
-             const ContactIterate &x) const;
+             const ContactIterate &x,
+             const bool            measures = true) const;
 
       /** @brief Whether the iteration budget is used up. */
       bool
