@@ -206,11 +206,20 @@ namespace
         why = "no pipe";
         return false;
       }
+    // The child works in a scratch folder of its own, removed here
+    // afterwards whatever became of the child: Siconos' solvers leave
+    // empty Fortran unit files (fort.N, from their MUMPS calls) in the
+    // working folder.
+    std::string scratch =
+      (std::filesystem::temp_directory_path() / "siconos-XXXXXX").string();
+    const bool have_scratch = mkdtemp(scratch.data()) != nullptr;
     std::cout.flush();
     const pid_t child = fork();
     if (child == 0)
       {
         close(channel[0]);
+        if (have_scratch && chdir(scratch.c_str()) != 0)
+          _exit(1);
         const rlimit memory = {8ul << 30, 8ul << 30};
         setrlimit(RLIMIT_AS, &memory);
         alarm(120);
@@ -246,6 +255,11 @@ namespace
     int status = 0;
     if (child > 0)
       waitpid(child, &status, 0);
+    if (have_scratch)
+      {
+        std::error_code ignored;
+        std::filesystem::remove_all(scratch, ignored);
+      }
     if (!read_all)
       why = WIFSIGNALED(status) ?
               (WTERMSIG(status) == SIGALRM ?
