@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <utility>
 
 namespace igabde
 {
@@ -41,13 +42,13 @@ namespace igabde
               const double           r_factor,
               const FrictionRadius   radius)
       {
-        const PairWeights unit = op.weights(data, 1.);
+        PairWeights unit = op.weights(data, 1.);
         // The weights at the user's scale are the unit ones at the default
-        // scale 1 (formed once: on a problem of a few contacts they are a
-        // part of the solve's time).
-        return BdeLaw(r_factor == 1. ? unit : op.weights(data, r_factor),
-                      unit,
-                      radius);
+        // scale 1 (formed once, and moved into the law: on a problem of a
+        // few contacts each allocation is a part of the solve's time).
+        PairWeights weights =
+          r_factor == 1. ? unit : op.weights(data, r_factor);
+        return BdeLaw(std::move(weights), std::move(unit), radius);
       }
     } // namespace
 
@@ -274,8 +275,11 @@ namespace igabde
              "  open stick  slip closed   red note\n";
 
       PhaseOutcome outcome;
-      std::string  reasons;
-      double       r_factor = settings.r_factor;
+      // The phases' reasons, the diagnosis' text (reserved once: on a
+      // problem of one contact each allocation is a part of the time).
+      std::string reasons;
+      reasons.reserve(160);
+      double r_factor = settings.r_factor;
       // The law of phases 0 and 1 and of the answer's measures (its
       // weights are formed once: on a problem of a few contacts they are
       // a part of the solve's time worth keeping).
@@ -305,12 +309,15 @@ namespace igabde
           // (the Rover problems, 4-5 contacts: 5-8 iterations -> 3-4).
           const auto *Ws   = op.sparse_flexibility(data);
           const bool small = data.n_rows() < CondensedOperator::min_sparse_rows;
-          ContactIterate x_newton = x;
+          // Newton's start: x, or the first sweeps' iterate (copied only
+          // where Newton runs).
+          ContactIterate        x_sweeps;
+          const ContactIterate *x_newton = &x;
           if (settings.gauss_seidel_first_sweeps > 0 &&
               (Ws != nullptr || small) && na == 0 &&
               op.dense_flexibility() != nullptr)
             {
-              ContactIterate     xg     = x;
+              x_sweeps                  = x;
               unsigned int       sweeps = 0;
               GaussSeidelOptions first;
               first.max_sweeps =
@@ -323,20 +330,21 @@ namespace igabde
                                            law,
                                            *op.dense_flexibility(),
                                            Ws,
-                                           xg,
+                                           x_sweeps,
                                            first,
                                            sweeps);
               result.sweeps += sweeps;
-              reasons = "gauss-seidel first: " + outcome.reason;
-              if (Ws == nullptr && xg.p.allFinite())
-                x_newton = std::move(xg);
+              reasons = "gauss-seidel first: ";
+              reasons += outcome.reason;
+              if (Ws == nullptr && x_sweeps.p.allFinite())
+                x_newton = &x_sweeps;
             }
           // Whether phase 2 (r at the scale 1) will run, when phase 1
           // fails: a phase another follows ends early when it cycles.
           const bool r_far = std::abs(std::log10(settings.r_factor)) > 1.;
           if (!outcome.converged)
             {
-              ContactIterate x1 = x_newton;
+              ContactIterate x1 = *x_newton;
               outcome           = driver.newton(data,
                                       law,
                                       x1,
@@ -436,9 +444,9 @@ namespace igabde
 
       // The returned iterate: the converged one, else the best one seen on
       // the original problem.
-      const ContactIterate xr = outcome.converged ? driver.converged_x :
-                                driver.have_best  ? driver.best_x :
-                                                    x;
+      const ContactIterate &xr = outcome.converged ? driver.converged_x :
+                                 driver.have_best  ? driver.best_x :
+                                                     x;
       // The answer and the status of every pair with the phase-1 radius;
       // its measures from the stopping test (the law's errors are the
       // exact conditions' measures: FCLIB's, balanced at the unit scale).
@@ -463,7 +471,11 @@ namespace igabde
                             result.residual <= settings.tolerance :
                             result.balanced_residual <= settings.tolerance);
       if (result.converged)
-        result.diagnosis = "converged (" + reasons + ")";
+        {
+          reasons.insert(0, "converged (");
+          reasons += ')';
+          result.diagnosis = std::move(reasons);
+        }
       else if (!result.p.allFinite() || !std::isfinite(result.residual))
         result.diagnosis = "non-finite result (" + reasons + ")";
       else

@@ -174,6 +174,18 @@ namespace igabde
       FlexibilityStructure::Vec
       FlexibilityStructure::dense_times(const Mat &A, const Vec &v)
       {
+        if (A.rows() <= tiny_rows)
+          {
+            Vec out(A.rows());
+            for (Eigen::Index i = 0; i < A.rows(); ++i)
+              {
+                double sum = 0.;
+                for (Eigen::Index j = 0; j < A.cols(); ++j)
+                  sum += A(i, j) * v[j];
+                out[i] = sum;
+              }
+            return out;
+          }
         if (A.size() < (Eigen::Index(1) << 20))
           return A * v;
         Eigen::Index nonzero = 0;

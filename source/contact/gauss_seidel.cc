@@ -1,3 +1,4 @@
+#include <igabde/contact/flexibility_structure.h>
 #include <igabde/contact/gauss_seidel.h>
 
 #include <algorithm>
@@ -209,7 +210,13 @@ namespace igabde
       // With a dense W the running u = W p + q, updated by columns; with a
       // sparse W each pair's u is read from its rows when it is visited.
       Eigen::VectorXd u;
-      if (Ws == nullptr)
+      if (Ws == nullptr &&
+          W.rows() <= internal::FlexibilityStructure::tiny_rows)
+        {
+          u = internal::FlexibilityStructure::dense_times(W, x.p);
+          u += data.q;
+        }
+      else if (Ws == nullptr)
         u = W * x.p + data.q;
       double A[9], c[3], p_new[3];
       // The error at the last check, and the best one at the last mark (every

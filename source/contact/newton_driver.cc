@@ -248,11 +248,10 @@ namespace igabde
       result.alpha = data.n_alpha() > 0 ? x.alpha : Vec();
       result.w     = x.w;
       ContactIterate F;
-      NewtonBlocks   pieces;
-      evaluate(data, law, x, result.u, F, &pieces);
-      result.status.clear();
-      for (const PairPiece &piece : pieces)
-        result.status.push_back(piece.status);
+      evaluate(data, law, x, result.u, F, &pieces_scratch);
+      result.status.resize(pieces_scratch.size());
+      for (unsigned int c = 0; c < pieces_scratch.size(); ++c)
+        result.status[c] = pieces_scratch[c].status;
       count_status(result);
       if (measures)
         {
@@ -385,13 +384,11 @@ namespace igabde
                                 const Vec            *u_at_x,
                                 const ContactIterate *F_at_x) const
     {
-      const bool     given = (u_at_x != nullptr && F_at_x != nullptr);
-      Vec            u_here;
-      ContactIterate F_here;
+      const bool given = (u_at_x != nullptr && F_at_x != nullptr);
       if (!given)
-        evaluate(data, law, x, u_here, F_here, nullptr);
-      const Vec            &u = given ? *u_at_x : u_here;
-      const ContactIterate &F = given ? *F_at_x : F_here;
+        evaluate(data, law, x, u_scratch, F_scratch, nullptr);
+      const Vec            &u = given ? *u_at_x : u_scratch;
+      const ContactIterate &F = given ? *F_at_x : F_scratch;
       law.errors(data, x.p, u, F.p, err, balanced);
       double absolute;
       eq               = relative_equilibrium_error(data, x.p, absolute);

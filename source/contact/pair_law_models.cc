@@ -1,6 +1,7 @@
 #include <igabde/contact/newton_driver.h>
 
 #include <algorithm>
+#include <utility>
 
 namespace igabde
 {
@@ -10,11 +11,11 @@ namespace igabde
 
 
 
-    BdeLaw::BdeLaw(const PairWeights   &weights,
-                   const PairWeights   &unit_weights,
+    BdeLaw::BdeLaw(PairWeights          weights,
+                   PairWeights          unit_weights,
                    const FrictionRadius radius)
-      : w(weights)
-      , unit(unit_weights)
+      : w(std::move(weights))
+      , unit(std::move(unit_weights))
       , radius(radius)
     {}
 

@@ -157,3 +157,35 @@ TEST(ContactCondensedStructure, SymmetryToOneInATrillionOfTheLargestEntry)
   full.array() += 0.01;
   EXPECT_FALSE(symmetric_sparse(full));
 }
+
+
+
+// The displacement W p of a few contacts is summed row by row (up to 12
+// rows), of more by Eigen's product: both must be W p to rounding, on a
+// non-symmetric W (a transposed index would not pass) of 1, 4 and 5
+// contacts. Reference: Eigen's product; bound: n eps sum_j |W_ij p_j|.
+TEST(ContactCondensedStructure, DisplacementIsWTimesPOnTinyAndLargerW)
+{
+  std::mt19937                           rng(5);
+  std::uniform_real_distribution<double> uniform(-1., 1.);
+  for (const int n : {3, 12, 15})
+    {
+      Mat W(n, n);
+      for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j)
+          W(i, j) = (i == j ? 4. : 0.) + uniform(rng) + (j > i ? 2. : 0.);
+      Eigen::VectorXd p(n);
+      for (int j = 0; j < n; ++j)
+        p[j] = uniform(rng);
+      const CondensedOperator op(W);
+      op.sparse_flexibility(data_for(W)); // builds the structure
+      const Eigen::VectorXd u     = op.displacement(p, Eigen::VectorXd());
+      const Eigen::VectorXd exact = W * p;
+      const Eigen::VectorXd bound =
+        (W.cwiseAbs() * p.cwiseAbs()) * (n * 1.2e-16);
+      ASSERT_EQ(u.size(), n);
+      for (int i = 0; i < n; ++i)
+        EXPECT_LE(std::abs(u[i] - exact[i]), bound[i])
+          << "n = " << n << ", row " << i;
+    }
+}

@@ -72,10 +72,17 @@ namespace igabde
 
         /**
          * @brief A v for a dense A, reading only the columns of the
-         * non-zero entries of v on large A.
+         * non-zero entries of v on large A, by plain sums on a tiny one (at
+         * most tiny_rows rows).
          */
         static Vec
         dense_times(const Mat &A, const Vec &v);
+
+        /// Up to this many rows (four contacts in 3D) dense_times() sums
+        /// each row itself: Eigen's product of a 3 x 3 W costs about 250
+        /// instructions, its flops 15, the difference a tenth of the solve
+        /// of a one-contact problem.
+        static constexpr Eigen::Index tiny_rows = 12;
 
         ProblemView        problem;
         const unsigned int d, m, na;

@@ -102,8 +102,8 @@ namespace igabde
     class BdeLaw : public PairLawModel
     {
     public:
-      BdeLaw(const PairWeights   &weights,
-             const PairWeights   &unit_weights,
+      BdeLaw(PairWeights          weights,
+             PairWeights          unit_weights,
              const FrictionRadius radius);
 
       void
@@ -363,6 +363,14 @@ namespace igabde
       /// singular ended so (newton()).
       bool           left_singular_at_start = false;
       ContactIterate best_x, converged_x;
+
+    private:
+      /// Work space of stopping_test() and finish(), kept between calls
+      /// (on a problem of a few contacts each allocation is a part of the
+      /// solve's time).
+      mutable Eigen::VectorXd u_scratch;
+      mutable ContactIterate  F_scratch;
+      mutable NewtonBlocks    pieces_scratch;
     };
 
 
