@@ -10,6 +10,54 @@ namespace igabde
 {
   namespace contact
   {
+    namespace
+    {
+      // x = M^-1 b for a d x d matrix M (row-major, d <= 3) by cofactors
+      // (the adjugate over the determinant); returns det M, x untouched
+      // where it is 0.
+      double
+      solve_by_cofactors(const unsigned int d,
+                         const double      *M,
+                         const double      *b,
+                         double            *x)
+      {
+        if (d == 1)
+          {
+            if (M[0] != 0.)
+              x[0] = b[0] / M[0];
+            return M[0];
+          }
+        if (d == 2)
+          {
+            const double det = M[0] * M[3] - M[1] * M[2];
+            if (det != 0.)
+              {
+                x[0] = (M[3] * b[0] - M[1] * b[1]) / det;
+                x[1] = (M[0] * b[1] - M[2] * b[0]) / det;
+              }
+            return det;
+          }
+        const double m00 = M[4] * M[8] - M[5] * M[7];
+        const double m01 = M[2] * M[7] - M[1] * M[8];
+        const double m02 = M[1] * M[5] - M[2] * M[4];
+        const double det = M[0] * m00 + M[3] * m01 + M[6] * m02;
+        if (det == 0.)
+          return det;
+        const double m10 = M[5] * M[6] - M[3] * M[8];
+        const double m11 = M[0] * M[8] - M[2] * M[6];
+        const double m12 = M[2] * M[3] - M[0] * M[5];
+        const double m20 = M[3] * M[7] - M[4] * M[6];
+        const double m21 = M[1] * M[6] - M[0] * M[7];
+        const double m22 = M[0] * M[4] - M[1] * M[3];
+        x[0]             = (m00 * b[0] + m01 * b[1] + m02 * b[2]) / det;
+        x[1]             = (m10 * b[0] + m11 * b[1] + m12 * b[2]) / det;
+        x[2]             = (m20 * b[0] + m21 * b[1] + m22 * b[2]) / det;
+        return det;
+      }
+    } // namespace
+
+
+
     bool
     solve_local_pair(const unsigned int n_components,
                      const double      *A,
@@ -78,21 +126,10 @@ namespace igabde
         }
       // A p = -c by cofactors (A = W_ii, symmetric positive definite where
       // the pair moves its bodies).
-      const double m00 = A[4] * A[8] - A[5] * A[7];
-      const double m01 = A[2] * A[7] - A[1] * A[8];
-      const double m02 = A[1] * A[5] - A[2] * A[4];
-      const double det = A[0] * m00 + A[3] * m01 + A[6] * m02;
-      if (!(det > 0.))
+      double y[3];
+      if (!(solve_by_cofactors(3, A, c, y) > 0.))
         return false;
-      const double m10 = A[5] * A[6] - A[3] * A[8];
-      const double m11 = A[0] * A[8] - A[2] * A[6];
-      const double m12 = A[2] * A[3] - A[0] * A[5];
-      const double m20 = A[3] * A[7] - A[4] * A[6];
-      const double m21 = A[1] * A[6] - A[0] * A[7];
-      const double m22 = A[0] * A[4] - A[1] * A[3];
-      const double pn  = -(m00 * c[0] + m01 * c[1] + m02 * c[2]) / det;
-      const double pt1 = -(m10 * c[0] + m11 * c[1] + m12 * c[2]) / det;
-      const double pt2 = -(m20 * c[0] + m21 * c[1] + m22 * c[2]) / det;
+      const double pn = -y[0], pt1 = -y[1], pt2 = -y[2];
       if (!(pn >= 0.) || !(std::hypot(pt1, pt2) <= mu * pn))
         return false;
       p[0] = pn;
@@ -156,16 +193,30 @@ namespace igabde
                 p[a] = x[a];
               return true;
             }
-          Eigen::Matrix3d J = Eigen::Matrix3d::Identity();
-          J.topLeftCorner(d, d) =
-            piece.A.topLeftCorner(d, d) * Aw.topLeftCorner(d, d) +
-            piece.B.topLeftCorner(d, d);
-          const Eigen::FullPivLU<Eigen::Matrix3d> lu(J);
-          if (!lu.isInvertible())
+          // The step from J dx = -H, J = A_piece A + B_piece, by cofactors
+          // (a tenth of a pivoted LU's cost at this size); J counts as
+          // singular where |det J| is below 1e-14 of Hadamard's bound, the
+          // product of its row norms.
+          double J[9], rhs[3], step[3], bound = 1.;
+          for (unsigned int a = 0; a < d; ++a)
+            {
+              double row = 0.;
+              for (unsigned int b = 0; b < d; ++b)
+                {
+                  double sum = 0.;
+                  for (unsigned int k = 0; k < d; ++k)
+                    sum += piece.A(a, k) * Aw(k, b);
+                  J[a * d + b] = sum + piece.B(a, b);
+                  row += J[a * d + b] * J[a * d + b];
+                }
+              bound *= std::sqrt(row);
+              rhs[a] = -H[a];
+            }
+          if (!(std::abs(solve_by_cofactors(d, J, rhs, step)) > 1e-14 * bound))
             return false;
-          Eigen::Vector3d rhs      = Eigen::Vector3d::Zero();
-          rhs.head(d)              = -H.head(d);
-          const Eigen::Vector3d dx = lu.solve(rhs);
+          Eigen::Vector3d dx = Eigen::Vector3d::Zero();
+          for (unsigned int a = 0; a < d; ++a)
+            dx[a] = step[a];
           // Armijo backtracking on |H|^2.
           double    t = 1., theta_try = 0.;
           PairPiece piece_try;
