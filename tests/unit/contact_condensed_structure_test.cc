@@ -93,6 +93,33 @@ TEST(ContactCondensedStructure, SparseCopyHoldsWExactly)
   EXPECT_EQ(dense.sparse_flexibility(data), nullptr);
 }
 
+// The scan skips runs of zero entries: every stored position of a column
+// (each remainder modulo the scan's run length, and the rows past the last
+// full run: 99 rows) must still be copied, and -0 entries, equal to 0,
+// must not be.
+TEST(ContactCondensedStructure, SparseCopyFindsIsolatedEntriesAndDropsMinusZero)
+{
+  const int m = 99;
+  Mat       W = Mat::Zero(m, m);
+  for (int j = 0; j < m; ++j)
+    {
+      W(j, j)               = 5.;
+      W((3 * j + 1) % m, j) = 0.25 + 0.01 * j;
+      const int minus_zero  = (5 * j + 2) % m;
+      if (W(minus_zero, j) == 0.)
+        W(minus_zero, j) = -0.;
+    }
+  const int nnz = static_cast<int>((W.array() != 0.).cast<int>().sum());
+  ASSERT_GE(nnz, m + 90);
+
+  const ContactData       data = data_for(W);
+  const CondensedOperator automatic(W);
+  const Mat               copy = sparse_copy(automatic, data);
+  ASSERT_EQ(copy.rows(), m);
+  EXPECT_EQ((copy - W).cwiseAbs().maxCoeff(), 0.);
+  EXPECT_EQ(automatic.sparse_flexibility(data)->nonZeros(), nnz);
+}
+
 TEST(ContactCondensedStructure, FillLimitIsTenPercentOfTheEntries)
 {
   // Exactly floor(0.1 m^2) non-zeros is sparse, one more is dense.
