@@ -145,9 +145,8 @@ namespace igabde
              std::ostream                                         &log,
              const bool                                            progress)
     {
-      CondensedContact<dim> result;
-      const unsigned int    nc = pair_list.size();
-      Eigen::MatrixXd       FL(m * nc, m * nc);
+      const unsigned int nc = pair_list.size();
+      Eigen::MatrixXd    FL(m * nc, m * nc);
       FL.setZero();
       // Each body's share where it is factorised (under MPI the bodies'
       // groups at the same time), then handed to every rank.
@@ -192,11 +191,7 @@ namespace igabde
       // equilibrium R^T (f_ext + f_contact) = 0 joining the BDE system.
       RigidModeColumns modes =
         rigid_mode_columns<dim>(pair_list, bodies, m, context, log);
-      result.alpha_modes              = modes.alpha_modes;
-      result.alpha_basis              = modes.basis;
-      result.rigid_mode_loads         = modes.loads;
-      result.rigid_mode_history_loads = modes.history_loads;
-      const Eigen::MatrixXd &GL       = modes.G;
+      const Eigen::MatrixXd &GL = modes.G;
 
       // Pairs whose two points are both held by supports carry no
       // information: their flexibility rows and rigid-mode rows vanish
@@ -215,11 +210,8 @@ namespace igabde
           if (FL(m * i, m * i) > 1e-12 * max_diag || g_row > 1e-12 * max_g)
             keep.push_back(i);
         }
-      result.n_dropped = nc - keep.size();
-      AssertThrow(!keep.empty(),
-                  base::ExcInput(context +
-                                 ": every contact pair is held by supports on "
-                                 "both sides; nothing can touch."));
+      CondensedContact<dim> result =
+        kept_pairs_contact(pair_list, keep, modes, m, friction, context);
       ContactProblem &problem = result.problem;
       Eigen::MatrixXd W;
       if (keep.size() == nc)
@@ -233,12 +225,6 @@ namespace igabde
                 FL.block(m * keep[i], m * keep[j], m, m);
           FL = Eigen::MatrixXd();
         }
-      problem.G.resize(m * keep.size(), GL.cols());
-      for (unsigned int i = 0; i < keep.size(); ++i)
-        {
-          result.pairs.push_back(pair_list[keep[i]]);
-          problem.G.middleRows(m * i, m) = GL.middleRows(m * keep[i], m);
-        }
       // |W - W^T| / |W|, and W made exactly symmetric, in place.
       const double w_norm    = W.norm();
       double       asymmetry = 0.;
@@ -250,16 +236,45 @@ namespace igabde
             W(i, j) = W(j, i) = 0.5 * (W(i, j) + W(j, i));
           }
       result.asymmetry = std::sqrt(asymmetry) / std::max(w_norm, 1e-300);
+      problem.W        = std::move(W);
+      problem.check_consistency();
+      return result;
+    }
 
+
+
+    template <int dim>
+    CondensedContact<dim>
+    kept_pairs_contact(const std::vector<ContactPair<dim>> &pair_list,
+                       const std::vector<unsigned int>     &keep,
+                       const RigidModeColumns              &modes,
+                       const unsigned int                   m,
+                       const double                         friction,
+                       const std::string                   &context)
+    {
+      AssertThrow(!keep.empty(),
+                  base::ExcInput(context +
+                                 ": every contact pair is held by supports on "
+                                 "both sides; nothing can touch."));
+      CondensedContact<dim> result;
+      result.n_dropped                = pair_list.size() - keep.size();
+      result.alpha_modes              = modes.alpha_modes;
+      result.alpha_basis              = modes.basis;
+      result.rigid_mode_loads         = modes.loads;
+      result.rigid_mode_history_loads = modes.history_loads;
+      ContactProblem &problem         = result.problem;
+      problem.G.resize(m * keep.size(), modes.G.cols());
+      for (unsigned int i = 0; i < keep.size(); ++i)
+        {
+          result.pairs.push_back(pair_list[keep[i]]);
+          problem.G.middleRows(m * i, m) = modes.G.middleRows(m * keep[i], m);
+        }
       problem.n_contacts   = result.pairs.size();
       problem.n_components = m;
-      problem.W            = std::move(W);
       problem.q            = Eigen::VectorXd::Zero(m * result.pairs.size());
       problem.mu.assign(result.pairs.size(), friction);
       problem.name = context;
-      problem.b.resize(GL.cols());
-      problem.b.setZero();
-      problem.check_consistency();
+      problem.b    = Eigen::VectorXd::Zero(modes.G.cols());
       return result;
     }
 
@@ -277,6 +292,20 @@ namespace igabde
                        const unsigned int,
                        const std::string &,
                        std::ostream &);
+    template CondensedContact<2>
+    kept_pairs_contact(const std::vector<ContactPair<2>> &,
+                       const std::vector<unsigned int> &,
+                       const RigidModeColumns &,
+                       const unsigned int,
+                       const double,
+                       const std::string &);
+    template CondensedContact<3>
+    kept_pairs_contact(const std::vector<ContactPair<3>> &,
+                       const std::vector<unsigned int> &,
+                       const RigidModeColumns &,
+                       const unsigned int,
+                       const double,
+                       const std::string &);
     template CondensedContact<2>
     condense(const std::vector<ContactPair<2>> &,
              const std::vector<const discretization::Body<2> *> &,

@@ -158,31 +158,10 @@ namespace igabde
           if (moves || g_row > 1e-12 * max_g)
             keep.push_back(i);
         }
-      contact           = CondensedContact<dim>();
-      contact.n_dropped = pair_list.size() - keep.size();
-      AssertThrow(!keep.empty(),
-                  base::ExcInput(context +
-                                 ": every contact pair is held by supports on "
-                                 "both sides; nothing can touch."));
-      ContactProblem &problem = contact.problem;
-      problem.G.resize(m * keep.size(), modes.G.cols());
-      for (unsigned int i = 0; i < keep.size(); ++i)
-        {
-          contact.pairs.push_back(pair_list[keep[i]]);
-          problem.G.middleRows(m * i, m) = modes.G.middleRows(m * keep[i], m);
-        }
-      contact.alpha_modes              = modes.alpha_modes;
-      contact.alpha_basis              = modes.basis;
-      contact.rigid_mode_loads         = modes.loads;
-      contact.rigid_mode_history_loads = modes.history_loads;
-      problem.n_contacts               = contact.pairs.size();
-      problem.n_components             = m;
-      problem.q = Eigen::VectorXd::Zero(m * contact.pairs.size());
-      problem.mu.assign(contact.pairs.size(), friction);
-      problem.name = context;
-      problem.b    = Eigen::VectorXd::Zero(modes.G.cols());
-      coupled      = factory(bodies, contact.pairs, m, problem.G, obstacle);
-      static_cast<const ContactData &>(problem).check_consistency();
+      contact =
+        kept_pairs_contact(pair_list, keep, modes, m, friction, context);
+      coupled = factory(bodies, contact.pairs, m, contact.problem.G, obstacle);
+      static_cast<const ContactData &>(contact.problem).check_consistency();
     }
 
 

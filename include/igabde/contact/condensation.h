@@ -61,17 +61,6 @@ namespace igabde
     };
 
     /**
-     * @brief Condenses the bodies onto @p pairs: unit force pairs along the
-     * @p n_components local directions that carry unknowns (+T_j[s] on Body
-     * 1 at x1_j, -T_j[s] on Body 2 at x2_j) give F^L = T^T F^G T directly;
-     * each body gives its share through Body::flexibility() (its Schur
-     * complement on the contact face, or one solve per column). Free rigid
-     * modes become the columns of G with the contact equilibrium
-     * G^T p = b. @p bodies holds Body 1 and, when the pairs face a
-     * deformable body, Body 2. @p log gets one line per condensed body
-     * when @p progress is set, and the rigid-mode and pair counts.
-     */
-    /**
      * @brief The rigid modes the supports leave free, as columns of the
      * contact problem: G(m i + s, a) = +-frame_s . r_a(x_i) (Body 1 +,
      * Body 2 -), with the mode loads r_a . f_ext at factor 1. Both the
@@ -103,6 +92,34 @@ namespace igabde
       const std::string                                    &context,
       std::ostream                                         &log);
 
+    /**
+     * @brief The contact problem of the pairs @p keep of @p pairs (the
+     * others carry no information), for either path: the kept pairs, their
+     * rows of @p modes' columns as G, the modes' bookkeeping, zero q and b,
+     * the friction coefficient @p friction; W is the condensed path's to
+     * set. Refused (bad input) when @p keep is empty: every pair is held by
+     * supports on both sides.
+     */
+    template <int dim>
+    CondensedContact<dim>
+    kept_pairs_contact(const std::vector<ContactPair<dim>> &pairs,
+                       const std::vector<unsigned int>     &keep,
+                       const RigidModeColumns              &modes,
+                       const unsigned int                   n_components,
+                       const double                         friction,
+                       const std::string                   &context);
+
+    /**
+     * @brief Condenses the bodies onto @p pairs: unit force pairs along the
+     * @p n_components local directions that carry unknowns (+T_j[s] on Body
+     * 1 at x1_j, -T_j[s] on Body 2 at x2_j) give F^L = T^T F^G T directly;
+     * each body gives its share through Body::flexibility() (its Schur
+     * complement on the contact face, or one solve per column). Free rigid
+     * modes become the columns of G with the contact equilibrium
+     * G^T p = b. @p bodies holds Body 1 and, when the pairs face a
+     * deformable body, Body 2. @p log gets one line per condensed body
+     * when @p progress is set, and the rigid-mode and pair counts.
+     */
     template <int dim>
     CondensedContact<dim>
     condense(const std::vector<ContactPair<dim>>                  &pairs,
