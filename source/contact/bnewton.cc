@@ -298,15 +298,21 @@ namespace igabde
           // Newton factorisation; where they do not solve the problem, the
           // Newton phases start from the start as without them (from the
           // sweeps' iterate, Capsules-i122-1617 and spheres-in-a-box did
-          // not converge in 300 iterations, 2026-11-28).
-          // One sweep where W is small (fewer than min_sparse_rows rows: a
-          // few contacts): a problem of one contact is its own local
-          // problem, solved exactly by one sweep, and on a few weakly
+          // not converge in 300 iterations, 2026-11-28). Up to a thousand
+          // sweeps where the local problems are solved in closed form (2D,
+          // frictionless), ten in 3D with friction (Settings).
+          // Ten sweeps where W is small (fewer than min_sparse_rows rows: a
+          // few contacts, where a Newton iteration costs a few sweeps; FC2D_
+          // SliderCrankLagrangian: 367 sweeps, 24 us, against 1 sweep and 1
+          // Newton iteration, 4 us): a problem of one contact is its own
+          // local problem, solved exactly by one sweep, and on a few weakly
           // coupled contacts one sweep solves it too (CubeH8, Confeti-
           // ex13-4contact, FC3D_Example1: 2-3 Newton iterations, 3-7 us,
-          // against one sweep, 2-3 us); where it does not, Newton starts
-          // from the sweep's iterate, nearer the solution than the start
-          // (the Rover problems, 4-5 contacts: 5-8 iterations -> 3-4).
+          // against one sweep, 2-3 us), a few more sweeps on others
+          // (Rover4396: 4 sweeps, 4 us, against 1 sweep and 3 Newton
+          // iterations, 8 us; 2026-11-29); where they do not, Newton starts
+          // from the sweeps' iterate, nearer the solution than the start
+          // (the Rover problems, 4-5 contacts: 5-8 iterations -> 2-3).
           const auto *Ws   = op.sparse_flexibility(data);
           const bool small = data.n_rows() < CondensedOperator::min_sparse_rows;
           // Newton's start: x, or the first sweeps' iterate (copied only
@@ -320,10 +326,11 @@ namespace igabde
               x_sweeps                  = x;
               unsigned int       sweeps = 0;
               GaussSeidelOptions first;
-              first.max_sweeps =
-                Ws != nullptr ? settings.gauss_seidel_first_sweeps : 1;
-              first.check_every        = 1;
-              first.offer_best         = false;
+              first.max_sweeps  = Ws != nullptr && data.n_components <= 2 ?
+                                    settings.gauss_seidel_first_sweeps_exact :
+                                    settings.gauss_seidel_first_sweeps;
+              first.check_every = 1;
+              first.offer_best  = false;
               first.quit_when_too_slow = true;
               outcome                  = gauss_seidel_phase(driver,
                                            data,

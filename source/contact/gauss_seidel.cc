@@ -276,6 +276,9 @@ namespace igabde
       double       best_at_mark = best;
       unsigned int mark         = 0;
       double       last_wanted  = best;
+      // The sweep of the next check, and of the last one.
+      unsigned int next_check = options.check_every;
+      unsigned int last_check = 0;
       while (sweeps < max_sweeps)
         {
           for (unsigned int i = 0; i < data.n_contacts; ++i)
@@ -322,7 +325,7 @@ namespace igabde
                 }
             }
           ++sweeps;
-          if (sweeps % options.check_every != 0 && sweeps != max_sweeps)
+          if (sweeps < next_check && sweeps != max_sweeps)
             continue;
           // The error of the exact law, from u = W p + q recomputed by the
           // stopping test. The running u is not re-synchronised with it:
@@ -361,17 +364,35 @@ namespace igabde
           // The error the stopping test asks for.
           const double wanted =
             driver.settings.fclib_stopping ? err : std::max(err, balanced);
-          if (options.quit_when_too_slow && sweeps > options.check_every)
+          next_check = sweeps + options.check_every;
+          if (options.quit_when_too_slow && last_check > 0)
             {
-              const double rate = wanted / last_wanted;
+              // The error's rate per sweep since the last check.
+              const double rate =
+                std::pow(wanted / last_wanted, 1. / (sweeps - last_check));
               if (!(rate < 1.) || wanted * std::pow(rate, max_sweeps - sweeps) >
                                     driver.settings.tolerance)
                 {
                   outcome.reason = "too slow (the error fell by " +
-                                   std::to_string(rate) + " per check)";
+                                   std::to_string(rate) + " per sweep)";
                   break;
                 }
+              // At this rate the tolerance is reached after this many more
+              // sweeps: no check before (a check, a product with W and the
+              // law's errors over every pair, costs more than a sweep).
+              const double to_go = std::ceil(
+                std::log(driver.settings.tolerance / wanted) / std::log(rate));
+              // At most as many sweeps as done so far: the rate of the
+              // first sweeps is often not kept (fast first sweeps, then a
+              // slower linear rate), and a phase that will not reach the
+              // tolerance is to end after a bounded share of its sweeps.
+              if (to_go > options.check_every)
+                next_check =
+                  sweeps +
+                  static_cast<unsigned int>(std::min(
+                    {to_go, double(sweeps), double(max_sweeps - sweeps)}));
             }
+          last_check  = sweeps;
           last_wanted = wanted;
           best        = std::min(best, balanced);
           if (sweeps - mark >= 100)

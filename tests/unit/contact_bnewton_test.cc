@@ -164,12 +164,24 @@ TEST(ContactBNewton, FrictionlessNormalOnly)
     EXPECT_EQ(result.status[1], ContactStatus::open);
   }
   {
+    // Both closed: p* = (1/3, 1/3). Newton ends exactly on this piecewise
+    // linear problem; the Gauss-Seidel sweeps tried first (the default)
+    // end at the tolerance: FCLIB's error is |min(p, u)| / |q| and near
+    // p* it is |W (p - p*)| / |q|, so |p - p*| <= tol |q| / lambda_min(W)
+    // with lambda_min(W) = 1.
     const ContactProblem problem =
       make_problem(1, W, Eigen::Vector2d(-1., -1.), {});
-    const BNewtonSolver::Result result = BNewtonSolver().solve(problem);
+    BNewtonSolver::Settings newton_only;
+    newton_only.gauss_seidel_first_sweeps = 0;
+    const BNewtonSolver::Result result =
+      BNewtonSolver(newton_only).solve(problem);
     expect_solution_ok(problem, result);
     EXPECT_NEAR(result.p[0], 1. / 3., 1e-14);
     EXPECT_NEAR(result.p[1], 1. / 3., 1e-14);
+    const BNewtonSolver::Result swept = BNewtonSolver().solve(problem);
+    expect_solution_ok(problem, swept);
+    EXPECT_LE((swept.p - Eigen::Vector2d(1. / 3., 1. / 3.)).norm(),
+              newton_only.tolerance * problem.q.norm());
   }
 }
 

@@ -74,9 +74,12 @@ namespace igabde
       /// Whether the iterates are offered to the driver as its best.
       bool offer_best = true;
       /**
-       * Whether the phase ends as soon as the error's rate over the last
-       * check, kept up to max_sweeps, would not reach the tolerance (a
-       * first try that is to cost little where it does not succeed).
+       * Whether the phase ends as soon as the error's rate per sweep since
+       * the last check, kept up to max_sweeps, would not reach the
+       * tolerance (a first try that is to cost little where it does not
+       * succeed). From the third check on, the next check then comes where
+       * that rate reaches the tolerance, after at most as many sweeps as
+       * were done (a check costs more than a sweep).
        */
       bool quit_when_too_slow = false;
     };
