@@ -61,6 +61,7 @@
 #include <iomanip>
 #include <iostream>
 #include <limits>
+#include <optional>
 #include <siconos/numerics/FrictionContactProblem.h>
 #include <siconos/numerics/Friction_cst.h>
 #include <siconos/numerics/NonSmoothDrivers.h>
@@ -546,25 +547,23 @@ main(int argc, char **argv)
       BNewtonSolver::Result r;
       ours.ms = std::numeric_limits<double>::max();
       for (unsigned int run = 0; run < runs(ours.ms); ++run)
-        if (w_prepared)
-          {
-            // A fresh operator each run (it keeps factorisations), its
-            // structure read before the clock starts.
-            CondensedOperator op(problem.W,
-                                 settings.linear_algebra,
-                                 settings.sparse_fill,
-                                 settings.use_symmetry);
-            op.sparse_flexibility(problem);
-            const auto start = Clock::now();
-            r                = solver.solve(problem, op, ContactIterate());
-            ours.ms          = std::min(ours.ms, milliseconds_since(start));
-          }
-        else
-          {
-            const auto start = Clock::now();
-            r                = solver.solve(problem);
-            ours.ms          = std::min(ours.ms, milliseconds_since(start));
-          }
+        {
+          // With --w-prepared a fresh operator each run (it keeps
+          // factorisations), its structure read before the clock starts.
+          std::optional<CondensedOperator> op;
+          if (w_prepared)
+            {
+              op.emplace(problem.W,
+                         settings.linear_algebra,
+                         settings.sparse_fill,
+                         settings.use_symmetry);
+              op->sparse_flexibility(problem);
+            }
+          const auto start = Clock::now();
+          r                = op ? solver.solve(problem, *op, ContactIterate()) :
+                                  solver.solve(problem);
+          ours.ms          = std::min(ours.ms, milliseconds_since(start));
+        }
       ours.ran        = true;
       ours.iterations = r.iterations;
       ours.sweeps     = r.sweeps;
