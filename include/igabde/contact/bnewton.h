@@ -88,19 +88,19 @@ namespace igabde
      * converge, phase 1 starts from the start; where W is small (fewer than
      * CondensedOperator::min_sparse_rows rows) and no body floats, at most
      * Settings::gauss_seidel_first_sweeps sweeps (the first solves a problem
-     * of one contact exactly), and if
-     * they do not converge, phase 1 starts from their iterate; (1) Newton with
-     * Settings::radius; (2) if that ends without convergence,
-     * Settings::switch_radius and r_factor is more than ten times away from 1,
-     * Newton with r_factor = 1 (r from the flexibility alone; the solution does
-     * not depend on r, the merit function does), from the best iterate so far;
-     * (2b) if still not converged and Settings::switch_radius, Newton with the
-     * other radius from the best iterate (at r_factor = 1 if phase 2 ran); (3)
-     * if still not converged, on the condensed path with 2D friction or none
-     * and no floating bodies: nonsmooth Gauss-Seidel sweeps from the best
-     * iterate (gauss_seidel_phase(), at most Settings::gauss_seidel_sweeps, a
-     * budget of its own), which converge where Newton's active sets cycle
-     * (FCLIB's FrictionContactProblem00727); (4) if still not converged and
+     * of one contact exactly), and if they do not converge, phase 1 starts
+     * from their iterate; (1) Newton with Settings::radius; (2) if that ends
+     * without convergence, Settings::switch_radius and r_factor is more than
+     * ten times away from 1, Newton with r_factor = 1 (r from the flexibility
+     * alone; the solution does not depend on r, the merit function does), from
+     * the best iterate so far; (2b) if still not converged and
+     * Settings::switch_radius, Newton with the other radius from the best
+     * iterate (at r_factor = 1 if phase 2 ran); (3) if still not converged, on
+     * the condensed path with 2D friction or none and no floating bodies:
+     * nonsmooth Gauss-Seidel sweeps from the best iterate
+     * (gauss_seidel_phase(), at most Settings::gauss_seidel_sweeps, a budget of
+     * its own), which converge where Newton's active sets cycle (FCLIB's
+     * FrictionContactProblem00727); (4) if still not converged and
      * Settings::proximal, proximal-point outer iterations (Acary et al.
      * 2018, PPA-NSN): the subproblem W + eps I, q - eps p_k (centred on the
      * current iterate, strongly monotone) is solved by Newton, eps starting

@@ -214,15 +214,15 @@ namespace igabde
        * @brief Sweeps of the nonsmooth Gauss-Seidel phase tried before
        * the Newton phases where W is small, or kept sparse and the pairs
        * are 3D with friction (no floating bodies; 0: no such phase on any
-       * problem). The phase ends as soon as the error's
-       * rate per sweep would not reach the tolerance within these sweeps;
-       * if the sweeps do not solve the problem, Newton starts from the
-       * start as without them (on a small W from the sweeps' iterate). A 3D
-       * sweep solves each slipping pair by a local Newton: ten cost less than
-       * one sparse factorisation of the Newton matrix on the FCLIB rigid-body
-       * problems, and where more sweeps solve such a problem they cost more
-       * than Newton (Box_Stacks-i0122: 32 sweeps 0.50 ms, 3 Newton iterations
-       * 0.29 ms, 2026-11-29).
+       * problem). The phase ends as soon as the error's rate per sweep would
+       * not reach the tolerance within these sweeps; if the sweeps do not
+       * solve the problem, Newton starts from the start as without them (on
+       * a small W from the sweeps' iterate). A 3D sweep solves each slipping
+       * pair by a local Newton: ten cost less than one sparse factorisation
+       * of the Newton matrix on the FCLIB rigid-body problems, and where more
+       * sweeps solve such a problem they cost more than Newton
+       * (Box_Stacks-i0122: 32 sweeps 0.50 ms, 3 Newton iterations 0.29 ms,
+       * 2026-11-29).
        */
       unsigned int gauss_seidel_first_sweeps = 10;
 
@@ -230,12 +230,12 @@ namespace igabde
        * @brief The same on a sparse W where each pair's local problem is
        * solved in closed form (2D friction, or frictionless; the phase runs
        * where gauss_seidel_first_sweeps is not 0; a small W keeps
-       * gauss_seidel_first_sweeps, a Newton iteration costing there about
-       * as much as a few sweeps): a sweep is about one pass over
-       * W's non-zeros, and on the FCLIB 2D problems the sweeps that reach
-       * the tolerance within a thousand cost less than the Newton phases
-       * they replace (FrictionContactProblem00727: 679 sweeps, 6 ms,
-       * against 81 Newton iterations and 482 sweeps, 34 ms, 2026-11-29).
+       * gauss_seidel_first_sweeps, a Newton iteration costing there about as
+       * much as a few sweeps): a sweep is about one pass over W's non-zeros,
+       * and on the FCLIB 2D problems the sweeps that reach the tolerance
+       * within a thousand cost less than the Newton phases they replace
+       * (FrictionContactProblem00727: 679 sweeps, 6 ms, against 81 Newton
+       * iterations and 482 sweeps, 34 ms, 2026-11-29).
        */
       unsigned int gauss_seidel_first_sweeps_exact = 1000;
 
