@@ -164,11 +164,12 @@ TEST(ContactBNewton, FrictionlessNormalOnly)
     EXPECT_EQ(result.status[1], ContactStatus::open);
   }
   {
-    // Both closed: p* = (1/3, 1/3). Newton ends exactly on this piecewise
-    // linear problem; the Gauss-Seidel sweeps tried first (the default)
-    // end at the tolerance: FCLIB's error is |min(p, u)| / |q| and near
-    // p* it is |W (p - p*)| / |q|, so |p - p*| <= tol |q| / lambda_min(W)
-    // with lambda_min(W) = 1.
+    // Both closed: p* = (1/3, 1/3). Newton alone ends exactly on this
+    // piecewise linear problem. The default solve tries Gauss-Seidel sweeps
+    // first (Newton goes on from their iterate where they stop early), so
+    // it is held to the tolerance only: FCLIB's error is |min(p, u)| / |q|
+    // and near p* it is |W (p - p*)| / |q|, so |p - p*| <= tol |q| /
+    // lambda_min(W) with lambda_min(W) = 1.
     const ContactProblem problem =
       make_problem(1, W, Eigen::Vector2d(-1., -1.), {});
     BNewtonSolver::Settings newton_only;
