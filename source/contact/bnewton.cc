@@ -195,9 +195,9 @@ namespace igabde
               driver.offer_best(xk, e_bal, eq);
               if (done)
                 {
-                  driver.converged_x = xk;
-                  outcome.converged  = true;
-                  outcome.reason     = "converged";
+                  driver.accept(xk);
+                  outcome.converged = true;
+                  outcome.reason    = "converged";
                   break;
                 }
               // A solved subproblem allows a smaller shift: the nearer
@@ -456,20 +456,11 @@ namespace igabde
                                                      x;
       // The answer and the status of every pair with the phase-1 radius;
       // its measures from the stopping test (the law's errors are the
-      // exact conditions' measures: FCLIB's, balanced at the unit scale).
-      const ContactIterate F = driver.finish(data, law, xr, false);
-      double               disp;
-      const bool           strict = driver.stopping_test(data,
-                                               law,
-                                               xr,
-                                               settings.tolerance,
-                                               false,
-                                               result.residual,
-                                               result.balanced_residual,
-                                               result.equilibrium_residual,
-                                               disp,
-                                               &result.u,
-                                               &F);
+      // exact conditions' measures: FCLIB's, balanced at the unit scale),
+      // those of the test that accepted it where that was under this law.
+      double     disp;
+      const bool strict =
+        driver.answer(data, law, xr, settings.tolerance, disp);
       // With fclib_stopping the FCLIB error alone is the test (as the
       // stopping test); else the balanced error must meet it too.
       result.converged = (strict || outcome.converged) &&

@@ -270,6 +270,10 @@ namespace igabde
       else if (Ws == nullptr)
         u = W * x.p + data.q;
       double A[9], c[3], p_new[3];
+      // u = W p + q and the law's residual at a check (handed to the driver
+      // with the answer they accept, which is then not evaluated again).
+      Eigen::VectorXd u_check;
+      ContactIterate  F_check;
       // The error at the last check, and the best one at the last mark (every
       // 100 sweeps).
       double       best         = std::numeric_limits<double>::infinity();
@@ -327,13 +331,12 @@ namespace igabde
           ++sweeps;
           if (sweeps < next_check && sweeps != max_sweeps)
             continue;
-          // The error of the exact law, from u = W p + q recomputed by the
-          // stopping test. The running u is not re-synchronised with it:
-          // its updates' round-off grows by about one unit of W p per
-          // sweep, 1e-13 relative after 2 000 sweeps, far below any
-          // tolerance, and a second product with W would cost a tenth of
-          // a sweep per check.
-          double     err, balanced, eq, disp;
+          // The error of the exact law, from u = W p + q recomputed. The
+          // running u is not re-synchronised with it: its updates'
+          // round-off grows by about one unit of W p per sweep, 1e-13
+          // relative after 2 000 sweeps, far below any tolerance.
+          double err, balanced, eq, disp;
+          driver.evaluate(data, law, x, u_check, F_check, nullptr);
           const bool done = driver.stopping_test(data,
                                                  law,
                                                  x,
@@ -342,7 +345,9 @@ namespace igabde
                                                  err,
                                                  balanced,
                                                  eq,
-                                                 disp);
+                                                 disp,
+                                                 &u_check,
+                                                 &F_check);
           if (options.offer_best)
             driver.offer_best(x, balanced, eq);
           if (driver.settings.log)
@@ -350,8 +355,16 @@ namespace igabde
                          << ", balanced " << balanced << '\n';
           if (done)
             {
-              driver.converged_x = x;
-              outcome.converged  = true;
+              driver.accept(data,
+                            law,
+                            x,
+                            std::move(u_check),
+                            std::move(F_check),
+                            err,
+                            balanced,
+                            eq,
+                            disp);
+              outcome.converged = true;
               outcome.reason =
                 "converged in " + std::to_string(sweeps) + " sweeps";
               break;

@@ -244,15 +244,9 @@ namespace igabde
                          const ContactIterate &x,
                          const bool            measures) const
     {
-      result.p     = x.p;
-      result.alpha = data.n_alpha() > 0 ? x.alpha : Vec();
-      result.w     = x.w;
       ContactIterate F;
       evaluate(data, law, x, result.u, F, &pieces_scratch);
-      result.status.resize(pieces_scratch.size());
-      for (unsigned int c = 0; c < pieces_scratch.size(); ++c)
-        result.status[c] = pieces_scratch[c].status;
-      count_status(result);
+      record_answer(data, x);
       if (measures)
         {
           result.residual = relative_natural_map_error(data, x.p, result.u);
@@ -265,11 +259,95 @@ namespace igabde
           result.equilibrium_residual =
             relative_equilibrium_error(data, x.p, absolute);
         }
+      return F;
+    }
+
+
+
+    void
+    NewtonDriver::record_answer(const ContactData    &data,
+                                const ContactIterate &x) const
+    {
+      result.p     = x.p;
+      result.alpha = data.n_alpha() > 0 ? x.alpha : Vec();
+      result.w     = x.w;
+      result.status.resize(pieces_scratch.size());
+      for (unsigned int c = 0; c < pieces_scratch.size(); ++c)
+        result.status[c] = pieces_scratch[c].status;
+      count_status(result);
       result.max_penetration = 0.;
       for (unsigned int c = 0; c < data.n_contacts; ++c)
         result.max_penetration =
           std::max(result.max_penetration, -result.u[c * data.n_components]);
-      return F;
+    }
+
+
+
+    void
+    NewtonDriver::accept(const ContactData    &data,
+                         const PairLawModel   &law,
+                         const ContactIterate &x,
+                         Vec                 &&u,
+                         ContactIterate      &&F,
+                         const double          err,
+                         const double          balanced,
+                         const double          eq,
+                         const double          disp)
+    {
+      converged_x       = x;
+      accepted.law      = &law;
+      accepted.data     = &data;
+      accepted.u        = std::move(u);
+      accepted.F        = std::move(F);
+      accepted.err      = err;
+      accepted.balanced = balanced;
+      accepted.eq       = eq;
+      accepted.disp     = disp;
+    }
+
+
+
+    void
+    NewtonDriver::accept(const ContactIterate &x)
+    {
+      converged_x  = x;
+      accepted.law = nullptr;
+    }
+
+
+
+    bool
+    NewtonDriver::answer(const ContactData    &data,
+                         const PairLawModel   &law,
+                         const ContactIterate &x,
+                         const double          tolerance,
+                         double               &disp) const
+    {
+      if (&x == &converged_x && accepted.law == &law && accepted.data == &data)
+        {
+          // The pieces (the pairs' status) at x from the kept u.
+          result.u.swap(accepted.u);
+          residual(data, law, x, result.u, accepted.F, &pieces_scratch);
+          record_answer(data, x);
+          result.residual             = accepted.err;
+          result.balanced_residual    = accepted.balanced;
+          result.equilibrium_residual = accepted.eq;
+          disp                        = accepted.disp;
+          accepted.law                = nullptr;
+          return true;
+        }
+      const ContactIterate F = finish(data, law, x, false);
+      return stopping_test(data,
+                           law,
+                           x,
+                           tolerance,
+                           false,
+                           result.residual,
+                           result.balanced_residual,
+                           result.equilibrium_residual,
+                           disp,
+                           &result.u,
+                           &F);
     }
 
 
@@ -542,7 +620,15 @@ namespace igabde
               if (settings.log)
                 rec.print(log());
               if (on_original)
-                converged_x = x;
+                accept(data,
+                       law,
+                       x,
+                       std::move(u),
+                       std::move(F),
+                       err,
+                       balanced,
+                       eq,
+                       disp);
               return {true, "converged"};
             }
           if (local_it >= budget || out_of_iterations())
@@ -808,7 +894,7 @@ namespace igabde
                                 disp))
                 {
                   if (on_original)
-                    converged_x = x;
+                    accept(x);
                   return {true, "converged (at the rounding floor)"};
                 }
               return fail("line-search failure (no decrease along the "

@@ -784,3 +784,83 @@ TEST(ContactBNewton, SparseAndDenseLevenbergMarquardtStepsAgree)
     EXPECT_NEAR(sparse[k].residual, dense[k].residual, 1e-5 * dense[k].residual)
       << "iteration " << k;
 }
+
+
+
+// The answer's u, FCLIB error and pair counts are those of the answer p,
+// whichever test accepted it: the first sweeps on a small W, Newton on a
+// dense one (the accepting test's evaluation is reused for the answer).
+// References written here: u = W p + q, and FCLIB's measure
+// |p - P_K(p - (u + mu |u_t| e_n))| / |q| with the cone's projection in
+// closed form.
+TEST(ContactBNewton, TheAnswerIsMeasuredAtTheAnswer)
+{
+  const auto fclib_measure = [](const ContactProblem  &problem,
+                                const Eigen::VectorXd &p,
+                                const Eigen::VectorXd &u) {
+    double sum = 0.;
+    for (unsigned int c = 0; c < problem.n_contacts; ++c)
+      {
+        const double          mu = problem.mu[c];
+        const Eigen::Vector3d pc = p.segment<3>(3 * c);
+        const Eigen::Vector3d uc = u.segment<3>(3 * c);
+        Eigen::Vector3d       z =
+          pc - uc - mu * uc.tail<2>().norm() * Eigen::Vector3d::UnitX();
+        const double zt = z.tail<2>().norm(), zn = z[0];
+        if (zt <= mu * zn)
+          ; // inside the cone
+        else if (mu * zt <= -zn)
+          z.setZero(); // inside the polar cone
+        else
+          {
+            const double n = (zn + mu * zt) / (1. + mu * mu);
+            z.tail<2>() *= mu * n / zt;
+            z[0] = n;
+          }
+        sum += (pc - z).squaredNorm();
+      }
+    return std::sqrt(sum) / problem.q.norm();
+  };
+
+  struct Case
+  {
+    unsigned int n_contacts;
+    double       coupling;
+    const char  *accepted_by;
+  };
+  for (const Case &c :
+       {Case{3, 0.05, "gauss-seidel first: converged"}, Case{20, 1., "newton"}})
+    {
+      SCOPED_TRACE(c.accepted_by);
+      const unsigned int m = 3 * c.n_contacts;
+      Eigen::MatrixXd    W =
+        Eigen::MatrixXd::Identity(m, m) +
+        c.coupling * (random_spd(m, 7) - Eigen::MatrixXd::Identity(m, m));
+      Eigen::VectorXd q(m);
+      for (unsigned int k = 0; k < c.n_contacts; ++k)
+        q.segment<3>(3 * k) << (k % 3 == 0 ? 0.2 : -1.), 0.4 * std::sin(1. + k),
+          0.3 * std::cos(2. + k);
+      const ContactProblem problem =
+        make_problem(3, W, q, std::vector<double>(c.n_contacts, 0.3));
+      BNewtonSolver::Settings settings;
+      // A tolerance the answers' errors meet well above rounding, so that
+      // measures of another iterate would show.
+      settings.tolerance            = 1e-5;
+      settings.fclib_stopping       = true;
+      const BNewtonSolver::Result r = BNewtonSolver(settings).solve(problem);
+      ASSERT_TRUE(r.converged) << r.diagnosis;
+      EXPECT_NE(r.diagnosis.find(c.accepted_by), std::string::npos)
+        << r.diagnosis;
+
+      const Eigen::VectorXd u = W * r.p + q;
+      EXPECT_LE((r.u - u).norm(), 1e-14 * (u.norm() + q.norm()));
+      const double reference = fclib_measure(problem, r.p, u);
+      EXPECT_NEAR(r.residual, reference, 1e-8 * reference + 1e-15);
+      EXPECT_LE(r.residual, 1e-5);
+      unsigned int open = 0;
+      for (unsigned int k = 0; k < c.n_contacts; ++k)
+        open += r.p[3 * k] == 0.;
+      EXPECT_EQ(r.n_open, open);
+      EXPECT_EQ(r.n_open + r.n_stick + r.n_slip + r.n_closed, c.n_contacts);
+    }
+}

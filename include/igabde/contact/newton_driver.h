@@ -332,6 +332,48 @@ namespace igabde
              const ContactIterate &x,
              const bool            measures = true) const;
 
+      /**
+       * @brief Records @p x as the answer of the problem (converged_x),
+       * accepted by a stopping test on @p data under @p law that had @p u
+       * and the law's residual @p F at @p x (taken over) and measured
+       * @p err, @p balanced, @p eq and @p disp: answer() then reads them
+       * instead of evaluating the answer again (a product with W and the
+       * law's errors, on a problem of a few contacts a sixth of the
+       * solve).
+       */
+      void
+      accept(const ContactData    &data,
+             const PairLawModel   &law,
+             const ContactIterate &x,
+             Eigen::VectorXd     &&u,
+             ContactIterate      &&F,
+             const double          err,
+             const double          balanced,
+             const double          eq,
+             const double          disp);
+
+      /**
+       * @brief Records @p x as the answer of the problem (converged_x),
+       * without the evaluation that accepted it.
+       */
+      void
+      accept(const ContactIterate &x);
+
+      /**
+       * @brief finish() and the stopping test at the answer @p x under
+       * @p law: its measures into the result (residual, balanced,
+       * equilibrium) and @p disp; returns whether the test passes. Where
+       * @p x is converged_x, accepted on @p data under @p law with its
+       * evaluation (accept()), that evaluation and its measures are the
+       * answer's (the same values: the test passed there).
+       */
+      bool
+      answer(const ContactData    &data,
+             const PairLawModel   &law,
+             const ContactIterate &x,
+             const double          tolerance,
+             double               &disp) const;
+
       /** @brief Whether the iteration budget is used up. */
       bool
       out_of_iterations() const;
@@ -371,6 +413,23 @@ namespace igabde
       mutable Eigen::VectorXd u_scratch;
       mutable ContactIterate  F_scratch;
       mutable NewtonBlocks    pieces_scratch;
+
+      /// The evaluation of converged_x by the stopping test that accepted
+      /// it (accept(); law null: none).
+      struct Accepted
+      {
+        const PairLawModel *law  = nullptr;
+        const ContactData  *data = nullptr;
+        Eigen::VectorXd     u;
+        ContactIterate      F;
+        double              err = 0., balanced = 0., eq = 0., disp = 0.;
+      };
+      mutable Accepted accepted;
+
+      /// p, alpha, w, the status of every pair (from pieces_scratch) and
+      /// the largest penetration (from result.u) of the answer @p x.
+      void
+      record_answer(const ContactData &data, const ContactIterate &x) const;
     };
 
 
