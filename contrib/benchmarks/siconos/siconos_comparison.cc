@@ -351,9 +351,10 @@ namespace
     if (o.sweeps > 0)
       s << " + " << o.sweeps << " sweeps";
     s << " | " << std::fixed
-      << std::setprecision(o.ms < 0.1 ? 4 :
-                           o.ms < 10  ? 2 :
-                                        0)
+      << std::setprecision(o.ms < 0.01 ? 5 :
+                           o.ms < 0.1  ? 4 :
+                           o.ms < 10   ? 2 :
+                                         0)
       << o.ms;
     return s.str();
   }
