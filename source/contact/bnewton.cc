@@ -326,11 +326,12 @@ namespace igabde
               x_sweeps                  = x;
               unsigned int       sweeps = 0;
               GaussSeidelOptions first;
-              first.max_sweeps  = Ws != nullptr && data.n_components <= 2 ?
-                                    settings.gauss_seidel_first_sweeps_exact :
-                                    settings.gauss_seidel_first_sweeps;
-              first.check_every = 1;
-              first.offer_best  = false;
+              first.max_sweeps =
+                Ws != nullptr && local_problems_in_closed_form(data) ?
+                  settings.gauss_seidel_first_sweeps_exact :
+                  settings.gauss_seidel_first_sweeps;
+              first.check_every        = 1;
+              first.offer_best         = false;
               first.quit_when_too_slow = true;
               outcome                  = gauss_seidel_phase(driver,
                                            data,
@@ -421,7 +422,7 @@ namespace igabde
           const Eigen::MatrixXd *W = op.dense_flexibility();
           if (!outcome.converged && !proximal_now &&
               settings.gauss_seidel_sweeps > 0 && W != nullptr && na == 0 &&
-              data.n_components <= 2 && !driver.out_of_time())
+              local_problems_in_closed_form(data) && !driver.out_of_time())
             {
               op.set_proximal_shift(0.);
               ContactIterate     xg     = driver.have_best ? driver.best_x : x;

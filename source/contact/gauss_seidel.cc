@@ -254,8 +254,9 @@ namespace igabde
                        const GaussSeidelOptions &options,
                        unsigned int             &sweeps)
     {
-      const unsigned int d          = data.n_components;
-      const unsigned int max_sweeps = options.max_sweeps;
+      const unsigned int d           = data.n_components;
+      const unsigned int max_sweeps  = options.max_sweeps;
+      const bool         closed_form = local_problems_in_closed_form(data);
       PhaseOutcome       outcome;
       sweeps = 0;
       // With a dense W the running u = W p + q, updated by columns; with a
@@ -312,9 +313,9 @@ namespace igabde
               for (unsigned int b = 0; b < d; ++b)
                 p_new[b] = x.p(r + b);
               const bool solved =
-                d <= 2 ? solve_local_pair(d, A, c, mu, p_new) :
-                         solve_local_pair_open_or_stick(A, c, mu, p_new) ||
-                           solve_local_pair_law(law, data, i, A, c, p_new);
+                closed_form ? solve_local_pair(d, A, c, mu, p_new) :
+                              solve_local_pair_open_or_stick(A, c, mu, p_new) ||
+                                solve_local_pair_law(law, data, i, A, c, p_new);
               if (!solved)
                 continue;
               for (unsigned int b = 0; b < d; ++b)

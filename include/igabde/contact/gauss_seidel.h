@@ -29,6 +29,20 @@ namespace igabde
                      double            *p);
 
     /**
+     * @brief Whether a sweep solves every pair's local problem of @p data in
+     * closed form (solve_local_pair(): 2D, or frictionless with one
+     * component), so that a sweep is one pass over W's non-zeros. In 3D
+     * with friction a slipping pair takes a local Newton. The Gauss-Seidel
+     * phases are chosen by it: up to a thousand first sweeps, and the
+     * sweeps after the Newton phases (BNewtonSolver).
+     */
+    inline bool
+    local_problems_in_closed_form(const ContactData &data)
+    {
+      return data.n_components <= 2;
+    }
+
+    /**
      * @brief The local problem of one pair in 3D (solve_local_pair()'s
      * conventions) where its solution is open or sticks, in closed form:
      * p = 0 if c_n >= 0; else p = -A^{-1} c if that p has p_n >= 0 and
