@@ -42,13 +42,12 @@ namespace igabde
               const double           r_factor,
               const FrictionRadius   radius)
       {
-        PairWeights unit = op.weights(data, 1.);
-        // The weights at the user's scale are the unit ones at the default
-        // scale 1 (formed once, and moved into the law: on a problem of a
-        // few contacts each allocation is a part of the solve's time).
-        PairWeights weights =
-          r_factor == 1. ? unit : op.weights(data, r_factor);
-        return BdeLaw(std::move(weights), std::move(unit), radius);
+        // At the default scale 1 the law's weights are the unit ones, formed
+        // and held once (on a problem of a few contacts each allocation is
+        // a part of the solve's time).
+        if (r_factor == 1.)
+          return BdeLaw(op.weights(data, 1.), radius);
+        return BdeLaw(op.weights(data, r_factor), op.weights(data, 1.), radius);
       }
     } // namespace
 

@@ -16,8 +16,25 @@ namespace igabde
                    const FrictionRadius radius)
       : w(std::move(weights))
       , unit(std::move(unit_weights))
+      , unit_is_w(false)
       , radius(radius)
     {}
+
+
+
+    BdeLaw::BdeLaw(PairWeights unit_weights, const FrictionRadius radius)
+      : w(std::move(unit_weights))
+      , unit_is_w(true)
+      , radius(radius)
+    {}
+
+
+
+    const PairWeights &
+    BdeLaw::unit_weights() const
+    {
+      return unit_is_w ? w : unit;
+    }
 
 
 
@@ -173,7 +190,7 @@ namespace igabde
                    double &balanced) const
     {
       err      = relative_natural_map_error(data, p, u);
-      balanced = balanced_natural_map_error(data, unit, p, u);
+      balanced = balanced_natural_map_error(data, unit_weights(), p, u);
     }
 
 

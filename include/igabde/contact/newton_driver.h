@@ -102,9 +102,14 @@ namespace igabde
     class BdeLaw : public PairLawModel
     {
     public:
+      /// The law at @p weights; the balanced error at @p unit_weights (the
+      /// weights at the unit scale).
       BdeLaw(PairWeights          weights,
              PairWeights          unit_weights,
              const FrictionRadius radius);
+
+      /// The law at the unit scale: @p unit_weights for both (held once).
+      BdeLaw(PairWeights unit_weights, const FrictionRadius radius);
 
       void
       evaluate(const ContactData &data,
@@ -129,7 +134,12 @@ namespace igabde
              double                &balanced) const override;
 
     private:
+      /// The balanced error's weights: unit, or w where they are the same.
+      const PairWeights &
+      unit_weights() const;
+
       const PairWeights    w, unit;
+      const bool           unit_is_w;
       const FrictionRadius radius;
     };
 
