@@ -425,7 +425,10 @@ namespace igabde
       mutable NewtonBlocks    pieces_scratch;
 
       /// The evaluation of converged_x by the stopping test that accepted
-      /// it (accept(); law null: none).
+      /// it (accept(); law null: none). law and data name the accepting
+      /// test's objects by address only, to be compared with answer()'s,
+      /// never read through: a phase's law may be a temporary that has
+      /// ended (phases 2 and 2b), and then no live law has its address.
       struct Accepted
       {
         const PairLawModel *law  = nullptr;
