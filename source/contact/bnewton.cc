@@ -181,17 +181,14 @@ namespace igabde
             {
               n_idle = 0;
               xk     = xi;
-              double     e_fclib, e_bal, eq, disp;
-              const bool done = driver.stopping_test(data,
+              StopMeasures measures;
+              const bool   done = driver.stopping_test(data,
                                                      original_law,
                                                      xk,
                                                      settings.tolerance,
                                                      false,
-                                                     e_fclib,
-                                                     e_bal,
-                                                     eq,
-                                                     disp);
-              driver.offer_best(xk, e_bal, eq);
+                                                     measures);
+              driver.offer_best(xk, measures);
               if (done)
                 {
                   driver.accept(xk);
@@ -208,7 +205,7 @@ namespace igabde
               // reduced at every solved subproblem, 96 iterations to
               // 5e-11).
               eps    = std::max(eps * 0.1, 1e-12 * eps_ref);
-              err    = std::min(err, e_bal);
+              err    = std::min(err, measures.balanced);
               n_fail = 0;
             }
           else
@@ -458,9 +455,7 @@ namespace igabde
       // its measures from the stopping test (the law's errors are the
       // exact conditions' measures: FCLIB's, balanced at the unit scale),
       // those of the test that accepted it where that was under this law.
-      double     disp;
-      const bool strict =
-        driver.answer(data, law, xr, settings.tolerance, disp);
+      const bool strict = driver.answer(data, law, xr, settings.tolerance);
       // With fclib_stopping the FCLIB error alone is the test (as the
       // stopping test); else the balanced error must meet it too.
       result.converged = (strict || outcome.converged) &&

@@ -336,21 +336,19 @@ namespace igabde
           // running u is not re-synchronised with it: its updates'
           // round-off grows by about one unit of W p per sweep, 1e-13
           // relative after 2 000 sweeps, far below any tolerance.
-          double err, balanced, eq, disp;
+          StopMeasures measures;
           driver.evaluate(data, law, x, u_check, F_check, nullptr);
-          const bool done = driver.stopping_test(data,
+          const bool   done = driver.stopping_test(data,
                                                  law,
                                                  x,
                                                  driver.settings.tolerance,
                                                  false,
-                                                 err,
-                                                 balanced,
-                                                 eq,
-                                                 disp,
+                                                 measures,
                                                  &u_check,
                                                  &F_check);
+          const double err = measures.err, balanced = measures.balanced;
           if (options.offer_best)
-            driver.offer_best(x, balanced, eq);
+            driver.offer_best(x, measures);
           if (driver.settings.log)
             driver.log() << "  nsgs sweep " << sweeps << ": error " << err
                          << ", balanced " << balanced << '\n';
@@ -361,10 +359,7 @@ namespace igabde
                             x,
                             std::move(u_check),
                             std::move(F_check),
-                            err,
-                            balanced,
-                            eq,
-                            disp);
+                            measures);
               outcome.converged = true;
               outcome.reason =
                 "converged in " + std::to_string(sweeps) + " sweeps";

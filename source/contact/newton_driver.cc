@@ -289,20 +289,14 @@ namespace igabde
                          const ContactIterate &x,
                          Vec                 &&u,
                          ContactIterate      &&F,
-                         const double          err,
-                         const double          balanced,
-                         const double          eq,
-                         const double          disp)
+                         const StopMeasures   &measures)
     {
       converged_x       = x;
       accepted.law      = &law;
       accepted.data     = &data;
       accepted.u        = std::move(u);
       accepted.F        = std::move(F);
-      accepted.err      = err;
-      accepted.balanced = balanced;
-      accepted.eq       = eq;
-      accepted.disp     = disp;
+      accepted.measures = measures;
     }
 
 
@@ -320,8 +314,7 @@ namespace igabde
     NewtonDriver::answer(const ContactData    &data,
                          const PairLawModel   &law,
                          const ContactIterate &x,
-                         const double          tolerance,
-                         double               &disp) const
+                         const double          tolerance) const
     {
       if (&x == &converged_x && accepted.law == &law && accepted.data == &data)
         {
@@ -329,25 +322,20 @@ namespace igabde
           result.u.swap(accepted.u);
           residual(data, law, x, result.u, accepted.F, &pieces_scratch);
           record_answer(data, x);
-          result.residual             = accepted.err;
-          result.balanced_residual    = accepted.balanced;
-          result.equilibrium_residual = accepted.eq;
-          disp                        = accepted.disp;
+          result.residual             = accepted.measures.err;
+          result.balanced_residual    = accepted.measures.balanced;
+          result.equilibrium_residual = accepted.measures.eq;
           accepted.law                = nullptr;
           return true;
         }
       const ContactIterate F = finish(data, law, x, false);
-      return stopping_test(data,
-                           law,
-                           x,
-                           tolerance,
-                           false,
-                           result.residual,
-                           result.balanced_residual,
-                           result.equilibrium_residual,
-                           disp,
-                           &result.u,
-                           &F);
+      StopMeasures         measures;
+      const bool           passed =
+        stopping_test(data, law, x, tolerance, false, measures, &result.u, &F);
+      result.residual             = measures.err;
+      result.balanced_residual    = measures.balanced;
+      result.equilibrium_residual = measures.eq;
+      return passed;
     }
 
 
@@ -375,10 +363,9 @@ namespace igabde
 
     void
     NewtonDriver::offer_best(const ContactIterate &x,
-                             const double          err,
-                             const double          eq)
+                             const StopMeasures   &measures)
     {
-      const double score = std::max(err, eq);
+      const double score = std::max(measures.balanced, measures.eq);
       if (!std::isfinite(score))
         return;
       if (!have_best || score < best_score)
@@ -455,18 +442,16 @@ namespace igabde
                                 const ContactIterate &x,
                                 const double          tolerance,
                                 const bool            at_rounding_floor,
-                                double               &err,
-                                double               &balanced,
-                                double               &eq,
-                                double               &disp,
+                                StopMeasures         &measures,
                                 const Vec            *u_at_x,
                                 const ContactIterate *F_at_x) const
     {
       const bool given = (u_at_x != nullptr && F_at_x != nullptr);
       if (!given)
         evaluate(data, law, x, u_scratch, F_scratch, nullptr);
-      const Vec            &u = given ? *u_at_x : u_scratch;
-      const ContactIterate &F = given ? *F_at_x : F_scratch;
+      const Vec            &u         = given ? *u_at_x : u_scratch;
+      const ContactIterate &F         = given ? *F_at_x : F_scratch;
+      auto &[err, balanced, eq, disp] = measures;
       law.errors(data, x.p, u, F.p, err, balanced);
       double absolute;
       eq               = relative_equilibrium_error(data, x.p, absolute);
@@ -578,28 +563,19 @@ namespace igabde
           const bool at_floor =
             local_it > 0 && (theta == 0. || theta > 0.25 * last_theta);
           last_theta = theta;
-          double     err, balanced, eq, disp;
-          const bool done = stopping_test(data,
-                                          law,
-                                          x,
-                                          tolerance,
-                                          at_floor,
-                                          err,
-                                          balanced,
-                                          eq,
-                                          disp,
-                                          &u,
-                                          &F);
+          StopMeasures measures;
+          const bool   done =
+            stopping_test(data, law, x, tolerance, at_floor, measures, &u, &F);
           if (on_original)
-            offer_best(x, balanced, eq);
+            offer_best(x, measures);
 
           ContactIterationRecord rec;
           rec.phase             = phase;
           rec.h_norm            = std::sqrt(2. * theta);
-          rec.residual          = err;
-          rec.balanced_residual = balanced;
+          rec.residual          = measures.err;
+          rec.balanced_residual = measures.balanced;
           if (settings.on_iteration)
-            settings.on_iteration(result.iterations, err);
+            settings.on_iteration(result.iterations, measures.err);
           {
             result.status.resize(pieces.size());
             for (unsigned int c = 0; c < pieces.size(); ++c)
@@ -620,15 +596,7 @@ namespace igabde
               if (settings.log)
                 rec.print(log());
               if (on_original)
-                accept(data,
-                       law,
-                       x,
-                       std::move(u),
-                       std::move(F),
-                       err,
-                       balanced,
-                       eq,
-                       disp);
+                accept(data, law, x, std::move(u), std::move(F), measures);
               return {true, "converged"};
             }
           if (local_it >= budget || out_of_iterations())
@@ -679,7 +647,9 @@ namespace igabde
           // 1e-14, below which it would sink under the rounding of J^T J
           // and leave its null space to noise.
           const double lm_relative =
-            std::isfinite(err) ? std::clamp(err * err, 1e-14, 1e-10) : 1e-10;
+            std::isfinite(measures.err) ?
+              std::clamp(measures.err * measures.err, 1e-14, 1e-10) :
+              1e-10;
           // After a singular Newton matrix (a hyperstatic stack of rigid
           // bodies: every iteration's, KaplasTower's 14) the LU is tried
           // only every fifth iteration until one is regular again: its
@@ -883,15 +853,7 @@ namespace igabde
               // No step reduces theta: at the rounding floor, where the
               // balanced error already meets the tolerance by far, this is
               // convergence.
-              if (stopping_test(data,
-                                law,
-                                x,
-                                tolerance,
-                                true,
-                                err,
-                                balanced,
-                                eq,
-                                disp))
+              if (stopping_test(data, law, x, tolerance, true, measures))
                 {
                   if (on_original)
                     accept(x);

@@ -202,10 +202,10 @@ namespace igabde
           // The stopping test of the B-differentiable equations (with its
           // rounding-floor clause: a balanced residual 1000 times below the
           // tolerance) on the multipliers' answer.
-          double     err, bal, eq, disp;
-          const bool done =
-            driver
-              .stopping_test(data, exact_law, x, tol, true, err, bal, eq, disp);
+          StopMeasures measures;
+          const bool   done =
+            driver.stopping_test(data, exact_law, x, tol, true, measures);
+          const double err = measures.err, bal = measures.balanced;
           if (!result.history.empty())
             {
               result.history.back().residual          = err;

@@ -194,6 +194,21 @@ namespace igabde
 
 
 
+    /** @brief The stopping test's measures of the error at one iterate. */
+    struct StopMeasures
+    {
+      /// The law's reported error (the FCLIB error for the exact law).
+      double err = 0.;
+      /// The law's scale-invariant error.
+      double balanced = 0.;
+      /// The relative equilibrium error of floating bodies.
+      double eq = 0.;
+      /// The componentwise backward error of the displacement equations.
+      double disp = 0.;
+    };
+
+
+
     /** @brief How a Newton phase ended. */
     struct PhaseOutcome
     {
@@ -283,12 +298,11 @@ namespace igabde
              const bool          leave_when_crawling          = false);
 
       /**
-       * @brief The stopping test at x (see the class documentation); the
-       * error measures go to @p err, @p balanced, @p eq (floating-body
-       * equilibrium) and @p disp (displacement equations). @p u_at_x and
-       * @p F_at_x, when given, are u and the law's residual at @p x as
-       * evaluate() returns them (the Newton loop has them: evaluating
-       * again would cost a product with W per iteration).
+       * @brief The stopping test at x (see the class documentation); its
+       * measures go to @p measures. @p u_at_x and @p F_at_x, when given,
+       * are u and the law's residual at @p x as evaluate() returns them
+       * (the Newton loop has them: evaluating again would cost a product
+       * with W per iteration).
        */
       bool
       stopping_test(const ContactData     &data,
@@ -296,10 +310,7 @@ namespace igabde
                     const ContactIterate  &x,
                     const double           tolerance,
                     const bool             at_rounding_floor,
-                    double                &err,
-                    double                &balanced,
-                    double                &eq,
-                    double                &disp,
+                    StopMeasures          &measures,
                     const Eigen::VectorXd *u_at_x = nullptr,
                     const ContactIterate  *F_at_x = nullptr) const;
 
@@ -346,7 +357,7 @@ namespace igabde
        * @brief Records @p x as the answer of the problem (converged_x),
        * accepted by a stopping test on @p data under @p law that had @p u
        * and the law's residual @p F at @p x (taken over) and measured
-       * @p err, @p balanced, @p eq and @p disp: answer() then reads them
+       * @p measures: answer() then reads them
        * instead of evaluating the answer again (a product with W and the
        * law's errors, on a problem of a few contacts a sixth of the
        * solve).
@@ -357,10 +368,7 @@ namespace igabde
              const ContactIterate &x,
              Eigen::VectorXd     &&u,
              ContactIterate      &&F,
-             const double          err,
-             const double          balanced,
-             const double          eq,
-             const double          disp);
+             const StopMeasures   &measures);
 
       /**
        * @brief Records @p x as the answer of the problem (converged_x),
@@ -372,7 +380,7 @@ namespace igabde
       /**
        * @brief finish() and the stopping test at the answer @p x under
        * @p law: its measures into the result (residual, balanced,
-       * equilibrium) and @p disp; returns whether the test passes. Where
+       * equilibrium); returns whether the test passes. Where
        * @p x is converged_x, accepted on @p data under @p law with its
        * evaluation (accept()), that evaluation and its measures are the
        * answer's (the same values: the test passed there).
@@ -381,8 +389,7 @@ namespace igabde
       answer(const ContactData    &data,
              const PairLawModel   &law,
              const ContactIterate &x,
-             const double          tolerance,
-             double               &disp) const;
+             const double          tolerance) const;
 
       /** @brief Whether the iteration budget is used up. */
       bool
@@ -392,9 +399,12 @@ namespace igabde
       bool
       out_of_time() const;
 
-      /** @brief Offers @p x as the answer if its error is the smallest. */
+      /**
+       * @brief Offers @p x as the answer if its error (the larger of the
+       * balanced and the equilibrium one) is the smallest.
+       */
       void
-      offer_best(const ContactIterate &x, const double err, const double eq);
+      offer_best(const ContactIterate &x, const StopMeasures &measures);
 
       /** @brief The stream of the iteration log. */
       std::ostream &
@@ -435,7 +445,7 @@ namespace igabde
         const ContactData  *data = nullptr;
         Eigen::VectorXd     u;
         ContactIterate      F;
-        double              err = 0., balanced = 0., eq = 0., disp = 0.;
+        StopMeasures        measures;
       };
       mutable Accepted accepted;
 
