@@ -246,21 +246,27 @@ namespace igabde
                   dealii::ExcMessage("BNewtonSolver::solve: alpha0 has size " +
                                      std::to_string(start.alpha.size()) +
                                      ", expected " + std::to_string(na)));
-      Result         result;
-      ContactIterate x;
-      x.p     = start.p.size() > 0 ? start.p : Vec::Zero(m);
-      x.w     = start.w.size() > 0 ? start.w : Vec::Zero(op.n_dofs());
-      x.alpha = Vec::Zero(na);
-      if (na > 0)
-        {
-          if (start.alpha.size() > 0)
-            x.alpha = start.alpha;
-          else
-            x.alpha = touching_alpha(data);
-        }
+      Result result;
+      // The start, in the workspace's storage (assigned, not built: the
+      // storage of an earlier solve of the same size is reused).
+      ContactIterate &x = workspace.x;
+      if (start.p.size() > 0)
+        x.p = start.p;
+      else
+        x.p.setZero(m);
+      if (start.w.size() > 0)
+        x.w = start.w;
+      else
+        x.w.setZero(op.n_dofs());
+      if (na > 0 && start.alpha.size() > 0)
+        x.alpha = start.alpha;
+      else if (na > 0)
+        x.alpha = touching_alpha(data);
+      else
+        x.alpha.resize(0);
 
       op.set_proximal_shift(0.);
-      NewtonDriver driver(data, op, settings, result);
+      NewtonDriver driver(data, op, settings, result, &workspace);
       if (settings.log)
         driver.log()
           << "B-Newton on " << (data.name.empty() ? "problem" : data.name)
@@ -281,7 +287,10 @@ namespace igabde
       // a part of the solve's time worth keeping).
       const BdeLaw law = bde_law(op, data, settings.r_factor, settings.radius);
       if (m + na == 0)
-        outcome.converged = true;
+        {
+          outcome.converged = true;
+          driver.accept(x);
+        }
       else
         {
           // Phase 1: Newton with the chosen radius; on a path that
@@ -313,7 +322,7 @@ namespace igabde
           const bool small = data.n_rows() < CondensedOperator::min_sparse_rows;
           // Newton's start: x, or the first sweeps' iterate (copied only
           // where Newton runs).
-          ContactIterate        x_sweeps;
+          ContactIterate       &x_sweeps = workspace.x_sweeps;
           const ContactIterate *x_newton = &x;
           if (settings.gauss_seidel_first_sweeps > 0 &&
               (Ws != nullptr || small) && na == 0 &&

@@ -168,7 +168,8 @@ namespace igabde
       Vec r_p = Vec::Zero(data.n_rows());
       // Directions held by supports on both sides carry no force, as in the
       // solver: a glued one would be a zero row.
-      const std::vector<bool> held = held_pair_directions(data, *this);
+      std::vector<bool> held;
+      held_pair_directions(data, *this, held);
       for (unsigned int i = 0; i < data.n_contacts; ++i)
         for (unsigned int s = 0; s < m; ++s)
           if (closed[i] && !held[m * i + s])

@@ -261,7 +261,8 @@ namespace igabde
       sweeps = 0;
       // With a dense W the running u = W p + q, updated by columns; with a
       // sparse W each pair's u is read from its rows when it is visited.
-      Eigen::VectorXd u;
+      // In the driver's workspace, as the two below.
+      Eigen::VectorXd &u = driver.ws.sweep_u;
       if (Ws == nullptr &&
           W.rows() <= internal::FlexibilityStructure::tiny_rows)
         {
@@ -273,8 +274,8 @@ namespace igabde
       double A[9], c[3], p_new[3];
       // u = W p + q and the law's residual at a check (handed to the driver
       // with the answer they accept, which is then not evaluated again).
-      Eigen::VectorXd u_check;
-      ContactIterate  F_check;
+      Eigen::VectorXd &u_check = driver.ws.check_u;
+      ContactIterate  &F_check = driver.ws.check_F;
       // The error at the last check, and the best one at the last mark (every
       // 100 sweeps).
       double       best         = std::numeric_limits<double>::infinity();

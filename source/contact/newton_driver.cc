@@ -191,15 +191,21 @@ namespace igabde
     // ------------------------------------------------------------------
     // The driver
 
-    std::vector<bool>
-    held_pair_directions(const ContactData &data, const ContactOperator &op)
+    bool
+    held_pair_directions(const ContactData     &data,
+                         const ContactOperator &op,
+                         std::vector<bool>     &held)
     {
-      const unsigned int d = data.n_components;
-      std::vector<bool>  held(data.n_rows(), false);
+      const unsigned int d   = data.n_components;
+      bool               any = false;
+      held.assign(data.n_rows(), false);
       for (unsigned int row = 0; row < data.n_rows(); ++row)
-        held[row] = row % d != 0 && op.pair_row_is_held(row) &&
-                    (data.n_alpha() == 0 || data.G.row(row).isZero());
-      return held;
+        {
+          held[row] = row % d != 0 && op.pair_row_is_held(row) &&
+                      (data.n_alpha() == 0 || data.G.row(row).isZero());
+          any = any || held[row];
+        }
+      return any;
     }
 
 
@@ -220,13 +226,22 @@ namespace igabde
     NewtonDriver::NewtonDriver(const ContactData     &original,
                                ContactOperator       &op,
                                const BNewtonSettings &settings,
-                               ContactSolverResult   &result)
-      : op(op)
+                               ContactSolverResult   &result,
+                               NewtonWorkspace       *workspace)
+      : own(workspace ? std::nullopt : std::make_optional<NewtonWorkspace>())
+      , op(op)
       , settings(settings)
       , result(result)
       , start(std::chrono::steady_clock::now())
-      , held(held_pair_directions(original, op))
-    {}
+      , ws(workspace ? *workspace : *own)
+      , held(ws.held)
+      , any_held(held_pair_directions(original, op, held))
+      , best_x(ws.best_x)
+      , converged_x(ws.converged_x)
+    {
+      // What the buffers hold from an earlier solve is storage only.
+      ws.accepted.law = nullptr;
+    }
 
 
 
@@ -245,7 +260,7 @@ namespace igabde
                          const bool            measures) const
     {
       ContactIterate F;
-      evaluate(data, law, x, result.u, F, &pieces_scratch);
+      evaluate(data, law, x, result.u, F, &ws.pieces_scratch);
       record_answer(data, x);
       if (measures)
         {
@@ -271,9 +286,9 @@ namespace igabde
       result.p     = x.p;
       result.alpha = data.n_alpha() > 0 ? x.alpha : Vec();
       result.w     = x.w;
-      result.status.resize(pieces_scratch.size());
-      for (unsigned int c = 0; c < pieces_scratch.size(); ++c)
-        result.status[c] = pieces_scratch[c].status;
+      result.status.resize(ws.pieces_scratch.size());
+      for (unsigned int c = 0; c < ws.pieces_scratch.size(); ++c)
+        result.status[c] = ws.pieces_scratch[c].status;
       count_status(result);
       result.max_penetration = 0.;
       for (unsigned int c = 0; c < data.n_contacts; ++c)
@@ -291,12 +306,12 @@ namespace igabde
                          ContactIterate      &&F,
                          const StopMeasures   &measures)
     {
-      converged_x       = x;
-      accepted.law      = &law;
-      accepted.data     = &data;
-      accepted.u        = std::move(u);
-      accepted.F        = std::move(F);
-      accepted.measures = measures;
+      converged_x          = x;
+      ws.accepted.law      = &law;
+      ws.accepted.data     = &data;
+      ws.accepted.u        = std::move(u);
+      ws.accepted.F        = std::move(F);
+      ws.accepted.measures = measures;
     }
 
 
@@ -304,8 +319,8 @@ namespace igabde
     void
     NewtonDriver::accept(const ContactIterate &x)
     {
-      converged_x  = x;
-      accepted.law = nullptr;
+      converged_x     = x;
+      ws.accepted.law = nullptr;
     }
 
 
@@ -316,16 +331,17 @@ namespace igabde
                          const ContactIterate &x,
                          const double          tolerance) const
     {
-      if (&x == &converged_x && accepted.law == &law && accepted.data == &data)
+      if (&x == &converged_x && ws.accepted.law == &law &&
+          ws.accepted.data == &data)
         {
           // The pieces (the pairs' status) at x from the kept u.
-          result.u.swap(accepted.u);
-          residual(data, law, x, result.u, accepted.F, &pieces_scratch);
+          result.u.swap(ws.accepted.u);
+          residual(data, law, x, result.u, ws.accepted.F, &ws.pieces_scratch);
           record_answer(data, x);
-          result.residual             = accepted.measures.err;
-          result.balanced_residual    = accepted.measures.balanced;
-          result.equilibrium_residual = accepted.measures.eq;
-          accepted.law                = nullptr;
+          result.residual             = ws.accepted.measures.err;
+          result.balanced_residual    = ws.accepted.measures.balanced;
+          result.equilibrium_residual = ws.accepted.measures.eq;
+          ws.accepted.law             = nullptr;
           return true;
         }
       const ContactIterate F = finish(data, law, x, false);
@@ -405,7 +421,7 @@ namespace igabde
     {
       const unsigned int d = data.n_components, m = data.n_rows(),
                          na = data.n_alpha();
-      for (unsigned int row = 0; row < m; ++row)
+      for (unsigned int row = 0; any_held && row < m; ++row)
         if (held[row])
           u[row] = 0.;
       F.p.resize(m);
@@ -418,7 +434,7 @@ namespace igabde
                      u.data() + c * d,
                      F.p.data() + c * d,
                      pieces ? &(*pieces)[c] : nullptr);
-      for (unsigned int row = 0; row < m; ++row)
+      for (unsigned int row = 0; any_held && row < m; ++row)
         if (held[row])
           {
             F.p[row] = x.p[row];
@@ -448,9 +464,9 @@ namespace igabde
     {
       const bool given = (u_at_x != nullptr && F_at_x != nullptr);
       if (!given)
-        evaluate(data, law, x, u_scratch, F_scratch, nullptr);
-      const Vec            &u         = given ? *u_at_x : u_scratch;
-      const ContactIterate &F         = given ? *F_at_x : F_scratch;
+        evaluate(data, law, x, ws.u_scratch, ws.F_scratch, nullptr);
+      const Vec            &u         = given ? *u_at_x : ws.u_scratch;
+      const ContactIterate &F         = given ? *F_at_x : ws.F_scratch;
       auto &[err, balanced, eq, disp] = measures;
       law.errors(data, x.p, u, F.p, err, balanced);
       double absolute;

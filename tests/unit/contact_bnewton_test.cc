@@ -864,3 +864,107 @@ TEST(ContactBNewton, TheAnswerIsMeasuredAtTheAnswer)
       EXPECT_EQ(r.n_open + r.n_stick + r.n_slip + r.n_closed, c.n_contacts);
     }
 }
+
+
+
+// One solver object solves problems of different sizes in turn, with and
+// without floating bodies and held directions, accepted by the first sweeps
+// and by Newton: its
+// workspace, kept between solves, holds storage only. Each answer meets
+// its closed form where it has one (the floating bodies of the tests
+// above), the contact conditions, and equals a fresh solver's.
+TEST(ContactBNewton, OneSolverSolvesProblemsInTurn)
+{
+  ContactProblem floating_3d;
+  floating_3d.n_components = 3;
+  floating_3d.n_contacts   = 1;
+  floating_3d.W            = Eigen::Matrix3d::Identity() * 0.01;
+  floating_3d.W(0, 1) = floating_3d.W(1, 0) = 0.002;
+  floating_3d.q                             = Eigen::Vector3d(0.02, 0., 0.);
+  floating_3d.mu                            = {0.5};
+  floating_3d.G                             = Eigen::Matrix3d::Identity();
+  floating_3d.b                             = Eigen::Vector3d(50., 10., -5.);
+
+  ContactProblem two_supports;
+  two_supports.n_components = 1;
+  two_supports.n_contacts   = 2;
+  two_supports.W            = 0.0125 * Eigen::MatrixXd::Identity(2, 2);
+  two_supports.q            = Eigen::Vector2d(0.01, 0.03);
+  two_supports.G            = Eigen::MatrixXd::Ones(2, 1);
+  two_supports.b            = Eigen::VectorXd::Constant(1, 50.);
+
+  // Two pairs, the first's first tangential direction held by supports on
+  // both sides (a zero row and column of W, no gap): p = 0 there.
+  Eigen::MatrixXd held_W = random_spd(6, 5);
+  held_W.row(1).setZero();
+  held_W.col(1).setZero();
+  Eigen::VectorXd held_q(6);
+  held_q << -1., 0., 0.1, -0.5, 0.2, -0.1;
+  const ContactProblem held = make_problem(3, held_W, held_q, {0.3, 0.3});
+
+  const ContactProblem one_slip =
+    make_problem(3, random_spd(3, 11), Eigen::Vector3d(-1., -0.8, -0.6), {0.5});
+
+  const unsigned int nc = 20, m = 3 * nc;
+  Eigen::VectorXd    q(m);
+  for (unsigned int k = 0; k < nc; ++k)
+    q.segment<3>(3 * k) << (k % 3 == 0 ? 0.2 : -1.), 0.4 * std::sin(1. + k),
+      0.3 * std::cos(2. + k);
+  const ContactProblem twenty =
+    make_problem(3, random_spd(m, 7), q, std::vector<double>(nc, 0.3));
+
+  const auto same_as_fresh = [](const BNewtonSolver::Result &a,
+                                const BNewtonSolver::Result &b) {
+    EXPECT_EQ(a.converged, b.converged);
+    EXPECT_EQ(a.status, b.status);
+    ASSERT_EQ(a.p.size(), b.p.size());
+    ASSERT_EQ(a.u.size(), b.u.size());
+    ASSERT_EQ(a.alpha.size(), b.alpha.size());
+    EXPECT_LE((a.p - b.p).norm(), 1e-12 * (1. + b.p.norm()));
+    EXPECT_LE((a.u - b.u).norm(), 1e-12 * (1. + b.u.norm()));
+    EXPECT_LE((a.alpha - b.alpha).norm(), 1e-12 * (1. + b.alpha.norm()));
+  };
+  const std::vector<const ContactProblem *> in_turn = {&floating_3d,
+                                                       &held,
+                                                       &one_slip,
+                                                       &twenty,
+                                                       &two_supports,
+                                                       &one_slip,
+                                                       &floating_3d};
+  // With the first sweeps, and Newton alone.
+  BNewtonSolver::Settings newton_only;
+  newton_only.gauss_seidel_first_sweeps = 0;
+  for (const BNewtonSolver::Settings &settings :
+       {BNewtonSolver::Settings(), newton_only})
+    {
+      const BNewtonSolver shared(settings);
+      for (const ContactProblem *problem : in_turn)
+        {
+          SCOPED_TRACE(std::to_string(problem->n_contacts) + " contacts, " +
+                       std::to_string(problem->n_alpha()) +
+                       " floating modes, " +
+                       std::to_string(settings.gauss_seidel_first_sweeps) +
+                       " first sweeps");
+          const BNewtonSolver::Result r = shared.solve(*problem);
+          if (problem->n_alpha() == 0)
+            expect_solution_ok(*problem, r);
+          else
+            EXPECT_TRUE(r.converged) << r.summary();
+          if (problem == &floating_3d)
+            {
+              EXPECT_LE((r.p - problem->b).norm(), 1e-11);
+              EXPECT_LE((r.alpha + problem->W * problem->b + problem->q).norm(),
+                        1e-12);
+            }
+          if (problem == &held)
+            EXPECT_EQ(r.p[1], 0.);
+          if (problem == &two_supports)
+            {
+              EXPECT_NEAR(r.p[0], 25.8, 1e-11);
+              EXPECT_NEAR(r.p[1], 24.2, 1e-11);
+              EXPECT_NEAR(r.alpha[0], -0.3325, 1e-12);
+            }
+          same_as_fresh(r, BNewtonSolver(settings).solve(*problem));
+        }
+    }
+}

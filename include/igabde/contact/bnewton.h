@@ -123,6 +123,9 @@ namespace igabde
      * Otherwise the result says why (Result::diagnosis): iteration limit,
      * stall, line-search failure, non-finite values, time limit. The
      * returned p, u are the best iterate seen, never a diverged one.
+     *
+     * The solver keeps the buffers of a solve between its solves
+     * (NewtonWorkspace): one object serves one solve at a time.
      */
     class BNewtonSolver : public ContactSolver
     {
@@ -188,6 +191,10 @@ namespace igabde
                      const double          r_factor) const;
 
       Settings settings;
+
+      /// The buffers of a solve, kept between solves (NewtonWorkspace):
+      /// one solve at a time per solver object.
+      mutable NewtonWorkspace workspace;
     };
 
   } // namespace contact

@@ -9,6 +9,7 @@
 
 #include <chrono>
 #include <iosfwd>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -209,6 +210,52 @@ namespace igabde
 
 
 
+    /**
+     * @brief The buffers of the Newton driver and of the phases around it,
+     * kept by a solver between its solves and lent to each solve's driver:
+     * on a problem of a few contacts their allocation and release are a
+     * part of the solve's time. A workspace serves one solve at a time;
+     * what it holds between solves is storage, never read as a result
+     * (NewtonDriver's constructor forgets the accepted answer).
+     */
+    struct NewtonWorkspace
+    {
+      /// The solver's start and the first sweeps' iterate.
+      ContactIterate x, x_sweeps;
+      /// The best iterate seen on the original problem, and the accepted
+      /// one (NewtonDriver::best_x, NewtonDriver::converged_x).
+      ContactIterate best_x, converged_x;
+      /// Directions held by supports on both sides (pair rows).
+      std::vector<bool> held;
+      /// u, the law's residual and the pieces of the stopping test and of
+      /// the answer.
+      Eigen::VectorXd u_scratch;
+      ContactIterate  F_scratch;
+      NewtonBlocks    pieces_scratch;
+      /// The Gauss-Seidel phase's running u, and u and the law's residual
+      /// at its checks.
+      Eigen::VectorXd sweep_u, check_u;
+      ContactIterate  check_F;
+
+      /// The evaluation of converged_x by the stopping test that accepted
+      /// it (NewtonDriver::accept(); law null: none). law and data name the
+      /// accepting test's objects by address only, to be compared with
+      /// answer()'s, never read through: a phase's law may be a temporary
+      /// that has ended (phases 2 and 2b), and then no live law has its
+      /// address.
+      struct Accepted
+      {
+        const PairLawModel *law  = nullptr;
+        const ContactData  *data = nullptr;
+        Eigen::VectorXd     u;
+        ContactIterate      F;
+        StopMeasures        measures;
+      };
+      Accepted accepted;
+    };
+
+
+
     /** @brief How a Newton phase ended. */
     struct PhaseOutcome
     {
@@ -260,11 +307,14 @@ namespace igabde
        * @param op The path (its proximal shift may be changed by phases).
        * @param settings Tolerances, limits, line search, log.
        * @param result Receives the history and iteration count.
+       * @param workspace The buffers to use (a solver's, kept between its
+       * solves); null: the driver's own.
        */
       NewtonDriver(const ContactData     &original,
                    ContactOperator       &op,
                    const BNewtonSettings &settings,
-                   ContactSolverResult   &result);
+                   ContactSolverResult   &result,
+                   NewtonWorkspace       *workspace = nullptr);
 
       /**
        * @brief One Newton phase on @p data (the original, or a proximal
@@ -410,45 +460,32 @@ namespace igabde
       std::ostream &
       log() const;
 
+    private:
+      /// The buffers when no workspace is lent.
+      std::optional<NewtonWorkspace> own;
+
+    public:
       ContactOperator                      &op;
       const BNewtonSettings                &settings;
       ContactSolverResult                  &result;
       std::chrono::steady_clock::time_point start;
-      /// Directions held by supports on both sides (pair rows).
-      std::vector<bool> held;
-      bool              have_best  = false;
-      double            best_score = 0.;
+      /// The buffers in use (lent, or own).
+      NewtonWorkspace &ws;
+      /// Directions held by supports on both sides (pair rows), and
+      /// whether there is any.
+      std::vector<bool> &held;
+      bool               any_held;
+      bool               have_best  = false;
+      double             best_score = 0.;
       /// Iterations whose Newton matrix was singular (Levenberg-Marquardt
       /// or steepest-descent steps).
       unsigned int singular_iterations = 0;
       /// Set when a phase asked to leave when its first Newton matrix is
       /// singular ended so (newton()).
-      bool           left_singular_at_start = false;
-      ContactIterate best_x, converged_x;
+      bool            left_singular_at_start = false;
+      ContactIterate &best_x, &converged_x;
 
     private:
-      /// Work space of stopping_test() and finish(), kept between calls
-      /// (on a problem of a few contacts each allocation is a part of the
-      /// solve's time).
-      mutable Eigen::VectorXd u_scratch;
-      mutable ContactIterate  F_scratch;
-      mutable NewtonBlocks    pieces_scratch;
-
-      /// The evaluation of converged_x by the stopping test that accepted
-      /// it (accept(); law null: none). law and data name the accepting
-      /// test's objects by address only, to be compared with answer()'s,
-      /// never read through: a phase's law may be a temporary that has
-      /// ended (phases 2 and 2b), and then no live law has its address.
-      struct Accepted
-      {
-        const PairLawModel *law  = nullptr;
-        const ContactData  *data = nullptr;
-        Eigen::VectorXd     u;
-        ContactIterate      F;
-        StopMeasures        measures;
-      };
-      mutable Accepted accepted;
-
       /// p, alpha, w, the status of every pair (from pieces_scratch) and
       /// the largest penetration (from result.u) of the answer @p x.
       void
@@ -464,9 +501,12 @@ namespace igabde
      * so they carry p = 0 and u = 0 (the supports take whatever friction
      * would carry there). Left to the contact law, a stick piece there is a
      * zero row of the Newton matrix. The rule for every path and solver.
+     * Into @p held (one entry per pair row); returns whether any is held.
      */
-    std::vector<bool>
-    held_pair_directions(const ContactData &data, const ContactOperator &op);
+    bool
+    held_pair_directions(const ContactData     &data,
+                         const ContactOperator &op,
+                         std::vector<bool>     &held);
 
     /** @brief Status counts of @p status into the result. */
     void
