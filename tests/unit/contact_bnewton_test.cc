@@ -49,6 +49,42 @@ namespace
 
 
 
+  // A floating 3D body on one frictional support with all three
+  // translations free (FloatingBody3DStick).
+  ContactProblem
+  floating_body_on_one_support()
+  {
+    ContactProblem problem;
+    problem.n_components = 3;
+    problem.n_contacts   = 1;
+    problem.W            = Eigen::Matrix3d::Identity() * 0.01;
+    problem.W(0, 1) = problem.W(1, 0) = 0.002;
+    problem.q                         = Eigen::Vector3d(0.02, 0., 0.);
+    problem.mu                        = {0.5};
+    problem.G                         = Eigen::Matrix3d::Identity();
+    problem.b                         = Eigen::Vector3d(50., 10., -5.);
+    return problem;
+  }
+
+
+
+  // A floating body on two supports of the same springs, gaps 0.01 and
+  // 0.03, pressed by 50 (FloatingBodyOnSpringsInSeries).
+  ContactProblem
+  floating_body_on_two_supports()
+  {
+    ContactProblem problem;
+    problem.n_components = 1;
+    problem.n_contacts   = 2;
+    problem.W            = 0.0125 * Eigen::MatrixXd::Identity(2, 2);
+    problem.q            = Eigen::Vector2d(0.01, 0.03);
+    problem.G            = Eigen::MatrixXd::Ones(2, 1);
+    problem.b            = Eigen::VectorXd::Constant(1, 50.);
+    return problem;
+  }
+
+
+
   void
   expect_solution_ok(const ContactProblem        &problem,
                      const BNewtonSolver::Result &result)
@@ -415,14 +451,8 @@ TEST(ContactBNewton, FloatingBodyOnSpringsInSeries)
   // W p_2 + 0.03 + alpha = 0, p_1 + p_2 = 50. Then
   // p_1 - p_2 = 0.02 / W = 1.6, p_1 = 25.8, p_2 = 24.2,
   // alpha = -(0.0125 * 25.8 + 0.01) = -0.3325.
-  ContactProblem two;
-  two.n_components               = 1;
-  two.n_contacts                 = 2;
-  two.W                          = 0.0125 * Eigen::MatrixXd::Identity(2, 2);
-  two.q                          = Eigen::Vector2d(0.01, 0.03);
-  two.G                          = Eigen::MatrixXd::Ones(2, 1);
-  two.b                          = Eigen::VectorXd::Constant(1, 50.);
-  const BNewtonSolver::Result r2 = BNewtonSolver().solve(two);
+  const BNewtonSolver::Result r2 =
+    BNewtonSolver().solve(floating_body_on_two_supports());
   EXPECT_TRUE(r2.converged) << r2.summary();
   EXPECT_NEAR(r2.p[0], 25.8, 1e-11);
   EXPECT_NEAR(r2.p[1], 24.2, 1e-11);
@@ -436,16 +466,8 @@ TEST(ContactBNewton, FloatingBodyOnSpringsInSeries)
 // relative displacement: alpha = -(W b + q).
 TEST(ContactBNewton, FloatingBody3DStick)
 {
-  ContactProblem problem;
-  problem.n_components = 3;
-  problem.n_contacts   = 1;
-  problem.W            = Eigen::Matrix3d::Identity() * 0.01;
-  problem.W(0, 1) = problem.W(1, 0)  = 0.002;
-  problem.q                          = Eigen::Vector3d(0.02, 0., 0.);
-  problem.mu                         = {0.5};
-  problem.G                          = Eigen::Matrix3d::Identity();
-  problem.b                          = Eigen::Vector3d(50., 10., -5.);
-  const BNewtonSolver::Result result = BNewtonSolver().solve(problem);
+  const ContactProblem        problem = floating_body_on_one_support();
+  const BNewtonSolver::Result result  = BNewtonSolver().solve(problem);
   EXPECT_TRUE(result.converged) << result.summary();
   EXPECT_LE((result.p - problem.b).norm(), 1e-11);
   const Eigen::Vector3d expected_alpha = -(problem.W * problem.b + problem.q);
@@ -869,29 +891,14 @@ TEST(ContactBNewton, TheAnswerIsMeasuredAtTheAnswer)
 
 // One solver object solves problems of different sizes in turn, with and
 // without floating bodies and held directions, accepted by the first sweeps
-// and by Newton: its
-// workspace, kept between solves, holds storage only. Each answer meets
-// its closed form where it has one (the floating bodies of the tests
-// above), the contact conditions, and equals a fresh solver's.
+// and by Newton: its workspace, kept between solves, holds storage only.
+// Each answer meets its closed form where it has one (the floating bodies
+// of the tests above), the contact conditions, and equals a fresh
+// solver's.
 TEST(ContactBNewton, OneSolverSolvesProblemsInTurn)
 {
-  ContactProblem floating_3d;
-  floating_3d.n_components = 3;
-  floating_3d.n_contacts   = 1;
-  floating_3d.W            = Eigen::Matrix3d::Identity() * 0.01;
-  floating_3d.W(0, 1) = floating_3d.W(1, 0) = 0.002;
-  floating_3d.q                             = Eigen::Vector3d(0.02, 0., 0.);
-  floating_3d.mu                            = {0.5};
-  floating_3d.G                             = Eigen::Matrix3d::Identity();
-  floating_3d.b                             = Eigen::Vector3d(50., 10., -5.);
-
-  ContactProblem two_supports;
-  two_supports.n_components = 1;
-  two_supports.n_contacts   = 2;
-  two_supports.W            = 0.0125 * Eigen::MatrixXd::Identity(2, 2);
-  two_supports.q            = Eigen::Vector2d(0.01, 0.03);
-  two_supports.G            = Eigen::MatrixXd::Ones(2, 1);
-  two_supports.b            = Eigen::VectorXd::Constant(1, 50.);
+  const ContactProblem floating_3d  = floating_body_on_one_support();
+  const ContactProblem two_supports = floating_body_on_two_supports();
 
   // Two pairs, the first's first tangential direction held by supports on
   // both sides (a zero row and column of W, no gap): p = 0 there.
@@ -947,9 +954,13 @@ TEST(ContactBNewton, OneSolverSolvesProblemsInTurn)
                        " first sweeps");
           const BNewtonSolver::Result r = shared.solve(*problem);
           if (problem->n_alpha() == 0)
-            expect_solution_ok(*problem, r);
+            {
+              expect_solution_ok(*problem, r);
+            }
           else
-            EXPECT_TRUE(r.converged) << r.summary();
+            {
+              EXPECT_TRUE(r.converged) << r.summary();
+            }
           if (problem == &floating_3d)
             {
               EXPECT_LE((r.p - problem->b).norm(), 1e-11);
@@ -957,7 +968,9 @@ TEST(ContactBNewton, OneSolverSolvesProblemsInTurn)
                         1e-12);
             }
           if (problem == &held)
-            EXPECT_EQ(r.p[1], 0.);
+            {
+              EXPECT_EQ(r.p[1], 0.);
+            }
           if (problem == &two_supports)
             {
               EXPECT_NEAR(r.p[0], 25.8, 1e-11);
