@@ -970,6 +970,14 @@ TEST(ContactBNewton, OneSolverSolvesProblemsInTurn)
           if (problem == &held)
             {
               EXPECT_EQ(r.p[1], 0.);
+              // The held direction is out of the law (held_pair_directions()),
+              // so Newton's matrix stays regular: left to the law, its stick
+              // piece is a zero row, and the steps Levenberg-Marquardt's.
+              EXPECT_TRUE(settings.gauss_seidel_first_sweeps > 0 ||
+                          !r.history.empty());
+              for (const ContactIterationRecord &rec : r.history)
+                EXPECT_EQ(rec.note.find("lm"), std::string::npos)
+                  << rec.iteration;
             }
           if (problem == &two_supports)
             {
