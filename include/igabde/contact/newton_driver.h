@@ -461,7 +461,8 @@ namespace igabde
       log() const;
 
     private:
-      /// The buffers when no workspace is lent.
+      /// The buffers when no workspace is lent. Declared before ws, which
+      /// refers to it: members are initialised in declaration order.
       std::optional<NewtonWorkspace> own;
 
     public:
