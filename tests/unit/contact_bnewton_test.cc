@@ -815,6 +815,23 @@ TEST(ContactBNewton, SparseAndDenseLevenbergMarquardtStepsAgree)
 // References written here: u = W p + q, and FCLIB's measure
 // |p - P_K(p - (u + mu |u_t| e_n))| / |q| with the cone's projection in
 // closed form.
+namespace
+{
+  /// Gaps of @p n_contacts 3D pairs: every third pair open (q_n = 0.2),
+  /// the others pressed (q_n = -1), tangential parts of either sign.
+  Eigen::VectorXd
+  mixed_gaps(const unsigned int n_contacts)
+  {
+    Eigen::VectorXd q(3 * n_contacts);
+    for (unsigned int k = 0; k < n_contacts; ++k)
+      q.segment<3>(3 * k) << (k % 3 == 0 ? 0.2 : -1.), 0.4 * std::sin(1. + k),
+        0.3 * std::cos(2. + k);
+    return q;
+  }
+} // namespace
+
+
+
 TEST(ContactBNewton, TheAnswerIsMeasuredAtTheAnswer)
 {
   const auto fclib_measure = [](const ContactProblem  &problem,
@@ -858,11 +875,8 @@ TEST(ContactBNewton, TheAnswerIsMeasuredAtTheAnswer)
       Eigen::MatrixXd    W =
         Eigen::MatrixXd::Identity(m, m) +
         c.coupling * (random_spd(m, 7) - Eigen::MatrixXd::Identity(m, m));
-      Eigen::VectorXd q(m);
-      for (unsigned int k = 0; k < c.n_contacts; ++k)
-        q.segment<3>(3 * k) << (k % 3 == 0 ? 0.2 : -1.), 0.4 * std::sin(1. + k),
-          0.3 * std::cos(2. + k);
-      const ContactProblem problem =
+      const Eigen::VectorXd q = mixed_gaps(c.n_contacts);
+      const ContactProblem  problem =
         make_problem(3, W, q, std::vector<double>(c.n_contacts, 0.3));
       BNewtonSolver::Settings settings;
       // A tolerance the answers' errors meet well above rounding, so that
@@ -912,13 +926,11 @@ TEST(ContactBNewton, OneSolverSolvesProblemsInTurn)
   const ContactProblem one_slip =
     make_problem(3, random_spd(3, 11), Eigen::Vector3d(-1., -0.8, -0.6), {0.5});
 
-  const unsigned int nc = 20, m = 3 * nc;
-  Eigen::VectorXd    q(m);
-  for (unsigned int k = 0; k < nc; ++k)
-    q.segment<3>(3 * k) << (k % 3 == 0 ? 0.2 : -1.), 0.4 * std::sin(1. + k),
-      0.3 * std::cos(2. + k);
-  const ContactProblem twenty =
-    make_problem(3, random_spd(m, 7), q, std::vector<double>(nc, 0.3));
+  const unsigned int   nc     = 20;
+  const ContactProblem twenty = make_problem(3,
+                                             random_spd(3 * nc, 7),
+                                             mixed_gaps(nc),
+                                             std::vector<double>(nc, 0.3));
 
   const auto same_as_fresh = [](const BNewtonSolver::Result &a,
                                 const BNewtonSolver::Result &b) {
