@@ -85,6 +85,20 @@ namespace
 
 
 
+  /// Gaps of @p n_contacts 3D pairs: every third pair open (q_n = 0.2),
+  /// the others pressed (q_n = -1), tangential parts of either sign.
+  Eigen::VectorXd
+  mixed_gaps(const unsigned int n_contacts)
+  {
+    Eigen::VectorXd q(3 * n_contacts);
+    for (unsigned int k = 0; k < n_contacts; ++k)
+      q.segment<3>(3 * k) << (k % 3 == 0 ? 0.2 : -1.), 0.4 * std::sin(1. + k),
+        0.3 * std::cos(2. + k);
+    return q;
+  }
+
+
+
   void
   expect_solution_ok(const ContactProblem        &problem,
                      const BNewtonSolver::Result &result)
@@ -815,23 +829,6 @@ TEST(ContactBNewton, SparseAndDenseLevenbergMarquardtStepsAgree)
 // References written here: u = W p + q, and FCLIB's measure
 // |p - P_K(p - (u + mu |u_t| e_n))| / |q| with the cone's projection in
 // closed form.
-namespace
-{
-  /// Gaps of @p n_contacts 3D pairs: every third pair open (q_n = 0.2),
-  /// the others pressed (q_n = -1), tangential parts of either sign.
-  Eigen::VectorXd
-  mixed_gaps(const unsigned int n_contacts)
-  {
-    Eigen::VectorXd q(3 * n_contacts);
-    for (unsigned int k = 0; k < n_contacts; ++k)
-      q.segment<3>(3 * k) << (k % 3 == 0 ? 0.2 : -1.), 0.4 * std::sin(1. + k),
-        0.3 * std::cos(2. + k);
-    return q;
-  }
-} // namespace
-
-
-
 TEST(ContactBNewton, TheAnswerIsMeasuredAtTheAnswer)
 {
   const auto fclib_measure = [](const ContactProblem  &problem,
