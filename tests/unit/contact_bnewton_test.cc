@@ -11,6 +11,9 @@
 #include <cmath>
 #include <random>
 #include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
 
 using namespace igabde::contact;
 
@@ -99,6 +102,20 @@ namespace
 
 
 
+  /// The two ways the closed forms below are solved: the default (nonsmooth
+  /// Gauss-Seidel sweeps first, which solve a one-pair problem outright)
+  /// and Newton alone (the sweeps off), so that each closed form tests the
+  /// B-Newton phases and not only the sweeps.
+  std::vector<std::pair<std::string, BNewtonSolver::Settings>>
+  sweeps_and_newton_only(BNewtonSolver::Settings settings = {})
+  {
+    BNewtonSolver::Settings newton_only   = settings;
+    newton_only.gauss_seidel_first_sweeps = 0;
+    return {{"sweeps first", settings}, {"Newton only", newton_only}};
+  }
+
+
+
   void
   expect_solution_ok(const ContactProblem        &problem,
                      const BNewtonSolver::Result &result)
@@ -116,33 +133,48 @@ namespace
 // One 3D pair with a positive gap: p = 0, u = q, open.
 TEST(ContactBNewton, SingleContactOpen)
 {
-  const ContactProblem        problem = make_problem(3,
+  const ContactProblem problem = make_problem(3,
                                               Eigen::Matrix3d::Identity(),
                                               Eigen::Vector3d(1., 0.2, 0.),
                                               {0.5});
-  const BNewtonSolver::Result result  = BNewtonSolver().solve(problem);
-  expect_solution_ok(problem, result);
-  EXPECT_EQ(result.p.norm(), 0.);
-  EXPECT_EQ(result.status[0], ContactStatus::open);
-  EXPECT_EQ(result.n_open, 1u);
+  for (const auto &[phases, settings] : sweeps_and_newton_only())
+    {
+      SCOPED_TRACE(phases);
+      const BNewtonSolver::Result result =
+        BNewtonSolver(settings).solve(problem);
+      expect_solution_ok(problem, result);
+      EXPECT_EQ(result.p.norm(), 0.);
+      EXPECT_EQ(result.status[0], ContactStatus::open);
+      EXPECT_EQ(result.n_open, 1u);
+    }
 }
 
 
 
 // W = I, q = (-1, -0.1, 0), mu = 0.5. Normal: u_n = p_n - 1 = 0, p_n = 1.
 // Stick: u_t = p_t + q_t = 0, p_t = (0.1, 0), |p_t| = 0.1 < mu p_n = 0.5.
+// Newton alone starts at p = 0, where the pair is not solved: it iterates.
 TEST(ContactBNewton, SingleContactStick)
 {
-  const ContactProblem        problem = make_problem(3,
+  const ContactProblem problem = make_problem(3,
                                               Eigen::Matrix3d::Identity(),
                                               Eigen::Vector3d(-1., -0.1, 0.),
                                               {0.5});
-  const BNewtonSolver::Result result  = BNewtonSolver().solve(problem);
-  expect_solution_ok(problem, result);
-  EXPECT_NEAR(result.p[0], 1., 1e-12);
-  EXPECT_NEAR(result.p[1], 0.1, 1e-12);
-  EXPECT_NEAR(result.p[2], 0., 1e-12);
-  EXPECT_EQ(result.status[0], ContactStatus::stick);
+  for (const auto &[phases, settings] : sweeps_and_newton_only())
+    {
+      SCOPED_TRACE(phases);
+      const BNewtonSolver::Result result =
+        BNewtonSolver(settings).solve(problem);
+      expect_solution_ok(problem, result);
+      EXPECT_NEAR(result.p[0], 1., 1e-12);
+      EXPECT_NEAR(result.p[1], 0.1, 1e-12);
+      EXPECT_NEAR(result.p[2], 0., 1e-12);
+      EXPECT_EQ(result.status[0], ContactStatus::stick);
+      if (settings.gauss_seidel_first_sweeps == 0)
+        {
+          EXPECT_GE(result.iterations, 1u);
+        }
+    }
 }
 
 
@@ -159,16 +191,24 @@ TEST(ContactBNewton, SingleContactSlip3D)
   for (const FrictionRadius radius :
        {FrictionRadius::christensen_pang, FrictionRadius::alart_curnier})
     {
-      BNewtonSolver::Settings settings;
-      settings.radius = radius;
-      const BNewtonSolver::Result result =
-        BNewtonSolver(settings).solve(problem);
-      expect_solution_ok(problem, result);
-      EXPECT_NEAR(result.p[0], 1., 1e-12);
-      EXPECT_NEAR(result.p[1], 0.4, 1e-12);
-      EXPECT_NEAR(result.p[2], 0.3, 1e-12);
-      EXPECT_NEAR(result.u[1], -0.4, 1e-12);
-      EXPECT_EQ(result.status[0], ContactStatus::slip);
+      BNewtonSolver::Settings with_radius;
+      with_radius.radius = radius;
+      for (const auto &[phases, settings] : sweeps_and_newton_only(with_radius))
+        {
+          SCOPED_TRACE(phases);
+          const BNewtonSolver::Result result =
+            BNewtonSolver(settings).solve(problem);
+          expect_solution_ok(problem, result);
+          EXPECT_NEAR(result.p[0], 1., 1e-12);
+          EXPECT_NEAR(result.p[1], 0.4, 1e-12);
+          EXPECT_NEAR(result.p[2], 0.3, 1e-12);
+          EXPECT_NEAR(result.u[1], -0.4, 1e-12);
+          EXPECT_EQ(result.status[0], ContactStatus::slip);
+          if (settings.gauss_seidel_first_sweeps == 0)
+            {
+              EXPECT_GE(result.iterations, 1u);
+            }
+        }
     }
 }
 
@@ -183,13 +223,22 @@ TEST(ContactBNewton, SingleContactSlip2D)
   W << 2., 0.5, 0.5, 1.;
   const ContactProblem problem =
     make_problem(2, W, Eigen::Vector2d(-2., -3.), {0.3});
-  const BNewtonSolver::Result result = BNewtonSolver().solve(problem);
-  expect_solution_ok(problem, result);
-  const double pn = 2. / 2.15;
-  EXPECT_NEAR(result.p[0], pn, 1e-12);
-  EXPECT_NEAR(result.p[1], 0.3 * pn, 1e-12);
-  EXPECT_NEAR(result.u[1], 0.8 * pn - 3., 1e-12);
-  EXPECT_EQ(result.status[0], ContactStatus::slip);
+  for (const auto &[phases, settings] : sweeps_and_newton_only())
+    {
+      SCOPED_TRACE(phases);
+      const BNewtonSolver::Result result =
+        BNewtonSolver(settings).solve(problem);
+      expect_solution_ok(problem, result);
+      const double pn = 2. / 2.15;
+      EXPECT_NEAR(result.p[0], pn, 1e-12);
+      EXPECT_NEAR(result.p[1], 0.3 * pn, 1e-12);
+      EXPECT_NEAR(result.u[1], 0.8 * pn - 3., 1e-12);
+      EXPECT_EQ(result.status[0], ContactStatus::slip);
+      if (settings.gauss_seidel_first_sweeps == 0)
+        {
+          EXPECT_GE(result.iterations, 1u);
+        }
+    }
 }
 
 
@@ -204,14 +253,23 @@ TEST(ContactBNewton, FrictionlessNormalOnly)
   {
     const ContactProblem problem =
       make_problem(1, W, Eigen::Vector2d(-1., 0.5), {});
-    const BNewtonSolver::Result result = BNewtonSolver().solve(problem);
-    expect_solution_ok(problem, result);
-    EXPECT_EQ(result.p.size(), 2);
-    EXPECT_NEAR(result.p[0], 0.5, 1e-14);
-    EXPECT_EQ(result.p[1], 0.);
-    EXPECT_NEAR(result.u[1], 1., 1e-14);
-    EXPECT_EQ(result.status[0], ContactStatus::closed);
-    EXPECT_EQ(result.status[1], ContactStatus::open);
+    for (const auto &[phases, settings] : sweeps_and_newton_only())
+      {
+        SCOPED_TRACE(phases);
+        const BNewtonSolver::Result result =
+          BNewtonSolver(settings).solve(problem);
+        expect_solution_ok(problem, result);
+        EXPECT_EQ(result.p.size(), 2);
+        EXPECT_NEAR(result.p[0], 0.5, 1e-14);
+        EXPECT_EQ(result.p[1], 0.);
+        EXPECT_NEAR(result.u[1], 1., 1e-14);
+        EXPECT_EQ(result.status[0], ContactStatus::closed);
+        EXPECT_EQ(result.status[1], ContactStatus::open);
+        if (settings.gauss_seidel_first_sweeps == 0)
+          {
+            EXPECT_GE(result.iterations, 1u);
+          }
+      }
   }
   {
     // Both closed: p* = (1/3, 1/3). Newton alone ends exactly on this
@@ -243,32 +301,44 @@ TEST(ContactBNewton, FrictionlessNormalOnly)
 // zero force); the tie rules must not move it.
 TEST(ContactBNewton, GrazingTies)
 {
-  for (const double qt : {0., -0.1})
+  for (const auto &[phases, settings] : sweeps_and_newton_only())
     {
-      const ContactProblem        problem = make_problem(3,
-                                                  Eigen::Matrix3d::Identity(),
-                                                  Eigen::Vector3d(0., qt, 0.),
-                                                  {0.5});
+      SCOPED_TRACE(phases);
+      for (const double qt : {0., -0.1})
+        {
+          const ContactProblem problem =
+            make_problem(3,
+                         Eigen::Matrix3d::Identity(),
+                         Eigen::Vector3d(0., qt, 0.),
+                         {0.5});
+          const BNewtonSolver::Result result =
+            BNewtonSolver(settings).solve(problem, Eigen::VectorXd());
+          EXPECT_TRUE(result.converged) << result.summary();
+          EXPECT_EQ(result.p.norm(), 0.);
+          EXPECT_EQ(result.status[0], ContactStatus::open);
+          const ConditionReport report =
+            check_contact_conditions(problem, result.p, result.u, 1e-8);
+          EXPECT_TRUE(report.passed()) << report.first_violation();
+        }
+      // A grazing pair next to a closed one: W = I (3 pairs), pair 1
+      // grazing. Newton alone iterates on the closed pair with the grazing
+      // one tied at every iteration.
+      Eigen::VectorXd q(9);
+      q << -1., -0.3, 0.2, 0., 0., 0., 0.5, 0., 0.;
+      const ContactProblem problem =
+        make_problem(3, Eigen::MatrixXd::Identity(9, 9), q, {0.5, 0.5, 0.5});
       const BNewtonSolver::Result result =
-        BNewtonSolver().solve(problem, Eigen::VectorXd());
-      EXPECT_TRUE(result.converged) << result.summary();
-      EXPECT_EQ(result.p.norm(), 0.);
-      EXPECT_EQ(result.status[0], ContactStatus::open);
-      const ConditionReport report =
-        check_contact_conditions(problem, result.p, result.u, 1e-8);
-      EXPECT_TRUE(report.passed()) << report.first_violation();
+        BNewtonSolver(settings).solve(problem);
+      expect_solution_ok(problem, result);
+      EXPECT_NEAR(result.p[0], 1., 1e-14);
+      EXPECT_NEAR(result.p[1], 0.3, 1e-14);
+      EXPECT_NEAR(result.p[2], -0.2, 1e-14);
+      EXPECT_EQ(result.p.segment(3, 6).norm(), 0.);
+      if (settings.gauss_seidel_first_sweeps == 0)
+        {
+          EXPECT_GE(result.iterations, 1u);
+        }
     }
-  // A grazing pair next to a closed one: W = I (3 pairs), pair 1 grazing.
-  Eigen::VectorXd q(9);
-  q << -1., -0.3, 0.2, 0., 0., 0., 0.5, 0., 0.;
-  const ContactProblem problem =
-    make_problem(3, Eigen::MatrixXd::Identity(9, 9), q, {0.5, 0.5, 0.5});
-  const BNewtonSolver::Result result = BNewtonSolver().solve(problem);
-  expect_solution_ok(problem, result);
-  EXPECT_NEAR(result.p[0], 1., 1e-14);
-  EXPECT_NEAR(result.p[1], 0.3, 1e-14);
-  EXPECT_NEAR(result.p[2], -0.2, 1e-14);
-  EXPECT_EQ(result.p.segment(3, 6).norm(), 0.);
 }
 
 
