@@ -877,6 +877,21 @@ namespace igabde
 
 
     template <int dim>
+    bool
+    Body<dim>::free_translation(const unsigned int c) const
+    {
+      AssertIndexRange(c, dim);
+      // The free modes' coefficients are orthonormal: the translation along
+      // c lies in their span when its projection on them has unit length.
+      double projection = 0.;
+      for (const auto &v : rigid_mode_coefficients)
+        projection += v[c] * v[c];
+      return projection > 1. - 1e-8;
+    }
+
+
+
+    template <int dim>
     double
     Body<dim>::rigid_mode_value(const unsigned int            mode,
                                 const types::global_dof_index i) const

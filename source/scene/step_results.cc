@@ -141,12 +141,22 @@ namespace igabde
       if (stage != nullptr)
         {
           record.total_contact_force = to_vector(on_body1);
+          // Along a translation the supports leave free, the resultant
+          // balances the load (the equilibrium of a body held by contact
+          // alone): named, not printed as if it were a result.
           log << "  total contact force on Body 1:" << std::setprecision(6);
+          std::string balanced;
           for (unsigned int c = 0; c < dim; ++c)
-            log << ' '
-                << (std::abs(on_body1[c]) > 1e-10 * on_body1.norm() ?
-                      on_body1[c] :
-                      0.);
+            if (bodies[0]->free_translation(c))
+              balanced += std::string(" ") + "xyz"[c];
+            else
+              log << ' '
+                  << (std::abs(on_body1[c]) > 1e-10 * on_body1.norm() ?
+                        on_body1[c] :
+                        0.);
+          if (!balanced.empty())
+            log << " (" << balanced.substr(1)
+                << ": held by contact alone, balances the load)";
           log << std::endl;
           if (bodies.size() == 1)
             {

@@ -544,6 +544,15 @@ namespace igabde
       free_rigid_mode_names() const;
 
       /**
+       * @brief Whether the translation along coordinate @p c is among the
+       * free rigid modes. The body's contact resultant along @p c then
+       * balances its load by the equilibrium of a body held there by
+       * contact alone: it is not a result of the solve.
+       */
+      bool
+      free_translation(const unsigned int c) const;
+
+      /**
        * @brief Names of the rigid modes held by BodyDescription's
        * hold_rotation_face (removed from free_rigid_modes(); empty when
        * nothing is held or the supports hold those rotations already).
