@@ -88,22 +88,31 @@ namespace
       EXPECT_LE(std::abs(f[c]), solver_tolerance * std::abs(f.back()));
   }
 
-  /// Coulomb's bound at every step: |F_t| <= mu |F_n| (normal along the
-  /// last coordinate).
+  /// The block slides as a whole in the steps @p sliding (0-based) of
+  /// @p run: no pair sticks there, and since every pair slips the same way
+  /// with p_t = -mu p_n s (s = +1 or -1 the slip direction), the
+  /// resultant lies on Coulomb's cone, F_t = -s mu F_n (normal along the
+  /// last coordinate, 2D), to the solver's tolerance. That the resultant
+  /// never leaves the cone needs no check of its own: it follows from the
+  /// per-pair law, which expect_converged() holds at every step.
   void
-  expect_within_cone(const SceneRun &run, const double mu)
+  expect_sliding_on_the_cone(const SceneRun                  &run,
+                             const double                     mu,
+                             const std::vector<unsigned int> &sliding,
+                             const double                     slip_direction)
   {
-    for (const auto &step : run.summary.at("load_steps"))
+    const auto &steps = run.summary.at("load_steps");
+    for (const unsigned int s : sliding)
       {
+        ASSERT_LT(s, steps.size());
+        EXPECT_EQ(steps[s].at("n_stick").get<int>(), 0) << "step " << s + 1;
         const auto f =
-          step.at("total_contact_force").get<std::vector<double>>();
-        double t = 0.;
-        for (unsigned int c = 0; c + 1 < f.size(); ++c)
-          t += f[c] * f[c];
-        // Relative to the normal force also for mu = 0, where the
-        // tangential force is zero to the solver's tolerance.
-        EXPECT_LE(std::sqrt(t), (mu + solver_tolerance) * std::abs(f.back()))
-          << "step " << step.at("step");
+          steps[s].at("total_contact_force").get<std::vector<double>>();
+        ASSERT_EQ(f.size(), 2u);
+        EXPECT_NEAR(f[0],
+                    -slip_direction * mu * std::abs(f[1]),
+                    solver_tolerance * mu * std::abs(f[1]))
+          << "step " << s + 1;
       }
   }
 
@@ -161,7 +170,6 @@ TEST(HardCase, ContactPatchWithStiffnessContrast)
               contrast + "--set 'Contact/Algorithm=augmented-lagrange'");
   expect_converged(bde);
   expect_converged(al);
-  expect_within_cone(bde, 2.);
   expect_forces_scale(bde, al, 1.);
 }
 
@@ -389,27 +397,41 @@ TEST(HardCase, NewtonResidualExactlyZeroAtTheRoundingFloorConverges)
 
 
 
-TEST(HardCase, HighFrictionReversalAndInitialGapRespectCoulomb)
+TEST(HardCase, HighFrictionTipsTheBlockAndSlidingStaysOnTheCone)
 {
+  // V4's block (E = 1000, nu = 0.3: G = 385, width w = 1, height h = 0.5)
+  // under the pressure 10, N = 10, with its top moved by 0.05 in x. At
+  // mu = 0.4 it slides as a whole once the top has moved past what a
+  // uniform shear of mu N needs, mu 10 0.5 / G = 0.005, so at the last step,
+  // and the friction force then opposes the slip (+x) on the cone. At
+  // mu = 2 it cannot slide: the moment of the friction force about the toe
+  // reaches the pressure's, F_t h = N w / 2, at F_t = 10 < mu N = 20, so
+  // the block tips: the heel lifts (pairs open) and the toe sticks.
   {
     SCOPED_TRACE("V4, mu = 2");
     const SceneRun run = run_scene("v4mu2",
                                    "v4-sliding-block.prm",
                                    "--set 'Contact/Friction coefficient=2'");
     expect_converged(run);
-    expect_within_cone(run, 2.);
+    const auto &last = run.summary.at("load_steps").back();
+    EXPECT_GT(last.at("n_open").get<int>(), 0);
+    EXPECT_GT(last.at("n_stick").get<int>(), 0);
   }
   {
+    // The gap closes under the pressure before the top moves.
     SCOPED_TRACE("V4, initial gap 1e-3");
     const SceneRun run = run_scene("v4gap",
                                    "v4-sliding-block.prm",
                                    "--set 'Body 2/Plane point=0, -0.001'");
     expect_converged(run);
-    expect_within_cone(run, 0.4);
+    expect_sliding_on_the_cone(run, 0.4, {10}, 1.);
   }
   {
-    // Top displaced to +0.5 of its final value, back to 0 and to -0.5,
-    // then half the pressure: the friction force follows the slip back.
+    // Top displaced to +0.5 of its final value (0.025, past the 0.005 that
+    // sliding needs at mu = 0.4), to +1, back to 0 and to -0.5, then half
+    // the pressure: the block slides forward at steps 2 and 3, back at
+    // steps 4 and 5 (0.05 of travel back from +0.05 against the 0.01 that
+    // reversing the shear needs) and after the pressure is halved.
     SCOPED_TRACE("V4, reversal and unloading");
     const SceneRun run =
       run_scene("v4reversal",
@@ -418,14 +440,9 @@ TEST(HardCase, HighFrictionReversalAndInitialGapRespectCoulomb)
                 "--set 'Load path/Displacement factors=0, 0.5, 1, 0, -0.5, "
                 "-0.5'");
     expect_converged(run);
-    expect_within_cone(run, 0.4);
-    const auto &steps = run.summary.at("load_steps");
-    ASSERT_EQ(steps.size(), 6u);
-    const double forward =
-      steps[2].at("total_contact_force").get<std::vector<double>>()[0];
-    const double back =
-      steps[4].at("total_contact_force").get<std::vector<double>>()[0];
-    EXPECT_LT(forward * back, 0.) << "the friction force did not reverse";
+    ASSERT_EQ(run.summary.at("load_steps").size(), 6u);
+    expect_sliding_on_the_cone(run, 0.4, {1, 2}, 1.);
+    expect_sliding_on_the_cone(run, 0.4, {3, 4, 5}, -1.);
   }
 }
 
@@ -753,9 +770,9 @@ TEST(HardCase, BeamScenesThroughTheHardList)
 {
   // B1 (flat contact z = 1, coarse 12x2x2 per beam) and B2 (curved
   // contact, 2x2x2 per beam) through the list of hard cases: each
-  // converges with the exact conditions met, friction inside Coulomb's cone
-  // (B1, whose contact normal is z), forces proportional to the load with
-  // the same contact sets, the same forces whatever the BDE radius.
+  // converges with the exact conditions met at every pair (friction inside
+  // Coulomb's cone among them), forces proportional to the load with the
+  // same contact sets, the same forces whatever the BDE radius.
   const std::string b2_coarse = "--set 'Body 1/Subdivisions=2, 2, 2' "
                                 "--set 'Body 2/Subdivisions=2, 2, 2' ";
   struct Scene
@@ -767,7 +784,6 @@ TEST(HardCase, BeamScenesThroughTheHardList)
         Scene{"b2", "b2-curved-beams.prm", b2_coarse, "0, 0, 6", "0, 1, 6"}})
     {
       SCOPED_TRACE(scene.name);
-      const bool     flat = (scene.name == "b1");
       const SceneRun base = run_scene(scene.name, scene.file, scene.coarse);
       expect_converged(base);
 
@@ -780,8 +796,6 @@ TEST(HardCase, BeamScenesThroughTheHardList)
                       scene.coarse +
                         "--set 'Contact/Friction coefficient=" + mu + "'");
           expect_converged(run);
-          if (flat)
-            expect_within_cone(run, std::stod(mu));
         }
       {
         SCOPED_TRACE("E2/E1 = 1e6, nu = 0.49");
@@ -826,7 +840,7 @@ TEST(HardCase, BeamScenesThroughTheHardList)
         }
       {
         // Half the load again: the pairs that slipped under the full load
-        // hold or slip back; friction stays inside the cone.
+        // hold or slip back.
         SCOPED_TRACE("unloading step");
         const SceneRun run =
           run_scene(scene.name + "unload",
@@ -834,8 +848,6 @@ TEST(HardCase, BeamScenesThroughTheHardList)
                     scene.coarse + "--set 'Load path/Load factors=1, 0.5'");
         expect_converged(run);
         ASSERT_EQ(run.summary.at("load_steps").size(), 2u);
-        if (flat)
-          expect_within_cone(run, 0.5);
       }
     }
 
@@ -851,7 +863,6 @@ TEST(HardCase, BeamScenesThroughTheHardList)
                                  "-1e5, -1e5, -1e5; 0, 1, 2.00001 : -1e5, "
                                  "-1e5, -1e5'");
   expect_converged(gap);
-  expect_within_cone(gap, 0.5);
   const auto &step = gap.summary.at("load_steps").back();
   EXPECT_GT(step.at("n_open").get<int>(), 0);
   EXPECT_GT(step.at("n_stick").get<int>() + step.at("n_slip").get<int>(), 0);
