@@ -5,7 +5,7 @@
 //
 // thp:always asks the kernel for transparent huge pages (2 MiB) for every
 // large extent: the sparse factorisation and the dense contact blocks touch
-// hundreds of MiB once, and with 4 KiB pages a third of the B2 8x16x8 run
+// hundreds of MiB once, and with 4 KiB pages much of the B2 8x16x8 run
 // went to page faults (doc/performance.md). The kernel's own setting still
 // decides ('never' turns it off); MALLOC_CONF in the environment overrides
 // these options (e.g. MALLOC_CONF=thp:default).

@@ -59,7 +59,7 @@ namespace igabde
       // The arenas past the automatic ones: the one for allocations of
       // 8 MiB and more (opt.oversize_threshold), which purges what is
       // freed at once. The automatic arenas keep their gradual decay:
-      // retaining their pages too cost about 6 % of peak memory on the
+      // retaining their pages too raised the peak memory on the
       // contact-patch family's full path and gained nothing.
       const int first = large_block_arena();
       if (first < 0)

@@ -303,21 +303,22 @@ namespace igabde
           // Newton factorisation; where they do not solve the problem, the
           // Newton phases start from the start as without them (from the
           // sweeps' iterate, Capsules-i122-1617 and spheres-in-a-box did
-          // not converge in 300 iterations, 2026-11-28). Up to a thousand
-          // sweeps where the local problems are solved in closed form (2D,
-          // frictionless), ten in 3D with friction (Settings).
+          // not converge in 300 iterations; doc/contact-solver.md). Up to a
+          // thousand sweeps where the local problems are solved in closed
+          // form (2D, frictionless), ten in 3D with friction (Settings).
           // Ten sweeps where W is small (fewer than min_sparse_rows rows: a
-          // few contacts, where a Newton iteration costs a few sweeps; FC2D_
-          // SliderCrankLagrangian: 367 sweeps, 24 us, against 1 sweep and 1
-          // Newton iteration, 4 us): a problem of one contact is its own
-          // local problem, solved exactly by one sweep, and on a few weakly
-          // coupled contacts one sweep solves it too (CubeH8, Confeti-
-          // ex13-4contact, FC3D_Example1: 2-3 Newton iterations, 3-7 us,
-          // against one sweep, 2-3 us), a few more sweeps on others
-          // (Rover4396: 4 sweeps, 4 us, against 1 sweep and 3 Newton
-          // iterations, 8 us; 2026-11-29); where they do not, Newton starts
-          // from the sweeps' iterate, nearer the solution than the start
-          // (the Rover problems, 4-5 contacts: 5-8 iterations -> 2-3).
+          // few contacts, where a Newton iteration costs a few sweeps; with
+          // a budget of a thousand, FC2D_SliderCrankLagrangian's 367 sweeps
+          // cost more than 1 sweep and 1 Newton iteration): a problem of
+          // one contact is its own local problem, solved exactly by one
+          // sweep, and on a few weakly coupled contacts one sweep solves it
+          // too, in less time than Newton's 2-3 iterations (CubeH8,
+          // Confeti-ex13-4contact, FC3D_Example1), a few more sweeps on
+          // others (Rover4396: 4 sweeps, in less time than 1 sweep and 3
+          // Newton iterations; doc/contact-solver.md); where they do not,
+          // Newton starts from the sweeps' iterate, nearer the solution
+          // than the start (the Rover problems, 4-5 contacts: 5-8
+          // iterations -> 2-3).
           const auto *Ws   = op.sparse_flexibility(data);
           const bool small = data.n_rows() < CondensedOperator::min_sparse_rows;
           // Newton's start: x, or the first sweeps' iterate (copied only
@@ -420,10 +421,10 @@ namespace igabde
           // Phase 3: nonsmooth Gauss-Seidel, where its local problems are
           // solved exactly (condensed path, 2D or frictionless, no
           // floating bodies); before the proximal phase, which costs more
-          // where both apply (FrictionContactProblem00727: 0.47 s with
-          // the proximal phase first, 0.07 s without). On a sparse W each
-          // pair's u is read from its rows of the sparse copy (00727:
-          // 75 -> 41 ms against the dense W's columns).
+          // where both apply (as on FrictionContactProblem00727;
+          // doc/contact-solver.md). On a sparse W each pair's u is read
+          // from its rows of the sparse copy, which costs less than the
+          // dense W's columns.
           const Eigen::MatrixXd *W = op.dense_flexibility();
           if (!outcome.converged && !proximal_now &&
               settings.gauss_seidel_sweeps > 0 && W != nullptr && na == 0 &&

@@ -173,8 +173,9 @@ namespace igabde
           for (unsigned int i = 0; i < m * nc; ++i)
             for (unsigned int j = 0; j < m * nc; ++j)
               FL(i, j) += Fb(i, j);
-          // Dense blocks of the contact unknowns squared each (B2 at
-          // 16x64x16: 0.1 GB): none is kept longer than it serves.
+          // Dense blocks of the contact unknowns squared each (large at
+          // B2's 16x64x16: doc/performance.md): none is kept longer than it
+          // serves.
           flexibilities[b] = FullMatrix<double>();
           if (progress)
             log << "  contact: " << bodies[b]->name() << " condensed onto "

@@ -509,8 +509,8 @@ namespace igabde
         }
 
         // (K^T K + lambda I) d = K^T rhs. (CHOLMOD's supernodal LL^T was
-        // slower here than the simplicial LDL^T: on KaplasTower 0.66 s
-        // against 0.46 s over the 17 iterations.)
+        // slower here than the simplicial LDL^T, on KaplasTower over the
+        // 17 iterations.)
         Vec
         sparse_lm(const SparseMatrix   &K,
                   const RowMajorSparse &K_rows,
@@ -522,9 +522,9 @@ namespace igabde
           // Eigen's sparse product, so the entries are the same to the
           // bit), with lambda on the diagonal, written straight into
           // compressed columns: half the product's flops and none of the
-          // two sorting copies Eigen's general product makes
-          // (Capsules-i100-1090: 51 -> 48 ms per solve; the product and
-          // the analysis were two thirds of its iterations' time).
+          // two sorting copies Eigen's general product makes (the product
+          // and the analysis were most of the iterations' time on
+          // Capsules-i100-1090; doc/contact-solver.md, doc/architecture.md).
           const Eigen::Index        n = K.cols();
           std::vector<double>       value(n, 0.);
           std::vector<Eigen::Index> mark(n, -1);

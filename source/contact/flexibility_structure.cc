@@ -24,11 +24,10 @@ namespace igabde
         , na(G.cols())
       {
         // From a few dozen rows on a sparse W's factorisations beat
-        // LAPACK's (measured on the FCLIB corpus, 2026-11-27, fill
-        // 0.02-0.08: Box_Stacks-i0122, 246 rows, 2.1 -> 0.44 ms per
-        // solve; Box_Stacks-i0035, 93 rows, 0.14 -> 0.06 ms;
-        // FrictionContactProblem00374, 56 rows, 0.027 -> 0.020 ms); at
-        // fill 0.2-0.3 (OneObject, 69-75 rows) they lose 3x.
+        // LAPACK's (on the FCLIB corpus at fill 0.02-0.08: Box_Stacks-i0122,
+        // 246 rows; Box_Stacks-i0035, 93 rows; FrictionContactProblem00374,
+        // 56 rows; doc/contact-solver.md); at fill 0.2-0.3 (OneObject,
+        // 69-75 rows) they lose.
         const bool automatic =
           linear_algebra == CondensedOperator::LinearAlgebra::automatic;
         const std::size_t limit =
@@ -113,8 +112,8 @@ namespace igabde
             // zero (or rounding below the other's exact zero). Each
             // stored entry against its mirror, found by bisection in the
             // mirror's column; the first pair that differs ends the test
-            // (a capsule heap's W: at once, where W - W^T took 4 % of
-            // its solve).
+            // (a capsule heap's W: at once, where forming W - W^T took a
+            // noticeable part of its solve; doc/architecture.md).
             const double bound = 1e-12 * max_entry;
             symmetric          = true;
             for (unsigned int j = 0; j < m && symmetric; ++j)

@@ -671,10 +671,10 @@ namespace igabde
           // only every fifth iteration until one is regular again: its
           // failure costs as much as the Levenberg-Marquardt step itself.
           // (Waiting for two singular ones in a row changed no iteration
-          // count on FCLIB and cost Box_Stacks-i0122 a sixth of its time.)
-          // After twenty singular ones in a row, every twentieth
-          // (Capsules-i100-1090: singular at all 56 iterations, its 11
-          // LU attempts took 7 % of the solve).
+          // count on FCLIB and cost Box_Stacks-i0122 time.) After twenty
+          // singular ones in a row, every twentieth (Capsules-i100-1090:
+          // singular at all 56 iterations, its 11 LU attempts a small part
+          // of the solve; doc/architecture.md).
           const unsigned int lu_every = singular_streak < 20 ? 5 : 20;
           const bool try_lu = singular_streak == 0 || local_it % lu_every == 0;
           const double F_norm = std::sqrt(2. * theta);

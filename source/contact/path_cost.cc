@@ -11,16 +11,13 @@ namespace igabde
     PathCostConstants
     PathCostConstants::measured()
     {
-      // contrib/benchmarks/path-cost, 2026-11-26 (doc/performance.md):
-      // dense and schur from the largest case, B2 FE_Q(2) 8x32x8 (the
-      // B-Newton phase over 10 m^3/3, the condensation and the Schur part
-      // of the factorisation over the face term); sparse_d the largest
-      // seconds per factor entry and Newton iteration of the full-system
-      // solve among the cases of each dimension (2D: the floating half
-      // disc at 1600 x 8 spans 3.2e-8, the V3 strips 3.4e-8; 3D: B2 NURBS
-      // 4x4x4 5.6e-8, 8x16x8 6.2e-8, FE_Q(2) 8x32x8 9.0e-8, the V3 slab's
-      // one factorisation 1.1e-7). Newton iterations per step: 8 to 10 on
-      // B2.
+      // Fitted by contrib/benchmarks/path-cost (doc/performance.md,
+      // "Choosing the contact path", gives the cases and their figures):
+      // dense and schur from the largest case (the B-Newton phase over
+      // N m^3/3, the condensation and the Schur part of the factorisation
+      // over the face term); sparse_d the largest seconds per factor entry
+      // and Newton iteration of the full-system solve among the cases of
+      // each dimension; the Newton iterations per step those of B2.
       PathCostConstants c;
       c.dense               = 1.1e-11;
       c.schur               = 4.8e-11;

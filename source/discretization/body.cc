@@ -1404,9 +1404,9 @@ namespace igabde
             eliminated[i] = solve_constraints.is_constrained(i);
           linear_solver->cholesky =
             std::make_unique<linear_algebra::SparseCholesky>();
-          // Nested dissection in 3D (half the flops of minimum degree on
-          // B2), minimum degree in 2D (V5 with 3 refinements, 133 640
-          // unknowns: 1.8-2.0 s against 2.4-2.9 s; doc/performance.md).
+          // Nested dissection in 3D, where it halves the factorisation's
+          // flops, minimum degree in 2D, where it is the faster of the two
+          // (doc/performance.md, "Cost growth").
           using Order = linear_algebra::SparseCholesky::PivotOrder;
           linear_solver->cholesky->initialize(system_matrix,
                                               eliminated,

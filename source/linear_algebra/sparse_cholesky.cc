@@ -399,8 +399,8 @@ namespace igabde
                nested_dissection_order(n_free, row_start, columns, schur_list) :
                std::vector<MUMPS_INT>());
           // K's pattern served the pivot order only: gone before the
-          // numerical factorisation, where the run's memory peaks (B2 at
-          // 16x64x16: 0.1 GB per body).
+          // numerical factorisation, where the run's memory peaks
+          // (doc/performance.md).
           std::vector<unsigned int>().swap(columns);
           std::vector<std::size_t>().swap(row_start);
           if (Utilities::MPI::max(order.empty() ? 0u : 1u, communicator) > 0)
@@ -436,7 +436,7 @@ namespace igabde
           d.check(2);
           // MUMPS reads the matrix again only for iterative refinement or
           // error analysis (ICNTL(10), ICNTL(11); neither is asked): the
-          // copy handed to it goes (B2 at 16x64x16: 0.2 GB per body).
+          // copy handed to it goes (doc/performance.md).
           d.id.irn = d.id.jcn = d.id.irn_loc = d.id.jcn_loc = nullptr;
           d.id.a = d.id.a_loc = nullptr;
           std::vector<MUMPS_INT>().swap(d.rows);
@@ -451,8 +451,8 @@ namespace igabde
           // host; what the upper part holds is not specified. Read as
           // LAPACK's column-major storage that is the upper triangle; it is
           // mirrored into the lower one in place, which the factorisation
-          // below reads: no second n_s x n_s copy beside MUMPS' factor (B2
-          // at 16x64x16: 0.1 GB each, at the run's peak).
+          // below reads: no second n_s x n_s copy beside MUMPS' factor at
+          // the run's peak (doc/performance.md).
           for (unsigned int a = 0; a < (d.host ? n_s : 0); ++a)
             for (unsigned int b = 0; b < a; ++b)
               schur_values[std::size_t(b) * n_s + a] =

@@ -1006,9 +1006,10 @@ namespace igabde
       if (near == nullptr)
         return project_from_samples(false).first;
       // Thousands of pairs project onto faces of hundreds of spans: the
-      // whole face's samples took 7 ms per point on V7's 20 x 20 face. The
-      // answer near's spans give stands when Newton stayed in them;
-      // otherwise near was not near, and the whole face is sampled.
+      // whole face's samples for every point were slow already on V7's
+      // 20 x 20 face (doc/architecture.md). The answer near's spans give stands
+      // when Newton stayed in them; otherwise near was not near, and the whole
+      // face is sampled.
       const auto [xi, inside] = project_from_samples(true);
       if (inside)
         return xi;

@@ -75,8 +75,9 @@ namespace igabde
       /// (MUMPS' default relaxation, 20 %, rounded up).
       constexpr double bytes_per_factor_entry = 8. * 1.25;
 
-      /// Resident size of an igabde process before the scene is built (the
-      /// V3 2D scene, 144 unknowns, ends with a resident set of 171 MB).
+      /// Resident size of an igabde process before the scene is built,
+      /// taken from the resident set a small scene (V3 2D, 144 unknowns)
+      /// ends with (doc/robustness.md).
       constexpr double bytes_per_process = 170. * 1024. * 1024.;
 
 

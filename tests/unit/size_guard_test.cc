@@ -249,8 +249,7 @@ TEST(SizeGuard, AutoTakesTheFullPathWhenTheCondensedDoesNotFit)
             std::string::npos)
     << summary.at("contact_path_reason");
   // The exact answer of the patch test: pressure 1 on every pair, to the
-  // 1e-6 of the contact-patch family (thinner plates lose digits to the
-  // coupled system's conditioning: doc/performance.md).
+  // 1e-6 that the 3D contact-patch family is held to (doc/performance.md).
   EXPECT_LT(summary.at("checks").at("pressure_uniformity").get<double>(), 1e-6);
 }
 

@@ -45,12 +45,12 @@ namespace igabde
 
     /**
      * @brief Opens @p path for writing, removing a file of that name first:
-     * a new file costs a fifth of what truncating an old one does on ext4,
-     * which flushes a truncated-and-rewritten file when it is closed (0.07
-     * against 0.38 ms for 85 kB, measured 2026-11-25), and a scene run
-     * again into its own folder meets its old files every time. A file
-     * that cannot be opened throws base::ExcInput naming the path and the
-     * parameter @p setting that chose it.
+     * a new file costs less than truncating an old one does on ext4,
+     * which flushes a truncated-and-rewritten file when it is closed
+     * (doc/performance.md), and a scene run again into its own folder
+     * meets its old files every time. A file that cannot be opened throws
+     * base::ExcInput naming the path and the parameter @p setting that
+     * chose it.
      */
     std::ofstream
     open_for_writing(const std::string &path,
@@ -61,9 +61,8 @@ namespace igabde
      * zlib-compressed at its fastest level only when the file's data
      * (points and values, 4 bytes each) reach 1 MiB. Below that, zlib's
      * set-up per data array costs more time than the smaller file saves
-     * (a 2D body of 800 points: 0.6 ms uncompressed against 1.1 ms at the
-     * fastest level, 85 against 36 kB; measured 2026-11-25); above it the
-     * files shrink about 3 times for about 20 % more writing time.
+     * (a 2D body of 800 points); above it the files shrink severalfold for
+     * a small rise in writing time (doc/performance.md).
      */
     template <int dim, int spacedim>
     dealii::DataOutBase::VtkFlags

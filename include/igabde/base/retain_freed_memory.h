@@ -22,7 +22,8 @@ namespace igabde
      * (all of it, at once, in the arena for allocations of 8 MiB and
      * more), so that the next factorisation faulted its pages in again
      * and the kernel zeroed them: on V7 with NURBS on the full path every
-     * other factorisation ran at 21-26 instead of 36-40 GFlop/s.
+     * other factorisation ran at a markedly lower rate
+     * (doc/architecture.md, "Figures behind the code's choices").
      *
      * Does nothing when jemalloc does not serve malloc (looked up at run
      * time, as base::memory_allocator() does). Not thread-safe against

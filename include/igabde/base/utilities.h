@@ -89,9 +89,9 @@ namespace igabde
      * Open MPI singleton in a session directory of its own.
      *
      * By default an Open MPI singleton starts a helper daemon and probes the
-     * UCX network layer: 0.4 s of a 0.45 s process start-up on the
-     * reference machine, for a process that only talks to itself (MUMPS and
-     * Trilinos run on MPI_COMM_SELF). This sets
+     * UCX network layer: most of the process start-up (doc/performance.md),
+     * for a process that only talks to itself (MUMPS and Trilinos run on
+     * MPI_COMM_SELF). This sets
      * OMPI_MCA_ess_singleton_isolated = 1 and OMPI_MCA_pml = ob1 unless the
      * user has set them.
      *
@@ -151,12 +151,10 @@ namespace igabde
      * the end of the scope.
      *
      * Below that size OpenBLAS' second thread costs more than it brings
-     * (measured on the 2-core machine, best of many calls: Cholesky of 64
-     * rows 4.5 µs on one thread against 14.4 µs on two, 300 rows 247
-     * against 282 µs, 600 rows 1 744 against 1 456 µs; LU alike), and the
-     * contact Newton factorises matrices of tens to hundreds of rows many
-     * times. Does nothing where the BLAS is not OpenBLAS or already runs
-     * on one thread. Meant for the thread that runs the contact solve:
+     * (Cholesky and LU on the 2-core machine: doc/contact-solver.md), and
+     * the contact Newton factorises matrices of tens to hundreds of rows
+     * many times. Does nothing where the BLAS is not OpenBLAS or already
+     * runs on one thread. Meant for the thread that runs the contact solve:
      * OpenBLAS' thread count is the process's, so a BLAS call another
      * thread makes meanwhile runs on one thread too (the same answer).
      */

@@ -360,13 +360,13 @@ namespace igabde
        * J's, at every iteration, while the proximal subproblems' Newton
        * matrices (of W + eps I) are regular, and on sticking and closed
        * pairs symmetric positive definite (a sparse Cholesky
-       * factorisation). KaplasTower (FCLIB: a hyperstatic tower of rigid
-       * bodies, 570 contacts, W 4 % full and of about half rank): 14
-       * Levenberg-Marquardt iterations 0.40 s, the proximal phase from the
-       * start 11 iterations 0.12-0.15 s (2026-11-27). The Capsules
-       * problems (W 1.6 % full, not symmetric) stay with
-       * Levenberg-Marquardt: there the proximal phase from the start took
-       * 1.1-3.5 times as long.
+       * factorisation). On KaplasTower (FCLIB: a hyperstatic tower of
+       * rigid bodies, 570 contacts, W 4 % full and of about half rank) the
+       * proximal phase from the start takes 11 iterations against
+       * Levenberg-Marquardt's 14, and less time. The Capsules problems
+       * (W 1.6 % full, not symmetric) stay with Levenberg-Marquardt: there
+       * the proximal phase from the start took longer
+       * (doc/contact-solver.md).
        */
       bool
       proximal_for_singular_start() const override;

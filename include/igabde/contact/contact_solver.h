@@ -220,9 +220,8 @@ namespace igabde
        * a small W from the sweeps' iterate). A 3D sweep solves each slipping
        * pair by a local Newton: ten cost less than one sparse factorisation
        * of the Newton matrix on the FCLIB rigid-body problems, and where more
-       * sweeps solve such a problem they cost more than Newton
-       * (Box_Stacks-i0122: 32 sweeps 0.50 ms, 3 Newton iterations 0.29 ms,
-       * 2026-11-29).
+       * sweeps solve such a problem they cost more than Newton (as on
+       * Box_Stacks-i0122; doc/contact-solver.md).
        */
       unsigned int gauss_seidel_first_sweeps = 10;
 
@@ -234,8 +233,8 @@ namespace igabde
        * much as a few sweeps): a sweep is about one pass over W's non-zeros,
        * and on the FCLIB 2D problems the sweeps that reach the tolerance
        * within a thousand cost less than the Newton phases they replace
-       * (FrictionContactProblem00727: 679 sweeps, 6 ms, against 81 Newton
-       * iterations and 482 sweeps, 34 ms, 2026-11-29).
+       * (FrictionContactProblem00727: 679 sweeps against 81 Newton
+       * iterations and 482 sweeps; doc/contact-solver.md).
        */
       unsigned int gauss_seidel_first_sweeps_exact = 1000;
 

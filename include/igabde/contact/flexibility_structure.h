@@ -79,9 +79,9 @@ namespace igabde
         dense_times(const Mat &A, const Vec &v);
 
         /// Up to this many rows (four contacts in 3D) dense_times() sums
-        /// each row itself: Eigen's product of a 3 x 3 W costs about 250
-        /// instructions, its flops 15, the difference a tenth of the solve
-        /// of a one-contact problem.
+        /// each row itself: Eigen's product of a 3 x 3 W costs many times
+        /// its 15 flops in instructions, a noticeable part of the solve of
+        /// a one-contact problem.
         static constexpr Eigen::Index tiny_rows = 12;
 
         ProblemView        problem;

@@ -287,8 +287,8 @@ namespace igabde
        * @brief Keeps of K only the rows the support reactions read (the
        * supported and prescribed unknowns), once the direct solver has
        * factorised it and the load cases are solved: on the condensed
-       * path nothing else reads K afterwards (B2 at 16x64x16: 0.3 GB per
-       * body). Not for the full path, whose coupled system reads the whole
+       * path nothing else reads K afterwards (doc/performance.md, "Peak
+       * memory"). Not for the full path, whose coupled system reads the whole
        * K, nor for the umfpack and cg-amg solvers, whose copies of K share
        * its sparsity pattern.
        */

@@ -168,9 +168,9 @@ namespace igabde
      * (dim n) x n_q times n_q x (dim n) product, BLAS-3 through Eigen),
      * K(ac, bd) = lambda A_cd(a, b) + mu (A_dc(a, b) + delta_cd
      * sum_e A_ee(a, b)). The same flops as a loop over pairs of basis
-     * functions, but vectorised: 0.12 s instead of 0.30 s of CPU time for
-     * the 2 048 quadratic NURBS hexahedra (27 basis functions, 27 points)
-     * of B2 at 8x16x8 per beam.
+     * functions, but vectorised: less CPU time, as on the 2 048 quadratic
+     * NURBS hexahedra (27 basis functions, 27 points) of B2 at 8x16x8 per
+     * beam (doc/performance.md).
      */
     template <int dim, typename Values>
     void

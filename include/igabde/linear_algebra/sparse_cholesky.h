@@ -50,9 +50,9 @@ namespace igabde
        * MUMPS orders by approximate minimum degree whenever a Schur
        * complement is requested; nested dissection (METIS, the Schur
        * unknowns last) needs about half its flops on 3D stiffness matrices
-       * (B2 8x16x8: 3.2-3.5 instead of 4.9-5.4 GFlop per beam) and costs an
-       * ordering of its own (supervariable graph and METIS: 0.03 s per beam
-       * there; on 2D meshes of 10^5 unknowns more than the flops it saves).
+       * (B2: doc/performance.md) and costs an
+       * ordering of its own (supervariable graph and METIS), on 2D meshes
+       * of 10^5 unknowns more than the flops it saves (doc/performance.md).
        */
       enum class PivotOrder
       {
@@ -105,8 +105,8 @@ namespace igabde
        * every rank of @p world (collective on @p world). The Cholesky factor
        * of S stays where it was computed (the host, or every rank when S is
        * the whole free block): interface_flexibility() and solve() run
-       * there. B2 at 16x64x16: 0.1 GB per body that the other ranks would
-       * hold at the height of their memory use.
+       * there, so that the other ranks do not hold it at the height of
+       * their memory use (doc/performance.md).
        */
       void
       share(const MPI_Comm world, const unsigned int root);

@@ -62,7 +62,8 @@ namespace igabde
       /// VTU output fields (when written).
       double bytes_output = 0.;
       /// The process before any of the above: code and data of the
-      /// libraries (deal.II, Trilinos, MPI, MUMPS), about 170 MiB measured.
+      /// libraries (deal.II, Trilinos, MPI, MUMPS): a fixed 170 MiB, the
+      /// resident set of a small scene (doc/robustness.md).
       double bytes_process = 0.;
 
       double
