@@ -123,9 +123,10 @@ namespace igabde
         // (a point on a curved face may lie just outside the boxes of the
         // mapped support points). deal.II's find_active_cell_around_point
         // falls back to inverting the map on every cell when the cells
-        // around the nearest vertex miss the point, which took 0.1 s per
-        // point on V7's graded 3D mesh (168 s for its recovered pressures),
-        // and a search over every cell 45 ms per point on V6's block.
+        // around the nearest vertex miss the point, which made the
+        // recovered pressures of V7's graded 3D mesh slow, and a search
+        // over every cell is slow per point too (V6's block;
+        // doc/architecture.md).
         namespace bgi = boost::geometry::index;
         using Entry =
           std::pair<BoundingBox<dim>,
