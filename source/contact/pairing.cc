@@ -305,17 +305,6 @@ namespace igabde
 
 
 
-    std::vector<std::string>
-    available_pairing_strategies()
-    {
-      return {to_string(Pairing::node_to_surface),
-              to_string(Pairing::node_to_node),
-              to_string(Pairing::weighted_gap),
-              to_string(Pairing::weighted_gap_standard)};
-    }
-
-
-
     template <int dim>
     std::unique_ptr<PairingStrategy<dim>>
     create_pairing_strategy(const Pairing pairing)

@@ -23,82 +23,6 @@ namespace igabde
   {
     namespace
     {
-      /**
-       * The choice among @p choices whose name (the to_string() of its
-       * enum) is @p name: the one place where a selection's text becomes
-       * its enum (the Selection pattern has refused any other text
-       * already).
-       */
-      template <typename Choice>
-      Choice
-      parse_choice(const std::string &name, const std::vector<Choice> &choices)
-      {
-        for (const Choice choice : choices)
-          if (to_string(choice) == name)
-            return choice;
-        AssertThrow(false,
-                    base::ExcInput("'" + name + "' is not one of the choices"));
-        return choices.front();
-      }
-    } // namespace
-
-
-
-    std::string
-    to_string(const BodyType type)
-    {
-      return type == BodyType::deformable  ? "deformable" :
-             type == BodyType::rigid_plane ? "rigid plane" :
-                                             "none";
-    }
-
-
-
-    std::string
-    to_string(const Geometry geometry)
-    {
-      switch (geometry)
-        {
-          case Geometry::box:
-            return "box";
-          case Geometry::quarter_annulus:
-            return "quarter annulus";
-          case Geometry::thick_cylinder:
-            return "thick cylinder";
-          case Geometry::plate_with_hole:
-            return "plate with hole";
-          case Geometry::hertz_quarter_disc:
-            return "hertz quarter disc";
-          case Geometry::curved_beam:
-            return "curved beam";
-          case Geometry::full_disc:
-            return "full disc";
-          case Geometry::half_disc:
-            return "half disc";
-          case Geometry::full_cylinder:
-            return "full cylinder";
-          case Geometry::half_cylinder:
-            return "half cylinder";
-          case Geometry::file:
-            return "file";
-        }
-      return "";
-    }
-
-
-
-    std::string
-    to_string(const ExactSolutionType type)
-    {
-      return type == ExactSolutionType::kirsch ? "kirsch" :
-             type == ExactSolutionType::lame   ? "lame" :
-                                                 "none";
-    }
-
-
-
-    namespace
-    {
       /// Splits "entry @ history" into the entry and the history name
       /// (empty when there is no '@').
       std::pair<std::string, std::string>
@@ -287,17 +211,15 @@ namespace igabde
       {
         prm.declare_entry("Type",
                           default_type,
-                          Patterns::Selection("deformable|rigid plane|none"),
+                          Patterns::Selection(
+                            base::selection_of(body_type_names)),
                           "deformable: a meshed elastic body. rigid plane: a "
                           "fixed flat obstacle with no mesh and no unknowns "
                           "(Body 2 only). none: no such body (Body 2 only).");
         prm.declare_entry(
           "Geometry",
           "box",
-          Patterns::Selection("box|quarter annulus|thick cylinder|"
-                              "plate with hole|hertz quarter disc|"
-                              "curved beam|full disc|half disc|"
-                              "full cylinder|half cylinder|file"),
+          Patterns::Selection(base::selection_of(geometry_names)),
           "Exact NURBS geometry. box: [Lower corner, Upper corner]. quarter "
           "annulus / thick cylinder: Inner/Outer radius, 0..90 degrees "
           "(3D: extruded by Width along z). plate with hole: the quarter "
@@ -697,40 +619,26 @@ namespace igabde
         point_text, normal_text;
       prm.enter_subsection(name);
       {
-        type                = parse_choice<BodyType>(prm.get("Type"),
-                                      {BodyType::deformable,
-                                                      BodyType::rigid_plane,
-                                                      BodyType::none});
-        geometry            = parse_choice<Geometry>(prm.get("Geometry"),
-                                          {Geometry::box,
-                                                      Geometry::quarter_annulus,
-                                                      Geometry::thick_cylinder,
-                                                      Geometry::plate_with_hole,
-                                                      Geometry::hertz_quarter_disc,
-                                                      Geometry::curved_beam,
-                                                      Geometry::full_disc,
-                                                      Geometry::half_disc,
-                                                      Geometry::full_cylinder,
-                                                      Geometry::half_cylinder,
-                                                      Geometry::file});
-        geometry_file       = base::trim(prm.get("Geometry file"));
-        lower_text          = prm.get("Lower corner");
-        upper_text          = prm.get("Upper corner");
-        inner_radius        = prm.get_double("Inner radius");
-        outer_radius        = prm.get_double("Outer radius");
-        radius              = prm.get_double("Radius");
-        centre_text         = prm.get("Centre");
-        width               = prm.get_double("Width");
-        plate_size          = prm.get_double("Plate size");
-        subdivisions_text   = prm.get("Subdivisions");
-        grading_text        = prm.get("Grading");
-        youngs_modulus      = prm.get_double("Young's modulus");
-        poisson_ratio       = prm.get_double("Poisson's ratio");
-        supports_text       = prm.get("Supports");
-        hold_text           = prm.get("Hold rotation");
-        tractions_text      = prm.get("Tractions");
-        point_loads_text    = prm.get("Point loads");
-        moments_text        = prm.get("Moments");
+        type              = base::value_of(body_type_names, prm.get("Type"));
+        geometry          = base::value_of(geometry_names, prm.get("Geometry"));
+        geometry_file     = base::trim(prm.get("Geometry file"));
+        lower_text        = prm.get("Lower corner");
+        upper_text        = prm.get("Upper corner");
+        inner_radius      = prm.get_double("Inner radius");
+        outer_radius      = prm.get_double("Outer radius");
+        radius            = prm.get_double("Radius");
+        centre_text       = prm.get("Centre");
+        width             = prm.get_double("Width");
+        plate_size        = prm.get_double("Plate size");
+        subdivisions_text = prm.get("Subdivisions");
+        grading_text      = prm.get("Grading");
+        youngs_modulus    = prm.get_double("Young's modulus");
+        poisson_ratio     = prm.get_double("Poisson's ratio");
+        supports_text     = prm.get("Supports");
+        hold_text         = prm.get("Hold rotation");
+        tractions_text    = prm.get("Tractions");
+        point_loads_text  = prm.get("Point loads");
+        moments_text      = prm.get("Moments");
         point_supports_text = prm.get("Point supports");
         face_motions_text   = prm.get("Face motions");
         body_force_text     = prm.get("Body force");
@@ -1183,7 +1091,8 @@ namespace igabde
       {
         prm.declare_entry("Type",
                           "none",
-                          Patterns::Selection("none|kirsch|lame"),
+                          Patterns::Selection(
+                            base::selection_of(exact_solution_type_names)),
                           "Exact solution for error norms and 'exact' "
                           "tractions: kirsch (V1, infinite plate with a hole "
                           "under remote tension along x), lame (V2, thick "
@@ -1219,10 +1128,7 @@ namespace igabde
     {
       prm.enter_subsection("Exact solution");
       {
-        type           = parse_choice<ExactSolutionType>(prm.get("Type"),
-                                               {ExactSolutionType::none,
-                                                          ExactSolutionType::kirsch,
-                                                          ExactSolutionType::lame});
+        type = base::value_of(exact_solution_type_names, prm.get("Type"));
         remote_tension = prm.get_double("Remote tension");
         hole_radius    = prm.get_double("Hole radius");
         inner_radius   = prm.get_double("Inner radius");
@@ -1250,7 +1156,8 @@ namespace igabde
                           "tangential contact unknowns are formed.");
         prm.declare_entry("Algorithm",
                           "bde",
-                          Patterns::Selection("bde|penalty|augmented-lagrange"),
+                          Patterns::Selection(
+                            base::selection_of(contact::algorithm_names)),
                           "Contact algorithm: bde (B-differentiable "
                           "equations with damped B-Newton); penalty "
                           "(node-to-node penalty with Coulomb return "
@@ -1278,7 +1185,8 @@ namespace igabde
                           "chatter between pair states).");
         prm.declare_entry("Full system solver",
                           "mumps",
-                          Patterns::Selection("mumps|klu|gmres-amg"),
+                          Patterns::Selection(
+                            base::selection_of(coupled::solver_names)),
                           "Linear solver of the coupled Newton matrix on "
                           "the full path: mumps or klu (sparse direct, "
                           "Trilinos Amesos), or gmres-amg (GMRES with a "
@@ -1294,7 +1202,8 @@ namespace igabde
                           "the iterations and the residual.");
         prm.declare_entry("Path",
                           "auto",
-                          Patterns::Selection("condensed|full|auto"),
+                          Patterns::Selection(
+                            base::selection_of(contact::path_names)),
                           "condensed: flexibility matrix and dense BDE "
                           "system; full: uncondensed sparse system "
                           "(displacements and pair forces together); auto: "
@@ -1304,7 +1213,8 @@ namespace igabde
                           "solve the full system).");
         prm.declare_entry("Condensation",
                           "schur",
-                          Patterns::Selection("schur|columns"),
+                          Patterns::Selection(
+                            base::selection_of(contact::condensation_names)),
                           "How the flexibility F^L is formed. schur: from the "
                           "Schur complement of each body's stiffness onto "
                           "its contact-face unknowns, returned by the same "
@@ -1324,7 +1234,8 @@ namespace igabde
                           "p.f.");
         prm.declare_entry("Pair placement",
                           "greville",
-                          Patterns::Selection("greville|knots|gauss"),
+                          Patterns::Selection(base::selection_of(
+                            discretization::pair_placement_names)),
                           "Where pairs sit on a NURBS surface: images of the "
                           "Greville abscissae (one per face control point, "
                           "the most accurate: doc/studies.md), knot-grid "
@@ -1334,13 +1245,10 @@ namespace igabde
                           "points, redundant on a curved face, where the "
                           "solver may not converge). Lagrange surfaces use "
                           "their nodes.");
-        std::string pairings;
-        for (const auto &name : contact::available_pairing_strategies())
-          pairings += (pairings.empty() ? "" : "|") + name;
         prm.declare_entry(
           "Pairing",
           "node-to-surface",
-          Patterns::Selection(pairings),
+          Patterns::Selection(base::selection_of(contact::pairing_names)),
           "How Body 1's contact face is paired with the surface it faces. "
           "node-to-surface: Body 1's points (Pair placement) with the "
           "coincident point where the meshes match, else the closest point "
@@ -1396,42 +1304,23 @@ namespace igabde
       {
         enabled              = prm.get_bool("Enabled");
         friction_coefficient = prm.get_double("Friction coefficient");
-        algorithm            = parse_choice<contact::Algorithm>(
-          prm.get("Algorithm"),
-          {contact::Algorithm::bde,
-                      contact::Algorithm::penalty,
-                      contact::Algorithm::augmented_lagrange});
+        algorithm =
+          base::value_of(contact::algorithm_names, prm.get("Algorithm"));
         penalty_factor            = prm.get_double("Penalty factor");
         tangential_penalty_factor = prm.get_double("Tangential penalty factor");
         full_system_solver =
-          parse_choice<coupled::Solver>(prm.get("Full system solver"),
-                                        {coupled::Solver::mumps,
-                                         coupled::Solver::klu,
-                                         coupled::Solver::gmres_amg});
+          base::value_of(coupled::solver_names, prm.get("Full system solver"));
         krylov_max_iterations = prm.get_integer("Krylov max iterations");
         penalty_line_search   = prm.get_bool("Penalty line search");
-        path                  = parse_choice<contact::Path>(prm.get("Path"),
-                                           {contact::Path::condensed,
-                                                             contact::Path::full,
-                                                             contact::Path::automatic});
+        path = base::value_of(contact::path_names, prm.get("Path"));
         condensation =
-          parse_choice<contact::Condensation>(prm.get("Condensation"),
-                                              {contact::Condensation::schur,
-                                               contact::Condensation::columns});
+          base::value_of(contact::condensation_names, prm.get("Condensation"));
         slave_face_text  = base::trim(prm.get("Slave face"));
         master_face_text = base::trim(prm.get("Master face"));
-        pair_placement   = parse_choice<discretization::PairPlacement>(
-          prm.get("Pair placement"),
-          {discretization::PairPlacement::greville,
-             discretization::PairPlacement::knots,
-             discretization::PairPlacement::gauss});
-        pairing = parse_choice<contact::Pairing>(
-          prm.get("Pairing"),
-          {contact::Pairing::node_to_surface,
-           contact::Pairing::node_to_node,
-           contact::Pairing::weighted_gap,
-           contact::Pairing::weighted_gap_standard});
-        tolerance      = prm.get_double("Tolerance");
+        pair_placement   = base::value_of(discretization::pair_placement_names,
+                                        prm.get("Pair placement"));
+        pairing   = base::value_of(contact::pairing_names, prm.get("Pairing"));
+        tolerance = prm.get_double("Tolerance");
         max_iterations = prm.get_integer("Max iterations");
         r_scale        = prm.get_double("r scale");
         verbose        = prm.get_bool("Verbose");
@@ -1664,7 +1553,8 @@ namespace igabde
       {
         prm.declare_entry("Type",
                           "nurbs",
-                          Patterns::Selection("nurbs|lagrange"),
+                          Patterns::Selection(
+                            base::selection_of(discretization::type_names)),
                           "nurbs: isogeometric analysis on the exact "
                           "geometry. lagrange: FE_Q elements on the same "
                           "knot-span mesh, geometry interpolated.");
@@ -1680,7 +1570,8 @@ namespace igabde
                           "knot span / cell).");
         prm.declare_entry("Linear solver",
                           "direct",
-                          Patterns::Selection("direct|umfpack|cg-amg"),
+                          Patterns::Selection(base::selection_of(
+                            discretization::linear_solver_names)),
                           "direct: sparse LDL^T Cholesky (MUMPS), one "
                           "factorisation per body serving all right-hand "
                           "sides and, with contact, the Schur complement on "
@@ -1717,16 +1608,12 @@ namespace igabde
       prm.enter_subsection("Discretization");
       {
         settings.type =
-          parse_choice<discretization::Type>(prm.get("Type"),
-                                             {discretization::Type::nurbs,
-                                              discretization::Type::lagrange});
-        settings.degree        = prm.get_integer("Degree");
-        settings.refinements   = prm.get_integer("Refinements");
-        settings.linear_solver = parse_choice<discretization::LinearSolver>(
-          prm.get("Linear solver"),
-          {discretization::LinearSolver::direct,
-           discretization::LinearSolver::umfpack,
-           discretization::LinearSolver::cg_amg});
+          base::value_of(discretization::type_names, prm.get("Type"));
+        settings.degree      = prm.get_integer("Degree");
+        settings.refinements = prm.get_integer("Refinements");
+        settings.linear_solver =
+          base::value_of(discretization::linear_solver_names,
+                         prm.get("Linear solver"));
         settings.linear_tolerance      = prm.get_double("Linear tolerance");
         const std::string subdivisions = prm.get("Output subdivisions");
         if (subdivisions == "auto")
@@ -1773,7 +1660,8 @@ namespace igabde
                         "components) or 3.");
       prm.declare_entry("Plane model",
                         "plane strain",
-                        Patterns::Selection("plane strain|plane stress"),
+                        Patterns::Selection(
+                          base::selection_of(elasticity::plane_model_names)),
                         "2D kinematics.");
       prm.declare_entry("Probe points",
                         "",
@@ -1796,12 +1684,10 @@ namespace igabde
     AllParameters::parse_parameters(ParameterHandler  &prm,
                                     const std::string &scene_file)
     {
-      name        = prm.get("Scene name");
-      dimension   = prm.get_integer("Dimension");
-      plane_model = parse_choice<elasticity::PlaneModel>(
-        prm.get("Plane model"),
-        {elasticity::PlaneModel::plane_strain,
-         elasticity::PlaneModel::plane_stress});
+      name      = prm.get("Scene name");
+      dimension = prm.get_integer("Dimension");
+      plane_model =
+        base::value_of(elasticity::plane_model_names, prm.get("Plane model"));
       probes = prm.get("Probe points");
       output.parse_parameters(prm);
       parse_discretization_parameters(prm, discretization);

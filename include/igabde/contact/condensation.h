@@ -1,6 +1,8 @@
 #ifndef igabde_contact_condensation_h
 #define igabde_contact_condensation_h
 
+#include <igabde/base/choice_names.h>
+
 #include <igabde/discretization/body.h>
 
 #include <igabde/contact/contact_problem.h>
@@ -27,9 +29,16 @@ namespace igabde
       columns
     };
 
+    /** @brief The names of Condensation as the scene writes them. */
+    inline constexpr base::ChoiceNames<Condensation, 2> condensation_names = {
+      {{Condensation::schur, "schur"}, {Condensation::columns, "columns"}}};
+
     /** @brief The name of @p condensation as the scene writes it. */
-    std::string
-    to_string(const Condensation condensation);
+    inline std::string
+    to_string(const Condensation condensation)
+    {
+      return base::name_of(condensation_names, condensation);
+    }
 
     /**
      * @brief The contact problem condensed onto the pairs: the flexibility

@@ -1,6 +1,8 @@
 #ifndef igabde_contact_contact_solver_h
 #define igabde_contact_contact_solver_h
 
+#include <igabde/base/choice_names.h>
+
 #include <igabde/contact/contact_law.h>
 #include <igabde/contact/contact_operator.h>
 #include <igabde/contact/contact_problem.h>
@@ -302,9 +304,18 @@ namespace igabde
       augmented_lagrange
     };
 
+    /** @brief The names of Algorithm as the scene writes them. */
+    inline constexpr base::ChoiceNames<Algorithm, 3> algorithm_names = {
+      {{Algorithm::bde, "bde"},
+       {Algorithm::penalty, "penalty"},
+       {Algorithm::augmented_lagrange, "augmented-lagrange"}}};
+
     /** @brief The name of @p algorithm as the scene writes it. */
-    std::string
-    to_string(const Algorithm algorithm);
+    inline std::string
+    to_string(const Algorithm algorithm)
+    {
+      return base::name_of(algorithm_names, algorithm);
+    }
 
     /** @brief What create_contact_solver() needs. */
     struct ContactSolverSettings

@@ -1,6 +1,8 @@
 #ifndef igabde_contact_pairing_h
 #define igabde_contact_pairing_h
 
+#include <igabde/base/choice_names.h>
+
 #include <igabde/contact/contact_surface.h>
 
 #include <deal.II/base/point.h>
@@ -215,18 +217,26 @@ namespace igabde
       weighted_gap_standard
     };
 
+    /** @brief The names of Pairing as the scene writes them (one row per
+     * strategy create_pairing_strategy() knows). */
+    inline constexpr base::ChoiceNames<Pairing, 4> pairing_names = {
+      {{Pairing::node_to_surface, "node-to-surface"},
+       {Pairing::node_to_node, "node-to-node"},
+       {Pairing::weighted_gap, "weighted-gap"},
+       {Pairing::weighted_gap_standard, "weighted-gap-standard"}}};
+
     /** @brief The name of @p pairing as the scene writes it. */
-    std::string
-    to_string(const Pairing pairing);
+    inline std::string
+    to_string(const Pairing pairing)
+    {
+      return base::name_of(pairing_names, pairing);
+    }
 
     /** @brief The strategy of @p pairing. */
     template <int dim>
     std::unique_ptr<PairingStrategy<dim>>
     create_pairing_strategy(const Pairing pairing);
 
-    /// The names of the strategies create_pairing_strategy() knows.
-    std::vector<std::string>
-    available_pairing_strategies();
 
     /**
      * @brief Rows n, t1[, t2]: an orthonormal frame with the unit normal

@@ -1,6 +1,8 @@
 #ifndef igabde_contact_path_cost_h
 #define igabde_contact_path_cost_h
 
+#include <igabde/base/choice_names.h>
+
 #include <string>
 #include <vector>
 
@@ -71,9 +73,18 @@ namespace igabde
       automatic
     };
 
+    /** @brief The names of Path as the scene writes them. */
+    inline constexpr base::ChoiceNames<Path, 3> path_names = {
+      {{Path::condensed, "condensed"},
+       {Path::full, "full"},
+       {Path::automatic, "auto"}}};
+
     /** @brief The name of @p path as the scene writes it. */
-    std::string
-    to_string(const Path path);
+    inline std::string
+    to_string(const Path path)
+    {
+      return base::name_of(path_names, path);
+    }
 
     struct PathCostEstimate
     {

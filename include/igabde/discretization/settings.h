@@ -1,6 +1,8 @@
 #ifndef igabde_discretization_settings_h
 #define igabde_discretization_settings_h
 
+#include <igabde/base/choice_names.h>
+
 #include <cmath>
 #include <string>
 
@@ -42,15 +44,38 @@ namespace igabde
       gauss
     };
 
+    /** @brief The names of each enum's values as the scene writes them. */
+    inline constexpr base::ChoiceNames<Type, 2> type_names = {
+      {{Type::nurbs, "nurbs"}, {Type::lagrange, "lagrange"}}};
+    /** @copydoc type_names */
+    inline constexpr base::ChoiceNames<LinearSolver, 3> linear_solver_names = {
+      {{LinearSolver::direct, "direct"},
+       {LinearSolver::umfpack, "umfpack"},
+       {LinearSolver::cg_amg, "cg-amg"}}};
+    /** @copydoc type_names */
+    inline constexpr base::ChoiceNames<PairPlacement, 3> pair_placement_names =
+      {{{PairPlacement::greville, "greville"},
+        {PairPlacement::knots, "knots"},
+        {PairPlacement::gauss, "gauss"}}};
+
     /** @brief The name of each value as the scene writes it. */
-    std::string
-    to_string(const Type type);
+    inline std::string
+    to_string(const Type type)
+    {
+      return base::name_of(type_names, type);
+    }
     /** @copydoc to_string(const Type) */
-    std::string
-    to_string(const LinearSolver solver);
+    inline std::string
+    to_string(const LinearSolver solver)
+    {
+      return base::name_of(linear_solver_names, solver);
+    }
     /** @copydoc to_string(const Type) */
-    std::string
-    to_string(const PairPlacement placement);
+    inline std::string
+    to_string(const PairPlacement placement)
+    {
+      return base::name_of(pair_placement_names, placement);
+    }
 
     /**
      * @brief How the scene discretises bodies.

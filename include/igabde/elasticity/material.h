@@ -1,6 +1,8 @@
 #ifndef igabde_elasticity_material_h
 #define igabde_elasticity_material_h
 
+#include <igabde/base/choice_names.h>
+
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/symmetric_tensor.h>
 
@@ -21,12 +23,16 @@ namespace igabde
       plane_stress
     };
 
+    /** @brief The names of PlaneModel as the scene writes them. */
+    inline constexpr base::ChoiceNames<PlaneModel, 2> plane_model_names = {
+      {{PlaneModel::plane_strain, "plane strain"},
+       {PlaneModel::plane_stress, "plane stress"}}};
+
     /** @brief "plane strain" or "plane stress", as the scene writes it. */
     inline std::string
     to_string(const PlaneModel model)
     {
-      return model == PlaneModel::plane_strain ? "plane strain" :
-                                                 "plane stress";
+      return base::name_of(plane_model_names, model);
     }
 
     /**

@@ -1,6 +1,8 @@
 #ifndef igabde_scene_parameters_h
 #define igabde_scene_parameters_h
 
+#include <igabde/base/choice_names.h>
+
 #include <igabde/discretization/settings.h>
 
 #include <igabde/elasticity/material.h>
@@ -68,12 +70,48 @@ namespace igabde
       lame
     };
 
+    /** @brief The names of each enum's values as the scene writes them. */
+    inline constexpr base::ChoiceNames<BodyType, 3> body_type_names = {
+      {{BodyType::deformable, "deformable"},
+       {BodyType::rigid_plane, "rigid plane"},
+       {BodyType::none, "none"}}};
+    /** @copydoc body_type_names */
+    inline constexpr base::ChoiceNames<Geometry, 11> geometry_names = {
+      {{Geometry::box, "box"},
+       {Geometry::quarter_annulus, "quarter annulus"},
+       {Geometry::thick_cylinder, "thick cylinder"},
+       {Geometry::plate_with_hole, "plate with hole"},
+       {Geometry::hertz_quarter_disc, "hertz quarter disc"},
+       {Geometry::curved_beam, "curved beam"},
+       {Geometry::full_disc, "full disc"},
+       {Geometry::half_disc, "half disc"},
+       {Geometry::full_cylinder, "full cylinder"},
+       {Geometry::half_cylinder, "half cylinder"},
+       {Geometry::file, "file"}}};
+    /** @copydoc body_type_names */
+    inline constexpr base::ChoiceNames<ExactSolutionType, 3>
+      exact_solution_type_names = {{{ExactSolutionType::none, "none"},
+                                    {ExactSolutionType::kirsch, "kirsch"},
+                                    {ExactSolutionType::lame, "lame"}}};
+
     /** @brief The name of each value as the scene writes it. */
-    std::string
-    to_string(const BodyType type);
+    inline std::string
+    to_string(const BodyType type)
+    {
+      return base::name_of(body_type_names, type);
+    }
     /** @copydoc to_string(const BodyType) */
-    std::string
-    to_string(const Geometry geometry);
+    inline std::string
+    to_string(const Geometry geometry)
+    {
+      return base::name_of(geometry_names, geometry);
+    }
+    /** @copydoc to_string(const BodyType) */
+    inline std::string
+    to_string(const ExactSolutionType type)
+    {
+      return base::name_of(exact_solution_type_names, type);
+    }
 
     /**
      * @brief deal.II's FunctionParser for the @p dim components
@@ -85,9 +123,6 @@ namespace igabde
     std::shared_ptr<dealii::FunctionParser<dim>>
     make_function_parser(const std::vector<std::string> &expressions,
                          const double                    t);
-    /** @copydoc to_string(const BodyType) */
-    std::string
-    to_string(const ExactSolutionType type);
 
     /**
      * @brief Where and what a run writes.
