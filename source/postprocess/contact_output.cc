@@ -41,18 +41,20 @@ namespace igabde
       const base::NearestPoints<dim> index(std::move(locations));
       for (unsigned int i = 0; i < pairs.size(); ++i)
         {
-          const Tensor<1, dim> n = pairs[i].normal;
-          const auto &nearest    = samples[index.nearest(pairs[i].location)];
+          const auto &nearest = samples[index.nearest(pairs[i].location)];
           // The closest point of the contact face; its nearest sample
           // point (on the face too) if the stress cannot be evaluated
-          // there (a Lagrange face's projection just past its side).
-          const std::array<Point<dim>, 2> where = {
-            {surface.closest_point(pairs[i].location, &nearest).location,
-             nearest.location}};
-          for (const Point<dim> &x : where)
+          // there (a Lagrange face's projection just past its side). The
+          // normal is Body 1's outward normal at that point, not the
+          // pair's: a weighted-gap pair's frame is the master's, and on
+          // a curved face away from the contact -n.sigma.n with the
+          // master's normal reads the hoop stress, not the (zero) traction.
+          const auto closest =
+            surface.closest_point(pairs[i].location, &nearest);
+          for (const auto *x : {&closest, &nearest})
             try
               {
-                p[i] = -n * (body1.stress(u1, x) * n);
+                p[i] = -x->normal * (body1.stress(u1, x->location) * x->normal);
                 break;
               }
             catch (const ExceptionBase &)
