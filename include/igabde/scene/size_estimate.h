@@ -62,8 +62,8 @@ namespace igabde
       /// VTU output fields (when written).
       double bytes_output = 0.;
       /// The process before any of the above: code and data of the
-      /// libraries (deal.II, Trilinos, MPI, MUMPS): a fixed 170 MiB, the
-      /// resident set of a small scene (doc/robustness.md).
+      /// libraries (deal.II, Trilinos, MPI, MUMPS): a fixed allowance, the
+      /// resident set of a small scene (its value: doc/robustness.md).
       double bytes_process = 0.;
 
       double
