@@ -91,53 +91,6 @@ namespace igabde
 
 
 
-    unsigned int
-    parse_face(const std::string &text,
-               const unsigned int n_faces,
-               const std::string &where,
-               const std::string &item)
-    {
-      const std::vector<double> face = parse_doubles(text, where);
-      AssertThrow(face.size() == 1 && face[0] >= 0 && face[0] < n_faces &&
-                    face[0] == std::floor(face[0]),
-                  ExcInput(where + ": face in '" + item +
-                           "' must be a patch face 0.." +
-                           std::to_string(n_faces - 1) + "."));
-      return static_cast<unsigned int>(face[0]);
-    }
-
-
-
-    template <int dim>
-    Tensor<1, dim>
-    parse_tensor(const std::string &text, const std::string &where)
-    {
-      const std::vector<double> v  = parse_doubles(text, where);
-      bool                      ok = (v.size() >= dim);
-      for (unsigned int i = dim; ok && i < v.size(); ++i)
-        ok = (v[i] == 0.);
-      AssertThrow(ok,
-                  ExcInput(where + ": '" + text + "' must have " +
-                           std::to_string(dim) +
-                           " comma-separated components in this " +
-                           std::to_string(dim) + "D scene."));
-      Tensor<1, dim> t;
-      for (unsigned int i = 0; i < dim; ++i)
-        t[i] = v[i];
-      return t;
-    }
-
-
-
-    template <int dim>
-    Point<dim>
-    parse_point(const std::string &text, const std::string &where)
-    {
-      return Point<dim>(parse_tensor<dim>(text, where));
-    }
-
-
-
     template <int dim>
     std::string
     to_string(const Point<dim> &x)
@@ -179,14 +132,6 @@ namespace igabde
 
 
 
-    template Tensor<1, 2>
-    parse_tensor<2>(const std::string &, const std::string &);
-    template Tensor<1, 3>
-    parse_tensor<3>(const std::string &, const std::string &);
-    template Point<2>
-    parse_point<2>(const std::string &, const std::string &);
-    template Point<3>
-    parse_point<3>(const std::string &, const std::string &);
     template std::string
     to_string<2>(const Point<2> &);
     template std::string

@@ -365,9 +365,9 @@ namespace igabde
       // The pinned responses K^+ C_h serve the Schur-complement
       // flexibility's correction only (correct_for_held_modes()).
       held_response.clear();
-      if (has_schur_complement() && !held_loads.empty())
+      if (has_schur_complement() && !rigid_modes.held_loads().empty())
         {
-          held_response = held_loads;
+          held_response = rigid_modes.held_loads();
           solve_pinned(held_response);
         }
 
@@ -862,7 +862,7 @@ namespace igabde
     const std::vector<Vector<double>> &
     Body<dim>::free_rigid_modes() const
     {
-      return rigid_modes;
+      return rigid_modes.free_modes();
     }
 
 
@@ -871,7 +871,7 @@ namespace igabde
     const std::vector<std::string> &
     Body<dim>::free_rigid_mode_names() const
     {
-      return rigid_mode_names;
+      return rigid_modes.free_mode_names();
     }
 
 
@@ -880,79 +880,7 @@ namespace igabde
     bool
     Body<dim>::free_translation(const unsigned int c) const
     {
-      AssertIndexRange(c, dim);
-      // The free modes' coefficients are orthonormal: the translation along
-      // c lies in their span when its projection on them has unit length.
-      double projection = 0.;
-      for (const auto &v : rigid_mode_coefficients)
-        projection += v[c] * v[c];
-      return projection > 1. - 1e-8;
-    }
-
-
-
-    template <int dim>
-    double
-    Body<dim>::rigid_mode_value(const unsigned int            mode,
-                                const types::global_dof_index i) const
-    {
-      const unsigned int   c = dof_components[i];
-      const Tensor<1, dim> x = (dof_locations[i] - mode_centre) / mode_size;
-      if (mode < dim)
-        return (c == mode ? 1. : 0.);
-      // Rotation about axis a (3D) or about z (2D): u = e_a x x.
-      Tensor<1, dim> u;
-      if (dim == 2)
-        {
-          u[0] = -x[1];
-          u[1] = x[0];
-        }
-      else
-        {
-          const unsigned int a = mode - dim;
-          const unsigned int b = (a + 1) % 3, d = (a + 2) % 3;
-          u[b] = -x[d];
-          u[d] = x[b];
-        }
-      return u[c];
-    }
-
-
-
-    template <int dim>
-    std::pair<Vector<double>, std::string>
-    Body<dim>::rigid_mode(const std::vector<double> &coefficients) const
-    {
-      const unsigned int n_modes = (dim == 2 ? 3 : 6);
-      AssertDimension(coefficients.size(), n_modes);
-      Vector<double> mode(n_unknowns);
-      for (types::global_dof_index i = 0; i < n_unknowns; ++i)
-        if (!constraints.is_constrained(i))
-          for (unsigned int m = 0; m < n_modes; ++m)
-            mode[i] += coefficients[m] * rigid_mode_value(m, i);
-
-      static const char *names2[] = {"translation x",
-                                     "translation y",
-                                     "rotation z"};
-      static const char *names3[] = {"translation x",
-                                     "translation y",
-                                     "translation z",
-                                     "rotation x",
-                                     "rotation y",
-                                     "rotation z"};
-      unsigned int       dominant = 0;
-      double             norm     = 0.;
-      for (unsigned int m = 0; m < n_modes; ++m)
-        {
-          norm += coefficients[m] * coefficients[m];
-          if (std::abs(coefficients[m]) > std::abs(coefficients[dominant]))
-            dominant = m;
-        }
-      const bool pure = std::abs(std::abs(coefficients[dominant]) -
-                                 std::sqrt(norm)) < 1e-10 * std::sqrt(norm);
-      return {mode,
-              std::string(dim == 2 ? names2[dominant] : names3[dominant]) +
-                (pure ? "" : " (combined)")};
+      return rigid_modes.free_translation(c);
     }
 
 
@@ -961,90 +889,31 @@ namespace igabde
     void
     Body<dim>::find_free_rigid_modes()
     {
-      // Rigid modes evaluated at the control points / nodes: exact for
-      // NURBS too, since the basis reproduces linear fields. Rotations are
-      // taken about the centroid and scaled by the body size so that all
-      // modes have entries of order one.
-      const unsigned int n_modes = (dim == 2 ? 3 : 6);
-      mode_centre                = Point<dim>();
-      for (const auto &x : dof_locations)
-        mode_centre += x;
-      if (n_unknowns > 0)
-        mode_centre /= static_cast<double>(n_unknowns);
-      mode_size = 0.;
-      for (const auto &x : dof_locations)
-        mode_size = std::max(mode_size, (x - mode_centre).norm());
-      mode_size = std::max(mode_size, 1e-300);
+      rigid_modes = RigidModes<dim>(dof_locations, dof_components, constraints);
 
-      std::vector<types::global_dof_index> constrained;
-      for (types::global_dof_index i = 0; i < n_unknowns; ++i)
-        if (constraints.is_constrained(i))
-          constrained.push_back(i);
-
-      Eigen::MatrixXd M(std::max<std::size_t>(constrained.size(), 1), n_modes);
-      M.setZero();
-      for (unsigned int r = 0; r < constrained.size(); ++r)
-        for (unsigned int m = 0; m < n_modes; ++m)
-          M(r, m) = rigid_mode_value(m, constrained[r]);
-
-      Eigen::JacobiSVD<Eigen::MatrixXd> svd(M, Eigen::ComputeFullV);
-      const Eigen::VectorXd            &s = svd.singularValues();
-      rigid_mode_coefficients.clear();
-      for (unsigned int m = 0; m < n_modes; ++m)
-        {
-          const double sigma = (m < s.size() ? s(m) : 0.);
-          if (sigma <
-              1e-8 * std::max(1., std::sqrt(double(constrained.size()))))
-            {
-              const Eigen::VectorXd v = svd.matrixV().col(m);
-              rigid_mode_coefficients.emplace_back(v.data(),
-                                                   v.data() + v.size());
-            }
-        }
-      rigid_modes.clear();
-      rigid_mode_names.clear();
-      for (const auto &v : rigid_mode_coefficients)
-        {
-          auto [mode, name] = rigid_mode(v);
-          rigid_modes.push_back(std::move(mode));
-          rigid_mode_names.push_back(std::move(name));
-        }
-
-      // Pins: one unknown per free mode, chosen by column-pivoted QR on the
-      // free modes so that they are independent there. With balanced loads
-      // the pins carry no reaction, so the pinned solve is a generalised
-      // inverse K^+ (method.md, "Bodies held only through contact"). A
-      // rotation held later (hold_rotations()) keeps its pin: the pinned
-      // solve of loads balanced in that mode, projected.
+      // Pins: one unknown per free mode, independent there (RigidModes::
+      // pins()). With balanced loads the pins carry no reaction, so the
+      // pinned solve is a generalised inverse K^+ (method.md, "Bodies held
+      // only through contact"). A rotation held later (hold_rotations())
+      // keeps its pin: the pinned solve of loads balanced in that mode,
+      // projected.
       //
       // In floating point a pin does carry a reaction: the round-off of the
       // whole body's balance, about 1e-12 of the load. On a contact pair
       // that reaction is one pair's force error, and divided by the pair's
       // area a pressure error (the corner pair of the 3D contact patch at
-      // 20 000 pairs: 1.2e-6). The QR therefore sees the columns of
-      // boundary unknowns scaled by 1e-3 and those of interior ones by
-      // pin_preference() (deepest first, then nearest the centroid), so
-      // that pins sit inside the body, where their reaction spreads before
-      // it reaches a surface; a body without interior unknowns keeps the
-      // plain choice.
+      // 20 000 pairs: 1.2e-6). The pins' choice therefore sees boundary
+      // unknowns weighted by 1e-3 and interior ones by pin_preference()
+      // (deepest first, then nearest the centroid), so that pins sit inside
+      // the body, where their reaction spreads before it reaches a surface;
+      // a body without interior unknowns keeps the plain choice.
       solve_constraints.clear();
       solve_constraints.copy_from(constraints);
-      if (!rigid_modes.empty())
+      if (!rigid_modes.free_modes().empty())
         {
-          const std::vector<double> weights = pin_preference();
-          Eigen::MatrixXd           Rt(rigid_modes.size(), n_unknowns);
-          for (unsigned int k = 0; k < rigid_modes.size(); ++k)
-            for (types::global_dof_index i = 0; i < n_unknowns; ++i)
-              Rt(k, i) = weights[i] * rigid_modes[k][i];
-          Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(Rt);
-          const auto               &perm = qr.colsPermutation().indices();
           AffineConstraints<double> pins;
-          for (unsigned int k = 0; k < rigid_modes.size(); ++k)
-            {
-              const types::global_dof_index i = perm(k);
-              Assert(!constraints.is_constrained(i), ExcInternalError());
-              pins.add_line(i);
-            }
+          for (const auto i : rigid_modes.pins(pin_preference()))
+            pins.add_line(i);
           pins.close();
           solve_constraints.merge(pins);
         }
@@ -1095,7 +964,8 @@ namespace igabde
         else
           {
             const double closeness =
-              1. - (dof_locations[i] - mode_centre).norm() / mode_size;
+              1. - (dof_locations[i] - rigid_modes.centre()).norm() /
+                     rigid_modes.size();
             weights[i] =
               1. + (std::min(depth[i], max_depth) + 0.5 * closeness) /
                      (max_depth + 1.);
@@ -1193,135 +1063,14 @@ namespace igabde
     void
     Body<dim>::hold_rotations()
     {
-      held_modes.clear();
-      held_loads.clear();
       held_response.clear();
-      held_mode_names.clear();
-      held_moments.clear();
       const int face = description().hold_rotation_face;
-      if (face < 0 || rigid_modes.empty())
+      if (face < 0 || rigid_modes.free_modes().empty())
         return;
       std::vector<Vector<double>> c;
       FullMatrix<double>          J;
       face_rotation_loads(face, c, J);
-      const unsigned int n_axes = c.size();
-
-      // The free modes the constraints c_a^T u = 0 hold: A = C^T R on the
-      // free modes, A = U Sigma V^T; the first r right singular vectors are
-      // held (with the combinations c U of the constraints), the others
-      // stay free. A rotation the supports hold already has no free part.
-      const unsigned int n_free = rigid_modes.size();
-      Eigen::MatrixXd    A(n_axes, n_free);
-      double             c_norm = 0., r_norm = 0.;
-      for (unsigned int a = 0; a < n_axes; ++a)
-        {
-          c_norm = std::max(c_norm, c[a].l2_norm());
-          for (unsigned int j = 0; j < n_free; ++j)
-            A(a, j) = c[a] * rigid_modes[j];
-        }
-      for (const auto &r : rigid_modes)
-        r_norm = std::max(r_norm, r.l2_norm());
-      Eigen::JacobiSVD<Eigen::MatrixXd> svd(A,
-                                            Eigen::ComputeFullU |
-                                              Eigen::ComputeFullV);
-      unsigned int                      rank = 0;
-      while (rank < svd.singularValues().size() &&
-             svd.singularValues()(rank) > 1e-8 * c_norm * r_norm)
-        ++rank;
-
-      const unsigned int n_modes = (dim == 2 ? 3 : 6);
-      auto               combine = [&](const unsigned int column) {
-        std::vector<double> v(n_modes, 0.);
-        for (unsigned int j = 0; j < n_free; ++j)
-          for (unsigned int m = 0; m < n_modes; ++m)
-            v[m] += svd.matrixV()(j, column) * rigid_mode_coefficients[j][m];
-        return v;
-      };
-      std::vector<std::vector<double>> free_coefficients;
-      for (unsigned int k = 0; k < n_free; ++k)
-        if (k < rank)
-          {
-            auto [mode, name] = rigid_mode(combine(k));
-            held_modes.push_back(std::move(mode));
-            held_mode_names.push_back(std::move(name));
-            Vector<double>      load(n_unknowns);
-            std::vector<double> moment(n_axes, 0.);
-            for (unsigned int a = 0; a < n_axes; ++a)
-              {
-                load.add(svd.matrixU()(a, k), c[a]);
-                for (unsigned int b = 0; b < n_axes; ++b)
-                  moment[b] += svd.matrixU()(a, k) * J(a, b);
-              }
-            held_loads.push_back(std::move(load));
-            held_moments.push_back(std::move(moment));
-          }
-        else
-          free_coefficients.push_back(combine(k));
-
-      rigid_mode_coefficients = free_coefficients;
-      rigid_modes.clear();
-      rigid_mode_names.clear();
-      for (const auto &v : rigid_mode_coefficients)
-        {
-          auto [mode, name] = rigid_mode(v);
-          rigid_modes.push_back(std::move(mode));
-          rigid_mode_names.push_back(std::move(name));
-        }
-
-      // S = R_h^T C_h (diagonal Sigma up to round-off), inverted.
-      held_inverse.reinit(rank, rank);
-      for (unsigned int k = 0; k < rank; ++k)
-        for (unsigned int l = 0; l < rank; ++l)
-          held_inverse(k, l) = held_modes[k] * held_loads[l];
-      if (rank > 0)
-        held_inverse.gauss_jordan();
-    }
-
-
-
-    template <int dim>
-    Vector<double>
-    Body<dim>::held_multipliers(const Vector<double> &f) const
-    {
-      // S^-1 R_h^T f: the amounts of the loads C_h that the held modes'
-      // reaction removes from f.
-      const unsigned int r = held_modes.size();
-      Vector<double>     rf(r), lambda(r);
-      for (unsigned int k = 0; k < r; ++k)
-        rf[k] = held_modes[k] * f;
-      if (r > 0)
-        held_inverse.vmult(lambda, rf);
-      return lambda;
-    }
-
-
-
-    template <int dim>
-    void
-    Body<dim>::balance_held_modes(Vector<double> &f) const
-    {
-      // f <- P^T f = f - C_h S^-1 R_h^T f: the held modes' reactions added.
-      const Vector<double> lambda = held_multipliers(f);
-      for (unsigned int k = 0; k < lambda.size(); ++k)
-        f.add(-lambda[k], held_loads[k]);
-    }
-
-
-
-    template <int dim>
-    void
-    Body<dim>::fix_held_modes(Vector<double> &u) const
-    {
-      // u <- P u = u - R_h S^-T C_h^T u: the held modes' constraints met.
-      const unsigned int r = held_modes.size();
-      if (r == 0)
-        return;
-      Vector<double> cu(r), beta(r);
-      for (unsigned int k = 0; k < r; ++k)
-        cu[k] = held_loads[k] * u;
-      held_inverse.Tvmult(beta, cu);
-      for (unsigned int k = 0; k < r; ++k)
-        u.add(-beta[k], held_modes[k]);
+      rigid_modes.hold(c, J);
     }
 
 
@@ -1330,13 +1079,7 @@ namespace igabde
     std::vector<double>
     Body<dim>::held_moment(const Vector<double> &f) const
     {
-      // The reaction -lambda C_h; its moment about the face's centroid.
-      const Vector<double> lambda = held_multipliers(f);
-      std::vector<double>  moment(dim == 2 ? 1 : 3, 0.);
-      for (unsigned int k = 0; k < lambda.size(); ++k)
-        for (unsigned int b = 0; b < moment.size(); ++b)
-          moment[b] -= lambda[k] * held_moments[k][b];
-      return moment;
+      return rigid_modes.held_moment(f);
     }
 
 
@@ -1348,8 +1091,11 @@ namespace igabde
       const std::vector<Tensor<1, dim>>     &directions,
       FullMatrix<double>                    &F) const
     {
-      const unsigned int r = held_modes.size();
-      const unsigned int n = operators.size();
+      const auto        &held_modes   = rigid_modes.held_modes();
+      const auto        &held_loads   = rigid_modes.held_loads();
+      const auto        &held_inverse = rigid_modes.held_inverse();
+      const unsigned int r            = held_modes.size();
+      const unsigned int n            = operators.size();
       if (r == 0 || n == 0)
         return;
       AssertDimension(held_response.size(), r);
@@ -1384,7 +1130,7 @@ namespace igabde
     const std::vector<std::string> &
     Body<dim>::held_rigid_mode_names() const
     {
-      return held_mode_names;
+      return rigid_modes.held_mode_names();
     }
 
 
@@ -1497,16 +1243,16 @@ namespace igabde
     Body<dim>::solve_in_group(
       std::vector<Vector<double>> &rhs_and_solutions) const
     {
-      if (held_modes.empty())
+      if (rigid_modes.held_modes().empty())
         {
           solve_pinned(rhs_and_solutions);
           return;
         }
       for (auto &v : rhs_and_solutions)
-        balance_held_modes(v);
+        rigid_modes.balance(v);
       solve_pinned(rhs_and_solutions);
       for (auto &v : rhs_and_solutions)
-        fix_held_modes(v);
+        rigid_modes.fix(v);
     }
 
 

@@ -21,104 +21,6 @@ namespace igabde
 {
   namespace scene
   {
-    namespace
-    {
-      /// Splits "entry @ history" into the entry and the history name
-      /// (empty when there is no '@').
-      std::pair<std::string, std::string>
-      split_history(const std::string &entry)
-      {
-        const auto at = entry.find('@');
-        if (at == std::string::npos)
-          return {entry, ""};
-        return {base::trim(entry.substr(0, at)),
-                base::trim(entry.substr(at + 1))};
-      }
-
-
-
-      /**
-       * @brief Refuses, naming @p where, a 'function' load whose
-       * expressions are not one per component or that deal.II's
-       * FunctionParser cannot evaluate; sets @p uses_t when one of them
-       * uses the variable t.
-       */
-      void
-      check_expressions(const std::vector<std::string> &expressions,
-                        const unsigned int              dimension,
-                        const std::string              &where,
-                        bool                           *uses_t)
-      {
-        std::string all;
-        for (const auto &e : expressions)
-          all += (all.empty() ? "" : "; ") + e;
-        AssertThrow(expressions.size() == dimension,
-                    base::ExcInput(where + ": 'function " + all + "' has " +
-                                   std::to_string(expressions.size()) +
-                                   " expressions; give " +
-                                   std::to_string(dimension) +
-                                   ", one per component, separated by ';'."));
-        // deal.II's FunctionParser prints muparser's report on std::cerr
-        // before it throws; the one-line error below says it instead.
-        std::ostringstream silenced;
-        std::streambuf    *cerr_buffer = std::cerr.rdbuf(silenced.rdbuf());
-        try
-          {
-            // Parse errors show at the first evaluation.
-            if (dimension == 2)
-              {
-                const auto f = make_function_parser<2>(expressions, 0.);
-                for (unsigned int c = 0; c < 2; ++c)
-                  f->value(Point<2>(), c);
-              }
-            else
-              {
-                const auto f = make_function_parser<3>(expressions, 0.);
-                for (unsigned int c = 0; c < 3; ++c)
-                  f->value(Point<3>(), c);
-              }
-          }
-        catch (const ExceptionBase &e)
-          {
-            std::cerr.rdbuf(cerr_buffer);
-            AssertThrow(false,
-                        base::ExcInput(where + ": cannot evaluate 'function " +
-                                       all + "' (" +
-                                       base::exception_message(e) +
-                                       "); write expressions of " +
-                                       (dimension == 2 ? "x, y" : "x, y, z") +
-                                       " and t in deal.II's FunctionParser "
-                                       "syntax, e.g. '-100*(1-x^2)'."));
-          }
-        std::cerr.rdbuf(cerr_buffer);
-        static const std::regex t_variable(
-          "(^|[^A-Za-z0-9_])t([^A-Za-z0-9_(]|$)");
-        *uses_t = std::any_of(expressions.begin(),
-                              expressions.end(),
-                              [](const std::string &e) {
-                                return std::regex_search(e, t_variable);
-                              });
-      }
-    } // namespace
-
-
-
-    template <int dim>
-    std::shared_ptr<FunctionParser<dim>>
-    make_function_parser(const std::vector<std::string> &expressions,
-                         const double                    t)
-    {
-      auto f = std::make_shared<FunctionParser<dim>>(dim);
-      f->initialize(dim == 2 ? "x,y,t" : "x,y,z,t",
-                    expressions,
-                    {{"pi", numbers::PI}},
-                    true);
-      f->set_time(t);
-      return f;
-    }
-
-
-
     void
     OutputParameters::declare_parameters(ParameterHandler &prm)
     {
@@ -434,82 +336,14 @@ namespace igabde
 
 
 
-      /// Face ids and what they are, for messages: "0 (x = lower), ...".
-      std::string
-      face_list(const std::vector<std::string> &faces)
+      /// The faces of a patch of @p body's geometry, as its grammars name
+      /// them.
+      PatchFaces
+      patch_faces_of(const BodyParameters &body, const unsigned int dimension)
       {
-        std::string list;
-        for (unsigned int f = 0; f < faces.size(); ++f)
-          list +=
-            (f > 0 ? ", " : "") + std::to_string(f) + " (" + faces[f] + ")";
-        return list;
-      }
-
-
-
-      /**
-       * Reads the faces of @p key: a face number f, or 'p.f' (face f of
-       * patch p of a multi-patch geometry file), several joined by '+' where
-       * @p several allows. The body face is p * faces.size() + f (faces:
-       * the 2 dim faces of a patch). Refuses a face that @p geometry does not
-       * have, naming the faces it has; a patch beyond the file's is refused
-       * when the file is read.
-       */
-      std::vector<unsigned int>
-      read_faces(const std::string              &key,
-                 const std::vector<std::string> &faces,
-                 const Geometry                  geometry,
-                 const std::string              &where,
-                 const std::string              &item,
-                 const bool                      several = true)
-      {
-        static const std::regex face_pattern(
-          "^\\s*(?:([0-9]+)\\.)?([0-9]+)\\s*$");
-        const std::string form =
-          "must be a patch face 0.." + std::to_string(faces.size() - 1) +
-          (geometry == Geometry::file ?
-             " (or p.f: face f of patch p of a multi-patch file" +
-               std::string(several ? "; several joined by '+'" : "") + ")" :
-             std::string(several ? " (several joined by '+')" : "")) +
-          " of the " + to_string(geometry) + ": " + face_list(faces) + ".";
-        std::vector<unsigned int>      result;
-        const std::vector<std::string> terms = base::split(key, '+');
-        AssertThrow(several || terms.size() == 1,
-                    base::ExcInput(where + ": '" + base::trim(item) +
-                                   "' names several faces; give one face "
-                                   "here."));
-        for (const std::string &term : terms)
-          {
-            std::smatch match;
-            AssertThrow(std::regex_match(term, match, face_pattern) &&
-                          match[2].length() < 3 &&
-                          std::stoul(match[2].str()) < faces.size() &&
-                          (!match[1].matched || (geometry == Geometry::file &&
-                                                 match[1].length() < 6)),
-                        base::ExcInput(where + ": face '" + base::trim(term) +
-                                       "' " +
-                                       (base::trim(item) == base::trim(term) ?
-                                          std::string() :
-                                          "in '" + base::trim(item) + "' ") +
-                                       form));
-            const unsigned int patch =
-              match[1].matched ? std::stoul(match[1].str()) : 0;
-            result.push_back(patch * faces.size() + std::stoul(match[2].str()));
-          }
-        return result;
-      }
-
-
-
-      /// read_faces() of exactly one face.
-      unsigned int
-      read_face(const std::string              &key,
-                const std::vector<std::string> &faces,
-                const Geometry                  geometry,
-                const std::string              &where,
-                const std::string              &item)
-      {
-        return read_faces(key, faces, geometry, where, item, false).front();
+        return {patch_faces(body.geometry, dimension),
+                body.geometry == Geometry::file,
+                to_string(body.geometry)};
       }
 
 
@@ -552,57 +386,6 @@ namespace igabde
 
 
 
-      /**
-       * Reads a vector of @p dimension components; extra trailing zero
-       * components (a 3D default read in 2D) are dropped.
-       */
-      std::vector<double>
-      read_vector(const std::string &text,
-                  const unsigned int dimension,
-                  const std::string &where)
-      {
-        std::vector<double> v  = base::parse_doubles(text, where);
-        bool                ok = (v.size() >= dimension);
-        for (unsigned int i = dimension; ok && i < v.size(); ++i)
-          ok = (v[i] == 0.);
-        AssertThrow(ok,
-                    base::ExcInput(where + ": '" + text + "' must have " +
-                                   std::to_string(dimension) +
-                                   " comma-separated components in this " +
-                                   std::to_string(dimension) + "D scene."));
-        v.resize(dimension);
-        return v;
-      }
-
-
-
-      std::string
-      component_names(const unsigned int dimension)
-      {
-        return dimension == 2 ? "x, y" : "x, y, z";
-      }
-
-
-
-      /// The component 'x', 'y' or 'z' names (0, 1, 2), refused unless it
-      /// is one of the scene's; @p where and @p item say where it was read.
-      unsigned int
-      read_component(const std::string &name,
-                     const unsigned int dimension,
-                     const std::string &where,
-                     const std::string &item,
-                     const std::string &hint = "")
-      {
-        const int c = (name == "x" ? 0 :
-                       name == "y" ? 1 :
-                       name == "z" ? 2 :
-                                     -1);
-        AssertThrow(c >= 0 && c < static_cast<int>(dimension),
-                    base::ExcInput(where + ": '" + name + "' in '" + item +
-                                   "' is not a component; use " +
-                                   component_names(dimension) + hint + "."));
-        return c;
-      }
     } // namespace
 
 
@@ -647,12 +430,6 @@ namespace igabde
       }
       prm.leave_subsection();
 
-      supports.clear();
-      tractions.clear();
-      point_loads.clear();
-      moments.clear();
-      face_motions.clear();
-      point_supports.clear();
       body_force.assign(dimension, 0.);
       const std::string where = context + name + "/";
       if (type == BodyType::rigid_plane)
@@ -670,6 +447,13 @@ namespace igabde
                                      "' must not be zero; give the normal "
                                      "pointing towards Body 1, e.g. '0, 1'."));
         }
+      supports.clear();
+      tractions.clear();
+      point_loads.clear();
+      moments.clear();
+      face_motions.clear();
+      point_supports.clear();
+      body_force_expressions.clear();
       if (type != BodyType::deformable)
         return;
 
@@ -683,81 +467,13 @@ namespace igabde
       lower_corner = optional_vector(lower_text, "Lower corner");
       upper_corner = optional_vector(upper_text, "Upper corner");
       centre       = optional_vector(centre_text, "Centre");
-      const std::vector<double> n =
-        base::parse_doubles(subdivisions_text, where + "Subdivisions");
-      AssertThrow(n.size() == 1 || n.size() == dimension,
-                  base::ExcInput(where + "Subdivisions = '" +
-                                 subdivisions_text +
-                                 "': give one count or one per direction."));
-      subdivisions.resize(dimension);
-      for (unsigned int d = 0; d < dimension; ++d)
-        {
-          const double count = (n.size() == 1 ? n[0] : n[d]);
-          AssertThrow(count >= 1 && count == std::floor(count) && count < 1e4,
-                      base::ExcInput(where + "Subdivisions = '" +
-                                     subdivisions_text +
-                                     "': counts must be integers from 1 to "
-                                     "9999 (then Discretization/Refinements "
-                                     "for finer meshes)."));
-          subdivisions[d] = static_cast<unsigned int>(count);
-        }
-      grading.assign(dimension, 1.);
-      grading_toward_high.assign(dimension, false);
-      grading_band.assign(dimension, {{0., 0.}});
-      for (const std::string &item : base::split(grading_text, ';'))
-        {
-          if (item.rfind("band", 0) == 0)
-            {
-              // 'band d: from, to, ratio'.
-              const auto [key, value] =
-                base::split_entry(item,
-                                  where + "Grading",
-                                  "'band d: from, to, ratio'");
-              const std::vector<double> d =
-                base::parse_doubles(key.substr(4), where + "Grading");
-              const std::vector<double> v =
-                base::parse_doubles(value, where + "Grading");
-              AssertThrow(d.size() == 1 && d[0] >= 0 && d[0] < dimension &&
-                            d[0] == std::floor(d[0]) && v.size() == 3 &&
-                            0. <= v[0] && v[0] < v[1] && v[1] <= 1. &&
-                            v[2] >= 1. && v[2] <= 1e6,
-                          base::ExcInput(
-                            where + "Grading: '" + item +
-                            "': a band is 'band d: from, to, ratio' with a "
-                            "parametric direction d from 0 to " +
-                            std::to_string(dimension - 1) +
-                            ", 0 <= from < to <= 1 (fractions of the "
-                            "direction) and a ratio of the largest span to "
-                            "the smallest in [1, 1e6]."));
-              const unsigned int dir = static_cast<unsigned int>(d[0]);
-              AssertThrow(grading[dir] == 1.,
-                          base::ExcInput(where + "Grading: '" + item +
-                                         "': direction " + std::to_string(dir) +
-                                         " is graded twice; give one grading "
-                                         "per direction."));
-              grading[dir]      = v[2];
-              grading_band[dir] = {{v[0], v[1]}};
-              continue;
-            }
-          const auto [face_text, ratio_text] =
-            base::split_entry(item, where + "Grading", "'face: ratio'");
-          const unsigned int face =
-            base::parse_face(face_text, 2 * dimension, where + "Grading", item);
-          const std::vector<double> ratio =
-            base::parse_doubles(ratio_text, where + "Grading");
-          AssertThrow(ratio.size() == 1 && ratio[0] >= 1. && ratio[0] <= 1e6,
-                      base::ExcInput(where + "Grading: '" + item +
-                                     "': the ratio of the largest span to the "
-                                     "smallest must lie in [1, 1e6]."));
-          AssertThrow(grading[face / 2] == 1.,
-                      base::ExcInput(where + "Grading: '" + item +
-                                     "': direction " +
-                                     std::to_string(face / 2) +
-                                     " is graded twice; grade toward one of "
-                                     "its faces."));
-          grading[face / 2]             = ratio[0];
-          grading_toward_high[face / 2] = (face % 2 == 1);
-        }
+      subdivisions =
+        read_subdivisions(subdivisions_text, dimension, where + "Subdivisions");
+      const GradingParameters g =
+        read_grading(grading_text, dimension, where + "Grading");
+      grading             = g.ratio;
+      grading_toward_high = g.toward_high;
+      grading_band        = g.band;
 
       // What no material and no body can have, refused before any set-up.
       AssertThrow(youngs_modulus > 0.,
@@ -772,270 +488,29 @@ namespace igabde
                                  "incompressible materials need nu < 0.5 "
                                  "(e.g. 0.49)."));
 
-      const std::vector<std::string> faces = patch_faces(geometry, dimension);
-      AssertThrow(!faces.empty(),
+      const PatchFaces faces = patch_faces_of(*this, dimension);
+      AssertThrow(!faces.names.empty(),
                   base::ExcInput(where + "Geometry = " + to_string(geometry) +
                                  " does not exist in " +
                                  std::to_string(dimension) +
                                  "D; choose another geometry or Dimension."));
 
-      // Supports: "face: x y=0.1; face: z", each optionally "@ history".
-      for (const std::string &entry : base::split(supports_text, ';'))
+      supports  = read_supports(supports_text, faces, where + "Supports");
+      tractions = read_tractions(tractions_text, faces, where + "Tractions");
+      hold_rotation_face =
+        read_hold_rotation(hold_text, faces, where + "Hold rotation");
+      point_loads =
+        read_point_loads(point_loads_text, dimension, where + "Point loads");
+      point_supports = read_point_supports(point_supports_text,
+                                           dimension,
+                                           where + "Point supports");
+      moments        = read_moments(moments_text, faces, where + "Moments");
+      face_motions =
+        read_face_motions(face_motions_text, faces, where + "Face motions");
+      // A face motion prescribes every component and the rotation of its
+      // face: a support or a held rotation of the same face says it twice.
+      for (const auto &motion : face_motions)
         {
-          const auto [item, history] = split_history(entry);
-          const auto [key, value] =
-            base::split_entry(item,
-                              where + "Supports",
-                              "'face: components', e.g. '0: x y'");
-          SupportParameters support;
-          // Faces joined by '+': one support per face, alike.
-          const std::vector<unsigned int> support_faces =
-            read_faces(key, faces, geometry, where + "Supports", item);
-          const auto add_support = [&]() {
-            for (const unsigned int face : support_faces)
-              {
-                support.face = face;
-                supports.push_back(support);
-              }
-          };
-          // 'c = function expression': one component given by an
-          // expression of the point, scaled like a value.
-          static const std::regex function_entry(
-            "^\\s*([xyz])\\s*=\\s*function\\s+(.+)$");
-          std::smatch function_match;
-          if (std::regex_match(value, function_match, function_entry))
-            {
-              const int c = function_match[1].str()[0] - 'x';
-              AssertThrow(c < static_cast<int>(dimension),
-                          base::ExcInput(
-                            where + "Supports: '" + item + "': component " +
-                            function_match[1].str() + " does not exist in " +
-                            std::to_string(dimension) + "D."));
-              std::vector<std::string> all(dimension, "0");
-              all[c]      = base::trim(function_match[2].str());
-              bool uses_t = false;
-              check_expressions(all, dimension, where + "Supports", &uses_t);
-              AssertThrow(!uses_t,
-                          base::ExcInput(
-                            where + "Supports: '" + item +
-                            "' uses t; a prescribed displacement is scaled "
-                            "by its history's factor (write the expression "
-                            "of x, y[, z] and choose the history with "
-                            "'@ name')."));
-              support.components[c]  = true;
-              support.expressions[c] = all[c];
-              support.history        = history;
-              add_support();
-              continue;
-            }
-          std::string rest = value;
-          for (char &c : rest)
-            if (c == ',')
-              c = ' ';
-          std::istringstream in(rest);
-          std::string        token;
-          bool               any = false;
-          while (in >> token)
-            {
-              const auto         eq = token.find('=');
-              const unsigned int c  = read_component(token.substr(0, eq),
-                                                    dimension,
-                                                    where + "Supports",
-                                                    item,
-                                                    ", optionally with =value");
-              support.components[c] = true;
-              if (eq != std::string::npos)
-                {
-                  const auto v = base::parse_doubles(token.substr(eq + 1),
-                                                     where + "Supports");
-                  AssertThrow(v.size() == 1,
-                              base::ExcInput(where + "Supports: '" + token +
-                                             "' needs one value."));
-                  support.values[c] = v[0];
-                }
-              any = true;
-            }
-          AssertThrow(any,
-                      base::ExcInput(where + "Supports: '" + item +
-                                     "' names no component."));
-          support.history = history;
-          add_support();
-        }
-
-      // Tractions: "face: pressure p", "face: vector tx, ty", "face: exact",
-      // "face: function fx; fy[; fz]" (the components of a function are
-      // the next pieces between ';').
-      const std::vector<std::string> pieces = base::split(tractions_text, ';');
-      for (unsigned int i = 0; i < pieces.size(); ++i)
-        {
-          auto [item, history]   = split_history(pieces[i]);
-          const auto [key, rest] = base::split_entry(
-            item,
-            where + "Tractions",
-            "'face: pressure p', 'face: vector tx, ty', 'face: exact' or "
-            "'face: function fx; fy'");
-          TractionParameters              traction;
-          const std::vector<unsigned int> traction_faces =
-            read_faces(key, faces, geometry, where + "Tractions", item);
-          if (rest.rfind("pressure", 0) == 0)
-            {
-              traction.kind = TractionParameters::Kind::pressure;
-              traction.values =
-                base::parse_doubles(rest.substr(8), where + "Tractions");
-              AssertThrow(traction.values.size() == 1,
-                          base::ExcInput(where + "Tractions: '" + item +
-                                         "' needs one pressure value."));
-            }
-          else if (rest.rfind("vector", 0) == 0)
-            {
-              traction.kind = TractionParameters::Kind::vector;
-              traction.values =
-                read_vector(rest.substr(6), dimension, where + "Tractions");
-            }
-          else if (rest == "exact")
-            traction.kind = TractionParameters::Kind::exact;
-          else if (rest.rfind("function", 0) == 0)
-            {
-              traction.kind = TractionParameters::Kind::function;
-              traction.expressions.push_back(base::trim(rest.substr(8)));
-              while (traction.expressions.size() < dimension &&
-                     i + 1 < pieces.size())
-                {
-                  std::tie(item, history) = split_history(pieces[++i]);
-                  traction.expressions.push_back(item);
-                }
-              check_expressions(traction.expressions,
-                                dimension,
-                                where + "Tractions",
-                                &traction.uses_t);
-            }
-          else
-            AssertThrow(false,
-                        base::ExcInput(where + "Tractions: '" + rest +
-                                       "' is not 'pressure p', 'vector tx, "
-                                       "ty[, tz]', 'exact' or 'function fx; "
-                                       "fy[; fz]'."));
-          traction.history = history;
-          for (const unsigned int face : traction_faces)
-            {
-              traction.face = face;
-              tractions.push_back(traction);
-            }
-        }
-
-      // Hold rotation: one face.
-      hold_rotation_face = -1;
-      if (!base::trim(hold_text).empty())
-        hold_rotation_face = read_face(base::trim(hold_text),
-                                       faces,
-                                       geometry,
-                                       where + "Hold rotation",
-                                       hold_text);
-
-      // Point loads: "x, y[, z] : fx, fy[, fz]".
-      for (const std::string &entry : base::split(point_loads_text, ';'))
-        {
-          const auto [item, history] = split_history(entry);
-          const auto [location, force] =
-            base::split_entry(item,
-                              where + "Point loads",
-                              "'x, y[, z] : fx, fy[, fz]'");
-          point_loads.push_back(
-            {read_vector(location, dimension, where + "Point loads"),
-             read_vector(force, dimension, where + "Point loads"),
-             history});
-        }
-      // Point supports: "x, y[, z] : x y", a component optionally with a
-      // value ("x=0.01").
-      for (const std::string &full_entry :
-           base::split(point_supports_text, ';'))
-        {
-          const auto [entry, history] = split_history(full_entry);
-          const auto [location, names] =
-            base::split_entry(entry,
-                              where + "Point supports",
-                              "'x, y[, z] : components', e.g. '0, 0 : x y'");
-          PointSupportParameters support;
-          support.location =
-            read_vector(location, dimension, where + "Point supports");
-          std::istringstream in(names);
-          std::string        token;
-          bool               any = false;
-          while (in >> token)
-            {
-              const auto         eq = token.find('=');
-              const unsigned int c  = read_component(token.substr(0, eq),
-                                                    dimension,
-                                                    where + "Point supports",
-                                                    base::trim(entry),
-                                                    ", optionally with =value");
-              support.components[c] = true;
-              if (eq != std::string::npos)
-                {
-                  const auto v = base::parse_doubles(token.substr(eq + 1),
-                                                     where + "Point supports");
-                  AssertThrow(v.size() == 1,
-                              base::ExcInput(where + "Point supports: '" +
-                                             token + "' needs one value."));
-                  support.values[c] = v[0];
-                }
-              any = true;
-            }
-          AssertThrow(any,
-                      base::ExcInput(where + "Point supports: '" +
-                                     base::trim(entry) +
-                                     "' names no component."));
-          support.history = history;
-          point_supports.push_back(support);
-        }
-
-      // Moments: "face: M" (2D), "face: Mx, My, Mz" (3D).
-      for (const std::string &entry : base::split(moments_text, ';'))
-        {
-          const auto [item, history] = split_history(entry);
-          const auto [key, rest] =
-            base::split_entry(item,
-                              where + "Moments",
-                              dimension == 2 ? "'face: M'" :
-                                               "'face: Mx, My, Mz'");
-          MomentParameters moment;
-          moment.face =
-            read_face(key, faces, geometry, where + "Moments", item);
-          moment.moment = base::parse_doubles(rest, where + "Moments");
-          const unsigned int n_axes = (dimension == 2 ? 1 : 3);
-          AssertThrow(moment.moment.size() == n_axes,
-                      base::ExcInput(
-                        where + "Moments: '" + item + "' must give " +
-                        (dimension == 2 ? std::string("one value (the "
-                                                      "moment about z)") :
-                                          std::string("three values (Mx, "
-                                                      "My, Mz)")) +
-                        " in this " + std::to_string(dimension) + "D scene."));
-          moment.history = history;
-          moments.push_back(moment);
-        }
-      // Face motions: "face: ux, uy, rz" (2D), "face: ux, uy, uz, rx, ry,
-      // rz" (3D).
-      for (const std::string &entry : base::split(face_motions_text, ';'))
-        {
-          const auto [item, history] = split_history(entry);
-          const std::string form     = dimension == 2 ?
-                                         "'face: ux, uy, rz'" :
-                                         "'face: ux, uy, uz, rx, ry, rz'";
-          const auto [key, rest] =
-            base::split_entry(item, where + "Face motions", form);
-          FaceMotionParameters motion;
-          motion.face =
-            read_face(key, faces, geometry, where + "Face motions", item);
-          motion.motion = base::parse_doubles(rest, where + "Face motions");
-          AssertThrow(motion.motion.size() == (dimension == 2 ? 3u : 6u),
-                      base::ExcInput(where + "Face motions: '" +
-                                     base::trim(item) + "' must give " +
-                                     (dimension == 2 ? "three" : "six") +
-                                     " values, " + form + ", in this " +
-                                     std::to_string(dimension) +
-                                     "D scene (every component of the "
-                                     "face's rigid motion)."));
           for (const auto &support : supports)
             AssertThrow(support.face != motion.face,
                         base::ExcInput(
@@ -1051,35 +526,11 @@ namespace igabde
                                      "face motion prescribes its rotation "
                                      "already, so leave Hold rotation "
                                      "empty."));
-          for (const auto &other : face_motions)
-            AssertThrow(other.face != motion.face,
-                        base::ExcInput(where + "Face motions: face " +
-                                       std::to_string(motion.face) +
-                                       " is moved twice; give it one "
-                                       "entry."));
-          motion.history = history;
-          face_motions.push_back(motion);
         }
-      body_force_expressions.clear();
-      if (base::trim(body_force_text).rfind("function", 0) == 0)
-        {
-          body_force.assign(dimension, 0.);
-          body_force_expressions =
-            base::split(base::trim(body_force_text).substr(8), ';');
-          bool uses_t = false;
-          check_expressions(body_force_expressions,
-                            dimension,
-                            where + "Body force",
-                            &uses_t);
-          AssertThrow(!uses_t,
-                      base::ExcInput(where + "Body force uses t; the body "
-                                             "force is scaled by the load "
-                                             "factor (write an expression "
-                                             "of x, y[, z])."));
-        }
-      else
-        body_force =
-          read_vector(body_force_text, dimension, where + "Body force");
+      const BodyForceParameters force =
+        read_body_force(body_force_text, dimension, where + "Body force");
+      body_force             = force.vector;
+      body_force_expressions = force.expressions;
     }
 
 
@@ -1386,12 +837,12 @@ namespace igabde
     {
       prm.enter_subsection("Checks");
       {
-        uniform_pressure     = prm.get_double("Uniform pressure");
-        hertz_line_load      = prm.get_double("Hertz line load");
-        hertz_point_load     = prm.get_double("Hertz point load");
-        hertz_radius         = prm.get_double("Hertz radius");
-        hertz_axis_point     = prm.get("Hertz axis point");
-        hertz_axis_direction = prm.get("Hertz axis direction");
+        uniform_pressure          = prm.get_double("Uniform pressure");
+        hertz_line_load           = prm.get_double("Hertz line load");
+        hertz_point_load          = prm.get_double("Hertz point load");
+        hertz_radius              = prm.get_double("Hertz radius");
+        hertz_axis_point_text     = prm.get("Hertz axis point");
+        hertz_axis_direction_text = prm.get("Hertz axis direction");
       }
       prm.leave_subsection();
     }
@@ -1688,7 +1139,7 @@ namespace igabde
       dimension = prm.get_integer("Dimension");
       plane_model =
         base::value_of(elasticity::plane_model_names, prm.get("Plane model"));
-      probes = prm.get("Probe points");
+      const std::string probes_text = prm.get("Probe points");
       output.parse_parameters(prm);
       parse_discretization_parameters(prm, discretization);
       const std::string f = scene_file + ": ";
@@ -1732,16 +1183,7 @@ namespace igabde
 
       // Checks that need more than a pattern; each names the parameter and
       // the fix.
-      for (const std::string &item : base::split(probes, ';'))
-        {
-          const auto [name, location] =
-            base::split_entry(item, f + "Probe points", "'name: x, y[, z]'");
-          AssertThrow(base::parse_doubles(location, f + "Probe points")
-                          .size() == dimension,
-                      base::ExcInput(f + "Probe points: '" + item + "' needs " +
-                                     std::to_string(dimension) +
-                                     " coordinates ('name: x, y[, z]')."));
-        }
+      probes = read_probe_points(probes_text, dimension, f + "Probe points");
       AssertThrow(body1.type == BodyType::deformable,
                   base::ExcInput(f + "Body 1/Type must be 'deformable'; only "
                                      "Body 2 may be a rigid plane."));
@@ -1836,10 +1278,8 @@ namespace igabde
                                              const std::string    &body_name,
                                              const std::string    &parameter,
                                              const std::string    &text) {
-            const auto faces = patch_faces(body.geometry, dimension);
             return read_faces(text,
-                              faces,
-                              body.geometry,
+                              patch_faces_of(body, dimension),
                               f + "Contact/" + parameter + " (" + body_name +
                                 ")",
                               text);
@@ -1900,30 +1340,32 @@ namespace igabde
         {
           const std::string axis_hint =
             (dimension == 2 ? "e.g. '0, 1'" : "e.g. '0, 0, 1'");
-          if (!checks.hertz_axis_direction.empty())
+          if (!checks.hertz_axis_direction_text.empty())
             {
               const auto e =
-                base::parse_doubles(checks.hertz_axis_direction,
+                base::parse_doubles(checks.hertz_axis_direction_text,
                                     f + "Checks/Hertz axis direction");
               double norm = 0.;
               for (const double v : e)
                 norm += v * v;
               AssertThrow(e.size() == dimension && norm > 0.,
                           base::ExcInput(f + "Checks/Hertz axis direction = '" +
-                                         checks.hertz_axis_direction +
+                                         checks.hertz_axis_direction_text +
                                          "' must be a " + "non-zero " +
                                          std::to_string(dimension) +
                                          "D vector, " + axis_hint + "."));
+              checks.hertz_axis_direction = e;
             }
-          if (!checks.hertz_axis_point.empty())
+          if (!checks.hertz_axis_point_text.empty())
             {
-              const auto x = base::parse_doubles(checks.hertz_axis_point,
+              const auto x = base::parse_doubles(checks.hertz_axis_point_text,
                                                  f + "Checks/Hertz axis point");
               AssertThrow(x.size() == dimension,
                           base::ExcInput(
                             f + "Checks/Hertz axis point = '" +
-                            checks.hertz_axis_point + "' must be a " +
+                            checks.hertz_axis_point_text + "' must be a " +
                             std::to_string(dimension) + "D point."));
+              checks.hertz_axis_point = x;
             }
           AssertThrow(checks.hertz_radius > 0. ||
                         body1.geometry != Geometry::file,
@@ -2008,9 +1450,5 @@ namespace igabde
             }
     }
 
-    template std::shared_ptr<FunctionParser<2>>
-    make_function_parser<2>(const std::vector<std::string> &, double);
-    template std::shared_ptr<FunctionParser<3>>
-    make_function_parser<3>(const std::vector<std::string> &, double);
   } // namespace scene
 } // namespace igabde

@@ -73,7 +73,8 @@ namespace igabde
       // Exact solution first: 'exact' tractions use it.
       exact  = make_exact_solution<dim>(parameters, scene_file);
       bodies = create_bodies<dim>(parameters, scene_file, exact);
-      pvd_records.resize(bodies.size());
+      postprocessors =
+        make_postprocessors<dim>(parameters, bodies.size(), root, writer);
       for (auto &body : bodies)
         body->set_progress_stream(parameters.output.progress &&
                                       pcout.is_active() ?
@@ -361,66 +362,32 @@ namespace igabde
                 }
             }
           check_finite_displacements<dim>(bodies, u, s + 1);
-          if (parameters.output.fclib_export && contact_stage && root)
-            {
-              TimerOutput::Scope t(timer, "output");
-              write_fclib_step<dim>(output_directory,
-                                    s + 1,
-                                    *contact_stage,
-                                    contact_log());
-            }
-          {
-            TimerOutput::Scope t(timer, "postprocess");
-            check_model_range<dim>(bodies,
-                                   contact_stage.get(),
-                                   u,
-                                   record,
-                                   run_summary.warnings,
-                                   contact_log());
-          }
-          record_forces<dim>(bodies,
-                             contact_stage.get(),
-                             u,
-                             factors,
-                             record,
-                             contact_log());
           previous = factors;
-          run_summary.load_steps.push_back(record);
-          if (contact_stage)
-            run_summary.total_contact_force = record.total_contact_force;
           std::optional<std::vector<contact::PairState<dim>>> pairs;
-          {
-            TimerOutput::Scope t(timer, "output");
-            if (contact_stage)
-              pairs = contact_stage->pair_states();
-            // Every rank writes its piece of the bodies' fields.
-            write_step_output<dim>(
-              output_directory,
-              parameters.output.write_vtu,
-              s + 1,
-              Utilities::MPI::this_mpi_process(MPI_COMM_WORLD),
-              Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD),
-              bodies,
-              u,
-              pairs ? &*pairs : nullptr,
-              std::vector<types::boundary_id>(
-                parameters.contact.slave_faces.begin(),
-                parameters.contact.slave_faces.end()),
-              pvd_records,
-              writer);
-          }
-          if (s + 1 == steps.size())
+          if (contact_stage)
+            pairs = contact_stage->pair_states();
+          const StepContext<dim> context{parameters,
+                                         scene_file,
+                                         output_directory,
+                                         bodies,
+                                         exact,
+                                         contact_stage.get(),
+                                         pairs ? &*pairs : nullptr,
+                                         u,
+                                         factors,
+                                         s + 1,
+                                         s + 1 == steps.size(),
+                                         pcout,
+                                         contact_log()};
+          // The step's record joins run_summary first, so that a
+          // postprocessor that fails leaves the figures it had gathered.
+          run_summary.load_steps.push_back(record);
+          for (auto &postprocessor : postprocessors)
             {
-              TimerOutput::Scope t(timer, "postprocess");
-              evaluate_final_results<dim>(parameters,
-                                          scene_file,
-                                          bodies,
-                                          exact,
-                                          pairs ? &*pairs : nullptr,
-                                          u,
-                                          factors,
-                                          pcout,
-                                          run_summary);
+              TimerOutput::Scope t(timer, postprocessor->timer_section());
+              postprocessor->execute(context,
+                                     run_summary.load_steps.back(),
+                                     run_summary);
             }
         }
     }

@@ -74,7 +74,8 @@ namespace igabde
             throw;
         }
       run_summary.output_background_seconds = writer.seconds();
-      write_pvd_series<dim>(output_directory, bodies, pvd_records);
+      for (const auto &postprocessor : postprocessors)
+        postprocessor->write_series();
       base::write_file_atomically(output_directory + "/steps.csv",
                                   steps_csv(run_summary.load_steps));
 

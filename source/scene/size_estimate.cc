@@ -89,7 +89,6 @@ namespace igabde
                     const discretization::DiscretizationSettings &settings,
                     const unsigned int                            refinements,
                     const std::vector<unsigned int>              &contact_faces,
-                    const bool                                    contact,
                     const std::string                            &scene_file)
       {
         // The exact geometry before its subdivisions (a split beyond the
@@ -148,7 +147,7 @@ namespace igabde
             // The contact faces of this patch (of several, their shared
             // nodes counted twice).
             for (const unsigned int contact_face : contact_faces)
-              if (contact && p == contact_face / (2 * dim))
+              if (p == contact_face / (2 * dim))
                 {
                   double face = 1.;
                   for (unsigned int d = 0; d < dim; ++d)
@@ -188,23 +187,25 @@ namespace igabde
                const std::string   &scene_file,
                const unsigned int   refinements)
       {
-        const auto  &c = parameters.contact;
+        const auto &c = parameters.contact;
+        // A body's contact faces (none without contact).
+        const auto contact_faces = [&](const std::vector<unsigned int> &faces) {
+          return c.enabled ? faces : std::vector<unsigned int>();
+        };
         SizeEstimate e;
         e.bytes_process = bytes_per_process;
         e.bodies.push_back(estimate_body<dim>(parameters.body1,
                                               "Body 1",
                                               parameters.discretization,
                                               refinements,
-                                              c.slave_faces,
-                                              c.enabled,
+                                              contact_faces(c.slave_faces),
                                               scene_file));
         if (parameters.body2.type == BodyType::deformable)
           e.bodies.push_back(estimate_body<dim>(parameters.body2,
                                                 "Body 2",
                                                 parameters.discretization,
                                                 refinements,
-                                                c.master_faces,
-                                                c.enabled,
+                                                contact_faces(c.master_faces),
                                                 scene_file));
         const bool direct  = (parameters.discretization.linear_solver !=
                              discretization::LinearSolver::cg_amg);

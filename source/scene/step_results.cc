@@ -89,161 +89,29 @@ namespace igabde
 
 
     template <int dim>
-    void
-    record_forces(
+    unsigned int
+    body_holding(
       const std::vector<std::unique_ptr<discretization::Body<dim>>> &bodies,
-      const contact::ContactStage<dim>                              *stage,
-      const std::vector<Vector<double>>                             &u,
-      const std::vector<double>                                     &factors,
-      StepRecord                                                    &record,
-      std::ostream                                                  &log)
+      const Point<dim>                                              &x)
     {
-      const auto to_vector = [](const Tensor<1, dim> &t) {
-        std::vector<double> v(dim);
-        for (unsigned int c = 0; c < dim; ++c)
-          v[c] = t[c];
-        return v;
-      };
-      Tensor<1, dim> on_body1;
-      for (unsigned int b = 0; b < bodies.size(); ++b)
-        {
-          Vector<double> applied = bodies[b]->external_load_vector(factors);
-          Tensor<1, dim> contact_force;
-          if (stage != nullptr)
-            {
-              const Vector<double> f = stage->contact_load(b);
-              applied += f;
-              for (unsigned int i = 0; i < f.size(); ++i)
-                contact_force[bodies[b]->dof_component(i)] += f[i];
-            }
-          if (b == 0)
-            on_body1 = contact_force;
-          BodyForceRecord forces;
-          forces.name          = bodies[b]->name();
-          forces.contact_force = to_vector(contact_force);
-          forces.support_reaction =
-            to_vector(bodies[b]->support_reaction(u[b], applied));
-          record.bodies.push_back(forces);
-          if (!bodies[b]->held_rigid_mode_names().empty())
-            record.bodies.back().held_moment = bodies[b]->held_moment(applied);
-          const auto &motions = bodies[b]->description().face_motions;
-          for (unsigned int k = 0; k < motions.size(); ++k)
-            {
-              const std::vector<double> r =
-                bodies[b]->face_motion_reaction(u[b], applied, k);
-              FaceMotionReaction reaction;
-              reaction.face   = motions[k].boundary_id;
-              reaction.force  = std::vector<double>(r.begin(), r.begin() + dim);
-              reaction.moment = std::vector<double>(r.begin() + dim, r.end());
-              record.bodies.back().face_motion_reactions.push_back(reaction);
-            }
-        }
-      if (stage != nullptr)
-        {
-          record.total_contact_force = to_vector(on_body1);
-          // Along a translation the supports leave free, the resultant
-          // balances the load (the equilibrium of a body held by contact
-          // alone): named, not printed as if it were a result.
-          log << "  total contact force on Body 1:" << std::setprecision(6);
-          std::string balanced;
-          for (unsigned int c = 0; c < dim; ++c)
-            if (bodies[0]->free_translation(c))
-              balanced += std::string(" ") + "xyz"[c];
-            else
-              log << ' '
-                  << (std::abs(on_body1[c]) > 1e-10 * on_body1.norm() ?
-                        on_body1[c] :
-                        0.);
-          if (!balanced.empty())
-            log << " (" << balanced.substr(1)
-                << ": held by contact alone, balances the load)";
-          log << std::endl;
-          if (bodies.size() == 1)
-            {
-              BodyForceRecord obstacle;
-              obstacle.name          = "obstacle";
-              obstacle.contact_force = to_vector(-on_body1);
-              record.bodies.push_back(obstacle);
-            }
-        }
+      for (unsigned int k = 0; k < bodies.size(); ++k)
+        if (bodies[k]->contains(x))
+          return k;
+      return bodies.size();
     }
 
 
 
-    namespace
+    template <int dim>
+    Point<dim>
+    point_of(const std::vector<double> &x)
     {
-      /// The first body that holds @p x (bodies.size() if none).
-      template <int dim>
-      unsigned int
-      body_holding(
-        const std::vector<std::unique_ptr<discretization::Body<dim>>> &bodies,
-        const Point<dim>                                              &x)
-      {
-        for (unsigned int k = 0; k < bodies.size(); ++k)
-          if (bodies[k]->contains(x))
-            return k;
-        return bodies.size();
-      }
-
-
-
-      /// The Hertz check's axis: Checks/Hertz axis point and direction,
-      /// empty ones the origin and the last coordinate direction.
-      template <int dim>
-      std::pair<Point<dim>, Tensor<1, dim>>
-      hertz_axis(const ChecksParameters &checks, const std::string &scene_file)
-      {
-        Point<dim>     point;
-        Tensor<1, dim> direction;
-        direction[dim - 1] = 1.;
-        if (!checks.hertz_axis_point.empty())
-          point =
-            base::parse_point<dim>(checks.hertz_axis_point,
-                                   scene_file + ": Checks/Hertz axis point");
-        if (!checks.hertz_axis_direction.empty())
-          direction =
-            base::parse_tensor<dim>(checks.hertz_axis_direction,
-                                    scene_file +
-                                      ": Checks/Hertz axis direction");
-        return {point, direction};
-      }
-
-
-
-      /**
-       * The depth of the elements next to the patch face @p face (their
-       * size along the face's outward normal) where the most heavily
-       * loaded pair of @p pairs sits: the span of the face's normal
-       * parametric direction next to the face, mapped by the Jacobian there.
-       */
-      template <int dim>
-      double
-      element_depth_under_contact(
-        const nurbs::NurbsPatch<dim>               &patch,
-        const unsigned int                          face,
-        const std::vector<contact::PairState<dim>> &pairs)
-      {
-        const contact::PairState<dim> *centre = nullptr;
-        for (const auto &pair : pairs)
-          if (pair.area > 0. &&
-              (centre == nullptr || pair.pressure() > centre->pressure()))
-            centre = &pair;
-        if (centre == nullptr || !(centre->pressure() > 0.))
-          return 0.;
-        const Point<dim> xi =
-          patch.closest_point_on_face(face, centre->location);
-        const unsigned int         d      = face / 2;
-        const std::vector<double> &breaks = patch.breakpoints(d);
-        const double               h =
-          (face % 2 == 0 ? breaks[1] - breaks[0] :
-                           breaks.back() - breaks[breaks.size() - 2]);
-        const Tensor<2, dim> J = patch.jacobian(xi);
-        Tensor<1, dim>       dx;
-        for (unsigned int i = 0; i < dim; ++i)
-          dx[i] = J[i][d] * h;
-        return std::abs(dx * patch.outward_normal(face, xi));
-      }
-    } // namespace
+      AssertDimension(x.size(), dim);
+      Point<dim> p;
+      for (unsigned int d = 0; d < dim; ++d)
+        p[d] = x[d];
+      return p;
+    }
 
 
 
@@ -254,525 +122,19 @@ namespace igabde
       const std::string                                             &scene_file,
       const std::vector<std::unique_ptr<discretization::Body<dim>>> &bodies)
     {
-      for (const std::string &item : base::split(parameters.probes, ';'))
+      for (const ProbePoint &probe : parameters.probes)
         {
-          const auto [name, location] =
-            base::split_entry(item,
-                              scene_file + ": Probe points",
-                              "'name: x, y[, z]'");
-          AssertThrow(
-            body_holding<dim>(
-              bodies,
-              base::parse_point<dim>(location, scene_file + ": Probe points")) <
-              bodies.size(),
-            base::ExcInput(scene_file + ": Probe points: '" + item +
-                           "' lies in no body; give a point of Body 1" +
-                           (bodies.size() > 1 ? " or Body 2." : ".")));
+          std::ostringstream item;
+          item << probe.name << ":";
+          for (unsigned int d = 0; d < dim; ++d)
+            item << (d > 0 ? ", " : " ") << probe.location[d];
+          AssertThrow(body_holding<dim>(bodies, point_of<dim>(probe.location)) <
+                        bodies.size(),
+                      base::ExcInput(
+                        scene_file + ": Probe points: '" + item.str() +
+                        "' lies in no body; give a point of Body 1" +
+                        (bodies.size() > 1 ? " or Body 2." : ".")));
         }
-    }
-
-
-
-    template <int dim>
-    void
-    check_model_range(
-      const std::vector<std::unique_ptr<discretization::Body<dim>>> &bodies,
-      const contact::ContactStage<dim>                              *stage,
-      const std::vector<Vector<double>>                             &u,
-      StepRecord                                                    &record,
-      std::vector<std::string>                                      &warnings,
-      std::ostream                                                  &log)
-    {
-      // Beyond these the linearised model no longer describes the scene:
-      // a strain of 0.1, where the quadratic term the small-strain measure
-      // drops (of relative size eps / 2) reaches 5 % of it; paired points
-      // moved apart by more than the pair spacing (pairs formed once in the
-      // reference configuration no longer face each other).
-      const double strain_limit = 0.1, sliding_limit = 1.;
-      const auto warn = [&](const std::string &kind, const std::string &text) {
-        for (const std::string &w : warnings)
-          if (w.find(kind) != std::string::npos)
-            return;
-        warnings.push_back("load step " + std::to_string(record.step) + ": " +
-                           text);
-        log << "  warning: " << warnings.back() << std::endl;
-      };
-      std::pair<double, Point<dim>> strain(0., Point<dim>());
-      unsigned int                  strain_body = 0;
-      for (unsigned int b = 0; b < bodies.size(); ++b)
-        {
-          const auto largest = bodies[b]->largest_strain(u[b]);
-          if (largest.first >= strain.first)
-            std::tie(strain, strain_body) = std::make_pair(largest, b);
-        }
-      record.largest_strain = strain.first;
-      std::ostringstream text;
-      text << std::setprecision(3);
-      if (strain.first > strain_limit)
-        {
-          text << "the largest strain is " << strain.first << " (Body "
-               << strain_body + 1 << " at (" << base::to_string(strain.second)
-               << ")"
-               << "), beyond 0.1, where the quadratic term that small-strain "
-                  "elasticity drops reaches 5 % of the strain: the results "
-                  "are outside the model's range.";
-          warn("the largest strain", text.str());
-        }
-      const auto largest = stage ? stage->largest_sliding(u) : std::nullopt;
-      if (!largest)
-        return;
-      const auto &sliding    = *largest;
-      record.largest_sliding = sliding.first;
-      if (sliding.first > sliding_limit)
-        {
-          text.str("");
-          text << "paired points have moved " << sliding.first
-               << " pair spacings apart along the surface (at ("
-               << base::to_string(sliding.second) << ")"
-               << "): the pairs, formed once in the reference configuration, "
-                  "no longer face each other, so the contact is outside the "
-                  "model's small-sliding range.";
-          warn("pair spacings apart", text.str());
-        }
-    }
-
-
-
-    template <int dim>
-    void
-    write_step_output(
-      const std::string                                             &directory,
-      const bool                                                     write_vtu,
-      const unsigned int                                             step,
-      const unsigned int                                             rank,
-      const unsigned int                                             n_ranks,
-      const std::vector<std::unique_ptr<discretization::Body<dim>>> &bodies,
-      const std::vector<Vector<double>>                             &u,
-      const std::vector<contact::PairState<dim>>                    *pairs,
-      const std::vector<types::boundary_id>                    &slave_faces,
-      std::vector<std::vector<std::pair<double, std::string>>> &pvd_records,
-      base::BackgroundWriter                                   &writer)
-    {
-      // The files of the step before the previous one first: at most two
-      // steps in flight.
-      writer.begin_group();
-      writer.wait_all_but_last_group();
-      std::ostringstream number;
-      number << std::setw(4) << std::setfill('0') << step;
-      // The pair table every step; fields only with Write vtu. Each file is
-      // a job of its own, on copies of the step's results.
-      if (pairs != nullptr && rank == 0)
-        {
-          const std::string name = "contact-" + number.str();
-          // The recovered pressure reads Body 1's stress field, which the
-          // next step does not change (the displacement is a copy).
-          writer.add([directory,
-                      name,
-                      write_vtu,
-                      body = bodies[0].get(),
-                      u0   = u[0],
-                      slave_faces,
-                      pairs = *pairs]() {
-            const std::vector<double> recovered =
-              postprocess::recovered_pressures<dim>(*body,
-                                                    slave_faces,
-                                                    u0,
-                                                    pairs);
-            postprocess::write_pair_csv<dim>(pairs,
-                                             recovered,
-                                             directory + "/" + name + ".csv");
-            if (write_vtu)
-              postprocess::write_pair_vtu<dim>(pairs,
-                                               recovered,
-                                               directory + "/" + name + ".vtu");
-          });
-          if (write_vtu)
-            {
-              // The pairs' series after the bodies' (contact.pvd).
-              pvd_records.resize(bodies.size() + 1);
-              pvd_records.back().emplace_back(double(step), name + ".vtu");
-            }
-        }
-      if (!write_vtu)
-        return;
-      for (unsigned int b = 0; b < bodies.size(); ++b)
-        {
-          // One piece per rank, as long as each has a cell to write.
-          const unsigned int n_pieces =
-            std::min(n_ranks, bodies[b]->n_elements());
-          const std::string name =
-            "solution-" + bodies[b]->name() + "-" + number.str();
-          if (n_pieces == 1)
-            {
-              if (rank == 0)
-                writer.add([body = bodies[b].get(),
-                            ub   = u[b],
-                            path = directory + "/" + name + ".vtu"]() {
-                  body->write_vtu(ub, path, 0, 1);
-                });
-              pvd_records[b].emplace_back(double(step), name + ".vtu");
-              continue;
-            }
-          std::vector<std::string> pieces;
-          for (unsigned int r = 0; r < n_pieces; ++r)
-            pieces.push_back(
-              name + "." +
-              Utilities::int_to_string(r,
-                                       Utilities::needed_digits(n_pieces - 1)) +
-              ".vtu");
-          if (rank < n_pieces)
-            writer.add([body = bodies[b].get(),
-                        ub   = u[b],
-                        path = directory + "/" + pieces[rank],
-                        rank,
-                        n_pieces]() {
-              body->write_vtu(ub, path, rank, n_pieces);
-            });
-          if (rank == 0)
-            writer.add([body = bodies[b].get(),
-                        path = directory + "/" + name + ".pvtu",
-                        pieces]() {
-              body->write_pvtu_record(path, pieces);
-            });
-          pvd_records[b].emplace_back(double(step), name + ".pvtu");
-        }
-    }
-
-
-
-    template <int dim>
-    void
-    write_fclib_step(const std::string                &directory,
-                     const unsigned int                step,
-                     const contact::ContactStage<dim> &stage,
-                     std::ostream                     &log)
-    {
-      const contact::ContactProblem &problem = stage.condensed_problem();
-      std::ostringstream             name;
-      name << "fclib-" << std::setw(4) << std::setfill('0') << step << ".hdf5";
-      if (problem.W.rows() != problem.n_rows() || problem.n_rows() == 0)
-        {
-          log << "  FCLIB export: step " << step
-              << " left out: the full path forms no flexibility W" << std::endl;
-          return;
-        }
-      if (problem.n_alpha() > 0)
-        {
-          log << "  FCLIB export: step " << step
-              << " left out: a body is held by contact only (its rigid "
-                 "modes join the problem, which FCLIB's local problems "
-                 "cannot hold)"
-              << std::endl;
-          return;
-        }
-      contact::ContactSolverResult solution;
-      solution.p         = stage.forces();
-      solution.u         = problem.relative_displacement(solution.p);
-      solution.converged = true;
-      postprocess::write_fclib_local(problem,
-                                     &solution,
-                                     directory + "/" + name.str());
-    }
-
-
-
-    template <int dim>
-    void
-    write_pvd_series(
-      const std::string                                             &directory,
-      const std::vector<std::unique_ptr<discretization::Body<dim>>> &bodies,
-      const std::vector<std::vector<std::pair<double, std::string>>>
-        &pvd_records)
-    {
-      for (unsigned int b = 0; b < pvd_records.size(); ++b)
-        if (!pvd_records[b].empty())
-          {
-            std::ofstream pvd = base::open_for_writing(
-              directory + "/" +
-              (b < bodies.size() ? "solution-" + bodies[b]->name() :
-                                   std::string("contact")) +
-              ".pvd");
-            DataOutBase::write_pvd_record(pvd, pvd_records[b]);
-          }
-    }
-
-
-
-    template <int dim>
-    void
-    evaluate_final_results(
-      const AllParameters                                           &parameters,
-      const std::string                                             &scene_file,
-      const std::vector<std::unique_ptr<discretization::Body<dim>>> &bodies,
-      const std::optional<discretization::ExactSolution<dim>>       &exact,
-      const std::vector<contact::PairState<dim>>                    *pairs,
-      const std::vector<Vector<double>>                             &u,
-      const std::vector<double>                                     &factors,
-      ConditionalOStream                                            &pcout,
-      RunSummary                                                    &summary)
-    {
-      nlohmann::json           checks = nlohmann::json::object();
-      std::vector<std::string> warnings;
-      const auto               report_warnings =
-        [&](const std::vector<std::string> &messages) {
-          for (const std::string &w : messages)
-            {
-              pcout << "  warning: " << w << std::endl;
-              warnings.push_back(w);
-            }
-        };
-      // The checks' references (exact solutions, the uniform pressure, the
-      // Hertz loads) are for every load history at factor 1. The last
-      // step's factors scale them when every history that loads or moves a
-      // body has the same factor lambda (elasticity is linear, and the
-      // Hertz references follow their load); otherwise none applies.
-      std::vector<double> acting;
-      for (const auto &body : bodies)
-        for (unsigned int h = 0; h < body->n_histories(); ++h)
-          if (body->description().acts_in_history(h))
-            acting.push_back(h < factors.size() ? factors[h] : 0.);
-      const bool common =
-        std::all_of(acting.begin(), acting.end(), [&](const double f) {
-          return f == acting.front();
-        });
-      const double lambda = acting.empty() ? 1. : acting.front();
-      const bool   contact_checks =
-        pairs != nullptr && (parameters.checks.uniform_pressure > 0. ||
-                             parameters.checks.hertz_line_load > 0. ||
-                             parameters.checks.hertz_point_load > 0.);
-      const bool any_check        = exact || contact_checks;
-      const bool references_apply = common && lambda != 0.;
-      if (any_check && !references_apply)
-        {
-          std::ostringstream w;
-          w << "Checks: the references are for the loads at factor 1, and "
-            << (common ? "the last step's factors are 0" :
-                         "the last step's load histories have different "
-                         "factors (Load path)")
-            << ", so no check is evaluated; end the load path with every "
-               "factor at 1 (or all at one value, which scales the "
-               "references)";
-          report_warnings({w.str()});
-        }
-      else if (any_check && lambda != 1.)
-        {
-          checks["reference_factor"] = lambda;
-          pcout << "  checks: the references scaled by the last step's factor "
-                << lambda << std::endl;
-        }
-      if (exact && references_apply)
-        {
-          Vector<double> scaled = u[0];
-          scaled /= lambda;
-          const auto norms = bodies[0]->compute_errors(scaled, *exact);
-          AssertThrow(std::isfinite(norms.l2_relative) &&
-                        std::isfinite(norms.energy_relative),
-                      ExcMessage("the error norms are not finite (overflow "
-                                 "in the exact solution or the field: check "
-                                 "the loads and Young's modulus of the "
-                                 "scene)."));
-          checks["l2_error"]     = norms.l2_relative;
-          checks["energy_error"] = norms.energy_relative;
-          pcout << "  relative L2 error " << std::setprecision(4)
-                << std::scientific << norms.l2_relative
-                << ", relative energy error " << norms.energy_relative
-                << std::defaultfloat << std::setprecision(6) << std::endl;
-        }
-
-      if (contact_checks && references_apply && lambda < 0.)
-        report_warnings(
-          {"Checks: the contact checks' references are for a pressing load, "
-           "and the last step's factors are negative, so they are not "
-           "evaluated"});
-      if (pairs != nullptr && references_apply && lambda > 0.)
-        {
-          if (parameters.checks.uniform_pressure > 0.)
-            {
-              const double worst = postprocess::pressure_uniformity<dim>(
-                *pairs,
-                lambda * parameters.checks.uniform_pressure);
-              checks["pressure_uniformity"] = worst;
-              // Below 1e-10 the figure is round-off: said, not printed.
-              pcout << "  pressure uniformity max |p_i/p - 1| "
-                    << std::setprecision(3) << std::scientific;
-              if (worst < 1e-10)
-                pcout << "< 1e-10";
-              else
-                pcout << "= " << worst;
-              pcout << std::defaultfloat << std::setprecision(6) << std::endl;
-            }
-          // What the 2D and 3D Hertz checks share: the radius, E* of the
-          // two bodies (the second rigid when there is none), the axis and
-          // the depth of Body 1's elements under the contact.
-          const auto set_hertz_inputs = [&](auto &hertz) {
-            hertz.radius = (parameters.checks.hertz_radius > 0. ?
-                              parameters.checks.hertz_radius :
-                              parameters.body1.radius);
-            hertz.effective_modulus =
-              postprocess::effective_modulus<dim>(bodies[0]->material(),
-                                                  bodies.size() > 1 ?
-                                                    &bodies[1]->material() :
-                                                    nullptr);
-            std::tie(hertz.axis_point, hertz.axis_direction) =
-              hertz_axis<dim>(parameters.checks, scene_file);
-            hertz.element_depth = element_depth_under_contact(
-              bodies[0]->geometry_patch(discretization::patch_of_face<dim>(
-                parameters.contact.slave_faces.front())),
-              discretization::local_face<dim>(
-                parameters.contact.slave_faces.front()),
-              *pairs);
-          };
-          // Hertz's and Johnson's solutions are frictionless. Friction leaves
-          // them exact only between similar bodies (Dundurs beta = 0); between
-          // dissimilar ones (a rigid plane, other moduli) it changes the
-          // contact (Spence's problem), so the check's differences are not
-          // the discretisation's alone (|beta| below 1e-3: negligible).
-          const auto friction_note = [&](const std::string &reference) {
-            std::vector<std::string> note;
-            const double             beta =
-              postprocess::dundurs_beta<dim>(bodies[0]->material(),
-                                             bodies.size() > 1 ?
-                                               &bodies[1]->material() :
-                                               nullptr);
-            if (parameters.contact.friction_coefficient > 0. &&
-                std::abs(beta) >= 1e-3)
-              {
-                std::ostringstream w;
-                w << "Checks/Hertz: " << reference
-                  << " solution is frictionless; "
-                     "with Contact/Friction coefficient = "
-                  << parameters.contact.friction_coefficient
-                  << " between dissimilar bodies (Dundurs beta = "
-                  << std::setprecision(3) << beta
-                  << ") friction changes the contact (Spence's problem), "
-                     "so the differences to it are not the "
-                     "discretisation's alone";
-                note.push_back(w.str());
-              }
-            return note;
-          };
-          if (parameters.checks.hertz_line_load > 0.)
-            {
-              if constexpr (dim == 2)
-                {
-                  postprocess::HertzCheck hertz;
-                  hertz.line_load = lambda * parameters.checks.hertz_line_load;
-                  set_hertz_inputs(hertz);
-                  const auto r                     = hertz.evaluate(*pairs);
-                  checks["hertz_half_width"]       = r.half_width;
-                  checks["hertz_half_width_exact"] = r.half_width_exact;
-                  checks["hertz_half_width_error"] =
-                    std::abs(r.half_width / r.half_width_exact - 1.);
-                  checks["hertz_peak_pressure"]       = r.peak_pressure;
-                  checks["hertz_peak_pressure_exact"] = r.peak_pressure_exact;
-                  checks["pressure_l2_rel_error"]     = r.profile_l2_error;
-                  checks["hertz_loaded_pairs"]        = r.n_loaded;
-                  checks["hertz_edge_pair_spacing"]   = r.edge_pair_spacing;
-                  checks["hertz_half_width_moment"]   = r.half_width_moment;
-                  checks["hertz_half_width_moment_error"] =
-                    std::abs(r.half_width_moment / r.half_width_exact - 1.);
-                  checks["hertz_max_pair_deviation"] = r.max_pair_deviation;
-                  checks["hertz_inner_pairs"]        = r.n_inner_pairs;
-                  pcout << "  Hertz: half-width " << std::setprecision(5)
-                        << r.half_width << " (Johnson " << r.half_width_exact
-                        << "), peak pressure " << r.peak_pressure
-                        << " (Johnson " << r.peak_pressure_exact
-                        << "), profile L2 error " << std::setprecision(3)
-                        << r.profile_l2_error << std::setprecision(6)
-                        << std::endl;
-                  report_warnings(r.warnings);
-                  report_warnings(friction_note("Johnson's"));
-                }
-            }
-          if (parameters.checks.hertz_point_load > 0.)
-            {
-              if constexpr (dim == 3)
-                {
-                  postprocess::HertzPointCheck hertz;
-                  hertz.load = lambda * parameters.checks.hertz_point_load;
-                  set_hertz_inputs(hertz);
-                  const auto r                         = hertz.evaluate(*pairs);
-                  checks["hertz_contact_radius"]       = r.contact_radius;
-                  checks["hertz_contact_radius_exact"] = r.contact_radius_exact;
-                  checks["hertz_contact_radius_error"] =
-                    std::abs(r.contact_radius / r.contact_radius_exact - 1.);
-                  checks["hertz_contact_radius_moment"] =
-                    r.contact_radius_moment;
-                  checks["hertz_contact_radius_moment_error"] = std::abs(
-                    r.contact_radius_moment / r.contact_radius_exact - 1.);
-                  checks["hertz_peak_pressure"]       = r.peak_pressure;
-                  checks["hertz_peak_pressure_exact"] = r.peak_pressure_exact;
-                  checks["hertz_peak_pressure_error"] =
-                    std::abs(r.peak_pressure / r.peak_pressure_exact - 1.);
-                  checks["pressure_l2_rel_error"]    = r.profile_l2_error;
-                  checks["hertz_max_pair_deviation"] = r.max_pair_deviation;
-                  checks["hertz_inner_pairs"]        = r.n_inner_pairs;
-                  checks["hertz_loaded_pairs"]       = r.n_loaded;
-                  checks["hertz_fitted_pairs"]       = r.n_fitted;
-                  pcout << "  Hertz: contact radius " << std::setprecision(5)
-                        << r.contact_radius << " (Hertz "
-                        << r.contact_radius_exact << "), peak pressure "
-                        << r.peak_pressure << " (Hertz "
-                        << r.peak_pressure_exact << "), profile L2 error "
-                        << std::setprecision(3) << r.profile_l2_error
-                        << std::setprecision(6) << std::endl;
-                  report_warnings(r.warnings);
-                  report_warnings(friction_note("Hertz's"));
-                }
-            }
-        }
-      summary.checks = checks;
-      summary.warnings.insert(summary.warnings.end(),
-                              warnings.begin(),
-                              warnings.end());
-
-      nlohmann::json points   = nlohmann::json::object();
-      nlohmann::json stresses = nlohmann::json::object();
-      for (const std::string &item : base::split(parameters.probes, ';'))
-        {
-          const auto [name, location] =
-            base::split_entry(item,
-                              scene_file + ": Probe points",
-                              "'name: x, y[, z]'");
-          const Point<dim> x =
-            base::parse_point<dim>(location, scene_file + ": Probe points");
-          // In a body: check_probe_points() before the solve.
-          const unsigned int   b = body_holding<dim>(bodies, x);
-          const Tensor<1, dim> d =
-            bodies[b]->point_operator(x).displacement(u[b]);
-          std::vector<double> value(dim);
-          for (unsigned int c = 0; c < dim; ++c)
-            value[c] = d[c];
-          points[name] = value;
-          pcout << "  probe " << name << ": displacement "
-                << std::setprecision(5) << d << std::setprecision(6)
-                << std::endl;
-
-          // Stress recovered at the probe: upper triangle, row by row.
-          const SymmetricTensor<2, dim> sigma = bodies[b]->stress(u[b], x);
-          for (unsigned int i = 0; i < dim; ++i)
-            for (unsigned int j = 0; j < dim; ++j)
-              AssertThrow(std::isfinite(sigma[i][j]),
-                          ExcMessage("probe " + name +
-                                     ": the stress is not finite (overflow: "
-                                     "check the loads and Young's modulus "
-                                     "of the scene)."));
-          std::vector<double> components;
-          for (unsigned int i = 0; i < dim; ++i)
-            for (unsigned int j = i; j < dim; ++j)
-              components.push_back(sigma[i][j]);
-          const auto    &material = bodies[b]->material();
-          nlohmann::json entry    = {
-               {"body", bodies[b]->name()},
-               {"stress", components},
-               {"von_mises", elasticity::von_mises<dim>(sigma, material)}};
-          if (dim == 2)
-            entry["stress_zz"] =
-              elasticity::out_of_plane_stress<dim>(sigma, material);
-          stresses[name] = entry;
-        }
-      summary.points         = points;
-      summary.point_stresses = stresses;
     }
 
 
@@ -782,128 +144,40 @@ namespace igabde
                               const contact::Algorithm,
                               StepRecord &);
     template void
+    record_contact_outcome<3>(const LoadController<3>::Outcome &,
+                              const contact::Algorithm,
+                              StepRecord &);
+    template void
     check_finite_displacements<2>(
       const std::vector<std::unique_ptr<discretization::Body<2>>> &,
       const std::vector<Vector<double>> &,
       const unsigned int);
     template void
-    record_forces<2>(
-      const std::vector<std::unique_ptr<discretization::Body<2>>> &,
-      const contact::ContactStage<2> *,
+    check_finite_displacements<3>(
+      const std::vector<std::unique_ptr<discretization::Body<3>>> &,
       const std::vector<Vector<double>> &,
-      const std::vector<double> &,
-      StepRecord &,
-      std::ostream &);
+      const unsigned int);
+    template unsigned int
+    body_holding<2>(
+      const std::vector<std::unique_ptr<discretization::Body<2>>> &,
+      const Point<2> &);
+    template unsigned int
+    body_holding<3>(
+      const std::vector<std::unique_ptr<discretization::Body<3>>> &,
+      const Point<3> &);
+    template Point<2>
+    point_of<2>(const std::vector<double> &);
+    template Point<3>
+    point_of<3>(const std::vector<double> &);
     template void
     check_probe_points<2>(
       const AllParameters &,
       const std::string &,
       const std::vector<std::unique_ptr<discretization::Body<2>>> &);
     template void
-    check_model_range<2>(
-      const std::vector<std::unique_ptr<discretization::Body<2>>> &,
-      const contact::ContactStage<2> *,
-      const std::vector<Vector<double>> &,
-      StepRecord &,
-      std::vector<std::string> &,
-      std::ostream &);
-    template void
-    write_step_output<2>(
-      const std::string &,
-      const bool,
-      const unsigned int,
-      const unsigned int,
-      const unsigned int,
-      const std::vector<std::unique_ptr<discretization::Body<2>>> &,
-      const std::vector<Vector<double>> &,
-      const std::vector<contact::PairState<2>> *,
-      const std::vector<types::boundary_id> &,
-      std::vector<std::vector<std::pair<double, std::string>>> &,
-      base::BackgroundWriter &);
-    template void
-    write_fclib_step<2>(const std::string &,
-                        const unsigned int,
-                        const contact::ContactStage<2> &,
-                        std::ostream &);
-    template void
-    write_fclib_step<3>(const std::string &,
-                        const unsigned int,
-                        const contact::ContactStage<3> &,
-                        std::ostream &);
-    template void
-    write_pvd_series<2>(
-      const std::string &,
-      const std::vector<std::unique_ptr<discretization::Body<2>>> &,
-      const std::vector<std::vector<std::pair<double, std::string>>> &);
-    template void
-    record_contact_outcome<3>(const LoadController<3>::Outcome &,
-                              const contact::Algorithm,
-                              StepRecord &);
-    template void
-    check_finite_displacements<3>(
-      const std::vector<std::unique_ptr<discretization::Body<3>>> &,
-      const std::vector<Vector<double>> &,
-      const unsigned int);
-    template void
-    record_forces<3>(
-      const std::vector<std::unique_ptr<discretization::Body<3>>> &,
-      const contact::ContactStage<3> *,
-      const std::vector<Vector<double>> &,
-      const std::vector<double> &,
-      StepRecord &,
-      std::ostream &);
-    template void
     check_probe_points<3>(
       const AllParameters &,
       const std::string &,
       const std::vector<std::unique_ptr<discretization::Body<3>>> &);
-    template void
-    check_model_range<3>(
-      const std::vector<std::unique_ptr<discretization::Body<3>>> &,
-      const contact::ContactStage<3> *,
-      const std::vector<Vector<double>> &,
-      StepRecord &,
-      std::vector<std::string> &,
-      std::ostream &);
-    template void
-    write_step_output<3>(
-      const std::string &,
-      const bool,
-      const unsigned int,
-      const unsigned int,
-      const unsigned int,
-      const std::vector<std::unique_ptr<discretization::Body<3>>> &,
-      const std::vector<Vector<double>> &,
-      const std::vector<contact::PairState<3>> *,
-      const std::vector<types::boundary_id> &,
-      std::vector<std::vector<std::pair<double, std::string>>> &,
-      base::BackgroundWriter &);
-    template void
-    write_pvd_series<3>(
-      const std::string &,
-      const std::vector<std::unique_ptr<discretization::Body<3>>> &,
-      const std::vector<std::vector<std::pair<double, std::string>>> &);
-    template void
-    evaluate_final_results<2>(
-      const AllParameters &,
-      const std::string &,
-      const std::vector<std::unique_ptr<discretization::Body<2>>> &,
-      const std::optional<discretization::ExactSolution<2>> &,
-      const std::vector<contact::PairState<2>> *,
-      const std::vector<Vector<double>> &,
-      const std::vector<double> &,
-      ConditionalOStream &,
-      RunSummary &);
-    template void
-    evaluate_final_results<3>(
-      const AllParameters &,
-      const std::string &,
-      const std::vector<std::unique_ptr<discretization::Body<3>>> &,
-      const std::optional<discretization::ExactSolution<3>> &,
-      const std::vector<contact::PairState<3>> *,
-      const std::vector<Vector<double>> &,
-      const std::vector<double> &,
-      ConditionalOStream &,
-      RunSummary &);
   } // namespace scene
 } // namespace igabde

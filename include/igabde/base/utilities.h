@@ -47,29 +47,6 @@ namespace igabde
                 const std::string &where,
                 const std::string &form);
 
-    /**
-     * @brief Reads a patch face number 0..n_faces-1 from @p text (the key of
-     * @p item); throws naming @p where and the item otherwise.
-     */
-    unsigned int
-    parse_face(const std::string &text,
-               const unsigned int n_faces,
-               const std::string &where,
-               const std::string &item);
-
-    /**
-     * @brief Reads a tensor of dimension @p dim; extra trailing components
-     * (a 3D default read in 2D) are ignored when they are zero.
-     */
-    template <int dim>
-    Tensor<1, dim>
-    parse_tensor(const std::string &text, const std::string &where);
-
-    /// As parse_tensor(), as a point.
-    template <int dim>
-    Point<dim>
-    parse_point(const std::string &text, const std::string &where);
-
     /// A point as messages write it: "0.5, 0" (the parentheses are the
     /// caller's).
     template <int dim>

@@ -1,6 +1,7 @@
 #ifndef igabde_discretization_body_h
 #define igabde_discretization_body_h
 
+#include <igabde/discretization/rigid_modes.h>
 #include <igabde/discretization/settings.h>
 
 #include <igabde/elasticity/body_force.h>
@@ -726,6 +727,7 @@ namespace igabde
           &point_load);
 
     private:
+      /// The free rigid modes and their pins (solve_constraints).
       void
       find_free_rigid_modes();
 
@@ -768,36 +770,13 @@ namespace igabde
        * complement's flexibility of the point forces C given by
        * @p operators and @p directions): with A = R_h^T C, B = C^T K^+ C_h,
        * M = S^-1 A and Gamma = C_h^T K^+ C_h,
-       * F - B M - M^T B^T + M^T Gamma M.
+       * F - B M - M^T B^T + M^T Gamma M (RigidModes: R_h, C_h, S).
        */
       void
       correct_for_held_modes(const std::vector<PointOperator<dim>> &operators,
                              const std::vector<Tensor<1, dim>>     &directions,
                              FullMatrix<double>                    &F) const;
 
-      /// S^-1 R_h^T f: the multipliers of the held modes' loads C_h that
-      /// balance @p f in the held modes (see hold_rotations()).
-      Vector<double>
-      held_multipliers(const Vector<double> &f) const;
-
-      /// f <- P^T f (see hold_rotations()).
-      void
-      balance_held_modes(Vector<double> &f) const;
-
-      /// u <- P u (see hold_rotations()).
-      void
-      fix_held_modes(Vector<double> &u) const;
-
-      /// Value of pure rigid mode @p mode (translations, then rotations
-      /// about the centroid of the unknowns, scaled) at unknown @p i.
-      double
-      rigid_mode_value(const unsigned int            mode,
-                       const types::global_dof_index i) const;
-
-      /// The rigid mode with @p coefficients on the pure modes (zero at
-      /// the supports) and its name.
-      std::pair<Vector<double>, std::string>
-      rigid_mode(const std::vector<double> &coefficients) const;
 
       void
       factorize_matrix(
@@ -845,22 +824,11 @@ namespace igabde
       solve_pinned(std::vector<Vector<double>> &rhs_and_solutions) const;
       /// Solution of each load history at factor 1.
       std::vector<Vector<double>> u_history;
-      std::vector<Vector<double>> rigid_modes;
-      std::vector<std::string>    rigid_mode_names;
-      /// Coefficients of each free rigid mode on the pure modes.
-      std::vector<std::vector<double>> rigid_mode_coefficients;
-      /// Centre and size the rotation modes are taken about.
-      Point<dim> mode_centre;
-      double     mode_size = 1.;
-      /// Held rigid modes R_h, their constraint loads C_h, S^-1, the
-      /// pinned responses K^+ C_h (for the Schur-complement flexibility),
-      /// the modes' names and the moment (per axis) of each load in C_h.
-      std::vector<Vector<double>>      held_modes;
-      std::vector<Vector<double>>      held_loads;
-      FullMatrix<double>               held_inverse;
-      std::vector<Vector<double>>      held_response;
-      std::vector<std::string>         held_mode_names;
-      std::vector<std::vector<double>> held_moments;
+      /// The free and the held rigid modes, the pins' choice.
+      RigidModes<dim> rigid_modes;
+      /// The pinned responses K^+ C_h of the held modes' loads (for the
+      /// Schur-complement flexibility).
+      std::vector<Vector<double>> held_response;
     };
 
     /**

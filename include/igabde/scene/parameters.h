@@ -12,6 +12,7 @@
 #include <igabde/contact/pairing.h>
 
 #include <igabde/coupled/solver.h>
+#include <igabde/scene/body_grammars.h>
 
 #include <deal.II/base/parameter_handler.h>
 
@@ -19,12 +20,6 @@
 #include <memory>
 #include <string>
 #include <vector>
-
-namespace dealii
-{
-  template <int dim>
-  class FunctionParser;
-}
 
 namespace igabde
 {
@@ -114,17 +109,6 @@ namespace igabde
     }
 
     /**
-     * @brief deal.II's FunctionParser for the @p dim components
-     * @p expressions in the variables x, y[, z] and t (and the constant
-     * pi), at time @p t. Evaluating it is thread-safe (the parser keeps
-     * one muparser per thread).
-     */
-    template <int dim>
-    std::shared_ptr<dealii::FunctionParser<dim>>
-    make_function_parser(const std::vector<std::string> &expressions,
-                         const double                    t);
-
-    /**
      * @brief Where and what a run writes.
      */
     struct OutputParameters
@@ -156,131 +140,6 @@ namespace igabde
       /// Reads the "Output" subsection.
       void
       parse_parameters(ParameterHandler &prm);
-    };
-
-    /**
-     * @brief One entry of Body n/Supports: components held on a patch face.
-     */
-    struct SupportParameters
-    {
-      /// Patch face (boundary id of the parametric mesh).
-      unsigned int face = 0;
-      /// Held components x, y, z.
-      std::array<bool, 3> components = {{false, false, false}};
-      /// Prescribed displacement (m) of each held component at
-      /// displacement factor 1.
-      std::array<double, 3> values = {{0., 0., 0.}};
-      /// Load history scaling the values ('@ name'; empty: Displacement
-      /// factors).
-      std::string history;
-      /// A component given as 'c = function expr': its expression of x,
-      /// y[, z] (empty: the constant value).
-      std::array<std::string, 3> expressions;
-    };
-
-    /**
-     * @brief One entry of Body n/Tractions.
-     */
-    struct TractionParameters
-    {
-      /// What the entry prescribes.
-      enum class Kind
-      {
-        /// t = -p n with the pressure values[0] (Pa).
-        pressure,
-        /// The constant traction values (Pa), one per component.
-        vector,
-        /// sigma_exact n from the Exact solution.
-        exact,
-        /// Components given as expressions of x, y[, z] and t.
-        function
-      };
-      /// Patch face (boundary id of the parametric mesh).
-      unsigned int face = 0;
-      /// Pressure, vector or exact.
-      Kind kind = Kind::pressure;
-      /// Pressure (one value) or traction (dimension values), in Pa.
-      std::vector<double> values;
-      /// Load history scaling the traction ('@ name'; empty: Load factors).
-      std::string history;
-      /// Kind::function: one expression per component (deal.II's
-      /// FunctionParser syntax, variables x, y[, z] and t).
-      std::vector<std::string> expressions;
-      /// Kind::function: whether an expression uses t. Such a traction is
-      /// the expression's value at t = the step's factor of its history
-      /// (not scaled again); it enters the solve as one load history per
-      /// step (LoadPathParameters::step_history_steps), so that every
-      /// step's load is exact and the superposition of history solutions
-      /// stays as for every other load.
-      bool uses_t = false;
-      /// uses_t: per step, the value of t and the index of its history in
-      /// LoadPathParameters::history_factors() (set by AllParameters).
-      std::vector<double>       step_t;
-      std::vector<unsigned int> step_histories;
-    };
-
-    /**
-     * @brief One entry of Body n/Point loads.
-     */
-    struct PointLoadParameters
-    {
-      /// Where the force acts (m), dimension values.
-      std::vector<double> location;
-      /// The force (N), dimension values.
-      std::vector<double> force;
-      /// Load history scaling the force ('@ name'; empty: Load factors).
-      std::string history;
-    };
-
-    /**
-     * @brief One entry of Body n/Point supports: components held at zero
-     * at one point of the body (a node: a patch corner for NURBS, a mesh
-     * node for FE_Q).
-     */
-    struct PointSupportParameters
-    {
-      /// Where (m), dimension values.
-      std::vector<double> location;
-      /// Held components x, y, z.
-      std::array<bool, 3> components = {{false, false, false}};
-      /// Prescribed values of the held components (m; 'x=0.01'), scaled
-      /// by the step's displacement factor or the load history.
-      std::array<double, 3> values = {{0., 0., 0.}};
-      /// Load history scaling the values ('@ name'; empty: Displacement
-      /// factors).
-      std::string history;
-    };
-
-    /**
-     * @brief One entry of Body n/Moments: a moment on a patch face, spread
-     * over it as a distributing coupling spreads it.
-     */
-    struct MomentParameters
-    {
-      /// The patch face.
-      unsigned int face = 0;
-      /// The moment about the face's centroid (N m; N m/m in 2D): one value
-      /// (about z) in 2D, three in 3D.
-      std::vector<double> moment;
-      /// Load history scaling the moment ('@ name'; empty: Load factors).
-      std::string history;
-    };
-
-    /**
-     * @brief One entry of Body n/Face motions: a patch face moved rigidly,
-     * as a kinematic coupling moves it, by a displacement and a (small)
-     * rotation about the face's centroid.
-     */
-    struct FaceMotionParameters
-    {
-      /// The patch face.
-      unsigned int face = 0;
-      /// The displacement of the face's centroid (m), dimension values,
-      /// then the rotation (rad): one value (about z) in 2D, three in 3D.
-      std::vector<double> motion;
-      /// Load history scaling the motion ('@ name'; empty: Displacement
-      /// factors).
-      std::string history;
     };
 
     /**
@@ -480,10 +339,14 @@ namespace igabde
       double hertz_point_load = 0.;
       /// Radius of the Hertz cylinder or sphere; 0: Body 1/Radius.
       double hertz_radius = 0.;
-      /// A point on the Hertz symmetry axis, and its direction; empty: the
-      /// origin and the last coordinate direction.
-      std::string hertz_axis_point;
-      std::string hertz_axis_direction;
+      /// A point on the Hertz symmetry axis, and its direction (dimension
+      /// values each, read by AllParameters); empty: the origin and the
+      /// last coordinate direction.
+      std::vector<double> hertz_axis_point;
+      std::vector<double> hertz_axis_direction;
+      /// Their texts as the scene writes them.
+      std::string hertz_axis_point_text;
+      std::string hertz_axis_direction_text;
 
       /// Declares the "Checks" subsection.
       static void
@@ -556,8 +419,8 @@ namespace igabde
       unsigned int dimension = 2;
       /// Plane strain or plane stress (2D).
       elasticity::PlaneModel plane_model = elasticity::PlaneModel::plane_strain;
-      /// Probe points: "name: x,y[,z]; ...".
-      std::string probes;
+      /// Probe points, read from "name: x, y[, z]; ...".
+      std::vector<ProbePoint> probes;
       /// Output.
       OutputParameters output;
       /// Discretisation.

@@ -6,6 +6,7 @@
 #include <igabde/discretization/body.h>
 
 #include <igabde/scene/parameters.h>
+#include <igabde/scene/postprocessors.h>
 #include <igabde/scene/rank_split.h>
 #include <igabde/scene/run_record.h>
 #include <igabde/scene/scene_reader.h>
@@ -142,13 +143,14 @@ namespace igabde
       /// has run (the largest seconds per phase over the ranks).
       std::optional<std::map<std::string, double>> final_timing;
 
-      std::optional<discretization::ExactSolution<dim>>        exact;
-      std::vector<std::unique_ptr<discretization::Body<dim>>>  bodies;
-      std::unique_ptr<contact::ContactStage<dim>>              contact_stage;
-      std::vector<std::vector<std::pair<double, std::string>>> pvd_records;
+      std::optional<discretization::ExactSolution<dim>>       exact;
+      std::vector<std::unique_ptr<discretization::Body<dim>>> bodies;
+      std::unique_ptr<contact::ContactStage<dim>>             contact_stage;
       /// Writes the step files while the next step runs; declared after the
       /// bodies, so that it is destroyed (waits for its jobs) before them.
       base::BackgroundWriter writer;
+      /// What the run computes and writes after each load step, in order.
+      std::vector<std::unique_ptr<Postprocessor<dim>>> postprocessors;
       /// Time since write_summary() last wrote its files.
       Timer since_written;
       bool  written_once = false;

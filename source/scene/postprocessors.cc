@@ -1,0 +1,878 @@
+#include <igabde/base/utilities.h>
+
+#include <igabde/nurbs/nurbs_patch.h>
+
+#include <igabde/discretization/body_description.h>
+
+#include <igabde/elasticity/stress_measures.h>
+
+#include <igabde/postprocess/contact_checks.h>
+#include <igabde/postprocess/contact_output.h>
+#include <igabde/postprocess/fclib_writer.h>
+#include <igabde/scene/postprocessors.h>
+#include <igabde/scene/step_results.h>
+
+#include <deal.II/base/data_out_base.h>
+#include <deal.II/base/utilities.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+#include <tuple>
+
+namespace igabde
+{
+  namespace scene
+  {
+    namespace
+    {
+      /// The Hertz check's axis: Checks/Hertz axis point and direction,
+      /// empty ones the origin and the last coordinate direction.
+      template <int dim>
+      std::pair<Point<dim>, Tensor<1, dim>>
+      hertz_axis(const ChecksParameters &checks)
+      {
+        Point<dim>     point;
+        Tensor<1, dim> direction;
+        direction[dim - 1] = 1.;
+        if (!checks.hertz_axis_point.empty())
+          point = point_of<dim>(checks.hertz_axis_point);
+        if (!checks.hertz_axis_direction.empty())
+          direction = point_of<dim>(checks.hertz_axis_direction);
+        return {point, direction};
+      }
+
+
+
+      /**
+       * The depth of the elements next to the patch face @p face (their
+       * size along the face's outward normal) where the most heavily
+       * loaded pair of @p pairs sits: the span of the face's normal
+       * parametric direction next to the face, mapped by the Jacobian there.
+       */
+      template <int dim>
+      double
+      element_depth_under_contact(
+        const nurbs::NurbsPatch<dim>               &patch,
+        const unsigned int                          face,
+        const std::vector<contact::PairState<dim>> &pairs)
+      {
+        const contact::PairState<dim> *centre = nullptr;
+        for (const auto &pair : pairs)
+          if (pair.area > 0. &&
+              (centre == nullptr || pair.pressure() > centre->pressure()))
+            centre = &pair;
+        if (centre == nullptr || !(centre->pressure() > 0.))
+          return 0.;
+        const Point<dim> xi =
+          patch.closest_point_on_face(face, centre->location);
+        const unsigned int         d      = face / 2;
+        const std::vector<double> &breaks = patch.breakpoints(d);
+        const double               h =
+          (face % 2 == 0 ? breaks[1] - breaks[0] :
+                           breaks.back() - breaks[breaks.size() - 2]);
+        const Tensor<2, dim> J = patch.jacobian(xi);
+        Tensor<1, dim>       dx;
+        for (unsigned int i = 0; i < dim; ++i)
+          dx[i] = J[i][d] * h;
+        return std::abs(dx * patch.outward_normal(face, xi));
+      }
+
+
+
+      /**
+       * Output/FCLIB export: the condensed contact problem solved last (the
+       * step's W, q, mu; the tangential rows are the step's increments)
+       * with its solution p, u = W p + q, written as the FCLIB local
+       * problem fclib-NNNN.hdf5 of the step. A problem that is not an FCLIB
+       * local problem (no W: the full path; floating bodies) is left out
+       * with a line in the log.
+       */
+      template <int dim>
+      class FclibExport : public Postprocessor<dim>
+      {
+      public:
+        std::string
+        timer_section() const override
+        {
+          return "output";
+        }
+
+        void
+        execute(const StepContext<dim> &context,
+                StepRecord &,
+                RunSummary &) override
+        {
+          if (context.stage == nullptr)
+            return;
+          const contact::ContactStage<dim> &stage  = *context.stage;
+          const std::string             &directory = context.output_directory;
+          const unsigned int             step      = context.step;
+          std::ostream                  &log       = context.log;
+          const contact::ContactProblem &problem   = stage.condensed_problem();
+          std::ostringstream             name;
+          name << "fclib-" << std::setw(4) << std::setfill('0') << step
+               << ".hdf5";
+          if (problem.W.rows() != problem.n_rows() || problem.n_rows() == 0)
+            {
+              log << "  FCLIB export: step " << step
+                  << " left out: the full path forms no flexibility W"
+                  << std::endl;
+              return;
+            }
+          if (problem.n_alpha() > 0)
+            {
+              log << "  FCLIB export: step " << step
+                  << " left out: a body is held by contact only (its rigid "
+                     "modes join the problem, which FCLIB's local problems "
+                     "cannot hold)"
+                  << std::endl;
+              return;
+            }
+          contact::ContactSolverResult solution;
+          solution.p         = stage.forces();
+          solution.u         = problem.relative_displacement(solution.p);
+          solution.converged = true;
+          postprocess::write_fclib_local(problem,
+                                         &solution,
+                                         directory + "/" + name.str());
+        }
+      };
+
+
+
+      /**
+       * The model's range at the end of a load step: the largest strain of
+       * the bodies and, with contact, the largest tangential displacement
+       * between paired points in pair spacings go to the step's record;
+       * the first step past a strain of 0.1 (small-strain, linear elastic)
+       * or past one pair spacing (pairs formed once in the reference
+       * configuration, small sliding) adds a warning to the summary and a
+       * line to the log.
+       */
+      template <int dim>
+      class ModelRange : public Postprocessor<dim>
+      {
+      public:
+        std::string
+        timer_section() const override
+        {
+          return "postprocess";
+        }
+
+        void
+        execute(const StepContext<dim> &context,
+                StepRecord             &record,
+                RunSummary             &summary) override
+        {
+          const auto &bodies   = context.bodies;
+          const auto *stage    = context.stage;
+          const auto &u        = context.u;
+          auto       &warnings = summary.warnings;
+          auto       &log      = context.log;
+          // Beyond these the linearised model no longer describes the scene:
+          // a strain of 0.1, where the quadratic term the small-strain measure
+          // drops (of relative size eps / 2) reaches 5 % of it; paired points
+          // moved apart by more than the pair spacing (pairs formed once in the
+          // reference configuration no longer face each other).
+          const double strain_limit = 0.1, sliding_limit = 1.;
+          const auto   warn = [&](const std::string &kind,
+                                const std::string &text) {
+            for (const std::string &w : warnings)
+              if (w.find(kind) != std::string::npos)
+                return;
+            warnings.push_back("load step " + std::to_string(record.step) +
+                               ": " + text);
+            log << "  warning: " << warnings.back() << std::endl;
+          };
+          std::pair<double, Point<dim>> strain(0., Point<dim>());
+          unsigned int                  strain_body = 0;
+          for (unsigned int b = 0; b < bodies.size(); ++b)
+            {
+              const auto largest = bodies[b]->largest_strain(u[b]);
+              if (largest.first >= strain.first)
+                std::tie(strain, strain_body) = std::make_pair(largest, b);
+            }
+          record.largest_strain = strain.first;
+          std::ostringstream text;
+          text << std::setprecision(3);
+          if (strain.first > strain_limit)
+            {
+              text
+                << "the largest strain is " << strain.first << " (Body "
+                << strain_body + 1 << " at (" << base::to_string(strain.second)
+                << ")"
+                << "), beyond 0.1, where the quadratic term that small-strain "
+                   "elasticity drops reaches 5 % of the strain: the results "
+                   "are outside the model's range.";
+              warn("the largest strain", text.str());
+            }
+          const auto largest = stage ? stage->largest_sliding(u) : std::nullopt;
+          if (!largest)
+            return;
+          const auto &sliding    = *largest;
+          record.largest_sliding = sliding.first;
+          if (sliding.first > sliding_limit)
+            {
+              text.str("");
+              text
+                << "paired points have moved " << sliding.first
+                << " pair spacings apart along the surface (at ("
+                << base::to_string(sliding.second) << ")"
+                << "): the pairs, formed once in the reference configuration, "
+                   "no longer face each other, so the contact is outside the "
+                   "model's small-sliding range.";
+              warn("pair spacings apart", text.str());
+            }
+        }
+      };
+
+
+
+      /**
+       * The contact resultant and support reaction of every body (and the
+       * obstacle's contact force) at the end of a step, into its record;
+       * with contact, the step's resultant on Body 1 goes to the log, its
+       * components below 1e-10 of its length (round-off) as 0.
+       */
+      template <int dim>
+      class Forces : public Postprocessor<dim>
+      {
+      public:
+        std::string
+        timer_section() const override
+        {
+          return "postprocess";
+        }
+
+        void
+        execute(const StepContext<dim> &context,
+                StepRecord             &record,
+                RunSummary             &summary) override
+        {
+          const auto &bodies    = context.bodies;
+          const auto *stage     = context.stage;
+          const auto &u         = context.u;
+          const auto &factors   = context.factors;
+          auto       &log       = context.log;
+          const auto  to_vector = [](const Tensor<1, dim> &t) {
+            std::vector<double> v(dim);
+            for (unsigned int c = 0; c < dim; ++c)
+              v[c] = t[c];
+            return v;
+          };
+          Tensor<1, dim> on_body1;
+          for (unsigned int b = 0; b < bodies.size(); ++b)
+            {
+              Vector<double> applied = bodies[b]->external_load_vector(factors);
+              Tensor<1, dim> contact_force;
+              if (stage != nullptr)
+                {
+                  const Vector<double> f = stage->contact_load(b);
+                  applied += f;
+                  for (unsigned int i = 0; i < f.size(); ++i)
+                    contact_force[bodies[b]->dof_component(i)] += f[i];
+                }
+              if (b == 0)
+                on_body1 = contact_force;
+              BodyForceRecord forces;
+              forces.name          = bodies[b]->name();
+              forces.contact_force = to_vector(contact_force);
+              forces.support_reaction =
+                to_vector(bodies[b]->support_reaction(u[b], applied));
+              record.bodies.push_back(forces);
+              if (!bodies[b]->held_rigid_mode_names().empty())
+                record.bodies.back().held_moment =
+                  bodies[b]->held_moment(applied);
+              const auto &motions = bodies[b]->description().face_motions;
+              for (unsigned int k = 0; k < motions.size(); ++k)
+                {
+                  const std::vector<double> r =
+                    bodies[b]->face_motion_reaction(u[b], applied, k);
+                  FaceMotionReaction reaction;
+                  reaction.face = motions[k].boundary_id;
+                  reaction.force =
+                    std::vector<double>(r.begin(), r.begin() + dim);
+                  reaction.moment =
+                    std::vector<double>(r.begin() + dim, r.end());
+                  record.bodies.back().face_motion_reactions.push_back(
+                    reaction);
+                }
+            }
+          if (stage != nullptr)
+            {
+              record.total_contact_force = to_vector(on_body1);
+              // Along a translation the supports leave free, the resultant
+              // balances the load (the equilibrium of a body held by contact
+              // alone): named, not printed as if it were a result.
+              log << "  total contact force on Body 1:" << std::setprecision(6);
+              std::string balanced;
+              for (unsigned int c = 0; c < dim; ++c)
+                if (bodies[0]->free_translation(c))
+                  balanced += std::string(" ") + "xyz"[c];
+                else
+                  log << ' '
+                      << (std::abs(on_body1[c]) > 1e-10 * on_body1.norm() ?
+                            on_body1[c] :
+                            0.);
+              if (!balanced.empty())
+                log << " (" << balanced.substr(1)
+                    << ": held by contact alone, balances the load)";
+              log << std::endl;
+              if (bodies.size() == 1)
+                {
+                  BodyForceRecord obstacle;
+                  obstacle.name          = "obstacle";
+                  obstacle.contact_force = to_vector(-on_body1);
+                  record.bodies.push_back(obstacle);
+                }
+            }
+          if (stage != nullptr)
+            summary.total_contact_force = record.total_contact_force;
+        }
+      };
+
+
+
+      /**
+       * The files of a load step: the pair table contact-NNNN.csv (with
+       * contact; recovered pressures on Body 1's contact faces) and, with
+       * Output/Write vtu, the pairs' and the bodies' VTU files, gathered in
+       * one PVD series per body and one for the pairs (write_series()).
+       * The files are written by the background writer's threads while the
+       * run goes on, after the previous step's (execute() waits for them
+       * first).
+       *
+       * Collective in spirit: every rank runs it, rank r writes piece r of
+       * each body's VTU (with more than one rank and cell:
+       * solution-NAME-NNNN.R.vtu, and rank 0 the record
+       * solution-NAME-NNNN.pvtu that names them); rank 0 alone writes the
+       * pairs' files. No rank waits for another.
+       */
+      template <int dim>
+      class StepFiles : public Postprocessor<dim>
+      {
+      public:
+        StepFiles(const AllParameters    &parameters,
+                  const unsigned int      n_bodies,
+                  base::BackgroundWriter &writer)
+          : write_fields(parameters.output.write_vtu)
+          , contact_faces(parameters.contact.slave_faces.begin(),
+                          parameters.contact.slave_faces.end())
+          , pvd_records(n_bodies)
+          , writer(writer)
+          , this_rank(Utilities::MPI::this_mpi_process(MPI_COMM_WORLD))
+          , ranks(Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD))
+        {}
+
+        std::string
+        timer_section() const override
+        {
+          return "output";
+        }
+
+        void
+        execute(const StepContext<dim> &context,
+                StepRecord &,
+                RunSummary &) override
+        {
+          const auto        &bodies    = context.bodies;
+          const auto        &u         = context.u;
+          const auto        *pairs     = context.pairs;
+          const std::string &directory = context.output_directory;
+          const unsigned int step      = context.step;
+          const bool         write_vtu = write_fields;
+          const std::vector<types::boundary_id> &slave_faces = contact_faces;
+          const unsigned int                     rank        = this_rank;
+          const unsigned int                     n_ranks     = ranks;
+          series_directory                                   = directory;
+          body_names.clear();
+          for (const auto &body : bodies)
+            body_names.push_back(body->name());
+          // The files of the step before the previous one first: at most two
+          // steps in flight.
+          writer.begin_group();
+          writer.wait_all_but_last_group();
+          std::ostringstream number;
+          number << std::setw(4) << std::setfill('0') << step;
+          // The pair table every step; fields only with Write vtu. Each file is
+          // a job of its own, on copies of the step's results.
+          if (pairs != nullptr && rank == 0)
+            {
+              const std::string name = "contact-" + number.str();
+              // The recovered pressure reads Body 1's stress field, which the
+              // next step does not change (the displacement is a copy).
+              writer.add([directory,
+                          name,
+                          write_vtu,
+                          body = bodies[0].get(),
+                          u0   = u[0],
+                          slave_faces,
+                          pairs = *pairs]() {
+                const std::vector<double> recovered =
+                  postprocess::recovered_pressures<dim>(*body,
+                                                        slave_faces,
+                                                        u0,
+                                                        pairs);
+                postprocess::write_pair_csv<dim>(pairs,
+                                                 recovered,
+                                                 directory + "/" + name +
+                                                   ".csv");
+                if (write_vtu)
+                  postprocess::write_pair_vtu<dim>(pairs,
+                                                   recovered,
+                                                   directory + "/" + name +
+                                                     ".vtu");
+              });
+              if (write_vtu)
+                {
+                  // The pairs' series after the bodies' (contact.pvd).
+                  pvd_records.resize(bodies.size() + 1);
+                  pvd_records.back().emplace_back(double(step), name + ".vtu");
+                }
+            }
+          if (!write_vtu)
+            return;
+          for (unsigned int b = 0; b < bodies.size(); ++b)
+            {
+              // One piece per rank, as long as each has a cell to write.
+              const unsigned int n_pieces =
+                std::min(n_ranks, bodies[b]->n_elements());
+              const std::string name =
+                "solution-" + bodies[b]->name() + "-" + number.str();
+              if (n_pieces == 1)
+                {
+                  if (rank == 0)
+                    writer.add([body = bodies[b].get(),
+                                ub   = u[b],
+                                path = directory + "/" + name + ".vtu"]() {
+                      body->write_vtu(ub, path, 0, 1);
+                    });
+                  pvd_records[b].emplace_back(double(step), name + ".vtu");
+                  continue;
+                }
+              std::vector<std::string> pieces;
+              for (unsigned int r = 0; r < n_pieces; ++r)
+                pieces.push_back(name + "." +
+                                 Utilities::int_to_string(
+                                   r,
+                                   Utilities::needed_digits(n_pieces - 1)) +
+                                 ".vtu");
+              if (rank < n_pieces)
+                writer.add([body = bodies[b].get(),
+                            ub   = u[b],
+                            path = directory + "/" + pieces[rank],
+                            rank,
+                            n_pieces]() {
+                  body->write_vtu(ub, path, rank, n_pieces);
+                });
+              if (rank == 0)
+                writer.add([body = bodies[b].get(),
+                            path = directory + "/" + name + ".pvtu",
+                            pieces]() {
+                  body->write_pvtu_record(path, pieces);
+                });
+              pvd_records[b].emplace_back(double(step), name + ".pvtu");
+            }
+        }
+
+        void
+        write_series() const override
+        {
+          for (unsigned int b = 0; b < pvd_records.size(); ++b)
+            if (!pvd_records[b].empty())
+              {
+                std::ofstream pvd = base::open_for_writing(
+                  series_directory + "/" +
+                  (b < body_names.size() ? "solution-" + body_names[b] :
+                                           std::string("contact")) +
+                  ".pvd");
+                DataOutBase::write_pvd_record(pvd, pvd_records[b]);
+              }
+        }
+
+      private:
+        /// Output/Write vtu; Body 1's contact faces (recovered pressures).
+        const bool                            write_fields;
+        const std::vector<types::boundary_id> contact_faces;
+        /// Per body, then for the pairs: (step, file) of each VTU.
+        std::vector<std::vector<std::pair<double, std::string>>> pvd_records;
+        base::BackgroundWriter                                  &writer;
+        const unsigned int                                       this_rank;
+        const unsigned int                                       ranks;
+        /// Where the series go and the bodies' names (from the first step).
+        std::string              series_directory;
+        std::vector<std::string> body_names;
+      };
+
+
+
+      /**
+       * The accuracy checks after the last load step: error norms against
+       * the exact solution and the contact checks the scene asks for
+       * (uniform pressure, Hertz), into the summary's checks and warnings,
+       * a line each to the log.
+       */
+      template <int dim>
+      class AccuracyChecks : public Postprocessor<dim>
+      {
+      public:
+        std::string
+        timer_section() const override
+        {
+          return "postprocess";
+        }
+
+        void
+        execute(const StepContext<dim> &context,
+                StepRecord &,
+                RunSummary &summary) override
+        {
+          if (!context.last_step)
+            return;
+          const auto              &parameters = context.parameters;
+          const auto              &bodies     = context.bodies;
+          const auto              &exact      = context.exact;
+          const auto              *pairs      = context.pairs;
+          const auto              &u          = context.u;
+          const auto              &factors    = context.factors;
+          auto                    &pcout      = context.screen;
+          nlohmann::json           checks     = nlohmann::json::object();
+          std::vector<std::string> warnings;
+          const auto               report_warnings =
+            [&](const std::vector<std::string> &messages) {
+              for (const std::string &w : messages)
+                {
+                  pcout << "  warning: " << w << std::endl;
+                  warnings.push_back(w);
+                }
+            };
+          // The checks' references (exact solutions, the uniform pressure, the
+          // Hertz loads) are for every load history at factor 1. The last
+          // step's factors scale them when every history that loads or moves a
+          // body has the same factor lambda (elasticity is linear, and the
+          // Hertz references follow their load); otherwise none applies.
+          std::vector<double> acting;
+          for (const auto &body : bodies)
+            for (unsigned int h = 0; h < body->n_histories(); ++h)
+              if (body->description().acts_in_history(h))
+                acting.push_back(h < factors.size() ? factors[h] : 0.);
+          const bool common =
+            std::all_of(acting.begin(), acting.end(), [&](const double f) {
+              return f == acting.front();
+            });
+          const double lambda = acting.empty() ? 1. : acting.front();
+          const bool   contact_checks =
+            pairs != nullptr && (parameters.checks.uniform_pressure > 0. ||
+                                 parameters.checks.hertz_line_load > 0. ||
+                                 parameters.checks.hertz_point_load > 0.);
+          const bool any_check        = exact || contact_checks;
+          const bool references_apply = common && lambda != 0.;
+          if (any_check && !references_apply)
+            {
+              std::ostringstream w;
+              w << "Checks: the references are for the loads at factor 1, and "
+                << (common ? "the last step's factors are 0" :
+                             "the last step's load histories have different "
+                             "factors (Load path)")
+                << ", so no check is evaluated; end the load path with every "
+                   "factor at 1 (or all at one value, which scales the "
+                   "references)";
+              report_warnings({w.str()});
+            }
+          else if (any_check && lambda != 1.)
+            {
+              checks["reference_factor"] = lambda;
+              pcout
+                << "  checks: the references scaled by the last step's factor "
+                << lambda << std::endl;
+            }
+          if (exact && references_apply)
+            {
+              Vector<double> scaled = u[0];
+              scaled /= lambda;
+              const auto norms = bodies[0]->compute_errors(scaled, *exact);
+              AssertThrow(std::isfinite(norms.l2_relative) &&
+                            std::isfinite(norms.energy_relative),
+                          ExcMessage(
+                            "the error norms are not finite (overflow "
+                            "in the exact solution or the field: check "
+                            "the loads and Young's modulus of the "
+                            "scene)."));
+              checks["l2_error"]     = norms.l2_relative;
+              checks["energy_error"] = norms.energy_relative;
+              pcout << "  relative L2 error " << std::setprecision(4)
+                    << std::scientific << norms.l2_relative
+                    << ", relative energy error " << norms.energy_relative
+                    << std::defaultfloat << std::setprecision(6) << std::endl;
+            }
+
+          if (contact_checks && references_apply && lambda < 0.)
+            report_warnings(
+              {"Checks: the contact checks' references are for a pressing load, "
+               "and the last step's factors are negative, so they are not "
+               "evaluated"});
+          if (pairs != nullptr && references_apply && lambda > 0.)
+            {
+              if (parameters.checks.uniform_pressure > 0.)
+                {
+                  const double worst = postprocess::pressure_uniformity<dim>(
+                    *pairs,
+                    lambda * parameters.checks.uniform_pressure);
+                  checks["pressure_uniformity"] = worst;
+                  // Below 1e-10 the figure is round-off: said, not printed.
+                  pcout << "  pressure uniformity max |p_i/p - 1| "
+                        << std::setprecision(3) << std::scientific;
+                  if (worst < 1e-10)
+                    pcout << "< 1e-10";
+                  else
+                    pcout << "= " << worst;
+                  pcout << std::defaultfloat << std::setprecision(6)
+                        << std::endl;
+                }
+              // What the 2D and 3D Hertz checks share: the radius, E* of the
+              // two bodies (the second rigid when there is none), the axis and
+              // the depth of Body 1's elements under the contact.
+              const auto set_hertz_inputs = [&](auto &hertz) {
+                hertz.radius = (parameters.checks.hertz_radius > 0. ?
+                                  parameters.checks.hertz_radius :
+                                  parameters.body1.radius);
+                hertz.effective_modulus =
+                  postprocess::effective_modulus<dim>(bodies[0]->material(),
+                                                      bodies.size() > 1 ?
+                                                        &bodies[1]->material() :
+                                                        nullptr);
+                std::tie(hertz.axis_point, hertz.axis_direction) =
+                  hertz_axis<dim>(parameters.checks);
+                hertz.element_depth = element_depth_under_contact(
+                  bodies[0]->geometry_patch(discretization::patch_of_face<dim>(
+                    parameters.contact.slave_faces.front())),
+                  discretization::local_face<dim>(
+                    parameters.contact.slave_faces.front()),
+                  *pairs);
+              };
+              // Hertz's and Johnson's solutions are frictionless. Friction
+              // leaves them exact only between similar bodies (Dundurs beta =
+              // 0); between dissimilar ones (a rigid plane, other moduli) it
+              // changes the contact (Spence's problem), so the check's
+              // differences are not the discretisation's alone (|beta| below
+              // 1e-3: negligible).
+              const auto friction_note = [&](const std::string &reference) {
+                std::vector<std::string> note;
+                const double             beta =
+                  postprocess::dundurs_beta<dim>(bodies[0]->material(),
+                                                 bodies.size() > 1 ?
+                                                   &bodies[1]->material() :
+                                                   nullptr);
+                if (parameters.contact.friction_coefficient > 0. &&
+                    std::abs(beta) >= 1e-3)
+                  {
+                    std::ostringstream w;
+                    w << "Checks/Hertz: " << reference
+                      << " solution is frictionless; "
+                         "with Contact/Friction coefficient = "
+                      << parameters.contact.friction_coefficient
+                      << " between dissimilar bodies (Dundurs beta = "
+                      << std::setprecision(3) << beta
+                      << ") friction changes the contact (Spence's problem), "
+                         "so the differences to it are not the "
+                         "discretisation's alone";
+                    note.push_back(w.str());
+                  }
+                return note;
+              };
+              if (parameters.checks.hertz_line_load > 0.)
+                {
+                  if constexpr (dim == 2)
+                    {
+                      postprocess::HertzCheck hertz;
+                      hertz.line_load =
+                        lambda * parameters.checks.hertz_line_load;
+                      set_hertz_inputs(hertz);
+                      const auto r                     = hertz.evaluate(*pairs);
+                      checks["hertz_half_width"]       = r.half_width;
+                      checks["hertz_half_width_exact"] = r.half_width_exact;
+                      checks["hertz_half_width_error"] =
+                        std::abs(r.half_width / r.half_width_exact - 1.);
+                      checks["hertz_peak_pressure"] = r.peak_pressure;
+                      checks["hertz_peak_pressure_exact"] =
+                        r.peak_pressure_exact;
+                      checks["pressure_l2_rel_error"]   = r.profile_l2_error;
+                      checks["hertz_loaded_pairs"]      = r.n_loaded;
+                      checks["hertz_edge_pair_spacing"] = r.edge_pair_spacing;
+                      checks["hertz_half_width_moment"] = r.half_width_moment;
+                      checks["hertz_half_width_moment_error"] =
+                        std::abs(r.half_width_moment / r.half_width_exact - 1.);
+                      checks["hertz_max_pair_deviation"] = r.max_pair_deviation;
+                      checks["hertz_inner_pairs"]        = r.n_inner_pairs;
+                      pcout << "  Hertz: half-width " << std::setprecision(5)
+                            << r.half_width << " (Johnson "
+                            << r.half_width_exact << "), peak pressure "
+                            << r.peak_pressure << " (Johnson "
+                            << r.peak_pressure_exact << "), profile L2 error "
+                            << std::setprecision(3) << r.profile_l2_error
+                            << std::setprecision(6) << std::endl;
+                      report_warnings(r.warnings);
+                      report_warnings(friction_note("Johnson's"));
+                    }
+                }
+              if (parameters.checks.hertz_point_load > 0.)
+                {
+                  if constexpr (dim == 3)
+                    {
+                      postprocess::HertzPointCheck hertz;
+                      hertz.load = lambda * parameters.checks.hertz_point_load;
+                      set_hertz_inputs(hertz);
+                      const auto r                   = hertz.evaluate(*pairs);
+                      checks["hertz_contact_radius"] = r.contact_radius;
+                      checks["hertz_contact_radius_exact"] =
+                        r.contact_radius_exact;
+                      checks["hertz_contact_radius_error"] = std::abs(
+                        r.contact_radius / r.contact_radius_exact - 1.);
+                      checks["hertz_contact_radius_moment"] =
+                        r.contact_radius_moment;
+                      checks["hertz_contact_radius_moment_error"] = std::abs(
+                        r.contact_radius_moment / r.contact_radius_exact - 1.);
+                      checks["hertz_peak_pressure"] = r.peak_pressure;
+                      checks["hertz_peak_pressure_exact"] =
+                        r.peak_pressure_exact;
+                      checks["hertz_peak_pressure_error"] =
+                        std::abs(r.peak_pressure / r.peak_pressure_exact - 1.);
+                      checks["pressure_l2_rel_error"]    = r.profile_l2_error;
+                      checks["hertz_max_pair_deviation"] = r.max_pair_deviation;
+                      checks["hertz_inner_pairs"]        = r.n_inner_pairs;
+                      checks["hertz_loaded_pairs"]       = r.n_loaded;
+                      checks["hertz_fitted_pairs"]       = r.n_fitted;
+                      pcout << "  Hertz: contact radius "
+                            << std::setprecision(5) << r.contact_radius
+                            << " (Hertz " << r.contact_radius_exact
+                            << "), peak pressure " << r.peak_pressure
+                            << " (Hertz " << r.peak_pressure_exact
+                            << "), profile L2 error " << std::setprecision(3)
+                            << r.profile_l2_error << std::setprecision(6)
+                            << std::endl;
+                      report_warnings(r.warnings);
+                      report_warnings(friction_note("Hertz's"));
+                    }
+                }
+            }
+          summary.checks = checks;
+          summary.warnings.insert(summary.warnings.end(),
+                                  warnings.begin(),
+                                  warnings.end());
+        }
+      };
+
+
+
+      /**
+       * The displacement and stress at every probe point after the last
+       * load step, into the summary's points and point_stresses and a line
+       * each to the log.
+       */
+      template <int dim>
+      class Probes : public Postprocessor<dim>
+      {
+      public:
+        std::string
+        timer_section() const override
+        {
+          return "postprocess";
+        }
+
+        void
+        execute(const StepContext<dim> &context,
+                StepRecord &,
+                RunSummary &summary) override
+        {
+          if (!context.last_step)
+            return;
+          const auto    &parameters = context.parameters;
+          const auto    &bodies     = context.bodies;
+          const auto    &u          = context.u;
+          auto          &pcout      = context.screen;
+          nlohmann::json points     = nlohmann::json::object();
+          nlohmann::json stresses   = nlohmann::json::object();
+          for (const ProbePoint &probe : parameters.probes)
+            {
+              const std::string &name = probe.name;
+              const Point<dim>   x    = point_of<dim>(probe.location);
+              // In a body: check_probe_points() before the solve.
+              const unsigned int   b = body_holding<dim>(bodies, x);
+              const Tensor<1, dim> d =
+                bodies[b]->point_operator(x).displacement(u[b]);
+              std::vector<double> value(dim);
+              for (unsigned int c = 0; c < dim; ++c)
+                value[c] = d[c];
+              points[name] = value;
+              pcout << "  probe " << name << ": displacement "
+                    << std::setprecision(5) << d << std::setprecision(6)
+                    << std::endl;
+
+              // Stress recovered at the probe: upper triangle, row by row.
+              const SymmetricTensor<2, dim> sigma = bodies[b]->stress(u[b], x);
+              for (unsigned int i = 0; i < dim; ++i)
+                for (unsigned int j = 0; j < dim; ++j)
+                  AssertThrow(std::isfinite(sigma[i][j]),
+                              ExcMessage(
+                                "probe " + name +
+                                ": the stress is not finite (overflow: "
+                                "check the loads and Young's modulus "
+                                "of the scene)."));
+              std::vector<double> components;
+              for (unsigned int i = 0; i < dim; ++i)
+                for (unsigned int j = i; j < dim; ++j)
+                  components.push_back(sigma[i][j]);
+              const auto    &material = bodies[b]->material();
+              nlohmann::json entry    = {
+                   {"body", bodies[b]->name()},
+                   {"stress", components},
+                   {"von_mises", elasticity::von_mises<dim>(sigma, material)}};
+              if (dim == 2)
+                entry["stress_zz"] =
+                  elasticity::out_of_plane_stress<dim>(sigma, material);
+              stresses[name] = entry;
+            }
+          summary.points         = points;
+          summary.point_stresses = stresses;
+        }
+      };
+    } // namespace
+
+
+
+    template <int dim>
+    std::vector<std::unique_ptr<Postprocessor<dim>>>
+    make_postprocessors(const AllParameters    &parameters,
+                        const unsigned int      n_bodies,
+                        const bool              root,
+                        base::BackgroundWriter &writer)
+    {
+      std::vector<std::unique_ptr<Postprocessor<dim>>> postprocessors;
+      if (parameters.output.fclib_export && root)
+        postprocessors.push_back(std::make_unique<FclibExport<dim>>());
+      postprocessors.push_back(std::make_unique<ModelRange<dim>>());
+      postprocessors.push_back(std::make_unique<Forces<dim>>());
+      postprocessors.push_back(
+        std::make_unique<StepFiles<dim>>(parameters, n_bodies, writer));
+      postprocessors.push_back(std::make_unique<AccuracyChecks<dim>>());
+      postprocessors.push_back(std::make_unique<Probes<dim>>());
+      return postprocessors;
+    }
+
+
+
+    template std::vector<std::unique_ptr<Postprocessor<2>>>
+    make_postprocessors<2>(const AllParameters &,
+                           const unsigned int,
+                           const bool,
+                           base::BackgroundWriter &);
+    template std::vector<std::unique_ptr<Postprocessor<3>>>
+    make_postprocessors<3>(const AllParameters &,
+                           const unsigned int,
+                           const bool,
+                           base::BackgroundWriter &);
+  } // namespace scene
+} // namespace igabde
