@@ -1136,6 +1136,43 @@ namespace igabde
 
 
     template <int dim>
+    const SparsityPattern &
+    Body<dim>::sparsity_pattern() const
+    {
+      return sparsity;
+    }
+
+
+
+    template <int dim>
+    const AffineConstraints<double> &
+    Body<dim>::support_constraints() const
+    {
+      return constraints;
+    }
+
+
+
+    template <int dim>
+    Vector<double>
+    Body<dim>::prescribed_values(const std::vector<double> &factors) const
+    {
+      Vector<double> g(n_unknowns);
+      for (types::global_dof_index i = 0; i < n_unknowns; ++i)
+        if (prescribed_constraints.is_constrained(i))
+          {
+            const auto         it = prescribed_history.find(i);
+            const unsigned int h =
+              (it != prescribed_history.end() ? it->second : 1u);
+            g[i] = (h < factors.size() ? factors[h] : 0.) *
+                   prescribed_constraints.get_inhomogeneity(i);
+          }
+      return g;
+    }
+
+
+
+    template <int dim>
     void
     Body<dim>::factorize_matrix(
       const std::vector<types::global_dof_index> &interface_dofs,

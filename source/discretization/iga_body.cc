@@ -9,6 +9,7 @@
 #include <igabde/discretization/iga_body.h>
 
 #include <igabde/elasticity/assembly.h>
+#include <igabde/elasticity/finite_strain.h>
 #include <igabde/elasticity/stress_measures.h>
 
 #include <deal.II/base/data_out_base.h>
@@ -1087,6 +1088,41 @@ namespace igabde
             result = part;
         }
       return result;
+    }
+
+
+
+    template <int dim>
+    double
+    IgaBody<dim>::internal_force(
+      const Vector<double>                        &u,
+      const elasticity::HyperelasticMaterial<dim> &material,
+      Vector<double>                              &force,
+      SparseMatrix<double>                        *tangent) const
+    {
+      AssertDimension(u.size(), this->n_unknowns);
+      AssertDimension(force.size(), this->n_unknowns);
+      // P = F S is of higher degree than the linear stress: one point more
+      // per direction than the stiffness.
+      double min_J = std::numeric_limits<double>::max();
+      for (const PatchSpace &space : spaces)
+        {
+          nurbs::NurbsValues<dim> values(
+            space.geometry,
+            QGauss<dim>(n_quadrature_points_1d() + 1),
+            update_values | update_gradients | update_JxW_values);
+          values.number_unknowns_by(space.numbers);
+          min_J = std::min(
+            min_J,
+            elasticity::assemble_internal_force<dim>(space.mesh.begin_active(),
+                                                     space.mesh.end(),
+                                                     values,
+                                                     material,
+                                                     u,
+                                                     force,
+                                                     tangent));
+        }
+      return min_J;
     }
 
 

@@ -8,6 +8,7 @@
 
 #include <igabde/elasticity/assembly.h>
 #include <igabde/elasticity/fe_values_evaluator.h>
+#include <igabde/elasticity/finite_strain.h>
 #include <igabde/elasticity/stress_measures.h>
 
 #include <deal.II/base/quadrature_lib.h>
@@ -1235,6 +1236,35 @@ namespace igabde
                                              dof_handler.end(),
                                              values,
                                              u);
+    }
+
+
+
+    template <int dim>
+    double
+    LagrangeBody<dim>::internal_force(
+      const Vector<double>                        &u,
+      const elasticity::HyperelasticMaterial<dim> &material,
+      Vector<double>                              &force,
+      SparseMatrix<double>                        *tangent) const
+    {
+      AssertDimension(u.size(), this->n_unknowns);
+      AssertDimension(force.size(), this->n_unknowns);
+      // P = F S is of higher degree than the linear stress: one point more
+      // per direction than the stiffness.
+      const elasticity::FEValuesEvaluator<dim> values(
+        *mapping,
+        fe,
+        QGauss<dim>(fe.degree + 2),
+        update_values | update_gradients | update_JxW_values);
+      return elasticity::assemble_internal_force<dim>(
+        dof_handler.begin_active(),
+        dof_handler.end(),
+        values,
+        material,
+        u,
+        force,
+        tangent);
     }
 
 

@@ -6,6 +6,7 @@
 
 #include <igabde/elasticity/body_force.h>
 #include <igabde/elasticity/error_norms.h>
+#include <igabde/elasticity/hyperelastic.h>
 #include <igabde/elasticity/material.h>
 
 #include <deal.II/base/point.h>
@@ -625,6 +626,47 @@ namespace igabde
       /// Body area (2D) or volume (3D) by the body's quadrature.
       virtual double
       measure() const = 0;
+
+      /**
+       * @name Finite strain (total Lagrangian)
+       *
+       * The questions a Newton solve at finite strain asks
+       * (solve_finite_strain()); the linear questions above are its special
+       * case at small strain. The vector and matrix types are the serial
+       * ones today.
+       * @{
+       */
+
+      /**
+       * @brief Adds the internal force f_int(u) = int P : grad N dX of the
+       * law @p material at the displacement @p u to @p force and, with
+       * @p tangent (not nullptr, on sparsity_pattern()), its tangent
+       * d f_int / du to it, on all cores. Returns the smallest det F at the
+       * quadrature points (not positive: an element has inverted and the
+       * force is not defined there).
+       */
+      virtual double
+      internal_force(const Vector<double>                        &u,
+                     const elasticity::HyperelasticMaterial<dim> &material,
+                     Vector<double>                              &force,
+                     SparseMatrix<double> *tangent) const = 0;
+
+      /// The pattern of the stiffness and the tangent (all cell couplings).
+      const SparsityPattern &
+      sparsity_pattern() const;
+
+      /// The supports, homogeneous: the unknowns every increment keeps.
+      const AffineConstraints<double> &
+      support_constraints() const;
+
+      /**
+       * @brief The supports' prescribed values at the load histories'
+       * factors @p factors (each support scaled by its history's factor),
+       * zero at the unknowns no support holds.
+       */
+      Vector<double>
+      prescribed_values(const std::vector<double> &factors) const;
+      /** @} */
 
       /**
        * @brief The exact geometry after degree elevation, Subdivisions and

@@ -164,6 +164,12 @@ namespace igabde
       std::pair<double, Point<dim>>
       largest_strain(const Vector<double> &u) const override;
 
+      double
+      internal_force(const Vector<double>                        &u,
+                     const elasticity::HyperelasticMaterial<dim> &material,
+                     Vector<double>                              &force,
+                     SparseMatrix<double> *tangent) const override;
+
       /// @brief The refined and elevated patch @p p: its analysis space.
       const nurbs::NurbsPatch<dim> &
       patch(const unsigned int p = 0) const;

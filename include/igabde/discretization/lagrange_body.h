@@ -109,6 +109,12 @@ namespace igabde
       std::pair<double, Point<dim>>
       largest_strain(const Vector<double> &u) const override;
 
+      double
+      internal_force(const Vector<double>                        &u,
+                     const elasticity::HyperelasticMaterial<dim> &material,
+                     Vector<double>                              &force,
+                     SparseMatrix<double> *tangent) const override;
+
       /**
        * @brief The smallest ratio det J(p) / |det J(centre)| of the cell maps
        * over the points @p unit_points of the unit cell and all cells, and
