@@ -666,6 +666,77 @@ namespace igabde
 
 
 
+    std::vector<double>
+    read_numbers(const std::string &text, const std::string &where)
+    {
+      return base::parse_doubles(text, where);
+    }
+
+
+
+    std::vector<double>
+    read_point(const std::string &text,
+               const unsigned int dimension,
+               const std::string &where)
+    {
+      const auto x = base::parse_doubles(text, where);
+      AssertThrow(x.size() == dimension,
+                  base::ExcInput(where + " = '" + text + "' must be a " +
+                                 std::to_string(dimension) + "D point."));
+      return x;
+    }
+
+
+
+    std::vector<double>
+    read_direction(const std::string &text,
+                   const unsigned int dimension,
+                   const std::string &where)
+    {
+      const auto e    = base::parse_doubles(text, where);
+      double     norm = 0.;
+      for (const double v : e)
+        norm += v * v;
+      AssertThrow(e.size() == dimension && norm > 0.,
+                  base::ExcInput(
+                    where + " = '" + text + "' must be a non-zero " +
+                    std::to_string(dimension) + "D vector, " +
+                    (dimension == 2 ? "e.g. '0, 1'" : "e.g. '0, 0, 1'") + "."));
+      return e;
+    }
+
+
+
+    std::vector<std::pair<std::string, std::vector<double>>>
+    read_histories(const std::string &text, const std::string &where)
+    {
+      std::vector<std::pair<std::string, std::vector<double>>> histories;
+      for (const std::string &item : base::split(text, ';'))
+        {
+          const auto [name, values] =
+            base::split_entry(item, where, "'name: f1, f2, ...'");
+          AssertThrow(!name.empty(),
+                      base::ExcInput(where + ": '" + item +
+                                     "' has no name; write 'name: f1, f2, "
+                                     "...'."));
+          AssertThrow(name.find_first_of(" \t,;:@") == std::string::npos &&
+                        name != "load" && name != "displacement",
+                      base::ExcInput(where + ": '" + name +
+                                     "' is not a usable name (one word, "
+                                     "not 'load' or 'displacement')."));
+          for (const auto &h : histories)
+            AssertThrow(h.first != name,
+                        base::ExcInput(where + ": '" + name +
+                                       "' is declared twice."));
+          histories.emplace_back(name,
+                                 base::parse_doubles(values,
+                                                     where + "/" + name));
+        }
+      return histories;
+    }
+
+
+
     template std::shared_ptr<FunctionParser<2>>
     make_function_parser<2>(const std::vector<std::string> &, double);
     template std::shared_ptr<FunctionParser<3>>

@@ -895,36 +895,12 @@ namespace igabde
       step_history_steps.clear();
       prm.enter_subsection("Load path");
       {
-        n_steps      = prm.get_integer("Number of steps");
-        load_factors = base::parse_doubles(prm.get("Load factors"),
-                                           "Load path/Load factors");
-        displacement_factors =
-          base::parse_doubles(prm.get("Displacement factors"),
-                              "Load path/Displacement factors");
-        histories.clear();
-        for (const std::string &item : base::split(prm.get("Histories"), ';'))
-          {
-            const auto [name, values] =
-              base::split_entry(item,
-                                "Load path/Histories",
-                                "'name: f1, f2, ...'");
-            AssertThrow(!name.empty(),
-                        base::ExcInput("Load path/Histories: '" + item +
-                                       "' has no name; write 'name: f1, f2, "
-                                       "...'."));
-            AssertThrow(name.find_first_of(" \t,;:@") == std::string::npos &&
-                          name != "load" && name != "displacement",
-                        base::ExcInput("Load path/Histories: '" + name +
-                                       "' is not a usable name (one word, "
-                                       "not 'load' or 'displacement')."));
-            for (const auto &h : histories)
-              AssertThrow(h.first != name,
-                          base::ExcInput("Load path/Histories: '" + name +
-                                         "' is declared twice."));
-            histories.emplace_back(
-              name,
-              base::parse_doubles(values, "Load path/Histories/" + name));
-          }
+        n_steps = prm.get_integer("Number of steps");
+        load_factors =
+          read_numbers(prm.get("Load factors"), "Load path/Load factors");
+        displacement_factors = read_numbers(prm.get("Displacement factors"),
+                                            "Load path/Displacement factors");
+        histories = read_histories(prm.get("Histories"), "Load path/Histories");
       }
       prm.leave_subsection();
     }
@@ -1338,35 +1314,15 @@ namespace igabde
                                      "Checks/Hertz line load instead."));
       if (checks.hertz_line_load > 0. || checks.hertz_point_load > 0.)
         {
-          const std::string axis_hint =
-            (dimension == 2 ? "e.g. '0, 1'" : "e.g. '0, 0, 1'");
           if (!checks.hertz_axis_direction_text.empty())
-            {
-              const auto e =
-                base::parse_doubles(checks.hertz_axis_direction_text,
-                                    f + "Checks/Hertz axis direction");
-              double norm = 0.;
-              for (const double v : e)
-                norm += v * v;
-              AssertThrow(e.size() == dimension && norm > 0.,
-                          base::ExcInput(f + "Checks/Hertz axis direction = '" +
-                                         checks.hertz_axis_direction_text +
-                                         "' must be a " + "non-zero " +
-                                         std::to_string(dimension) +
-                                         "D vector, " + axis_hint + "."));
-              checks.hertz_axis_direction = e;
-            }
+            checks.hertz_axis_direction =
+              read_direction(checks.hertz_axis_direction_text,
+                             dimension,
+                             f + "Checks/Hertz axis direction");
           if (!checks.hertz_axis_point_text.empty())
-            {
-              const auto x = base::parse_doubles(checks.hertz_axis_point_text,
+            checks.hertz_axis_point = read_point(checks.hertz_axis_point_text,
+                                                 dimension,
                                                  f + "Checks/Hertz axis point");
-              AssertThrow(x.size() == dimension,
-                          base::ExcInput(
-                            f + "Checks/Hertz axis point = '" +
-                            checks.hertz_axis_point_text + "' must be a " +
-                            std::to_string(dimension) + "D point."));
-              checks.hertz_axis_point = x;
-            }
           AssertThrow(checks.hertz_radius > 0. ||
                         body1.geometry != Geometry::file,
                       base::ExcInput(f + "Checks/Hertz radius = 0 takes "

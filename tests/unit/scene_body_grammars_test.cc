@@ -381,3 +381,56 @@ TEST(BodyGrammars, ProbePointsAreNamedPoints)
     "f: P",
     "needs 3 coordinates");
 }
+
+
+
+TEST(BodyGrammars, PointsAndDirectionsHaveExactlyTheScenesComponents)
+{
+  EXPECT_EQ(read_point("0, 0.5, 1", 3, "f: A"),
+            std::vector<double>({0, 0.5, 1}));
+  EXPECT_EQ(read_direction("0, -2", 2, "f: D"), std::vector<double>({0, -2}));
+  expect_refused(
+    [] {
+      read_point("0, 1, 0", 2, "f: A");
+    },
+    "f: A = '0, 1, 0'",
+    "must be a 2D point");
+  expect_refused(
+    [] {
+      read_direction("0, 0, 0", 3, "f: D");
+    },
+    "f: D",
+    "must be a non-zero 3D vector, e.g. '0, 0, 1'");
+  EXPECT_EQ(read_numbers("0.5 1, 2", "f: N"), std::vector<double>({0.5, 1, 2}));
+  EXPECT_TRUE(read_numbers("", "f: N").empty());
+}
+
+
+
+TEST(BodyGrammars, HistoriesAreNamedFactorLists)
+{
+  const auto h = read_histories("push: 0, 1; pull: 1, 0.5", "f: H");
+  ASSERT_EQ(h.size(), 2u);
+  EXPECT_EQ(h[0].first, "push");
+  EXPECT_EQ(h[0].second, std::vector<double>({0, 1}));
+  EXPECT_EQ(h[1].first, "pull");
+  EXPECT_EQ(h[1].second, std::vector<double>({1, 0.5}));
+  expect_refused(
+    [] {
+      read_histories("load: 1", "f: H");
+    },
+    "f: H",
+    "'load' is not a usable name");
+  expect_refused(
+    [] {
+      read_histories("a: 1; a: 2", "f: H");
+    },
+    "f: H",
+    "'a' is declared twice");
+  expect_refused(
+    [] {
+      read_histories(": 1", "f: H");
+    },
+    "f: H",
+    "has no name");
+}

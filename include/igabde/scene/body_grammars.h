@@ -306,6 +306,29 @@ namespace igabde
                       const unsigned int dimension,
                       const std::string &where);
 
+    /// A list of numbers, separated by commas or spaces (maybe none).
+    std::vector<double>
+    read_numbers(const std::string &text, const std::string &where);
+
+    /// A point of exactly @p dimension coordinates.
+    std::vector<double>
+    read_point(const std::string &text,
+               const unsigned int dimension,
+               const std::string &where);
+
+    /// A non-zero vector of exactly @p dimension components.
+    std::vector<double>
+    read_direction(const std::string &text,
+                   const unsigned int dimension,
+                   const std::string &where);
+
+    /**
+     * @brief Load path/Histories: 'name: f1, f2, ...' entries, each name one
+     * word other than 'load' and 'displacement', declared once.
+     */
+    std::vector<std::pair<std::string, std::vector<double>>>
+    read_histories(const std::string &text, const std::string &where);
+
     /**
      * @brief Refuses, naming @p where, 'function' expressions that are not
      * one per component or that deal.II's FunctionParser cannot evaluate;
