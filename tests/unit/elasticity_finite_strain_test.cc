@@ -27,6 +27,7 @@
 
 #include <deal.II/fe/fe_q.h>
 #include <deal.II/fe/fe_system.h>
+#include <deal.II/fe/fe_values.h>
 #include <deal.II/fe/mapping_q.h>
 
 #include <gtest/gtest.h>
@@ -334,6 +335,151 @@ TEST(FiniteStrain, TheTangentOfANurbsSpanIsConsistent)
     for (const unsigned int a : values.control_points())
       locations.push_back(patch.control_point(a));
     expect_consistent_cell<dim>(values, locations);
+  };
+  check(std::integral_constant<int, 2>());
+  check(std::integral_constant<int, 3>());
+}
+
+
+
+namespace
+{
+  /**
+   * The follower pressure on the face of @p face_values (reinitialised)
+   * at a displacement of 20 % strain with a rotation plus a random part:
+   * its load stiffness against central differences of its load, and the
+   * load's resultant at a homogeneous F against p times the current face
+   * vector, -p int cof(F) N dA.
+   */
+  template <int dim, typename FaceValues>
+  void
+  expect_consistent_follower_pressure(const FaceValues              &values,
+                                      const std::vector<Point<dim>> &locations,
+                                      const Tensor<2, dim>          &G)
+  {
+    const unsigned int  n = values.dofs_per_cell();
+    const double        p = 3.;
+    std::vector<double> u(n);
+    for (unsigned int l = 0; l < values.n_basis(); ++l)
+      {
+        const Tensor<1, dim> x = locations[l];
+        const Tensor<1, dim> y = G * x - x;
+        for (unsigned int c = 0; c < dim; ++c)
+          u[values.local_dof(l, c)] = y[c];
+      }
+    // The resultant at the homogeneous F = G: sum over the basis (a
+    // partition of unity) of -r.
+    {
+      Vector<double> r(n);
+      add_face_follower_pressure<dim>(values, u, p, r, nullptr);
+      Tensor<1, dim> resultant, expected;
+      for (unsigned int l = 0; l < values.n_basis(); ++l)
+        for (unsigned int c = 0; c < dim; ++c)
+          resultant[c] -= r[values.local_dof(l, c)];
+      const Tensor<2, dim> cofactor = determinant(G) * transpose(invert(G));
+      for (unsigned int q = 0; q < values.n_quadrature_points(); ++q)
+        expected -= p * values.JxW(q) * (cofactor * values.normal_vector(q));
+      EXPECT_LT((resultant - expected).norm(), 1e-12 * expected.norm());
+    }
+    std::mt19937                           engine(11);
+    std::uniform_real_distribution<double> uniform(-1., 1.);
+    for (auto &v : u)
+      v += 0.02 * uniform(engine);
+    Vector<double>     r(n);
+    FullMatrix<double> K(n, n);
+    add_face_follower_pressure<dim>(values, u, p, r, &K);
+    for (unsigned int trial = 0; trial < 3; ++trial)
+      {
+        std::vector<double> du(n), plus(u), minus(u);
+        const double        h = 1e-5;
+        for (unsigned int i = 0; i < n; ++i)
+          {
+            du[i] = uniform(engine);
+            plus[i] += h * du[i];
+            minus[i] -= h * du[i];
+          }
+        Vector<double> r_plus(n), r_minus(n), K_du(n), fd(n);
+        add_face_follower_pressure<dim>(values, plus, p, r_plus, nullptr);
+        add_face_follower_pressure<dim>(values, minus, p, r_minus, nullptr);
+        for (unsigned int i = 0; i < n; ++i)
+          {
+            fd[i] = (r_plus[i] - r_minus[i]) / (2 * h);
+            for (unsigned int j = 0; j < n; ++j)
+              K_du[i] += K(i, j) * du[j];
+          }
+        EXPECT_LT(relative_difference(K_du, fd), 1e-7);
+      }
+  }
+
+  /// A stretch with shear and a rotation of 0.3 rad.
+  template <int dim>
+  Tensor<2, dim>
+  stretched_rotation()
+  {
+    Tensor<2, dim> R, U;
+    for (unsigned int d = 0; d < dim; ++d)
+      {
+        R[d][d] = 1.;
+        U[d][d] = 1. + 0.2 * (d == 0) - 0.05 * (d == 1);
+      }
+    R[0][0] = R[1][1] = std::cos(0.3);
+    R[0][1]           = -std::sin(0.3);
+    R[1][0]           = std::sin(0.3);
+    U[0][1] = U[1][0] = 0.04;
+    return R * U;
+  }
+} // namespace
+
+
+
+TEST(FiniteStrain, TheFollowerPressuresLoadStiffnessIsConsistent)
+{
+  const auto check = [](auto dimension) {
+    constexpr int dim = decltype(dimension)::value;
+    // A distorted FE_Q(2) cell, its face x = 1 (face 1, moved vertex).
+    Triangulation<dim> mesh;
+    GridGenerator::hyper_cube(mesh, 0., 1.);
+    Point<dim> &v = mesh.begin_active()->vertex(dim == 2 ? 3 : 7);
+    for (unsigned int d = 0; d < dim; ++d)
+      v[d] += 0.3 - 0.1 * d;
+    const FESystem<dim> fe(FE_Q<dim>(2), dim);
+    DoFHandler<dim>     dofs(mesh);
+    dofs.distribute_dofs(fe);
+    const MappingQ<dim>                       mapping(1);
+    FEValuesEvaluator<dim, FEFaceValues<dim>> values(
+      mapping,
+      fe,
+      QGauss<dim - 1>(4),
+      update_values | update_gradients | update_JxW_values |
+        update_normal_vectors | update_quadrature_points);
+    values.reinit(dofs.begin_active(), 1u);
+    std::vector<Point<dim>> locations(values.n_basis());
+    const auto &unit_points = fe.base_element(0).get_unit_support_points();
+    for (unsigned int l = 0; l < values.n_basis(); ++l)
+      locations[l] = mapping.transform_unit_to_real_cell(dofs.begin_active(),
+                                                         unit_points[l]);
+    expect_consistent_follower_pressure<dim>(values,
+                                             locations,
+                                             stretched_rotation<dim>());
+
+    // A NURBS span's outer face r = 2 (face 1) of the quarter cylinder.
+    nurbs::NurbsPatch<dim> patch =
+      nurbs::make_thick_cylinder_quarter<dim>(1., 2., 1.);
+    patch.elevate_degree(0, 1);
+    nurbs::NurbsValues<dim>       face(patch,
+                                 QGauss<dim - 1>(6),
+                                 update_values | update_gradients |
+                                   update_JxW_values | update_normal_vectors |
+                                   update_quadrature_points);
+    std::array<unsigned int, dim> span;
+    span.fill(0);
+    face.reinit(span, 1);
+    std::vector<Point<dim>> control_points;
+    for (const unsigned int a : face.control_points())
+      control_points.push_back(patch.control_point(a));
+    expect_consistent_follower_pressure<dim>(face,
+                                             control_points,
+                                             stretched_rotation<dim>());
   };
   check(std::integral_constant<int, 2>());
   check(std::integral_constant<int, 3>());

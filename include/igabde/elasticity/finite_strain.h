@@ -156,6 +156,62 @@ namespace igabde
     }
 
     /**
+     * @brief A follower pressure @p p on the face @p face_values
+     * (reinitialised on a cell face; shape gradients, reference normals,
+     * JxW): the load -p n da on the current surface, as
+     * -p J F^-T N dA on the reference one (Nanson), subtracted from
+     * @p residual (the residual is f_int - f_ext) and, with @p tangent
+     * (not nullptr), its derivative (the load stiffness, not symmetric)
+     * added to it:
+     * d(J F^-T N)[e_d x g] = J ((F^-1 e_d . g) F^-T N - (F^-T N)_d F^-T g).
+     */
+    template <int dim, typename FaceValues>
+    void
+    add_face_follower_pressure(const FaceValues          &face_values,
+                               const std::vector<double> &local_u,
+                               const double               p,
+                               Vector<double>            &residual,
+                               FullMatrix<double>        *tangent)
+    {
+      const unsigned int n_basis = face_values.n_basis();
+      for (unsigned int q = 0; q < face_values.n_quadrature_points(); ++q)
+        {
+          const Tensor<2, dim> F = deformation_gradient<dim>(
+            displacement_gradient<dim>(face_values, local_u, q));
+          const double         J     = determinant(F);
+          const Tensor<2, dim> F_inv = invert(F);
+          const Tensor<1, dim> n0 =
+            transpose(F_inv) * face_values.normal_vector(q);
+          const double pJxW = p * J * face_values.JxW(q);
+          for (unsigned int l = 0; l < n_basis; ++l)
+            {
+              const double N = face_values.shape_value(l, q);
+              for (unsigned int c = 0; c < dim; ++c)
+                residual[face_values.local_dof(l, c)] += pJxW * N * n0[c];
+            }
+          if (tangent == nullptr)
+            continue;
+          for (unsigned int m = 0; m < n_basis; ++m)
+            {
+              const Tensor<1, dim> &g     = face_values.shape_grad(m, q);
+              const Tensor<1, dim>  FTg   = transpose(F_inv) * g;
+              const Tensor<1, dim>  Finvg = g * F_inv; // (F^-1 e_d . g)_d
+              for (unsigned int d = 0; d < dim; ++d)
+                for (unsigned int l = 0; l < n_basis; ++l)
+                  {
+                    const double N = face_values.shape_value(l, q);
+                    for (unsigned int c = 0; c < dim; ++c)
+                      (*tangent)(face_values.local_dof(l, c),
+                                 face_values.local_dof(m, d)) +=
+                        pJxW * N * (Finvg[d] * n0[c] - n0[d] * FTg[c]);
+                  }
+            }
+        }
+    }
+
+
+
+    /**
      * @brief The cell's stored energy int W(C) dX at @p local_u (infinite
      * where det F <= 0).
      */
