@@ -1,3 +1,4 @@
+#include <igabde/base/utilities.h>
 #include <igabde/linear_algebra/sparse_cholesky.h>
 
 #include <igabde/discretization/body.h>
@@ -1149,6 +1150,26 @@ namespace igabde
     Body<dim>::support_constraints() const
     {
       return constraints;
+    }
+
+
+
+    template <int dim>
+    SymmetricTensor<2, dim>
+    Body<dim>::cauchy_stress(
+      const Vector<double>                        &u,
+      const Point<dim>                            &location,
+      const elasticity::HyperelasticMaterial<dim> &material) const
+    {
+      const Tensor<2, dim> F = elasticity::deformation_gradient<dim>(
+        displacement_gradient(u, location));
+      AssertThrow(determinant(F) > 0.,
+                  ExcMessage("Body '" + description().name +
+                             "': det F <= 0 at (" + base::to_string(location) +
+                             "): the element has inverted there."));
+      return elasticity::cauchy_stress(F,
+                                       material.second_piola_kirchhoff(
+                                         elasticity::right_cauchy_green(F)));
     }
 
 

@@ -996,19 +996,7 @@ namespace igabde
       // It is therefore read a short step inside, towards the centre of
       // the parametric box, where J is well conditioned: |det J| at least
       // 1e-3 |J|^dim, about 1e-3 of the patch from the corner.
-      const Point<dim> lo     = geometry.parametric_lower();
-      const Point<dim> hi     = geometry.parametric_upper();
-      const Point<dim> centre = 0.5 * (lo + hi);
-      Point<dim>       xi     = xi_in;
-      Tensor<2, dim>   J      = geometry.jacobian(xi);
-      for (unsigned int k = 0; k < 8; ++k)
-        {
-          const double scale = std::pow(J.norm(), dim);
-          if (std::abs(determinant(J)) > 1e-3 * scale && scale > 0.)
-            break;
-          xi = xi + std::pow(10., -8. + k) * (centre - xi_in);
-          J  = geometry.jacobian(xi);
-        }
+      const auto [xi, J] = regular_point(xi_in, p);
       std::vector<unsigned int>   indices;
       std::vector<double>         R;
       std::vector<Tensor<1, dim>> dR;
@@ -1025,6 +1013,68 @@ namespace igabde
                                               eps);
         }
       return eps;
+    }
+
+
+
+    template <int dim>
+    std::pair<Point<dim>, Tensor<2, dim>>
+    IgaBody<dim>::regular_point(const Point<dim>  &xi_in,
+                                const unsigned int p) const
+    {
+      const auto      &geometry = spaces.at(p).geometry;
+      const Point<dim> lo       = geometry.parametric_lower();
+      const Point<dim> hi       = geometry.parametric_upper();
+      const Point<dim> centre   = 0.5 * (lo + hi);
+      Point<dim>       xi       = xi_in;
+      Tensor<2, dim>   J        = geometry.jacobian(xi);
+      for (unsigned int k = 0; k < 8; ++k)
+        {
+          const double scale = std::pow(J.norm(), dim);
+          if (std::abs(determinant(J)) > 1e-3 * scale && scale > 0.)
+            break;
+          xi = xi + std::pow(10., -8. + k) * (centre - xi_in);
+          J  = geometry.jacobian(xi);
+        }
+      return {xi, J};
+    }
+
+
+
+    template <int dim>
+    Tensor<2, dim>
+    IgaBody<dim>::gradient_at_parametric(const Vector<double> &u,
+                                         const Point<dim>     &xi_in,
+                                         const unsigned int    p) const
+    {
+      AssertDimension(u.size(), this->n_unknowns);
+      const auto &geometry = spaces.at(p).geometry;
+      const auto &numbers  = spaces[p].numbers;
+      const auto [xi, J]   = regular_point(xi_in, p);
+      std::vector<unsigned int>   indices;
+      std::vector<double>         R;
+      std::vector<Tensor<1, dim>> dR;
+      geometry.basis(xi, indices, R, &dR);
+      const Tensor<2, dim> JinvT = transpose(invert(J));
+      Tensor<2, dim>       grad_u;
+      for (unsigned int l = 0; l < indices.size(); ++l)
+        {
+          const Tensor<1, dim> g = JinvT * dR[l];
+          for (unsigned int c = 0; c < dim; ++c)
+            grad_u[c] += u[dim * numbers[indices[l]] + c] * g;
+        }
+      return grad_u;
+    }
+
+
+
+    template <int dim>
+    Tensor<2, dim>
+    IgaBody<dim>::displacement_gradient(const Vector<double> &u,
+                                        const Point<dim>     &location) const
+    {
+      const auto [p, xi] = locate(location);
+      return gradient_at_parametric(u, xi, p);
     }
 
 

@@ -1269,6 +1269,32 @@ namespace igabde
 
 
 
+    template <int dim>
+    Tensor<2, dim>
+    LagrangeBody<dim>::displacement_gradient(const Vector<double> &u,
+                                             const Point<dim> &location) const
+    {
+      // The mean over the cells that hold the point, as stress().
+      const auto     cells = find_cells(location, 1e-8);
+      Tensor<2, dim> sum;
+      for (const auto &[cell, unit] : cells)
+        {
+          const Quadrature<dim> quadrature(std::vector<Point<dim>>(1, unit));
+          elasticity::FEValuesEvaluator<dim> values(*mapping,
+                                                    fe,
+                                                    quadrature,
+                                                    update_gradients);
+          values.reinit(cell);
+          std::vector<double> local_u;
+          elasticity::get_local_values(values, u, local_u);
+          sum += elasticity::displacement_gradient<dim>(values, local_u, 0);
+        }
+      AssertThrow(!cells.empty(), ExcInternalError());
+      return sum / static_cast<double>(cells.size());
+    }
+
+
+
     template class LagrangeBody<2>;
     template class LagrangeBody<3>;
   } // namespace discretization

@@ -4,8 +4,9 @@
 // neo-Hookean block (the lateral stretch from S_22 = 0, solved here by
 // bisection; the end force P_11), a simple shear of gamma = 1 and a rigid
 // rotation by 90 degrees imposed on the whole boundary (no stress, no
-// force). Newton converges quadratically once close (Newton's theorem with
-// an exact tangent): r_k <= C r_k-1^2 is checked.
+// force); the Cauchy stress read at a point of the stretched block. Newton
+// converges quadratically once close (Newton's theorem with an exact tangent):
+// r_k <= C r_k-1^2 is checked.
 
 #include <igabde/nurbs/geometry_builders.h>
 
@@ -153,6 +154,13 @@ TEST(FiniteStrainBody, UniaxialStretchToTwiceTheLength)
             std::abs(body->dof_location(i)[0] - 1.) < 1e-12)
           end_force += f[i];
       EXPECT_NEAR(end_force, P11, 1e-10 * P11);
+      // The Cauchy stress inside: sigma_11 = P_11 F_11 / J = P_11 / s,
+      // sigma_22 = 0 (free lateral faces), no shear.
+      const SymmetricTensor<2, 2> sigma =
+        body->cauchy_stress(u, Point<2>(0.37, 0.61), material);
+      EXPECT_NEAR(sigma[0][0], P11 / s, 1e-9 * P11);
+      EXPECT_NEAR(sigma[1][1], 0., 1e-9 * P11);
+      EXPECT_NEAR(sigma[0][1], 0., 1e-9 * P11);
 
       // Quadratic convergence once close: r_k <= C r_k-1^2 with C = 100
       // for r_k-1 in (1e-6, 1e-3), above the round-off of r (1e-15); a

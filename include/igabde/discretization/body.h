@@ -585,6 +585,15 @@ namespace igabde
       stress(const Vector<double> &u, const Point<dim> &location) const = 0;
 
       /**
+       * @brief The displacement gradient grad u (with respect to the
+       * reference configuration) at a physical point of the reference
+       * configuration.
+       */
+      virtual Tensor<2, dim>
+      displacement_gradient(const Vector<double> &u,
+                            const Point<dim>     &location) const = 0;
+
+      /**
        * @brief Writes displacement, strain, stress and von Mises on the exact
        * geometry to @p filename (VTU): the cells output_cells(@p piece,
        * @p n_pieces) (all of them for one piece), so that ranks can write
@@ -658,6 +667,16 @@ namespace igabde
       /// The supports, homogeneous: the unknowns every increment keeps.
       const AffineConstraints<double> &
       support_constraints() const;
+
+      /**
+       * @brief The Cauchy stress sigma = F S F^T / det F of the law
+       * @p material at the reference point @p location.
+       */
+      SymmetricTensor<2, dim>
+      cauchy_stress(
+        const Vector<double>                        &u,
+        const Point<dim>                            &location,
+        const elasticity::HyperelasticMaterial<dim> &material) const;
 
       /**
        * @brief The supports' prescribed values at the load histories'

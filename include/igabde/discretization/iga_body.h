@@ -134,6 +134,10 @@ namespace igabde
       stress(const Vector<double> &u,
              const Point<dim>     &location) const override;
 
+      Tensor<2, dim>
+      displacement_gradient(const Vector<double> &u,
+                            const Point<dim>     &location) const override;
+
       /**
        * @brief VTU with one patch per knot span, settings.output_subdivisions
        * subdivisions, vertices at the exact x(xi): displacement (vector),
@@ -222,6 +226,19 @@ namespace igabde
       strain_at_parametric(const Vector<double> &u,
                            const Point<dim>     &xi,
                            const unsigned int    p = 0) const;
+
+      /// grad u_h at the parametric point @p xi of patch @p p (the limit
+      /// from inside where the map is singular, as strain_at_parametric()).
+      Tensor<2, dim>
+      gradient_at_parametric(const Vector<double> &u,
+                             const Point<dim>     &xi,
+                             const unsigned int    p) const;
+
+      /// The point a short step from @p xi towards the centre of patch
+      /// @p p where the map is regular (|det J| >= 1e-3 |J|^dim), and J
+      /// there; @p xi itself where it is regular already.
+      std::pair<Point<dim>, Tensor<2, dim>>
+      regular_point(const Point<dim> &xi, const unsigned int p) const;
 
       /// @brief Gauss points per direction of the cell rule (p+1, or p+2
       /// for a rational patch); faces use one more.

@@ -80,6 +80,10 @@ namespace igabde
       stress(const Vector<double> &u,
              const Point<dim>     &location) const override;
 
+      Tensor<2, dim>
+      displacement_gradient(const Vector<double> &u,
+                            const Point<dim>     &location) const override;
+
       void
       write_vtu(const Vector<double> &u,
                 const std::string    &filename,
