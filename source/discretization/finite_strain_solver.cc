@@ -142,9 +142,15 @@ namespace igabde
                   "every step along the Newton direction inverts an element";
               break;
             }
+          // The accepted trial's residual stands; the tangent is assembled
+          // only for another iteration.
           u        = trial;
           reached  = supports_reached();
-          residual = evaluate(u, &K, min_J);
+          residual = next;
+          min_J    = trial_min_J;
+          if ((residual > settings.tolerance || !reached) &&
+              result.iterations < settings.max_iterations)
+            evaluate(u, &K, min_J);
           result.residuals.push_back(residual);
           if (log != nullptr)
             {

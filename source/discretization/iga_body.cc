@@ -985,8 +985,6 @@ namespace igabde
                                        const unsigned int    p) const
     {
       AssertDimension(u.size(), this->n_unknowns);
-      const auto &geometry = spaces.at(p).geometry;
-      const auto &numbers  = spaces[p].numbers;
       // Where the map is singular (a collapsed corner, or two faces meeting
       // at a straight angle) the discrete strain has no limit: its
       // components across the degenerate direction are a difference of
@@ -996,22 +994,14 @@ namespace igabde
       // It is therefore read a short step inside, towards the centre of
       // the parametric box, where J is well conditioned: |det J| at least
       // 1e-3 |J|^dim, about 1e-3 of the patch from the corner.
-      const auto [xi, J] = regular_point(xi_in, p);
-      std::vector<unsigned int>   indices;
-      std::vector<double>         R;
-      std::vector<Tensor<1, dim>> dR;
-      geometry.basis(xi, indices, R, &dR);
-      const Tensor<2, dim>    JinvT = transpose(invert(J));
+      const auto [points, gradients] = basis_gradients(xi_in, p);
       SymmetricTensor<2, dim> eps;
-      for (unsigned int l = 0; l < indices.size(); ++l)
-        {
-          const Tensor<1, dim> g = JinvT * dR[l];
-          for (unsigned int c = 0; c < dim; ++c)
-            elasticity::add_basis_strain<dim>(u[dim * numbers[indices[l]] + c],
-                                              g,
-                                              c,
-                                              eps);
-        }
+      for (unsigned int l = 0; l < points.size(); ++l)
+        for (unsigned int c = 0; c < dim; ++c)
+          elasticity::add_basis_strain<dim>(u[dim * points[l] + c],
+                                            gradients[l],
+                                            c,
+                                            eps);
       return eps;
     }
 
@@ -1042,12 +1032,10 @@ namespace igabde
 
 
     template <int dim>
-    Tensor<2, dim>
-    IgaBody<dim>::gradient_at_parametric(const Vector<double> &u,
-                                         const Point<dim>     &xi_in,
-                                         const unsigned int    p) const
+    std::pair<std::vector<unsigned int>, std::vector<Tensor<1, dim>>>
+    IgaBody<dim>::basis_gradients(const Point<dim>  &xi_in,
+                                  const unsigned int p) const
     {
-      AssertDimension(u.size(), this->n_unknowns);
       const auto &geometry = spaces.at(p).geometry;
       const auto &numbers  = spaces[p].numbers;
       const auto [xi, J]   = regular_point(xi_in, p);
@@ -1055,14 +1043,30 @@ namespace igabde
       std::vector<double>         R;
       std::vector<Tensor<1, dim>> dR;
       geometry.basis(xi, indices, R, &dR);
-      const Tensor<2, dim> JinvT = transpose(invert(J));
-      Tensor<2, dim>       grad_u;
+      const Tensor<2, dim>        JinvT = transpose(invert(J));
+      std::vector<Tensor<1, dim>> gradients(indices.size());
       for (unsigned int l = 0; l < indices.size(); ++l)
         {
-          const Tensor<1, dim> g = JinvT * dR[l];
-          for (unsigned int c = 0; c < dim; ++c)
-            grad_u[c] += u[dim * numbers[indices[l]] + c] * g;
+          gradients[l] = JinvT * dR[l];
+          indices[l]   = numbers[indices[l]];
         }
+      return {indices, gradients};
+    }
+
+
+
+    template <int dim>
+    Tensor<2, dim>
+    IgaBody<dim>::gradient_at_parametric(const Vector<double> &u,
+                                         const Point<dim>     &xi_in,
+                                         const unsigned int    p) const
+    {
+      AssertDimension(u.size(), this->n_unknowns);
+      const auto [points, gradients] = basis_gradients(xi_in, p);
+      Tensor<2, dim> grad_u;
+      for (unsigned int l = 0; l < points.size(); ++l)
+        for (unsigned int c = 0; c < dim; ++c)
+          grad_u[c] += u[dim * points[l] + c] * gradients[l];
       return grad_u;
     }
 

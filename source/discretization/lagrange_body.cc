@@ -1087,19 +1087,20 @@ namespace igabde
 
 
     template <int dim>
-    SymmetricTensor<2, dim>
-    LagrangeBody<dim>::stress(const Vector<double> &u,
-                              const Point<dim>     &location) const
+    template <typename Value>
+    auto
+    LagrangeBody<dim>::mean_over_cells(const Vector<double> &u,
+                                       const Point<dim>     &location,
+                                       const Value          &value) const
     {
-      // The FE_Q stress jumps across cells: at a point on a face, edge or
-      // vertex it is the mean over the cells that hold the point (within
-      // 1e-8 in unit coordinates), so that the value does not depend on
-      // which of them a search meets first. The cells and unit points come
-      // from the one search of find_cell(): a second search around its cell
+      // The cells and unit points come from the one search of find_cells():
+      // a second search around its cell
       // (GridTools::find_all_active_cells_around_point) inverted the map on
       // every neighbour again.
-      const auto              cells = find_cells(location, 1e-8);
-      SymmetricTensor<2, dim> sum;
+      const auto cells = find_cells(location, 1e-8);
+      AssertThrow(!cells.empty(), ExcInternalError());
+      decltype(value(std::declval<const elasticity::FEValuesEvaluator<dim> &>(),
+                     std::declval<const std::vector<double> &>())) sum;
       for (const auto &[cell, unit] : cells)
         {
           const Quadrature<dim> quadrature(std::vector<Point<dim>>(1, unit));
@@ -1110,11 +1111,30 @@ namespace igabde
           values.reinit(cell);
           std::vector<double> local_u;
           elasticity::get_local_values(values, u, local_u);
-          sum += elasticity::stress(elasticity::strain<dim>(values, local_u, 0),
-                                    this->material());
+          sum += value(values, local_u);
         }
-      AssertThrow(!cells.empty(), ExcInternalError());
       return sum / static_cast<double>(cells.size());
+    }
+
+
+
+    template <int dim>
+    SymmetricTensor<2, dim>
+    LagrangeBody<dim>::stress(const Vector<double> &u,
+                              const Point<dim>     &location) const
+    {
+      // The FE_Q stress jumps across cells: at a point on a face, edge or
+      // vertex it is the mean over the cells that hold the point (within
+      // 1e-8 in unit coordinates), so that the value does not depend on
+      // which of them a search meets first (mean_over_cells()).
+      return mean_over_cells(
+        u,
+        location,
+        [this](const elasticity::FEValuesEvaluator<dim> &values,
+               const std::vector<double>                &local_u) {
+          return elasticity::stress(elasticity::strain<dim>(values, local_u, 0),
+                                    this->material());
+        });
     }
 
 
@@ -1274,23 +1294,13 @@ namespace igabde
     LagrangeBody<dim>::displacement_gradient(const Vector<double> &u,
                                              const Point<dim> &location) const
     {
-      // The mean over the cells that hold the point, as stress().
-      const auto     cells = find_cells(location, 1e-8);
-      Tensor<2, dim> sum;
-      for (const auto &[cell, unit] : cells)
-        {
-          const Quadrature<dim> quadrature(std::vector<Point<dim>>(1, unit));
-          elasticity::FEValuesEvaluator<dim> values(*mapping,
-                                                    fe,
-                                                    quadrature,
-                                                    update_gradients);
-          values.reinit(cell);
-          std::vector<double> local_u;
-          elasticity::get_local_values(values, u, local_u);
-          sum += elasticity::displacement_gradient<dim>(values, local_u, 0);
-        }
-      AssertThrow(!cells.empty(), ExcInternalError());
-      return sum / static_cast<double>(cells.size());
+      return mean_over_cells(
+        u,
+        location,
+        [](const elasticity::FEValuesEvaluator<dim> &values,
+           const std::vector<double>                &local_u) {
+          return elasticity::displacement_gradient<dim>(values, local_u, 0);
+        });
     }
 
 

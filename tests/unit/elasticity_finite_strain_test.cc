@@ -86,6 +86,23 @@ namespace
     return d.linfty_norm() / a.linfty_norm();
   }
 
+  /// A stretch with shear and a rotation of 0.3 rad.
+  template <int dim>
+  Tensor<2, dim>
+  stretched_rotation()
+  {
+    Tensor<2, dim> R, U;
+    for (unsigned int d = 0; d < dim; ++d)
+      {
+        R[d][d] = 1.;
+        U[d][d] = 1. + 0.2 * (d == 0) - 0.05 * (d == 1);
+      }
+    R[0][0] = R[1][1] = std::cos(0.3);
+    R[0][1]           = -std::sin(0.3);
+    R[1][0]           = std::sin(0.3);
+    U[0][1] = U[1][0] = 0.04;
+    return R * U;
+  }
   /**
    * The checks on one cell of evaluator @p values (reinitialised): at the
    * displacement of a 20 % stretch with a 0.3 rad rotation (through the
@@ -99,19 +116,8 @@ namespace
   expect_consistent_cell(const Values                  &values,
                          const std::vector<Point<dim>> &locations)
   {
-    const unsigned int n = values.dofs_per_cell();
-    Tensor<2, dim>     R, U;
-    const double       angle = 0.3;
-    for (unsigned int d = 0; d < dim; ++d)
-      {
-        R[d][d] = 1.;
-        U[d][d] = 1. + 0.2 * (d == 0) - 0.05 * (d == 1);
-      }
-    R[0][0] = R[1][1] = std::cos(angle);
-    R[0][1]           = -std::sin(angle);
-    R[1][0]           = std::sin(angle);
-    U[0][1] = U[1][0]      = 0.04;
-    const Tensor<2, dim> G = R * U;
+    const unsigned int   n = values.dofs_per_cell();
+    const Tensor<2, dim> G = stretched_rotation<dim>();
     std::vector<double>  u(n);
     for (unsigned int l = 0; l < values.n_basis(); ++l)
       {
@@ -411,23 +417,6 @@ namespace
       }
   }
 
-  /// A stretch with shear and a rotation of 0.3 rad.
-  template <int dim>
-  Tensor<2, dim>
-  stretched_rotation()
-  {
-    Tensor<2, dim> R, U;
-    for (unsigned int d = 0; d < dim; ++d)
-      {
-        R[d][d] = 1.;
-        U[d][d] = 1. + 0.2 * (d == 0) - 0.05 * (d == 1);
-      }
-    R[0][0] = R[1][1] = std::cos(0.3);
-    R[0][1]           = -std::sin(0.3);
-    R[1][0]           = std::sin(0.3);
-    U[0][1] = U[1][0] = 0.04;
-    return R * U;
-  }
 } // namespace
 
 

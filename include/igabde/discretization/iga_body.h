@@ -234,6 +234,11 @@ namespace igabde
                              const Point<dim>     &xi,
                              const unsigned int    p) const;
 
+      /// The body's control-point numbers of the basis functions of patch
+      /// @p p at @p xi (a regular_point()) and their physical gradients.
+      std::pair<std::vector<unsigned int>, std::vector<Tensor<1, dim>>>
+      basis_gradients(const Point<dim> &xi, const unsigned int p) const;
+
       /// The point a short step from @p xi towards the centre of patch
       /// @p p where the map is regular (|det J| >= 1e-3 |J|^dim), and J
       /// there; @p xi itself where it is regular already.

@@ -199,6 +199,19 @@ namespace igabde
       std::vector<
         std::pair<typename DoFHandler<dim>::active_cell_iterator, Point<dim>>>
       find_cells(const Point<dim> &location, const double tolerance) const;
+
+      /**
+       * @brief The mean of @p value(values, local_u) over the cells that
+       * hold @p location (within 1e-8 in unit coordinates), each evaluated
+       * at the point's unit coordinates in it: the FE_Q gradient jumps
+       * across cells, so that on a face, edge or vertex the result does not
+       * depend on which cell a search meets first.
+       */
+      template <typename Value>
+      auto
+      mean_over_cells(const Vector<double> &u,
+                      const Point<dim>     &location,
+                      const Value          &value) const;
       /// The cell of each knot span, per patch (face_point()).
       std::vector<std::map<std::array<unsigned int, dim>,
                            typename DoFHandler<dim>::active_cell_iterator>>
