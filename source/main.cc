@@ -38,7 +38,7 @@ namespace
   {
     out
       << "Usage: igabde SCENE.prm [--quiet] [--force] [--export-geometry] "
-         "[--set \"Section/Name=value\"]...\n"
+         "[--restart FOLDER] [--set \"Section/Name=value\"]...\n"
          "       igabde --fclib PROBLEM [--quiet] [--set "
          "\"Section/Name=value\"]...\n"
          "       igabde --print-parameters [prm|json]\n"
@@ -55,6 +55,10 @@ namespace
          "estimate is held against.\n"
          "SIGINT or SIGTERM ends a run with the finished load steps written "
          "and\nsummary.json marked 'interrupted'.\n"
+         "--restart FOLDER continues the load path of the run whose output "
+         "folder is\nFOLDER from its newest checkpoint (a run with "
+         "Output/Checkpoint = true\nwrites one per finished step); the "
+         "scene must be the same, Output aside.\n"
          "--fclib solves an FCLIB problem (.hdf5, local or global) or a "
          "Siconos\nnumerics .dat local or global problem with the contact solver and "
          "writes\nsummary.json (checks.fclib_error) and solution.csv "
@@ -141,6 +145,18 @@ main(int argc, char **argv)
         }
       else if (arg == "--force")
         force = true;
+      else if (arg == "--restart")
+        {
+          if (i + 1 >= argc)
+            {
+              err << "igabde: error: --restart needs the output folder of "
+                     "the run to continue, e.g. --restart output/f1-elastica"
+                  << std::endl;
+              return 2;
+            }
+          overrides.emplace_back("Output/Directory", argv[++i]);
+          overrides.emplace_back("Output/Restart", "true");
+        }
       else if (arg == "--quiet" || arg == "-q")
         overrides.emplace_back("Output/Progress", "false");
       else if (arg == "--export-geometry")

@@ -17,7 +17,7 @@ ROOT = os.path.dirname(os.path.dirname(HERE))
 # summary.json "timing" phases, in the order a run takes them.
 # The condensed path times condensation and B-Newton, the full path its
 # coupled system and its Newton solves (penalty and augmented Lagrange too).
-PHASES = ["assembly", "factorization", "contact: pairs",
+PHASES = ["assembly", "factorization", "newton", "contact: pairs",
           "contact: condensation", "contact: B-Newton",
           "contact: coupled system", "contact: full-system solve",
           "contact: fields", "output", "postprocess"]

@@ -17,6 +17,16 @@ namespace igabde
   namespace base
   {
     std::string
+    number_text(const double x)
+    {
+      std::ostringstream out;
+      out << x;
+      return out.str();
+    }
+
+
+
+    std::string
     trim(const std::string &s)
     {
       const auto begin = s.find_first_not_of(" \t\r\n");

@@ -71,7 +71,8 @@ namespace igabde
       // that a state of zero stress (a rigid rotation) is still judged
       // against the forces on the way to it.
       double         reference = 1e-300;
-      Vector<double> f_int(n), R(n), du(n), trial(n);
+      Vector<double> f_int(n), f_follower(n), R(n), du(n), trial(n);
+      const bool     with_followers = !body.follower_pressures(factors).empty();
       // Residual and its relative norm at @p w; the tangent too when asked.
       const auto evaluate = [&](const Vector<double> &w,
                                 SparseMatrix<double> *tangent,
@@ -82,9 +83,16 @@ namespace igabde
         min_J = body.internal_force(w, material, f_int, tangent);
         if (!(min_J > 0.))
           return std::numeric_limits<double>::infinity();
+        // The follower pressures on the current surface, with their load
+        // stiffness.
+        f_follower = 0.;
+        if (with_followers)
+          body.add_follower_pressure(w, factors, f_follower, tangent);
         R = f_int;
         R -= f_ext;
-        reference = std::max({reference, f_ext.l2_norm(), f_int.l2_norm()});
+        R += f_follower;
+        reference = std::max(
+          {reference, f_ext.l2_norm(), f_int.l2_norm(), f_follower.l2_norm()});
         return free_norm(R, held) / reference;
       };
 
@@ -118,9 +126,9 @@ namespace igabde
           increments.distribute(du);
           ++result.iterations;
 
-          // While the supports move, the largest step (halved from the full
-          // one) that inverts no element; once they are there, backtracking
-          // on ||R||.
+          // The full step, halved while it inverts an element; with the
+          // line search, once the supports are in place, also while it
+          // does not decrease ||R|| (backtracking).
           double step = 1., next = 0., trial_min_J = 0.;
           bool   accepted = false;
           for (unsigned int h = 0; h <= settings.max_halvings && !accepted;
@@ -129,8 +137,9 @@ namespace igabde
               trial = u;
               trial.add(step, du);
               next     = evaluate(trial, nullptr, trial_min_J);
-              accepted = std::isfinite(next) && (!reached || next < residual ||
-                                                 next <= settings.tolerance);
+              accepted = std::isfinite(next) &&
+                         (!reached || !settings.line_search ||
+                          next < residual || next <= settings.tolerance);
             }
           step *= 2.;
           if (!accepted)
@@ -159,7 +168,9 @@ namespace igabde
                    << std::defaultfloat;
               const auto  &r = result.residuals;
               const size_t k = r.size() - 1;
-              if (k >= 2 && r[k] > 0. && r[k - 1] < r[k - 2])
+              // From the third residual on: the first is measured before
+              // the supports moved.
+              if (k >= 3 && r[k] > 0. && r[k - 1] < r[k - 2])
                 *log << ", rate " << std::setprecision(3)
                      << std::log(r[k] / r[k - 1]) /
                           std::log(r[k - 1] / r[k - 2]);

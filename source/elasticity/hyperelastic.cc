@@ -14,6 +14,8 @@ namespace igabde
       const MaterialModel           model,
       const IsotropicMaterial<dim> &material)
       : law(model)
+      , plane_stress(dim == 2 &&
+                     material.plane_model == PlaneModel::plane_stress)
     {
       AssertThrow(model != MaterialModel::linear,
                   ExcMessage("HyperelasticMaterial: the linear law has no "
@@ -121,6 +123,20 @@ namespace igabde
                 a * 0.5 *
                   (C_inv[i][k] * C_inv[j][l] + C_inv[i][l] * C_inv[j][k]);
       return D;
+    }
+
+
+
+    template <int dim>
+    double
+    HyperelasticMaterial<dim>::out_of_plane_second_piola(
+      const SymmetricTensor<2, dim> &C) const
+    {
+      if (dim == 3 || plane_stress)
+        return 0.;
+      if (law == MaterialModel::saint_venant_kirchhoff)
+        return lame_lambda * 0.5 * (trace(C) - dim);
+      return lame_lambda * 0.5 * std::log(determinant(C));
     }
 
 

@@ -60,6 +60,8 @@ namespace igabde
       d.material.poisson_ratio  = body.poisson_ratio;
       d.material.plane_model    = parameters.plane_model;
       d.material.validate(scene_file + ": " + name);
+      d.kinematics = body.kinematics;
+      d.model      = body.material;
 
       {
         nurbs::MultiPatchGeometry<dim> geometry =
@@ -141,7 +143,9 @@ namespace igabde
           d.face_motions.push_back(
             {bc.boundary_id,
              centre,
-             static_cast<unsigned int>(d.dirichlet.size())});
+             static_cast<unsigned int>(d.dirichlet.size()),
+             displacement,
+             rotation});
           d.dirichlet.push_back(bc);
         }
       d.hold_rotation_face = body.hold_rotation_face;
@@ -159,6 +163,7 @@ namespace igabde
                                     const Tensor<1, dim> &n) {
                     return -p * n;
                   };
+                  bc.pressure = p;
                   break;
                 }
               case TractionParameters::Kind::vector:

@@ -71,6 +71,22 @@ namespace igabde
           "= bde, Path = condensed or auto); a step whose bodies float "
           "(held by contact only) is not an FCLIB local problem and is left "
           "out, with a line in the log.");
+        prm.declare_entry(
+          "Checkpoint",
+          "false",
+          Patterns::Bool(),
+          "After each finished load step, write checkpoint-NNNN.json: the "
+          "step, its factors, the displacement of every body at finite "
+          "strain, the contact state with the friction history, and the "
+          "finished steps' records, so that igabde SCENE --restart FOLDER "
+          "continues the load path from the newest one.");
+        prm.declare_entry("Restart",
+                          "false",
+                          Patterns::Bool(),
+                          "Continue from the newest checkpoint-NNNN.json in "
+                          "Output/Directory (what --restart FOLDER sets); "
+                          "the scene must be the one that wrote it, Output "
+                          "aside.");
         prm.declare_entry("Export geometry",
                           "false",
                           Patterns::Bool(),
@@ -98,439 +114,10 @@ namespace igabde
         solver_details  = prm.get_bool("Solver details");
         export_geometry = prm.get_bool("Export geometry");
         fclib_export    = prm.get_bool("FCLIB export");
+        checkpoint      = prm.get_bool("Checkpoint");
+        restart         = prm.get_bool("Restart");
       }
       prm.leave_subsection();
-    }
-
-
-
-    void
-    BodyParameters::declare_parameters(ParameterHandler  &prm,
-                                       const std::string &name,
-                                       const std::string &default_type)
-    {
-      prm.enter_subsection(name);
-      {
-        prm.declare_entry("Type",
-                          default_type,
-                          Patterns::Selection(
-                            base::selection_of(body_type_names)),
-                          "deformable: a meshed elastic body. rigid plane: a "
-                          "fixed flat obstacle with no mesh and no unknowns "
-                          "(Body 2 only). none: no such body (Body 2 only).");
-        prm.declare_entry(
-          "Geometry",
-          "box",
-          Patterns::Selection(base::selection_of(geometry_names)),
-          "Exact NURBS geometry. box: [Lower corner, Upper corner]. quarter "
-          "annulus / thick cylinder: Inner/Outer radius, 0..90 degrees "
-          "(3D: extruded by Width along z). plate with hole: the quarter "
-          "[0,Plate size]^2 minus the hole of radius Inner radius. hertz "
-          "quarter disc: lower right quarter of a disc of Radius touching "
-          "y = 0 at the origin. curved beam: quarter annulus in the x-z "
-          "plane extruded in y by Width. full disc / half disc (2D): the "
-          "disc of Radius about Centre, or its lower half y <= Centre y "
-          "(faces 0 left, 1 right, 2 bottom arc, 3 top arc or diameter). "
-          "full cylinder / half cylinder (3D): those extruded along z from "
-          "Centre z by Width (faces 4: z = Centre z, 5: z = Centre z + "
-          "Width). file: the single-patch G+Smo XML file Geometry file "
-          "(faces 0..2dim-1: low and high end of parametric directions 0, 1, "
-          "2).");
-        prm.declare_entry("Geometry file",
-                          "",
-                          Patterns::Anything(),
-                          "Geometry = file: a G+Smo XML file holding one "
-                          "TensorBSpline or TensorNurbs patch of the scene's "
-                          "dimension, relative to the scene file's folder "
-                          "(or absolute). Subdivisions, Grading and "
-                          "Discretization/Degree and Refinements apply to it "
-                          "as to the built-in shapes.");
-        prm.declare_entry("Lower corner",
-                          "",
-                          Patterns::Anything(),
-                          "box: lower corner (m), comma-separated; empty: "
-                          "the origin.");
-        prm.declare_entry("Upper corner",
-                          "",
-                          Patterns::Anything(),
-                          "box: upper corner (m), comma-separated; empty: "
-                          "(1, 1[, 1]).");
-        prm.declare_entry("Inner radius",
-                          "1",
-                          Patterns::Double(0.),
-                          "Inner radius (m) of annulus, cylinder, curved "
-                          "beam; hole radius of the plate with hole.");
-        prm.declare_entry("Outer radius",
-                          "2",
-                          Patterns::Double(0.),
-                          "Outer radius (m) of annulus, cylinder, curved "
-                          "beam.");
-        prm.declare_entry("Radius",
-                          "8",
-                          Patterns::Double(0.),
-                          "Radius (m) of the hertz quarter disc and of the "
-                          "full/half discs and cylinders.");
-        prm.declare_entry("Centre",
-                          "",
-                          Patterns::Anything(),
-                          "full/half disc: centre (m), 'x, y'; full/half "
-                          "cylinder: centre of the base face z = const, "
-                          "'x, y, z'. Empty: the origin.");
-        prm.declare_entry("Width",
-                          "1",
-                          Patterns::Double(0.),
-                          "Extrusion width (m) of 3D annulus-like bodies.");
-        prm.declare_entry("Plate size",
-                          "4",
-                          Patterns::Double(0.),
-                          "Edge length L (m) of the plate with hole.");
-        prm.declare_entry("Subdivisions",
-                          "1",
-                          Patterns::Anything(),
-                          "Knot spans per parametric direction of the base "
-                          "mesh (one number for all, or one per direction), "
-                          "before Discretization/Refinements.");
-        prm.declare_entry(
-          "Grading",
-          "",
-          Patterns::Anything(),
-          "Spans graded toward faces: 'face: ratio; ...', the spans of the "
-          "face's parametric direction growing geometrically away from it, "
-          "the largest 'ratio' times the smallest (e.g. '0: 8; 2: 8' refines "
-          "the Hertz quarter disc toward its contact point), or toward a band "
-          "inside a direction: 'band d: from, to, ratio', the spans of "
-          "parametric direction d smallest over the fractions [from, to] of "
-          "it and growing by 1.25 per span away from the band up to 'ratio' "
-          "times (e.g. 'band 0: 0.45, 0.55, 8' around the middle of the half "
-          "disc's bottom arc). At most one grading per direction; empty: "
-          "uniform spans.");
-        prm.declare_entry("Young's modulus",
-                          "1000",
-                          Patterns::Double(0.),
-                          "Young's modulus E (Pa), E > 0.");
-        prm.declare_entry("Poisson's ratio",
-                          "0.3",
-                          Patterns::Double(-1., 0.5),
-                          "Poisson's ratio nu, -1 < nu < 0.5 (the bounds "
-                          "themselves are refused: no stiffness exists "
-                          "there).");
-        prm.declare_entry(
-          "Supports",
-          "",
-          Patterns::Anything(),
-          "Prescribed displacements on patch faces: 'face: components; ...' "
-          "where a component is x, y or z, optionally with a value "
-          "(x=0.05) scaled by the step's displacement factor (or by the "
-          "load history 'name' when the entry ends in '@ name'); e.g. "
-          "'0: x; 2: y'; a component may be 'y = function -0.01*x^2' (a "
-          "FunctionParser expression of x, y[, z], one component per entry). "
-          "Faces: 0/1 low/high end of parametric direction "
-          "0, 2/3 of direction 1, 4/5 of direction 2; a face the Geometry "
-          "does not have is refused when the scene is read.");
-        prm.declare_entry(
-          "Hold rotation",
-          "",
-          Patterns::Anything(),
-          "A patch face whose mean rotation is held at zero, as a "
-          "distributing coupling does: the body's rigid rotation (about z "
-          "in 2D, about every axis in 3D) is removed by one constraint per "
-          "axis, whose reaction is a pure moment spread over that face as "
-          "a linear traction, so the deformation is not constrained. For a "
-          "body held by forces and contact, e.g. a disc pressed and pushed "
-          "sideways through its flat face. Rotations the Supports already "
-          "hold are left to them. Empty: none.");
-        prm.declare_entry(
-          "Tractions",
-          "",
-          Patterns::Anything(),
-          "Tractions on patch faces, scaled by the load factor: "
-          "'face: pressure p' (t = -p n), 'face: vector tx, ty[, tz]', "
-          "'face: exact' (sigma_exact n from the Exact solution) or "
-          "'face: function fx; fy[; fz]' (deal.II FunctionParser "
-          "expressions of x, y[, z] and t, in Pa, e.g. '3: function 0; "
-          "-100*(1-x^2)'); separated by ';'. An entry ending in '@ name' "
-          "follows the load history 'name' of Load path/Histories instead. "
-          "A function that uses t is the traction itself at t = the step's "
-          "factor of its history (not scaled again); one without t is "
-          "scaled like every other entry.");
-        prm.declare_entry("Point loads",
-                          "",
-                          Patterns::Anything(),
-                          "Point forces 'x, y[, z] : fx, fy[, fz]; ...' (N), "
-                          "scaled by the load factor, or by the load history "
-                          "'name' of Load path/Histories when the entry ends "
-                          "in '@ name'.");
-        prm.declare_entry(
-          "Point supports",
-          "",
-          Patterns::Anything(),
-          "Components held at single points: 'x, y[, z] : components; "
-          "...', e.g. '0, -0.5 : x y; 0, 0.5 : x' (a pin and a roller); a "
-          "component may carry a value, 'x=0.01' (m), scaled by the step's "
-          "displacement factor (or by the load history 'name' when the "
-          "entry ends in '@ name'); without one it is held at zero. A point must be a node where one basis function is one "
-          "and the others vanish: a corner of the patch for NURBS, a mesh "
-          "node for FE_Q (refused otherwise). The support holds that node "
-          "only: its reaction is a point force, with the stress singularity "
-          "that brings.");
-        prm.declare_entry(
-          "Moments",
-          "",
-          Patterns::Anything(),
-          "Moments on patch faces about each face's centroid, scaled by the "
-          "load factor (or by the load history 'name' when the entry ends "
-          "in '@ name'): 'face: M' in 2D (N m/m, about z, counterclockwise "
-          "positive), 'face: Mx, My, Mz' in 3D (N m); separated by ';'. "
-          "Spread over the face as a distributing coupling spreads a "
-          "moment: a traction linear in the position, zero resultant force "
-          "(for a straight beam end, the bending stress My/I). E.g. "
-          "'1: 20' on a cantilever's end face.");
-        prm.declare_entry(
-          "Face motions",
-          "",
-          Patterns::Anything(),
-          "Patch faces moved rigidly, as a kinematic coupling moves them: "
-          "'face: ux, uy, rz' in 2D, 'face: ux, uy, uz, rx, ry, rz' in 3D; "
-          "every point x of the face takes u = d + r x (x - c), d the "
-          "displacement (m) of the face's centroid c and r the rotation "
-          "(rad, small: the rotation is linearised, as the small-strain "
-          "model requires), scaled by the step's displacement factor (or by "
-          "the load history 'name' when the entry ends in '@ name'); "
-          "separated by ';'. Every component is prescribed (a face whose "
-          "motion is partly free is not modelled: hold what is known with "
-          "Supports, and load the face with Tractions and Moments). The "
-          "reaction force and the moment about c are reported per step "
-          "(summary.json, steps.csv). E.g. '1: 0, 0, 0.01' turns a "
-          "cantilever's end by 0.01 rad.");
-        prm.declare_entry("Body force",
-                          "0, 0, 0",
-                          Patterns::Anything(),
-                          "Body force per unit volume (N/m^3), scaled by "
-                          "the load factor: 'fx, fy[, fz]' or 'function fx; "
-                          "fy[; fz]' (FunctionParser expressions of x, y[, "
-                          "z], e.g. 'function 0; -9.81*7800').");
-        prm.declare_entry("Plane point",
-                          "0, 0, 0",
-                          Patterns::Anything(),
-                          "rigid plane: a point on the plane (m).");
-        prm.declare_entry("Plane normal",
-                          "0, 1, 0",
-                          Patterns::Anything(),
-                          "rigid plane: normal pointing towards Body 1.");
-      }
-      prm.leave_subsection();
-    }
-
-
-
-    namespace
-    {
-      /// A number as a user wrote it (six significant digits).
-      std::string
-      number(const double x)
-      {
-        std::ostringstream out;
-        out << x;
-        return out.str();
-      }
-
-
-
-      /// The faces of a patch of @p body's geometry, as its grammars name
-      /// them.
-      PatchFaces
-      patch_faces_of(const BodyParameters &body, const unsigned int dimension)
-      {
-        return {patch_faces(body.geometry, dimension),
-                body.geometry == Geometry::file,
-                to_string(body.geometry)};
-      }
-
-
-
-      /**
-       * Refuses a face of @p body (its supports, tractions, moments, face
-       * motions, held rotation and @p more) on a patch that the body's
-       * geometry does not have; @p where names the body.
-       */
-      void
-      check_face_patches(const BodyParameters            &body,
-                         const std::vector<unsigned int> &more,
-                         const unsigned int               dimension,
-                         const std::string               &where)
-      {
-        std::vector<std::pair<std::string, unsigned int>> faces;
-        for (const auto &s : body.supports)
-          faces.emplace_back("Supports", s.face);
-        for (const auto &t : body.tractions)
-          faces.emplace_back("Tractions", t.face);
-        for (const auto &m : body.moments)
-          faces.emplace_back("Moments", m.face);
-        for (const auto &m : body.face_motions)
-          faces.emplace_back("Face motions", m.face);
-        if (body.hold_rotation_face >= 0)
-          faces.emplace_back("Hold rotation", body.hold_rotation_face);
-        for (const unsigned int face : more)
-          faces.emplace_back("contact face", face);
-        for (const auto &[parameter, face] : faces)
-          AssertThrow(
-            face / (2 * dimension) < body.n_patches,
-            base::ExcInput(
-              where + "/" + parameter + ": face " +
-              discretization::face_name(face, dimension) + " is on patch " +
-              std::to_string(face / (2 * dimension)) +
-              ", but the geometry has " + std::to_string(body.n_patches) +
-              " patch" + (body.n_patches == 1 ? "" : "es") + " (0.." +
-              std::to_string(body.n_patches - 1) + ")."));
-      }
-
-
-
-    } // namespace
-
-
-
-    void
-    BodyParameters::parse_parameters(ParameterHandler  &prm,
-                                     const std::string &name,
-                                     const unsigned int dimension,
-                                     const std::string &context)
-    {
-      std::string supports_text, tractions_text, point_loads_text, hold_text,
-        moments_text, point_supports_text, face_motions_text, body_force_text,
-        lower_text, upper_text, centre_text, subdivisions_text, grading_text,
-        point_text, normal_text;
-      prm.enter_subsection(name);
-      {
-        type              = base::value_of(body_type_names, prm.get("Type"));
-        geometry          = base::value_of(geometry_names, prm.get("Geometry"));
-        geometry_file     = base::trim(prm.get("Geometry file"));
-        lower_text        = prm.get("Lower corner");
-        upper_text        = prm.get("Upper corner");
-        inner_radius      = prm.get_double("Inner radius");
-        outer_radius      = prm.get_double("Outer radius");
-        radius            = prm.get_double("Radius");
-        centre_text       = prm.get("Centre");
-        width             = prm.get_double("Width");
-        plate_size        = prm.get_double("Plate size");
-        subdivisions_text = prm.get("Subdivisions");
-        grading_text      = prm.get("Grading");
-        youngs_modulus    = prm.get_double("Young's modulus");
-        poisson_ratio     = prm.get_double("Poisson's ratio");
-        supports_text     = prm.get("Supports");
-        hold_text         = prm.get("Hold rotation");
-        tractions_text    = prm.get("Tractions");
-        point_loads_text  = prm.get("Point loads");
-        moments_text      = prm.get("Moments");
-        point_supports_text = prm.get("Point supports");
-        face_motions_text   = prm.get("Face motions");
-        body_force_text     = prm.get("Body force");
-        point_text          = prm.get("Plane point");
-        normal_text         = prm.get("Plane normal");
-      }
-      prm.leave_subsection();
-
-      body_force.assign(dimension, 0.);
-      const std::string where = context + name + "/";
-      if (type == BodyType::rigid_plane)
-        {
-          plane_point =
-            read_vector(point_text, dimension, where + "Plane point");
-          plane_normal =
-            read_vector(normal_text, dimension, where + "Plane normal");
-          AssertThrow(std::any_of(plane_normal.begin(),
-                                  plane_normal.end(),
-                                  [](const double x) {
-                                    return x != 0.;
-                                  }),
-                      base::ExcInput(where + "Plane normal = '" + normal_text +
-                                     "' must not be zero; give the normal "
-                                     "pointing towards Body 1, e.g. '0, 1'."));
-        }
-      supports.clear();
-      tractions.clear();
-      point_loads.clear();
-      moments.clear();
-      face_motions.clear();
-      point_supports.clear();
-      body_force_expressions.clear();
-      if (type != BodyType::deformable)
-        return;
-
-      // The points and counts of the geometry, each read once.
-      const auto optional_vector = [&](const std::string &text,
-                                       const std::string &parameter) {
-        return base::trim(text).empty() ?
-                 std::vector<double>() :
-                 read_vector(text, dimension, where + parameter);
-      };
-      lower_corner = optional_vector(lower_text, "Lower corner");
-      upper_corner = optional_vector(upper_text, "Upper corner");
-      centre       = optional_vector(centre_text, "Centre");
-      subdivisions =
-        read_subdivisions(subdivisions_text, dimension, where + "Subdivisions");
-      const GradingParameters g =
-        read_grading(grading_text, dimension, where + "Grading");
-      grading             = g.ratio;
-      grading_toward_high = g.toward_high;
-      grading_band        = g.band;
-
-      // What no material and no body can have, refused before any set-up.
-      AssertThrow(youngs_modulus > 0.,
-                  base::ExcInput(where +
-                                 "Young's modulus = " + number(youngs_modulus) +
-                                 " must be > 0 (Pa); set the material's "
-                                 "stiffness, e.g. 1000."));
-      AssertThrow(poisson_ratio > -1. && poisson_ratio < 0.5,
-                  base::ExcInput(where +
-                                 "Poisson's ratio = " + number(poisson_ratio) +
-                                 " must lie in -1 < nu < 0.5; nearly "
-                                 "incompressible materials need nu < 0.5 "
-                                 "(e.g. 0.49)."));
-
-      const PatchFaces faces = patch_faces_of(*this, dimension);
-      AssertThrow(!faces.names.empty(),
-                  base::ExcInput(where + "Geometry = " + to_string(geometry) +
-                                 " does not exist in " +
-                                 std::to_string(dimension) +
-                                 "D; choose another geometry or Dimension."));
-
-      supports  = read_supports(supports_text, faces, where + "Supports");
-      tractions = read_tractions(tractions_text, faces, where + "Tractions");
-      hold_rotation_face =
-        read_hold_rotation(hold_text, faces, where + "Hold rotation");
-      point_loads =
-        read_point_loads(point_loads_text, dimension, where + "Point loads");
-      point_supports = read_point_supports(point_supports_text,
-                                           dimension,
-                                           where + "Point supports");
-      moments        = read_moments(moments_text, faces, where + "Moments");
-      face_motions =
-        read_face_motions(face_motions_text, faces, where + "Face motions");
-      // A face motion prescribes every component and the rotation of its
-      // face: a support or a held rotation of the same face says it twice.
-      for (const auto &motion : face_motions)
-        {
-          for (const auto &support : supports)
-            AssertThrow(support.face != motion.face,
-                        base::ExcInput(
-                          where + "Face motions: face " +
-                          std::to_string(motion.face) +
-                          " is also in Supports; a face motion prescribes "
-                          "every component of the face, so remove the "
-                          "face from Supports (or from Face motions)."));
-          AssertThrow(hold_rotation_face != int(motion.face),
-                      base::ExcInput(where + "Face motions: face " +
-                                     std::to_string(motion.face) +
-                                     " is also the Hold rotation face; a "
-                                     "face motion prescribes its rotation "
-                                     "already, so leave Hold rotation "
-                                     "empty."));
-        }
-      const BodyForceParameters force =
-        read_body_force(body_force_text, dimension, where + "Body force");
-      body_force             = force.vector;
-      body_force_expressions = force.expressions;
     }
 
 
@@ -974,6 +561,59 @@ namespace igabde
 
 
     void
+    NonlinearSolverParameters::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Nonlinear solver");
+      {
+        prm.declare_entry("Tolerance",
+                          "1e-10",
+                          Patterns::Double(0.),
+                          "Newton's method at finite strain has converged "
+                          "when the residual over the free unknowns is at "
+                          "most this times the largest force of the solve "
+                          "(loads and reactions), > 0.");
+        prm.declare_entry("Max iterations",
+                          "25",
+                          Patterns::Integer(1),
+                          "Newton iterations per solve before the load "
+                          "step is cut.");
+        prm.declare_entry("Line search",
+                          "false",
+                          Patterns::Bool(),
+                          "true: a Newton step that does not decrease the "
+                          "residual norm is halved (backtracking). false: "
+                          "the full step is taken unless it inverts an "
+                          "element (the residual of a bent slender "
+                          "structure rises before it falls, and "
+                          "backtracking on it stalls there).");
+        prm.declare_entry("Max step cuts",
+                          "4",
+                          Patterns::Integer(0, 20),
+                          "How often a load increment whose Newton solve "
+                          "fails (no convergence, or an inverted element) "
+                          "may be halved before the run stops.");
+      }
+      prm.leave_subsection();
+    }
+
+
+
+    void
+    NonlinearSolverParameters::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Nonlinear solver");
+      {
+        tolerance      = prm.get_double("Tolerance");
+        max_iterations = prm.get_integer("Max iterations");
+        max_step_cuts  = prm.get_integer("Max step cuts");
+        line_search    = prm.get_bool("Line search");
+      }
+      prm.leave_subsection();
+    }
+
+
+
+    void
     declare_discretization_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Discretization");
@@ -1102,6 +742,7 @@ namespace igabde
       ExactSolutionParameters::declare_parameters(prm);
       ContactParameters::declare_parameters(prm);
       LoadPathParameters::declare_parameters(prm);
+      NonlinearSolverParameters::declare_parameters(prm);
       ChecksParameters::declare_parameters(prm);
     }
 
@@ -1157,254 +798,23 @@ namespace igabde
       load_path.parse_parameters(prm);
       checks.parse_parameters(prm);
 
+      nonlinear_solver.parse_parameters(prm);
+      probes = read_probe_points(probes_text, dimension, f + "Probe points");
       // Checks that need more than a pattern; each names the parameter and
       // the fix.
-      probes = read_probe_points(probes_text, dimension, f + "Probe points");
-      AssertThrow(body1.type == BodyType::deformable,
-                  base::ExcInput(f + "Body 1/Type must be 'deformable'; only "
-                                     "Body 2 may be a rigid plane."));
-      AssertThrow(!output.fclib_export ||
-                    (contact.enabled && contact.friction_coefficient > 0. &&
-                     contact.algorithm == contact::Algorithm::bde &&
-                     contact.path != contact::Path::full),
-                  base::ExcInput(
-                    f + "Output/FCLIB export = true needs a contact problem "
-                        "with friction on the condensed path (Contact/Enabled "
-                        "= true, Friction coefficient > 0, Algorithm = bde, "
-                        "Path = condensed or auto): FCLIB's local problems "
-                        "have two or three components per contact and a "
-                        "flexibility W; set it to false for this scene."));
-      AssertThrow(contact.friction_coefficient >= 0.,
-                  base::ExcInput(
-                    f + "Contact/Friction coefficient = " +
-                    number(contact.friction_coefficient) +
-                    " is negative; use mu >= 0 (0 for frictionless)."));
-      AssertThrow(!contact.enabled || body2.type != BodyType::none,
-                  base::ExcInput(f + "Contact/Enabled is true but Body 2/Type "
-                                     "is 'none'; set Body 2/Type to "
-                                     "'deformable' or 'rigid plane'."));
-      AssertThrow(contact.algorithm == contact::Algorithm::bde ||
-                    contact.path != contact::Path::condensed,
-                  base::ExcInput(f + "Contact/Algorithm = " +
-                                 contact::to_string(contact.algorithm) +
-                                 " solves the full system; set Contact/Path "
-                                 "to 'full' or 'auto' (or use Algorithm = "
-                                 "bde for the condensed path)."));
-      // A held rotation is a constraint the coupled system has no rows for.
-      for (const auto *body : {&body1, &body2})
-        if (contact.enabled && body->type == BodyType::deformable &&
-            body->hold_rotation_face >= 0)
-          {
-            const std::string name = (body == &body1 ? "Body 1" : "Body 2");
-            AssertThrow(contact.algorithm == contact::Algorithm::bde &&
-                          contact.path != contact::Path::full,
-                        base::ExcInput(
-                          f + name +
-                          "/Hold rotation is modelled on the condensed "
-                          "path only, but Contact/" +
-                          (contact.algorithm != contact::Algorithm::bde ?
-                             "Algorithm = " +
-                               contact::to_string(contact.algorithm) +
-                               " solves the full system" :
-                             std::string("Path = full")) +
-                          "; use Contact/Algorithm = bde with Path = "
-                          "condensed or auto."));
-          }
-      // What the contact solver would refuse only when it is built.
-      AssertThrow(contact.tolerance > 0.,
-                  base::ExcInput(
-                    f + "Contact/Tolerance = " + number(contact.tolerance) +
-                    " must be > 0 (the natural-map residual "
-                    "relative to ||q|| at which a solve stops; "
-                    "e.g. 1e-10)."));
-      AssertThrow(contact.r_scale > 0.,
-                  base::ExcInput(
-                    f + "Contact/r scale = " + number(contact.r_scale) +
-                    " must be > 0 (a factor on the per-pair "
-                    "r; 1 is the default)."));
-      AssertThrow(contact.penalty_factor > 0. &&
-                    contact.tangential_penalty_factor > 0.,
-                  base::ExcInput(f + "Contact/Penalty factor and Contact/"
-                                     "Tangential penalty factor must be "
-                                     "positive (FKN = 0.01 to 10 is the "
-                                     "usual range)."));
-      for (const auto *body : {&body1, &body2})
-        for (const auto &traction : body->tractions)
-          AssertThrow(traction.kind != TractionParameters::Kind::exact ||
-                        exact.type != ExactSolutionType::none,
-                      base::ExcInput(f +
-                                     (body == &body1 ? "Body 1" : "Body 2") +
-                                     "/Tractions: 'exact' needs Exact "
-                                     "solution/Type other than none."));
-      AssertThrow(
-        (contact.pairing != contact::Pairing::weighted_gap &&
-         contact.pairing != contact::Pairing::weighted_gap_standard) ||
-          contact.pair_placement == discretization::PairPlacement::greville,
-        base::ExcInput(
-          f + "Contact/Pair placement = " + to_string(contact.pair_placement) +
-          " places point pairs, but Contact/Pairing = " +
-          contact::to_string(contact.pairing) +
-          " has one pair per basis function of the slave face; "
-          "remove Contact/Pair placement or use Pairing = "
-          "node-to-surface."));
-      if (contact.enabled)
-        {
-          // The contact faces must exist on the bodies that carry them.
-          const auto read_contact_face = [&](const BodyParameters &body,
-                                             const std::string    &body_name,
-                                             const std::string    &parameter,
-                                             const std::string    &text) {
-            return read_faces(text,
-                              patch_faces_of(body, dimension),
-                              f + "Contact/" + parameter + " (" + body_name +
-                                ")",
-                              text);
-          };
-          contact.slave_faces = read_contact_face(body1,
-                                                  "Body 1",
-                                                  "Slave face",
-                                                  contact.slave_face_text);
-          if (body2.type == BodyType::deformable)
-            contact.master_faces = read_contact_face(body2,
-                                                     "Body 2",
-                                                     "Master face",
-                                                     contact.master_face_text);
-          // A face of a patch the geometry file does not have.
-          for (const auto *body : {&body1, &body2})
-            if (body->type == BodyType::deformable)
-              check_face_patches(*body,
-                                 body == &body1 ? contact.slave_faces :
-                                                  contact.master_faces,
-                                 dimension,
-                                 f + (body == &body1 ? "Body 1" : "Body 2"));
-        }
-      // A body with no Supports at all is held by nothing but contact.
-      for (const auto *body : {&body1, &body2})
-        {
-          const std::string name = (body == &body1 ? "Body 1" : "Body 2");
-          AssertThrow(body->type != BodyType::deformable ||
-                        !body->supports.empty() ||
-                        !body->point_supports.empty() ||
-                        !body->face_motions.empty() || contact.enabled,
-                      base::ExcInput(
-                        f + name +
-                        "/Supports is empty and the scene has no contact "
-                        "(Contact/Enabled = false): nothing holds " +
-                        name +
-                        " against rigid motion; add Supports, e.g. "
-                        "'0: x; 2: y'."));
-        }
-      AssertThrow(!contact.enabled || body2.type != BodyType::deformable ||
-                    !body1.supports.empty() || !body2.supports.empty() ||
-                    !body1.point_supports.empty() ||
-                    !body2.point_supports.empty() ||
-                    !body1.face_motions.empty() || !body2.face_motions.empty(),
-                  base::ExcInput(
-                    f + "Body 1/Supports and Body 2/Supports are both empty: "
-                        "contact only acts between the two bodies, so "
-                        "nothing holds them against rigid motion; add "
-                        "Supports to Body 2, e.g. '2: x y'."));
-      AssertThrow(checks.hertz_line_load == 0. || dimension == 2,
-                  base::ExcInput(f + "Checks/Hertz line load is the 2D "
-                                     "line contact; in 3D set Checks/Hertz "
-                                     "point load (a sphere) instead."));
-      AssertThrow(checks.hertz_point_load == 0. || dimension == 3,
-                  base::ExcInput(f + "Checks/Hertz point load is the 3D "
-                                     "point contact of a sphere; in 2D set "
-                                     "Checks/Hertz line load instead."));
-      if (checks.hertz_line_load > 0. || checks.hertz_point_load > 0.)
-        {
-          if (!checks.hertz_axis_direction_text.empty())
-            checks.hertz_axis_direction =
-              read_direction(checks.hertz_axis_direction_text,
-                             dimension,
-                             f + "Checks/Hertz axis direction");
-          if (!checks.hertz_axis_point_text.empty())
-            checks.hertz_axis_point = read_point(checks.hertz_axis_point_text,
-                                                 dimension,
-                                                 f + "Checks/Hertz axis point");
-          AssertThrow(checks.hertz_radius > 0. ||
-                        body1.geometry != Geometry::file,
-                      base::ExcInput(f + "Checks/Hertz radius = 0 takes "
-                                         "Body 1/Radius, which a geometry "
-                                         "file does not have; give the "
-                                         "radius of the contact surface, "
-                                         "e.g. 'set Hertz radius = 1'."));
-        }
-      AssertThrow(load_path.displacement_factors.empty() ||
-                    load_path.load_factors.empty() ||
-                    load_path.displacement_factors.size() ==
-                      load_path.load_factors.size(),
-                  base::ExcInput(
-                    f + "Load path/Displacement factors has " +
-                    std::to_string(load_path.displacement_factors.size()) +
-                    " entries but Load path/Load factors has " +
-                    std::to_string(load_path.load_factors.size()) +
-                    "; give both lists the same length."));
-      const std::size_t n_steps = load_path.steps().size();
-      for (const auto &h : load_path.histories)
-        AssertThrow(h.second.size() == n_steps,
-                    base::ExcInput(f + "Load path/Histories: '" + h.first +
-                                   "' has " + std::to_string(h.second.size()) +
-                                   " factors but the load path has " +
-                                   std::to_string(n_steps) +
-                                   " steps; give one factor per step."));
-      // Every history a load entry names must exist.
-      for (const auto *body : {&body1, &body2})
-        {
-          const std::string where =
-            f + (body == &body1 ? "Body 1" : "Body 2") + ": ";
-          const auto known = [&](const std::string &name) {
-            bool found =
-              name.empty() || name == "load" || name == "displacement";
-            std::string names = "load, displacement";
-            for (const auto &h : load_path.histories)
-              {
-                found = found || h.first == name;
-                names += ", " + h.first;
-              }
-            AssertThrow(found,
-                        base::ExcInput(where + "load history '" + name +
-                                       "' is not declared in Load "
-                                       "path/Histories; declared: " +
-                                       names + "."));
-          };
-          for (const auto &s : body->supports)
-            known(s.history);
-          for (const auto &t : body->tractions)
-            known(t.history);
-          for (const auto &l : body->point_loads)
-            known(l.history);
-          for (const auto &m : body->moments)
-            known(m.history);
-          for (const auto &m : body->face_motions)
-            known(m.history);
-          for (const auto &p : body->point_supports)
-            known(p.history);
-        }
-      // A traction that depends on t gets one history per step: factor 1
-      // at its step, 0 elsewhere, the expression evaluated at that step's
-      // factor of the history it names.
-      const auto factors = load_path.history_factors();
-      for (auto *body : {&body1, &body2})
-        for (auto &traction : body->tractions)
-          if (traction.kind == TractionParameters::Kind::function &&
-              traction.uses_t)
-            {
-              const unsigned int base =
-                load_path.history_index(traction.history, 0);
-              traction.step_t.clear();
-              traction.step_histories.clear();
-              for (unsigned int s = 0; s < n_steps; ++s)
-                {
-                  traction.step_t.push_back(factors[s][base]);
-                  traction.step_histories.push_back(
-                    2 + load_path.histories.size() +
-                    load_path.step_history_steps.size());
-                  load_path.step_history_steps.push_back(s);
-                }
-            }
+      check_scene(*this, f);
     }
 
+
+
+    bool
+    AllParameters::finite_strain() const
+    {
+      for (const auto *body : {&body1, &body2})
+        if (body->type == BodyType::deformable &&
+            body->kinematics == elasticity::Kinematics::finite)
+          return true;
+      return false;
+    }
   } // namespace scene
 } // namespace igabde

@@ -4,6 +4,7 @@
 
 #include <igabde/discretization/body_description.h>
 
+#include <igabde/elasticity/finite_output.h>
 #include <igabde/elasticity/stress_measures.h>
 
 #include <igabde/postprocess/contact_checks.h>
@@ -191,11 +192,18 @@ namespace igabde
           unsigned int                  strain_body = 0;
           for (unsigned int b = 0; b < bodies.size(); ++b)
             {
+              // A body at finite strain is inside its model at any strain.
+              if (bodies[b]->finite_strain())
+                continue;
               const auto largest = bodies[b]->largest_strain(u[b]);
               if (largest.first >= strain.first)
                 std::tie(strain, strain_body) = std::make_pair(largest, b);
             }
-          record.largest_strain = strain.first;
+          // The small-strain range: of the bodies at small strain.
+          if (std::any_of(bodies.begin(), bodies.end(), [](const auto &b) {
+                return !b->finite_strain();
+              }))
+            record.largest_strain = strain.first;
           std::ostringstream text;
           text << std::setprecision(3);
           if (strain.first > strain_limit)
@@ -266,7 +274,7 @@ namespace igabde
           Tensor<1, dim> on_body1;
           for (unsigned int b = 0; b < bodies.size(); ++b)
             {
-              Vector<double> applied = bodies[b]->external_load_vector(factors);
+              Vector<double> applied = bodies[b]->applied_loads(u[b], factors);
               Tensor<1, dim> contact_force;
               if (stage != nullptr)
                 {
@@ -290,7 +298,7 @@ namespace igabde
               for (unsigned int k = 0; k < motions.size(); ++k)
                 {
                   const std::vector<double> r =
-                    bodies[b]->face_motion_reaction(u[b], applied, k);
+                    bodies[b]->face_motion_reaction(u[b], applied, k, factors);
                   FaceMotionReaction reaction;
                   reaction.face = motions[k].boundary_id;
                   reaction.force =
@@ -475,6 +483,34 @@ namespace igabde
                   body->write_pvtu_record(path, pieces);
                 });
               pvd_records[b].emplace_back(double(step), name + ".pvtu");
+            }
+        }
+
+        void
+        resume(const unsigned int              finished,
+               const std::string              &directory,
+               const std::vector<std::string> &names,
+               const bool                      contact) override
+        {
+          // The files execute() wrote for steps 1..finished, by their
+          // names (one process: no pieces).
+          series_directory = directory;
+          body_names       = names;
+          if (!write_fields)
+            return;
+          pvd_records.resize(names.size() + (contact ? 1 : 0));
+          for (unsigned int step = 1; step <= finished; ++step)
+            {
+              std::ostringstream number;
+              number << std::setw(4) << std::setfill('0') << step;
+              for (unsigned int b = 0; b < names.size(); ++b)
+                pvd_records[b].emplace_back(double(step),
+                                            "solution-" + names[b] + "-" +
+                                              number.str() + ".vtu");
+              if (contact)
+                pvd_records.back().emplace_back(double(step),
+                                                "contact-" + number.str() +
+                                                  ".vtu");
             }
         }
 
@@ -812,7 +848,8 @@ namespace igabde
                     << std::endl;
 
               // Stress recovered at the probe: upper triangle, row by row.
-              const SymmetricTensor<2, dim> sigma = bodies[b]->stress(u[b], x);
+              const SymmetricTensor<2, dim> sigma =
+                bodies[b]->point_stress(u[b], x);
               for (unsigned int i = 0; i < dim; ++i)
                 for (unsigned int j = 0; j < dim; ++j)
                   AssertThrow(std::isfinite(sigma[i][j]),
@@ -826,13 +863,42 @@ namespace igabde
                 for (unsigned int j = i; j < dim; ++j)
                   components.push_back(sigma[i][j]);
               const auto    &material = bodies[b]->material();
-              nlohmann::json entry    = {
-                   {"body", bodies[b]->name()},
-                   {"stress", components},
-                   {"von_mises", elasticity::von_mises<dim>(sigma, material)}};
-              if (dim == 2)
-                entry["stress_zz"] =
-                  elasticity::out_of_plane_stress<dim>(sigma, material);
+              nlohmann::json entry    = {{"body", bodies[b]->name()},
+                                         {"stress", components}};
+              if (bodies[b]->finite_strain())
+                {
+                  // The Cauchy stress and the deformation at the point.
+                  const Tensor<2, dim> grad_u =
+                    bodies[b]->displacement_gradient(u[b], x);
+                  const auto law = bodies[b]->finite_law();
+                  const auto names =
+                    elasticity::finite_strain_field_names<dim>();
+                  std::vector<double> values(names.size());
+                  elasticity::finite_strain_fields<dim>(grad_u,
+                                                        law,
+                                                        values.data());
+                  for (unsigned int k = 0; k < names.size(); ++k)
+                    if (names[k] == "von_mises" || names[k] == "det_F" ||
+                        names[k] == "largest_stretch")
+                      entry[names[k]] = values[k];
+                  if (dim == 2)
+                    {
+                      const Tensor<2, dim> F =
+                        elasticity::deformation_gradient(grad_u);
+                      entry["stress_zz"] =
+                        law.out_of_plane_second_piola(
+                          elasticity::right_cauchy_green(F)) /
+                        determinant(F);
+                    }
+                }
+              else
+                {
+                  entry["von_mises"] =
+                    elasticity::von_mises<dim>(sigma, material);
+                  if (dim == 2)
+                    entry["stress_zz"] =
+                      elasticity::out_of_plane_stress<dim>(sigma, material);
+                }
               stresses[name] = entry;
             }
           summary.points         = points;

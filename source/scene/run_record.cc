@@ -47,6 +47,21 @@ namespace igabde
             j["condition_check_max_violation"] =
               *r.condition_check_max_violation;
         }
+      if (r.finite_strain)
+        {
+          const NewtonRecord &n = *r.finite_strain;
+          j["finite_strain"]    = {{"newton_iterations", n.iterations},
+                                   {"newton_solves", n.solves},
+                                   {"step_cuts", n.step_cuts},
+                                   {"residual", n.residual},
+                                   {"residual_history", n.residual_history},
+                                   {"min_det_F", n.min_det_F}};
+          if (r.failed && !r.contact)
+            {
+              j["diagnosis"] = r.diagnosis;
+              j["status"]    = "failed";
+            }
+        }
       if (r.total_contact_force)
         j["total_contact_force"] = *r.total_contact_force;
       if (r.largest_strain)
@@ -151,6 +166,7 @@ namespace igabde
     step_table(const std::vector<StepRecord>  &records,
                const std::vector<std::string> &histories,
                const bool                      contact,
+               const bool                      finite,
                const unsigned int              dim)
     {
       std::ostringstream csv;
@@ -166,6 +182,12 @@ namespace igabde
             if (static_cast<unsigned int>(c[0] - 'x') < dim)
               csv << ",force_" << c;
         }
+      // At finite strain the contact columns, where there are any, count
+      // the same Newton iterations.
+      if (finite && !contact)
+        csv << ",status,newton_iterations,step_cuts,residual";
+      if (finite)
+        csv << ",min_det_F";
       // The face motions' reactions (Body n/Face motions), named from the
       // first finished step; a failed step has zeros.
       std::vector<std::pair<unsigned int, unsigned int>> reactions;
@@ -216,6 +238,15 @@ namespace igabde
                 csv << ","
                     << (r.total_contact_force ? (*r.total_contact_force)[c] :
                                                 0.);
+            }
+          if (finite)
+            {
+              const NewtonRecord n =
+                r.finite_strain ? *r.finite_strain : NewtonRecord();
+              if (!contact)
+                csv << "," << (r.failed ? "failed" : "ok") << ","
+                    << n.iterations << "," << n.step_cuts << "," << n.residual;
+              csv << "," << n.min_det_F;
             }
           for (const auto &[b, k] : reactions)
             if (b < r.bodies.size() &&

@@ -1,6 +1,7 @@
 #include <igabde/base/files.h>
 #include <igabde/base/utilities.h>
 
+#include <igabde/scene/checkpoint.h>
 #include <igabde/scene/interrupt.h>
 #include <igabde/scene/simulator.h>
 #include <igabde/scene/size_estimate.h>
@@ -161,6 +162,20 @@ namespace igabde
               << "); choose a writable folder." << std::endl;
           return 2;
         }
+      // A restart continues the scene that wrote the folder's checkpoint:
+      // refused now, before the folder's files are touched.
+      if (parameters.output.restart)
+        try
+          {
+            std::ostringstream text;
+            prm.print_parameters(text, ParameterHandler::JSON);
+            check_restart(dir, scene_parameters_of(text.str()));
+          }
+        catch (const ExceptionBase &e)
+          {
+            err << "igabde: error: " << base::exception_message(e) << std::endl;
+            return 2;
+          }
       if (root)
         {
           std::ofstream echo(dir + "/parameters.prm");

@@ -5,7 +5,9 @@
 
 #include <igabde/coupled/coupled_system.h>
 #include <igabde/scene/body_factory.h>
+#include <igabde/scene/checkpoint.h>
 #include <igabde/scene/contact_setup.h>
+#include <igabde/scene/finite_strain_steps.h>
 #include <igabde/scene/geometry.h>
 #include <igabde/scene/interrupt.h>
 #include <igabde/scene/load_controller.h>
@@ -21,6 +23,7 @@
 #include <cmath>
 #include <fstream>
 #include <iomanip>
+#include <limits>
 
 namespace igabde
 {
@@ -170,8 +173,10 @@ namespace igabde
       // Each group factorises its body (the groups at the same time), then
       // every rank receives what it did not compute.
       std::vector<double> seconds(bodies.size(), 0.), flops(bodies.size(), 0.);
+      // A body at finite strain factorises its tangent in every Newton
+      // iteration instead.
       for (unsigned int b = 0; b < bodies.size(); ++b)
-        if (bodies[b]->factorizes_here())
+        if (bodies[b]->factorizes_here() && !bodies[b]->finite_strain())
           {
             Timer clock;
             // What the contact path needs of the body (a Schur interface on
@@ -205,7 +210,7 @@ namespace igabde
                 bodies[b]->factor_entries();
               summary["bodies"][b]["factorization_flops"] = flops[b];
             }
-          if (parameters.output.progress)
+          if (parameters.output.progress && !bodies[b]->finite_strain())
             {
               pcout << "  [progress] " << bodies[b]->name()
                     << ": factorisation";
@@ -299,12 +304,24 @@ namespace igabde
       const auto steps = parameters.load_path.steps();
       // Displacement of every body under the external loads alone.
       // (one factor per load history).
+      // (Bodies at finite strain have none: their state is solved below.)
       const auto external = [&](const std::vector<double> &factors) {
         std::vector<Vector<double>> u(bodies.size());
         for (unsigned int b = 0; b < bodies.size(); ++b)
-          u[b] = bodies[b]->external_solution(factors);
+          if (!bodies[b]->finite_strain())
+            u[b] = bodies[b]->external_solution(factors);
         return u;
       };
+      // The displacement of each body at finite strain at the last
+      // finished step: the start of the next step's Newton solve.
+      std::vector<Vector<double>> finite_state(bodies.size());
+      for (unsigned int b = 0; b < bodies.size(); ++b)
+        if (bodies[b]->finite_strain())
+          finite_state[b].reinit(bodies[b]->n_dofs());
+      discretization::NewtonSettings newton;
+      newton.tolerance      = parameters.nonlinear_solver.tolerance;
+      newton.max_iterations = parameters.nonlinear_solver.max_iterations;
+      newton.line_search    = parameters.nonlinear_solver.line_search;
       std::unique_ptr<LoadController<dim>> controller;
       static std::ostream                  discard(nullptr);
       if (contact_stage)
@@ -318,7 +335,12 @@ namespace igabde
       const auto &histories       = parameters.load_path.histories;
       const auto  history_factors = parameters.load_path.history_factors();
       std::vector<double> previous(history_factors.front().size(), 0.);
-      for (unsigned int s = 0; s < steps.size(); ++s)
+      // The scene as a checkpoint keeps it (parameters.json, Output aside).
+      const nlohmann::json scene = scene_parameters(output_directory);
+      unsigned int         first = 0;
+      if (parameters.output.restart)
+        first = resume(scene, steps.size(), previous, finite_state);
+      for (unsigned int s = first; s < steps.size(); ++s)
         {
           const auto [load_factor, displacement_factor] = steps[s];
           const std::vector<double> &factors            = history_factors[s];
@@ -361,6 +383,17 @@ namespace igabde
                                 record.diagnosis + ". " + record.advice));
                 }
             }
+          if (parameters.finite_strain())
+            {
+              TimerOutput::Scope t(timer, "newton");
+              solve_finite_strain_step(s + 1,
+                                       previous,
+                                       factors,
+                                       newton,
+                                       finite_state,
+                                       u,
+                                       record);
+            }
           check_finite_displacements<dim>(bodies, u, s + 1);
           previous = factors;
           std::optional<std::vector<contact::PairState<dim>>> pairs;
@@ -389,7 +422,147 @@ namespace igabde
                                      run_summary.load_steps.back(),
                                      run_summary);
             }
+          if (parameters.output.checkpoint && root)
+            {
+              TimerOutput::Scope t(timer, "output");
+              Checkpoint         checkpoint;
+              checkpoint.step         = s + 1;
+              checkpoint.factors      = factors;
+              checkpoint.finite_state = finite_state;
+              if (contact_stage)
+                checkpoint.contact = contact_state_to_json(*contact_stage);
+              checkpoint.records    = run_summary.load_steps;
+              checkpoint.warnings   = run_summary.warnings;
+              checkpoint.parameters = scene;
+              write_checkpoint(output_directory, checkpoint);
+            }
         }
+    }
+
+
+
+    template <int dim>
+    unsigned int
+    Simulator<dim>::resume(const nlohmann::json        &scene,
+                           const unsigned int           n_steps,
+                           std::vector<double>         &previous,
+                           std::vector<Vector<double>> &finite_state)
+    {
+      const Checkpoint  checkpoint = read_checkpoint(output_directory);
+      const std::string where =
+        "--restart " + output_directory + ": " +
+        checkpoint_file(output_directory, checkpoint.step);
+      // The first parameter that differs, named.
+      const nlohmann::json difference =
+        nlohmann::json::diff(checkpoint.parameters, scene);
+      AssertThrow(difference.empty(),
+                  base::ExcInput(
+                    where + " was written by another scene (" +
+                    difference.front().value("path", std::string()) +
+                    " differs); restart with the scene that wrote it (only "
+                    "Output may change)."));
+      AssertThrow(checkpoint.step < n_steps &&
+                    checkpoint.factors.size() == previous.size() &&
+                    checkpoint.finite_state.size() == bodies.size() &&
+                    checkpoint.contact.has_value() == bool(contact_stage),
+                  base::ExcInput(where + " holds step " +
+                                 std::to_string(checkpoint.step) + " of " +
+                                 std::to_string(n_steps) +
+                                 ": nothing is left to continue (or the "
+                                 "file does not belong to this scene)."));
+      for (unsigned int b = 0; b < bodies.size(); ++b)
+        AssertThrow(checkpoint.finite_state[b].size() ==
+                      (bodies[b]->finite_strain() ? bodies[b]->n_dofs() : 0),
+                    base::ExcInput(where + ": " + bodies[b]->name() +
+                                   "'s state does not fit its unknowns."));
+      previous     = checkpoint.factors;
+      finite_state = checkpoint.finite_state;
+      if (contact_stage)
+        restore_contact_state(*contact_stage, *checkpoint.contact);
+      run_summary.load_steps = checkpoint.records;
+      for (const std::string &w : checkpoint.warnings)
+        if (std::find(run_summary.warnings.begin(),
+                      run_summary.warnings.end(),
+                      w) == run_summary.warnings.end())
+          run_summary.warnings.push_back(w);
+      std::vector<std::string> names;
+      for (const auto &body : bodies)
+        names.push_back(body->name());
+      for (auto &postprocessor : postprocessors)
+        postprocessor->resume(checkpoint.step,
+                              output_directory,
+                              names,
+                              contact_stage != nullptr);
+      summary["restarted_after_step"] = checkpoint.step;
+      pcout << "Restart after step " << checkpoint.step << " of " << n_steps
+            << " (" << checkpoint_file(output_directory, checkpoint.step) << ")"
+            << std::endl;
+      return checkpoint.step;
+    }
+
+
+
+    template <int dim>
+    void
+    Simulator<dim>::solve_finite_strain_step(
+      const unsigned int                    step,
+      const std::vector<double>            &previous,
+      const std::vector<double>            &factors,
+      const discretization::NewtonSettings &settings,
+      std::vector<Vector<double>>          &state,
+      std::vector<Vector<double>>          &u,
+      StepRecord                           &record)
+    {
+      NewtonRecord newton;
+      newton.min_det_F = std::numeric_limits<double>::infinity();
+      std::string failure;
+      for (unsigned int b = 0; b < bodies.size(); ++b)
+        {
+          if (!bodies[b]->finite_strain())
+            continue;
+          if (parameters.output.solver_details)
+            contact_log() << "  " << bodies[b]->name()
+                          << ": Newton at finite strain" << std::endl;
+          const FiniteStrainOutcome outcome =
+            advance_finite_strain(*bodies[b],
+                                  bodies[b]->finite_law(),
+                                  previous,
+                                  factors,
+                                  settings,
+                                  parameters.nonlinear_solver.max_step_cuts,
+                                  state[b],
+                                  parameters.output.solver_details ?
+                                    &contact_log() :
+                                    nullptr);
+          newton.iterations += outcome.iterations;
+          newton.solves += outcome.solves;
+          newton.step_cuts += outcome.cuts;
+          newton.residual_history = outcome.residuals;
+          if (!outcome.residuals.empty())
+            newton.residual =
+              std::max(newton.residual, outcome.residuals.back());
+          newton.min_det_F = std::min(newton.min_det_F, outcome.min_J);
+          if (!outcome.success && failure.empty())
+            failure = bodies[b]->name() +
+                      ": Newton's method did not "
+                      "converge (" +
+                      outcome.diagnosis + ") after " +
+                      std::to_string(outcome.cuts) + " step cuts";
+          u[b] = state[b];
+        }
+      record.finite_strain = newton;
+      if (failure.empty())
+        return;
+      record.failed    = true;
+      record.diagnosis = failure;
+      record.advice =
+        "use more load steps (Load path/Number of steps) or raise "
+        "Nonlinear solver/Max step cuts";
+      run_summary.load_steps.push_back(record);
+      AssertThrow(false,
+                  ExcMessage(scene_file + ": load step " +
+                             std::to_string(step) + ": " + failure + "; " +
+                             record.advice + "."));
     }
 
 

@@ -28,7 +28,11 @@ namespace igabde
       for (const auto &h : parameters.load_path.histories)
         histories.push_back(h.first);
       const auto steps_csv = [&](const std::vector<StepRecord> &records) {
-        return step_table(records, histories, contact_stage != nullptr, dim);
+        return step_table(records,
+                          histories,
+                          contact_stage != nullptr,
+                          parameters.finite_strain(),
+                          dim);
       };
       // What an interruption now would leave: the steps whose files are
       // all written, in summary.json and steps.csv.

@@ -22,21 +22,6 @@ namespace
 {
   constexpr double E = 1000., theta = 0.01, L = 4., h = 1., w = 0.5;
 
-  nlohmann::json
-  run_scene(const cli::ScratchFolder &scratch, const std::string &text)
-  {
-    std::ofstream(cli::join(scratch.path, "scene.prm")) << text;
-    const auto result =
-      cli::run_igabde("scene.prm --quiet --set 'Output/Directory=out' "
-                      "--set 'Output/Write vtu=false'",
-                      scratch);
-    EXPECT_EQ(result.status, 0) << result.output;
-    std::ifstream  in(cli::join(scratch.path, "out/summary.json"));
-    nlohmann::json summary;
-    in >> summary;
-    return summary;
-  }
-
   /// "a, b[, c]" of the first @p dim values.
   std::string
   point(const unsigned int dim, const double a, const double b, const double c)
@@ -62,7 +47,7 @@ namespace
     motion.precision(17);
     motion << "1: 0, " << theta * L / 2 << (dim == 3 ? ", 0, 0, 0, " : ", ")
            << theta;
-    const nlohmann::json summary = run_scene(
+    const nlohmann::json summary = cli::run_scene_text(
       scratch,
       "set Dimension = " + std::to_string(dim) +
         "\nset Probe points = mid: " + point(dim, L / 2, h / 2, w / 2) +
@@ -179,7 +164,7 @@ namespace
     motion.precision(17);
     motion << "4: " << d[0] << ", " << d[1] << ", " << d[2] << ", " << r[0]
            << ", " << r[1] << ", " << r[2];
-    const nlohmann::json summary = run_scene(
+    const nlohmann::json summary = cli::run_scene_text(
       scratch,
       "set Dimension = 3\nset Probe points = far: 1, 2, 0.5\n"
       "subsection Discretization\n  set Type = " +

@@ -212,6 +212,23 @@ namespace cli
       }
     return table;
   }
+  /**
+   * Writes @p text to @p folder/scene.prm and runs it as run_prm_scene()
+   * runs a shipped scene; expects exit status 0 and returns summary.json.
+   */
+  inline nlohmann::json
+  run_scene_text(const std::string &folder, const std::string &text)
+  {
+    std::ofstream(join(folder, "scene.prm")) << text;
+    const RunResult result =
+      run_igabde("scene.prm --quiet --set 'Output/Directory=out' "
+                 "--set 'Output/Write vtu=false'",
+                 folder);
+    EXPECT_EQ(result.status, 0) << result.output;
+    std::ifstream in(join(folder, "out/summary.json"));
+    return in ? nlohmann::json::parse(in, nullptr, false) : nlohmann::json();
+  }
+
 
   /**
    * Runs igabde with @p arguments in @p folder and expects it refused with

@@ -47,6 +47,10 @@ namespace igabde
                 const std::string &where,
                 const std::string &form);
 
+    /// A number as a user wrote it, for messages (six significant digits).
+    std::string
+    number_text(const double x);
+
     /// A point as messages write it: "0.5, 0" (the parentheses are the
     /// caller's).
     template <int dim>

@@ -395,9 +395,18 @@ namespace igabde
       const std::string &
       name() const;
 
-      /// The body's material law.
+      /// The body's material constants (Hooke's law at small strain).
       const elasticity::IsotropicMaterial<dim> &
       material() const;
+
+      /// Whether the body is modelled at finite strain
+      /// (BodyDescription::kinematics).
+      bool
+      finite_strain() const;
+
+      /// The body's finite-strain law (finite_strain() bodies only).
+      elasticity::HyperelasticMaterial<dim>
+      finite_law() const;
 
       /**
        * @brief Operator for a physical point inside or on the body.
@@ -433,18 +442,37 @@ namespace igabde
 
       /**
        * @brief The reaction of the face motion @p k
-       * (BodyDescription::face_motions[k]): the force (dim components) and
-       * then the moment about the face's centroid (z in 2D; x, y, z in 3D)
-       * that the kinematic coupling applies to the body, from (K u - f)_i
-       * over the unknowns its support prescribes, each acting at its
-       * control point or node (for a rigid virtual motion these are the
-       * work-conjugate points, exactly). An unknown the motion shares with
-       * a support of a neighbouring face counts for both.
+       * (BodyDescription::face_motions[k]) at the history factors
+       * @p factors: the force (dim components) and then the moment about
+       * the face's centroid (z in 2D; x, y, z in 3D; at finite strain the
+       * centroid moved with the face) that the kinematic coupling applies
+       * to the body, from (restoring_force(u) - f)_i over the unknowns its
+       * support prescribes, each acting at its control point or node (at
+       * finite strain where it has moved; for a rigid virtual motion these
+       * are the work-conjugate points, exactly). An unknown the motion
+       * shares with a support of a neighbouring face counts for both.
        */
       std::vector<double>
-      face_motion_reaction(const Vector<double> &u,
-                           const Vector<double> &f,
-                           const unsigned int    k) const;
+      face_motion_reaction(const Vector<double>      &u,
+                           const Vector<double>      &f,
+                           const unsigned int         k,
+                           const std::vector<double> &factors) const;
+
+      /**
+       * @brief The force the body's stress exerts on its unknowns at the
+       * displacement @p u, whose difference from the loads is the support
+       * reaction: K u at small strain, f_int(u) at finite strain.
+       */
+      Vector<double>
+      restoring_force(const Vector<double> &u) const;
+
+      /**
+       * @brief The stress at a physical point of the reference
+       * configuration: stress() at small strain, the Cauchy stress of
+       * finite_law() at finite strain.
+       */
+      SymmetricTensor<2, dim>
+      point_stress(const Vector<double> &u, const Point<dim> &location) const;
 
       /**
        * @brief Candidate contact points on the patch face @p face, placed as
@@ -660,6 +688,34 @@ namespace igabde
                      Vector<double>                              &force,
                      SparseMatrix<double> *tangent) const = 0;
 
+      /**
+       * @brief Adds the follower pressures of the body at finite strain
+       * (its 'pressure p' tractions, each scaled by its history's factor in
+       * @p factors) at the displacement @p u to the residual @p residual
+       * (f_int - f_ext: + p J F^-T N dA) and, with @p tangent (not nullptr,
+       * on sparsity_pattern()), their load stiffness to it. Nothing at
+       * small strain, where a pressure is a load case like any traction.
+       */
+      virtual void
+      add_follower_pressure(const Vector<double>      &u,
+                            const std::vector<double> &factors,
+                            Vector<double>            &residual,
+                            SparseMatrix<double>      *tangent) const = 0;
+
+      /// The follower pressures at @p factors: each face's boundary id and
+      /// its pressure (none at small strain).
+      std::vector<std::pair<types::boundary_id, double>>
+      follower_pressures(const std::vector<double> &factors) const;
+
+      /**
+       * @brief Every load on the body at the history factors @p factors and
+       * the displacement @p u: external_load_vector(), and at finite strain
+       * the follower pressures on the current surface.
+       */
+      Vector<double>
+      applied_loads(const Vector<double>      &u,
+                    const std::vector<double> &factors) const;
+
       /// The pattern of the stiffness and the tangent (all cell couplings).
       const SparsityPattern &
       sparsity_pattern() const;
@@ -681,7 +737,10 @@ namespace igabde
       /**
        * @brief The supports' prescribed values at the load histories'
        * factors @p factors (each support scaled by its history's factor),
-       * zero at the unknowns no support holds.
+       * zero at the unknowns no support holds. At finite strain a face
+       * motion turns its face by the exact rotation R(f r) of its rotation
+       * vector r at its history's factor f (FaceMotion), which a linear
+       * field in x interpolates exactly as the small rotation's does.
        */
       Vector<double>
       prescribed_values(const std::vector<double> &factors) const;

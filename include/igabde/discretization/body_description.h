@@ -6,6 +6,7 @@
 
 #include <igabde/discretization/settings.h>
 
+#include <igabde/elasticity/hyperelastic.h>
 #include <igabde/elasticity/material.h>
 
 #include <deal.II/base/point.h>
@@ -15,8 +16,10 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -92,6 +95,10 @@ namespace igabde
       TractionFunction<dim> traction;
       /// Load history scaling the traction (0: the load factors).
       unsigned int history = 0;
+      /// The pressure p (Pa) of a 'pressure p' entry (traction -p n): on a
+      /// body at finite strain a follower load on the current surface
+      /// (Body::add_follower_pressure()) instead of @p traction.
+      std::optional<double> pressure;
     };
 
     /**
@@ -158,6 +165,53 @@ namespace igabde
       Point<dim> centre;
       /// Index of the motion's support in BodyDescription::dirichlet.
       unsigned int condition = 0;
+      /// The centroid's displacement d (m) and the rotation vector r (rad;
+      /// one component, about z, in 2D) at factor 1. At finite strain the
+      /// face moves by u = f d + (R(f r) - I)(x - c) at the factor f of
+      /// its history, R the exact rotation (Body::prescribed_values()).
+      Tensor<1, dim>      displacement;
+      std::vector<double> rotation;
+
+      /**
+       * @brief The rotation by the rotation vector @p f r, exactly: in 3D
+       * by Rodrigues' formula R = I + sin(a) K + (1 - cos(a)) K^2, K the
+       * cross product with the unit axis, a the angle f |r|.
+       */
+      Tensor<2, dim>
+      exact_rotation(const double f) const
+      {
+        Tensor<2, dim> R;
+        if constexpr (dim == 2)
+          {
+            const double angle = f * rotation.at(0);
+            R[0][0]            = std::cos(angle);
+            R[0][1]            = -std::sin(angle);
+            R[1][0]            = std::sin(angle);
+            R[1][1]            = std::cos(angle);
+          }
+        else
+          {
+            Tensor<1, 3> axis;
+            for (unsigned int d = 0; d < 3; ++d)
+              axis[d] = f * rotation.at(d);
+            const double angle = axis.norm();
+            for (unsigned int d = 0; d < 3; ++d)
+              R[d][d] = 1.;
+            if (angle > 0.)
+              {
+                axis /= angle;
+                Tensor<2, 3> K;
+                K[0][1] = -axis[2];
+                K[0][2] = axis[1];
+                K[1][0] = axis[2];
+                K[1][2] = -axis[0];
+                K[2][0] = -axis[1];
+                K[2][1] = axis[0];
+                R += std::sin(angle) * K + (1. - std::cos(angle)) * K * K;
+              }
+          }
+        return R;
+      }
     };
 
     /**
@@ -191,8 +245,13 @@ namespace igabde
       {
         return p == 0 ? geometry : more_patches.at(p - 1);
       }
-      /// Material law.
+      /// Material constants (and the plane model).
       elasticity::IsotropicMaterial<dim> material;
+      /// Small strain (Hooke's law on the linear path) or finite strain
+      /// (total Lagrangian, the law @p model, Newton's method).
+      elasticity::Kinematics kinematics = elasticity::Kinematics::small;
+      /// The finite-strain law (linear at small strain).
+      elasticity::MaterialModel model = elasticity::MaterialModel::linear;
       /// Supports.
       std::vector<DirichletCondition<dim>> dirichlet;
       /// Point supports.

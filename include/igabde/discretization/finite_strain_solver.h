@@ -28,6 +28,10 @@ namespace igabde
       unsigned int max_iterations = 25;
       /// Halvings of the step the line search may take.
       unsigned int max_halvings = 10;
+      /// Whether a step that does not decrease ||R|| is halved (a
+      /// backtracking line search on the residual norm); without it only a
+      /// step that inverts an element is.
+      bool line_search = false;
     };
 
     /** @brief What a finite-strain Newton solve did. */
@@ -56,11 +60,11 @@ namespace igabde
      * du = g - u on the held ones (the first step moves the supports to
      * their values g and predicts the inside with them; a sparse LU,
      * UMFPACK). A step is halved while it inverts an element (det F <= 0)
-     * and, once the supports are at g, while it does not decrease ||R||
-     * (backtracking line search). Each iteration's relative residual and the
-     * observed rate log(r_k / r_k-1) / log(r_k-1 / r_k-2) go to @p log
-     * (nullptr: silent). A body with free rigid modes has a singular tangent
-     * and is refused.
+     * and, with NewtonSettings::line_search once the supports are at g,
+     * while it does not decrease ||R|| (backtracking line search). Each
+     * iteration's relative residual and the observed rate log(r_k / r_k-1) /
+     * log(r_k-1 / r_k-2) go to @p log (nullptr: silent). A body with free rigid
+     * modes has a singular tangent and is refused.
      */
     template <int dim>
     NewtonResult

@@ -174,6 +174,12 @@ namespace igabde
                      Vector<double>                              &force,
                      SparseMatrix<double> *tangent) const override;
 
+      void
+      add_follower_pressure(const Vector<double>      &u,
+                            const std::vector<double> &factors,
+                            Vector<double>            &residual,
+                            SparseMatrix<double>      *tangent) const override;
+
       /// @brief The refined and elevated patch @p p: its analysis space.
       const nurbs::NurbsPatch<dim> &
       patch(const unsigned int p = 0) const;

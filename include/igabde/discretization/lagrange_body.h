@@ -119,6 +119,12 @@ namespace igabde
                      Vector<double>                              &force,
                      SparseMatrix<double> *tangent) const override;
 
+      void
+      add_follower_pressure(const Vector<double>      &u,
+                            const std::vector<double> &factors,
+                            Vector<double>            &residual,
+                            SparseMatrix<double>      *tangent) const override;
+
       /**
        * @brief The smallest ratio det J(p) / |det J(centre)| of the cell maps
        * over the points @p unit_points of the unit cell and all cells, and

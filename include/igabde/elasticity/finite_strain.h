@@ -320,6 +320,62 @@ namespace igabde
         }
       return min_J;
     }
+
+
+    /**
+     * @brief The follower pressures @p pressures (a face's boundary id and
+     * its pressure p each) on the boundary faces of the cells [@p begin,
+     * @p end) at the displacement @p u: each face's load -p n da on the
+     * current surface added to the residual @p residual (f_int - f_ext, so
+     * + p J F^-T N dA) and, with @p tangent (not nullptr), its derivative
+     * to it (add_face_follower_pressure()). Serial: the loaded faces are a
+     * surface's few.
+     *
+     * @param face_values Face evaluator with values, gradients, normal
+     *   vectors and JxW, reinitialised here on each loaded face.
+     */
+    template <int dim, typename Iterator, typename FaceValues>
+    void
+    assemble_follower_pressure(
+      const Iterator                                           &begin,
+      const std::enable_if_t<true, Iterator>                   &end,
+      FaceValues                                               &face_values,
+      const std::vector<std::pair<types::boundary_id, double>> &pressures,
+      const Vector<double>                                     &u,
+      Vector<double>                                           &residual,
+      SparseMatrix<double>                                     *tangent)
+    {
+      std::vector<types::global_dof_index> dofs;
+      std::vector<double>                  local_u;
+      Vector<double>                       local_residual;
+      FullMatrix<double>                   local_tangent;
+      for (Iterator cell = begin; cell != end; ++cell)
+        for (const unsigned int f : cell->face_indices())
+          if (cell->face(f)->at_boundary())
+            for (const auto &[id, p] : pressures)
+              if (id == cell->face(f)->boundary_id() && p != 0.)
+                {
+                  face_values.reinit(cell, f);
+                  face_values.get_dof_indices(dofs);
+                  local_u.resize(dofs.size());
+                  for (unsigned int i = 0; i < dofs.size(); ++i)
+                    local_u[i] = u[dofs[i]];
+                  local_residual.reinit(dofs.size());
+                  if (tangent != nullptr)
+                    local_tangent.reinit(dofs.size(), dofs.size());
+                  add_face_follower_pressure<dim>(face_values,
+                                                  local_u,
+                                                  p,
+                                                  local_residual,
+                                                  tangent != nullptr ?
+                                                    &local_tangent :
+                                                    nullptr);
+                  for (unsigned int i = 0; i < dofs.size(); ++i)
+                    residual[dofs[i]] += local_residual[i];
+                  if (tangent != nullptr)
+                    tangent->add(dofs, local_tangent);
+                }
+    }
   } // namespace elasticity
 } // namespace igabde
 

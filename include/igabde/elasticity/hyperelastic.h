@@ -118,10 +118,20 @@ namespace igabde
       SymmetricTensor<4, dim>
       tangent(const SymmetricTensor<2, dim> &C) const;
 
+      /**
+       * @brief In 2D, the out-of-plane S_33 that goes with the in-plane C:
+       * in plane strain (C_33 = 1) lambda tr E for Saint Venant-Kirchhoff
+       * and lambda ln J for neo-Hookean, 0 in plane stress; 0 in 3D (where
+       * S holds it).
+       */
+      double
+      out_of_plane_second_piola(const SymmetricTensor<2, dim> &C) const;
+
     private:
       MaterialModel law;
       double        lame_lambda;
       double        lame_mu;
+      bool          plane_stress;
     };
 
     /// F = I + grad u.

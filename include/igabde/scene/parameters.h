@@ -5,6 +5,7 @@
 
 #include <igabde/discretization/settings.h>
 
+#include <igabde/elasticity/hyperelastic.h>
 #include <igabde/elasticity/material.h>
 
 #include <igabde/contact/condensation.h>
@@ -133,6 +134,12 @@ namespace igabde
       /// Write each load step's condensed contact problem, with the
       /// step's solution, as an FCLIB local problem (fclib-NNNN.hdf5).
       bool fclib_export = false;
+      /// Write after each finished step what a later run needs to
+      /// continue (checkpoint-NNNN.json, scene/checkpoint.h).
+      bool checkpoint = false;
+      /// Continue from the newest checkpoint in the output folder
+      /// (igabde SCENE --restart FOLDER).
+      bool restart = false;
 
       /// Declares the "Output" subsection.
       static void
@@ -194,6 +201,11 @@ namespace igabde
       double youngs_modulus = 1000.;
       /// Poisson's ratio (-).
       double poisson_ratio = 0.3;
+      /// Body N/Kinematics: small strain (linear elasticity) or finite
+      /// strain (total Lagrangian, Newton's method per load step).
+      elasticity::Kinematics kinematics = elasticity::Kinematics::small;
+      /// Body N/Material: the law (linear at small strain only).
+      elasticity::MaterialModel material = elasticity::MaterialModel::linear;
       /// Supports, read from "face: x y=0.1; face: z".
       std::vector<SupportParameters> supports;
       /// Point supports, read from "x, y[, z] : components; ...".
@@ -409,6 +421,30 @@ namespace igabde
     };
 
     /**
+     * @brief Newton's method of the bodies at finite strain: when a load
+     * step's solve has converged and how often a step may be cut.
+     */
+    struct NonlinearSolverParameters
+    {
+      /// ||R|| over the free unknowns relative to the largest force of the
+      /// solve at which Newton's method has converged.
+      double tolerance = 1e-10;
+      /// Newton iterations per solve.
+      unsigned int max_iterations = 25;
+      /// How often a load increment whose Newton solve fails may be halved.
+      unsigned int max_step_cuts = 4;
+      /// Backtracking on the residual norm (NewtonSettings::line_search).
+      bool line_search = false;
+
+      /// Declares the "Nonlinear solver" subsection.
+      static void
+      declare_parameters(ParameterHandler &prm);
+      /// Reads the "Nonlinear solver" subsection.
+      void
+      parse_parameters(ParameterHandler &prm);
+    };
+
+    /**
      * @brief All parameters of a scene (step-44's AllParameters).
      */
     struct AllParameters
@@ -435,6 +471,8 @@ namespace igabde
       ContactParameters contact;
       /// Load path.
       LoadPathParameters load_path;
+      /// Newton's method at finite strain.
+      NonlinearSolverParameters nonlinear_solver;
       /// Accuracy checks.
       ChecksParameters checks;
 
@@ -444,7 +482,38 @@ namespace igabde
       /// Reads every parameter; @p scene_file names the file in messages.
       void
       parse_parameters(ParameterHandler &prm, const std::string &scene_file);
+
+      /// Whether a body of the scene is modelled at finite strain.
+      bool
+      finite_strain() const;
     };
+
+    /**
+     * @brief The checks of a read scene that need more than one subsection
+     * (AllParameters::parse_parameters() calls it): each refuses a
+     * combination no run can honour with a one-line input error prefixed
+     * by @p f (the scene file and ': '). Some complete what they check
+     * (the contact faces, the Hertz axis, the histories of t-dependent
+     * tractions).
+     */
+    void
+    check_scene(AllParameters &parameters, const std::string &f);
+
+    /// The faces of a patch of @p body's geometry, as its grammars name
+    /// them.
+    PatchFaces
+    patch_faces_of(const BodyParameters &body, const unsigned int dimension);
+
+    /**
+     * @brief Refuses a face of @p body (its supports, tractions, moments,
+     * face motions, held rotation and @p more) on a patch that the body's
+     * geometry does not have; @p where names the body.
+     */
+    void
+    check_face_patches(const BodyParameters            &body,
+                       const std::vector<unsigned int> &more,
+                       const unsigned int               dimension,
+                       const std::string               &where);
 
     /**
      * @brief Declares the "Discretization" subsection.

@@ -88,6 +88,24 @@ namespace igabde
       virtual void
       write_series() const
       {}
+
+      /**
+       * A run that continues from a checkpoint after @p finished steps, in
+       * the folder @p directory, of the bodies @p body_names and with
+       * contact or not (@p contact): what the postprocessor would have
+       * gathered over those steps (the series' earlier files).
+       */
+      virtual void
+      resume(const unsigned int              finished,
+             const std::string              &directory,
+             const std::vector<std::string> &body_names,
+             const bool                      contact)
+      {
+        (void)finished;
+        (void)directory;
+        (void)body_names;
+        (void)contact;
+      }
     };
 
     /**

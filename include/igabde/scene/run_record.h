@@ -47,6 +47,25 @@ namespace igabde
     };
 
     /**
+     * @brief The Newton solves of the bodies at finite strain in one load
+     * step (summed over the bodies; the residuals are the last solve's).
+     */
+    struct NewtonRecord
+    {
+      unsigned int iterations = 0;
+      /// Newton solves (1 + 2 per step cut that succeeded).
+      unsigned int solves    = 0;
+      unsigned int step_cuts = 0;
+      /// The largest final relative residual over the bodies.
+      double residual = 0.;
+      /// The relative residual before each iteration and at the end of the
+      /// last solve (of the last body at finite strain).
+      std::vector<double> residual_history;
+      /// The smallest det F at the quadrature points at the end.
+      double min_det_F = 0.;
+    };
+
+    /**
      * @brief What one load step left: an entry of summary.json's
      * "load_steps" and a row of steps.csv.
      */
@@ -82,6 +101,8 @@ namespace igabde
       std::string advice;
       /// Finished contact steps.
       std::optional<double> condition_check_max_violation;
+      /// Scenes with a body at finite strain.
+      std::optional<NewtonRecord> finite_strain;
 
       /// Forces of a finished step, per body (empty for a failed one).
       std::vector<BodyForceRecord> bodies;
@@ -154,12 +175,14 @@ namespace igabde
     /**
      * @brief steps.csv: one row per load step of @p records, full precision.
      * @p histories names the load histories (a column each); @p contact adds
-     * the contact columns and the force of @p dim components.
+     * the contact columns and the force of @p dim components, @p finite
+     * those of the Newton solves at finite strain.
      */
     std::string
     step_table(const std::vector<StepRecord>  &records,
                const std::vector<std::string> &histories,
                const bool                      contact,
+               const bool                      finite,
                const unsigned int              dim);
   } // namespace scene
 } // namespace igabde

@@ -4,6 +4,7 @@
 #include <igabde/base/files.h>
 
 #include <igabde/discretization/body.h>
+#include <igabde/discretization/finite_strain_solver.h>
 
 #include <igabde/scene/parameters.h>
 #include <igabde/scene/postprocessors.h>
@@ -97,6 +98,38 @@ namespace igabde
 
       void
       solve_load_steps();
+
+      /**
+       * A run with Output/Restart: reads the newest checkpoint of the
+       * output folder, refuses one of another @p scene (its parameters
+       * without Output) or with no step left of the @p n_steps, and
+       * restores from it @p previous (the factors of its step), the
+       * bodies' @p finite_state, the contact stage's state, the finished
+       * steps' records and warnings and the postprocessors' series.
+       * Returns the number of finished steps.
+       */
+      unsigned int
+      resume(const nlohmann::json        &scene,
+             const unsigned int           n_steps,
+             std::vector<double>         &previous,
+             std::vector<Vector<double>> &finite_state);
+
+      /**
+       * The Newton solves of load step @p step of the bodies at finite
+       * strain, from their @p state at the factors @p previous (the last
+       * finished step) to the equilibrium at @p factors (with step cuts):
+       * @p state and @p u of those bodies hold it after, @p record its
+       * figures. A body that cannot reach it ends the run with one line
+       * (the record of the failed step kept).
+       */
+      void
+      solve_finite_strain_step(const unsigned int                    step,
+                               const std::vector<double>            &previous,
+                               const std::vector<double>            &factors,
+                               const discretization::NewtonSettings &settings,
+                               std::vector<Vector<double>>          &state,
+                               std::vector<Vector<double>>          &u,
+                               StepRecord                           &record);
 
       /**
        * Writes summary.json and steps.csv from run_summary, timing.txt and

@@ -1,0 +1,363 @@
+#include <igabde/base/utilities.h>
+
+#include <igabde/contact/contact_solver.h>
+#include <igabde/contact/pairing.h>
+
+#include <igabde/scene/parameters.h>
+
+#include <deal.II/base/mpi.h>
+
+#include <string>
+
+namespace igabde
+{
+  namespace scene
+  {
+    namespace
+    {
+      /**
+       * Refuses what a body at finite strain cannot follow (yet): contact,
+       * a held mean rotation and face moments (distributing couplings
+       * linearised about the reference configuration), tractions from a
+       * small-strain exact solution, and more than one MPI process.
+       */
+      void
+      check_finite_strain(const AllParameters &parameters, const std::string &f)
+      {
+        for (const auto *body : {&parameters.body1, &parameters.body2})
+          {
+            if (body->type != BodyType::deformable ||
+                body->kinematics != elasticity::Kinematics::finite)
+              continue;
+            const std::string where =
+              f + (body == &parameters.body1 ? "Body 1" : "Body 2") + "/";
+            AssertThrow(
+              parameters.dimension == 3 ||
+                parameters.plane_model ==
+                  elasticity::PlaneModel::plane_strain ||
+                elasticity::HyperelasticMaterial<2>::supports_plane_stress(
+                  body->material),
+              base::ExcInput(
+                where + "Material = " + elasticity::to_string(body->material) +
+                " has no plane-stress form (its C_33 would be "
+                "solved at every point); set Plane model = "
+                "plane strain, or Material = saint "
+                "venant-kirchhoff."));
+            AssertThrow(!parameters.contact.enabled,
+                        base::ExcInput(
+                          where +
+                          "Kinematics = finite with Contact/Enabled = true: "
+                          "contact is solved at small strain only; set "
+                          "Kinematics = small, or Contact/Enabled = false."));
+            AssertThrow(body->hold_rotation_face < 0,
+                        base::ExcInput(
+                          where +
+                          "Hold rotation holds the mean small rotation of a "
+                          "face, which does not follow a finite rotation; "
+                          "with Kinematics = finite hold the face by "
+                          "Supports or Face motions instead."));
+            AssertThrow(body->moments.empty(),
+                        base::ExcInput(
+                          where +
+                          "Moments are spread over the face as a linear "
+                          "traction of the reference configuration, which "
+                          "does not follow a finite rotation; with "
+                          "Kinematics = finite apply the load as Tractions "
+                          "or Point loads."));
+            for (const auto &traction : body->tractions)
+              AssertThrow(traction.kind != TractionParameters::Kind::exact,
+                          base::ExcInput(
+                            where + "Tractions: face " +
+                            std::to_string(traction.face) +
+                            ": 'exact' is the traction of a small-strain "
+                            "exact solution; with Kinematics = finite give "
+                            "the traction as 'vector' or 'function'."));
+          }
+        if (!parameters.finite_strain())
+          return;
+        AssertThrow(parameters.exact.type == ExactSolutionType::none,
+                    base::ExcInput(
+                      f + "Exact solution/Type = " +
+                      to_string(parameters.exact.type) +
+                      " is a solution of linear elasticity, which a body at "
+                      "Kinematics = finite does not follow; set Exact "
+                      "solution/Type = none."));
+        AssertThrow(parameters.nonlinear_solver.tolerance > 0.,
+                    base::ExcInput(
+                      f + "Nonlinear solver/Tolerance = " +
+                      base::number_text(parameters.nonlinear_solver.tolerance) +
+                      " must be > 0 (the residual relative to the largest "
+                      "force at which Newton's method stops; e.g. 1e-10)."));
+        // (A scene read without MPI, as the fuzz target reads them, runs
+        // in one process.)
+        AssertThrow(!dealii::Utilities::MPI::job_supports_mpi() ||
+                      dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) ==
+                        1,
+                    base::ExcInput(
+                      f + "Kinematics = finite runs in one process (its Newton "
+                          "solves are threaded, not distributed); run it "
+                          "without mpirun."));
+      }
+    } // namespace
+
+
+
+    void
+    check_scene(AllParameters &parameters, const std::string &f)
+    {
+      const unsigned int dimension = parameters.dimension;
+      auto              &body1     = parameters.body1;
+      auto              &body2     = parameters.body2;
+      auto              &contact   = parameters.contact;
+      auto              &exact     = parameters.exact;
+      auto              &checks    = parameters.checks;
+      auto              &load_path = parameters.load_path;
+      const auto        &output    = parameters.output;
+      check_finite_strain(parameters, f);
+      AssertThrow(body1.type == BodyType::deformable,
+                  base::ExcInput(f + "Body 1/Type must be 'deformable'; only "
+                                     "Body 2 may be a rigid plane."));
+      AssertThrow(!output.fclib_export ||
+                    (contact.enabled && contact.friction_coefficient > 0. &&
+                     contact.algorithm == contact::Algorithm::bde &&
+                     contact.path != contact::Path::full),
+                  base::ExcInput(
+                    f + "Output/FCLIB export = true needs a contact problem "
+                        "with friction on the condensed path (Contact/Enabled "
+                        "= true, Friction coefficient > 0, Algorithm = bde, "
+                        "Path = condensed or auto): FCLIB's local problems "
+                        "have two or three components per contact and a "
+                        "flexibility W; set it to false for this scene."));
+      AssertThrow(contact.friction_coefficient >= 0.,
+                  base::ExcInput(
+                    f + "Contact/Friction coefficient = " +
+                    base::number_text(contact.friction_coefficient) +
+                    " is negative; use mu >= 0 (0 for frictionless)."));
+      AssertThrow(!contact.enabled || body2.type != BodyType::none,
+                  base::ExcInput(f + "Contact/Enabled is true but Body 2/Type "
+                                     "is 'none'; set Body 2/Type to "
+                                     "'deformable' or 'rigid plane'."));
+      AssertThrow(contact.algorithm == contact::Algorithm::bde ||
+                    contact.path != contact::Path::condensed,
+                  base::ExcInput(f + "Contact/Algorithm = " +
+                                 contact::to_string(contact.algorithm) +
+                                 " solves the full system; set Contact/Path "
+                                 "to 'full' or 'auto' (or use Algorithm = "
+                                 "bde for the condensed path)."));
+      // A held rotation is a constraint the coupled system has no rows for.
+      for (const auto *body : {&body1, &body2})
+        if (contact.enabled && body->type == BodyType::deformable &&
+            body->hold_rotation_face >= 0)
+          {
+            const std::string name = (body == &body1 ? "Body 1" : "Body 2");
+            AssertThrow(contact.algorithm == contact::Algorithm::bde &&
+                          contact.path != contact::Path::full,
+                        base::ExcInput(
+                          f + name +
+                          "/Hold rotation is modelled on the condensed "
+                          "path only, but Contact/" +
+                          (contact.algorithm != contact::Algorithm::bde ?
+                             "Algorithm = " +
+                               contact::to_string(contact.algorithm) +
+                               " solves the full system" :
+                             std::string("Path = full")) +
+                          "; use Contact/Algorithm = bde with Path = "
+                          "condensed or auto."));
+          }
+      // What the contact solver would refuse only when it is built.
+      AssertThrow(contact.tolerance > 0.,
+                  base::ExcInput(f + "Contact/Tolerance = " +
+                                 base::number_text(contact.tolerance) +
+                                 " must be > 0 (the natural-map residual "
+                                 "relative to ||q|| at which a solve stops; "
+                                 "e.g. 1e-10)."));
+      AssertThrow(contact.r_scale > 0.,
+                  base::ExcInput(f + "Contact/r scale = " +
+                                 base::number_text(contact.r_scale) +
+                                 " must be > 0 (a factor on the per-pair "
+                                 "r; 1 is the default)."));
+      AssertThrow(contact.penalty_factor > 0. &&
+                    contact.tangential_penalty_factor > 0.,
+                  base::ExcInput(f + "Contact/Penalty factor and Contact/"
+                                     "Tangential penalty factor must be "
+                                     "positive (FKN = 0.01 to 10 is the "
+                                     "usual range)."));
+      for (const auto *body : {&body1, &body2})
+        for (const auto &traction : body->tractions)
+          AssertThrow(traction.kind != TractionParameters::Kind::exact ||
+                        exact.type != ExactSolutionType::none,
+                      base::ExcInput(f +
+                                     (body == &body1 ? "Body 1" : "Body 2") +
+                                     "/Tractions: 'exact' needs Exact "
+                                     "solution/Type other than none."));
+      AssertThrow(
+        (contact.pairing != contact::Pairing::weighted_gap &&
+         contact.pairing != contact::Pairing::weighted_gap_standard) ||
+          contact.pair_placement == discretization::PairPlacement::greville,
+        base::ExcInput(
+          f + "Contact/Pair placement = " + to_string(contact.pair_placement) +
+          " places point pairs, but Contact/Pairing = " +
+          contact::to_string(contact.pairing) +
+          " has one pair per basis function of the slave face; "
+          "remove Contact/Pair placement or use Pairing = "
+          "node-to-surface."));
+      if (contact.enabled)
+        {
+          // The contact faces must exist on the bodies that carry them.
+          const auto read_contact_face = [&](const BodyParameters &body,
+                                             const std::string    &body_name,
+                                             const std::string    &parameter,
+                                             const std::string    &text) {
+            return read_faces(text,
+                              patch_faces_of(body, dimension),
+                              f + "Contact/" + parameter + " (" + body_name +
+                                ")",
+                              text);
+          };
+          contact.slave_faces = read_contact_face(body1,
+                                                  "Body 1",
+                                                  "Slave face",
+                                                  contact.slave_face_text);
+          if (body2.type == BodyType::deformable)
+            contact.master_faces = read_contact_face(body2,
+                                                     "Body 2",
+                                                     "Master face",
+                                                     contact.master_face_text);
+          // A face of a patch the geometry file does not have.
+          for (const auto *body : {&body1, &body2})
+            if (body->type == BodyType::deformable)
+              check_face_patches(*body,
+                                 body == &body1 ? contact.slave_faces :
+                                                  contact.master_faces,
+                                 dimension,
+                                 f + (body == &body1 ? "Body 1" : "Body 2"));
+        }
+      // A body with no Supports at all is held by nothing but contact.
+      for (const auto *body : {&body1, &body2})
+        {
+          const std::string name = (body == &body1 ? "Body 1" : "Body 2");
+          AssertThrow(body->type != BodyType::deformable ||
+                        !body->supports.empty() ||
+                        !body->point_supports.empty() ||
+                        !body->face_motions.empty() || contact.enabled,
+                      base::ExcInput(
+                        f + name +
+                        "/Supports is empty and the scene has no contact "
+                        "(Contact/Enabled = false): nothing holds " +
+                        name +
+                        " against rigid motion; add Supports, e.g. "
+                        "'0: x; 2: y'."));
+        }
+      AssertThrow(!contact.enabled || body2.type != BodyType::deformable ||
+                    !body1.supports.empty() || !body2.supports.empty() ||
+                    !body1.point_supports.empty() ||
+                    !body2.point_supports.empty() ||
+                    !body1.face_motions.empty() || !body2.face_motions.empty(),
+                  base::ExcInput(
+                    f + "Body 1/Supports and Body 2/Supports are both empty: "
+                        "contact only acts between the two bodies, so "
+                        "nothing holds them against rigid motion; add "
+                        "Supports to Body 2, e.g. '2: x y'."));
+      AssertThrow(checks.hertz_line_load == 0. || dimension == 2,
+                  base::ExcInput(f + "Checks/Hertz line load is the 2D "
+                                     "line contact; in 3D set Checks/Hertz "
+                                     "point load (a sphere) instead."));
+      AssertThrow(checks.hertz_point_load == 0. || dimension == 3,
+                  base::ExcInput(f + "Checks/Hertz point load is the 3D "
+                                     "point contact of a sphere; in 2D set "
+                                     "Checks/Hertz line load instead."));
+      if (checks.hertz_line_load > 0. || checks.hertz_point_load > 0.)
+        {
+          if (!checks.hertz_axis_direction_text.empty())
+            checks.hertz_axis_direction =
+              read_direction(checks.hertz_axis_direction_text,
+                             dimension,
+                             f + "Checks/Hertz axis direction");
+          if (!checks.hertz_axis_point_text.empty())
+            checks.hertz_axis_point = read_point(checks.hertz_axis_point_text,
+                                                 dimension,
+                                                 f + "Checks/Hertz axis point");
+          AssertThrow(checks.hertz_radius > 0. ||
+                        body1.geometry != Geometry::file,
+                      base::ExcInput(f + "Checks/Hertz radius = 0 takes "
+                                         "Body 1/Radius, which a geometry "
+                                         "file does not have; give the "
+                                         "radius of the contact surface, "
+                                         "e.g. 'set Hertz radius = 1'."));
+        }
+      AssertThrow(load_path.displacement_factors.empty() ||
+                    load_path.load_factors.empty() ||
+                    load_path.displacement_factors.size() ==
+                      load_path.load_factors.size(),
+                  base::ExcInput(
+                    f + "Load path/Displacement factors has " +
+                    std::to_string(load_path.displacement_factors.size()) +
+                    " entries but Load path/Load factors has " +
+                    std::to_string(load_path.load_factors.size()) +
+                    "; give both lists the same length."));
+      const std::size_t n_steps = load_path.steps().size();
+      for (const auto &h : load_path.histories)
+        AssertThrow(h.second.size() == n_steps,
+                    base::ExcInput(f + "Load path/Histories: '" + h.first +
+                                   "' has " + std::to_string(h.second.size()) +
+                                   " factors but the load path has " +
+                                   std::to_string(n_steps) +
+                                   " steps; give one factor per step."));
+      // Every history a load entry names must exist.
+      for (const auto *body : {&body1, &body2})
+        {
+          const std::string where =
+            f + (body == &body1 ? "Body 1" : "Body 2") + ": ";
+          const auto known = [&](const std::string &name) {
+            bool found =
+              name.empty() || name == "load" || name == "displacement";
+            std::string names = "load, displacement";
+            for (const auto &h : load_path.histories)
+              {
+                found = found || h.first == name;
+                names += ", " + h.first;
+              }
+            AssertThrow(found,
+                        base::ExcInput(where + "load history '" + name +
+                                       "' is not declared in Load "
+                                       "path/Histories; declared: " +
+                                       names + "."));
+          };
+          for (const auto &s : body->supports)
+            known(s.history);
+          for (const auto &t : body->tractions)
+            known(t.history);
+          for (const auto &l : body->point_loads)
+            known(l.history);
+          for (const auto &m : body->moments)
+            known(m.history);
+          for (const auto &m : body->face_motions)
+            known(m.history);
+          for (const auto &p : body->point_supports)
+            known(p.history);
+        }
+      // A traction that depends on t gets one history per step: factor 1
+      // at its step, 0 elsewhere, the expression evaluated at that step's
+      // factor of the history it names.
+      const auto factors = load_path.history_factors();
+      for (auto *body : {&body1, &body2})
+        for (auto &traction : body->tractions)
+          if (traction.kind == TractionParameters::Kind::function &&
+              traction.uses_t)
+            {
+              const unsigned int base =
+                load_path.history_index(traction.history, 0);
+              traction.step_t.clear();
+              traction.step_histories.clear();
+              for (unsigned int s = 0; s < n_steps; ++s)
+                {
+                  traction.step_t.push_back(factors[s][base]);
+                  traction.step_histories.push_back(
+                    2 + load_path.histories.size() +
+                    load_path.step_history_steps.size());
+                  load_path.step_history_steps.push_back(s);
+                }
+            }
+    }
+  } // namespace scene
+} // namespace igabde
