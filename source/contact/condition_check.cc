@@ -101,6 +101,10 @@ namespace igabde
       if (!(F > 0.))
         F = 1.;
       double D = m > 0 ? problem.q.cwiseAbs().maxCoeff() : 0.;
+      if (problem.displacement_scale > 0. && problem.n_contacts > 0)
+        D = std::max(D,
+                     problem.displacement_scale /
+                       std::sqrt(double(problem.n_contacts)));
       if (!(D > 0.))
         D = m > 0 ? u.cwiseAbs().maxCoeff() : 0.;
       if (!(D > 0.))

@@ -285,8 +285,9 @@ namespace igabde
                                const Eigen::VectorXd &p,
                                const Eigen::VectorXd &u)
     {
-      const double err    = natural_map_error(problem, p, u);
-      const double norm_q = problem.q.norm();
+      const double err = natural_map_error(problem, p, u);
+      const double norm_q =
+        std::max(problem.q.norm(), problem.displacement_scale);
       const double norm_r = (u - problem.q).norm();
       if (norm_q > 0. && norm_q > 1e-12 * norm_r)
         return err / norm_q;

@@ -208,6 +208,26 @@ namespace igabde
 
 
     template <int dim>
+    void
+    CoupledPath<dim>::set_reference(const std::vector<Vector<double>> &u,
+                                    const std::vector<double>         &factors)
+    {
+      if (!coupled->finite_strain())
+        return;
+      Eigen::VectorXd whole(coupled->n_dofs());
+      unsigned int    offset = 0;
+      for (unsigned int b = 0; b < bodies.size(); ++b)
+        {
+          for (unsigned int i = 0; i < bodies[b]->n_dofs(); ++i)
+            whole[offset + i] = u[b].size() > 0 ? u[b][i] : 0.;
+          offset += bodies[b]->n_dofs();
+        }
+      coupled->set_reference(whole, factors);
+    }
+
+
+
+    template <int dim>
     double
     CoupledPath<dim>::n_nonzeros() const
     {

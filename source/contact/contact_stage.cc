@@ -1,6 +1,8 @@
 #include <igabde/base/nearest_points.h>
 #include <igabde/base/utilities.h>
 
+#include <igabde/discretization/finite_strain_solver.h>
+
 #include <igabde/contact/condition_check.h>
 #include <igabde/contact/contact_stage.h>
 
@@ -32,6 +34,7 @@ namespace igabde
                   base::ExcInput(settings.context +
                                  ": contact needs Body 2 (deformable) or a "
                                  "rigid plane."));
+      finite_u.resize(bodies.size());
     }
 
 
@@ -54,7 +57,7 @@ namespace igabde
     typename ContactStage<dim>::State
     ContactStage<dim>::save_state() const
     {
-      return {x, u_rel, previous_external, status, has_previous};
+      return {x, u_rel, previous_external, status, has_previous, finite_u};
     }
 
 
@@ -68,6 +71,20 @@ namespace igabde
       previous_external = state.previous_external;
       status            = state.status;
       has_previous      = state.has_previous;
+      finite_u          = state.finite_u;
+      finite_u.resize(bodies.size());
+    }
+
+
+
+    template <int dim>
+    bool
+    ContactStage<dim>::finite_strain() const
+    {
+      for (const auto &body : bodies)
+        if (body->finite_strain())
+          return true;
+      return false;
     }
 
 
@@ -166,6 +183,13 @@ namespace igabde
           path     = Path::condensed;
           path_why = "a body holds a rotation (Hold rotation), which only "
                      "the condensed path models";
+        }
+      else if (path == Path::automatic && finite_strain())
+        {
+          // The condensation would take a constant stiffness.
+          path     = Path::full;
+          path_why = "a body is at finite strain (Kinematics = finite), "
+                     "whose tangent only the full path follows";
         }
       else if (path == Path::automatic && !settings.memory_path_reason.empty())
         {
@@ -521,14 +545,83 @@ namespace igabde
                                   std::vector<Vector<double>> &u,
                                   TimerOutput                 &timer)
     {
-      ContactProblem       &problem = contact.problem;
-      ContactOperator      &op      = contact_path->op();
-      const Eigen::VectorXd U       = relative_displacement(u);
+      ContactProblem  &problem = contact.problem;
+      ContactOperator &op      = contact_path->op();
+      // Bodies at finite strain: the step starts from the predictor, one
+      // Newton step of each body alone from its last state with the last
+      // contact forces held (the tangent's prediction of this step's loads
+      // and support moves, halved while it inverts an element); the
+      // supports that step did not reach move there during the solve (u
+      // holds the start, U sees them moved), and the correction w starts
+      // from zero.
+      const bool      finite = finite_strain();
+      Eigen::VectorXd U;
+      if (finite)
+        {
+          std::vector<Vector<double>> moved(bodies.size());
+          for (unsigned int b = 0; b < bodies.size(); ++b)
+            if (bodies[b]->finite_strain())
+              {
+                if (finite_u[b].size() != bodies[b]->n_dofs())
+                  finite_u[b].reinit(bodies[b]->n_dofs());
+                u[b] = finite_u[b];
+                discretization::NewtonSettings predictor;
+                predictor.tolerance      = 0.;
+                predictor.max_iterations = 1;
+                const Vector<double> held_load =
+                  has_previous ? contact_load(b) : Vector<double>();
+                discretization::solve_finite_strain(*bodies[b],
+                                                    bodies[b]->finite_law(),
+                                                    factors,
+                                                    predictor,
+                                                    u[b],
+                                                    nullptr,
+                                                    has_previous ? &held_load :
+                                                                   nullptr);
+                moved[b]               = u[b];
+                const Vector<double> g = bodies[b]->prescribed_values(factors);
+                for (unsigned int i = 0; i < g.size(); ++i)
+                  if (bodies[b]->is_held(i))
+                    moved[b][i] = g[i];
+              }
+            else
+              moved[b] = u[b];
+          U = relative_displacement(moved);
+          // The size of the pairs' displacements from the reference
+          // configuration (q holds those from the predictor only).
+          double sum = 0.;
+          for (const auto &pair : pair_list)
+            for (unsigned int side = 0; side < (obstacle ? 1u : 2u); ++side)
+              {
+                const auto &op = side == 0 ? pair.op1 : pair.op2;
+                for (unsigned int c = 0; c < dim; ++c)
+                  {
+                    double v = 0.;
+                    for (unsigned int k = 0; k < op.weights.size(); ++k)
+                      v += op.weights[k] * moved[side][op.dofs[k][c]];
+                    sum += v * v;
+                  }
+              }
+          problem.displacement_scale = std::sqrt(sum);
+        }
+      else
+        U = relative_displacement(u);
       // What the previous step's contact forces contribute to the pair
       // displacements (subtracted from the tangential increments).
       Eigen::VectorXd carry = op.displacement(x.p, x.w);
       if (problem.n_alpha() > 0)
         carry += problem.G * x.alpha;
+      if (finite)
+        {
+          contact_path->set_reference(u, factors);
+          unsigned int offset = 0;
+          for (const auto &body : bodies)
+            {
+              if (body->finite_strain() && x.w.size() > 0)
+                x.w.segment(offset, body->n_dofs()).setZero();
+              offset += body->n_dofs();
+            }
+        }
 
       // Normal rows: total relative displacement, gap included. Tangential
       // rows: increments of this step (friction is incremental).
@@ -667,6 +760,10 @@ namespace igabde
             const auto [b, k] = contact.alpha_modes[a];
             u[b].add(amplitudes(a), bodies[b]->free_rigid_modes()[k]);
           }
+        // The next step at finite strain starts here.
+        for (unsigned int b = 0; b < bodies.size(); ++b)
+          if (bodies[b]->finite_strain())
+            finite_u[b] = u[b];
       }
       return result;
     }

@@ -35,8 +35,9 @@ namespace igabde
                                           Vec       &y_p,
                                           Vec       &y_w) const
     {
-      // C^T y is minus the force part of the displacement equations.
-      y_w = -displacement_equations(Vec::Zero(n_dofs()), y);
+      // C^T y is minus the force part of the linearised displacement
+      // equations.
+      y_w = -tangent_equations(Vec::Zero(n_dofs()), y);
       y_p = eps * y;
     }
 
@@ -53,10 +54,35 @@ namespace igabde
     void
     CoupledOperator::equilibrium_adjoint(const Vec &h, Vec &h_p, Vec &h_w) const
     {
-      // E = K w - C^T p: E_w^T h = K h (K symmetric, held rows identity),
-      // E_p^T h = -C h.
-      h_w = displacement_equations(h, Vec::Zero(n_rows()));
+      // E = K w - C^T p: E_w^T h = K^T h (held rows identity; K_T at
+      // finite strain), E_p^T h = -C h.
+      h_w = tangent_transpose(h);
       h_p = -apply_C(h);
+    }
+
+
+
+    bool
+    CoupledOperator::equilibrium_is_linear() const
+    {
+      return !finite_strain();
+    }
+
+
+
+    void
+    CoupledOperator::linearize(const ContactIterate &x)
+    {
+      linearize_bodies(x.w);
+    }
+
+
+
+    Vec
+    CoupledOperator::equilibrium_derivative(const Vec &v_p,
+                                            const Vec &v_w) const
+    {
+      return tangent_equations(v_w, v_p);
     }
 
 
@@ -180,8 +206,14 @@ namespace igabde
           else
             B[i](s, s) = 1.;
       std::string why;
+      // At finite strain one Newton step of the glued system from w = 0
+      // (the reference of set_reference(), where the system is linearised).
+      const Vec r_w = finite_strain() ?
+                        Vec(-displacement_equations(Vec::Zero(n_dofs()),
+                                                    Vec::Zero(n_rows()))) :
+                        Vec(Vec::Zero(n_dofs()));
       factorize(A, B);
-      if (!solve(Vec::Zero(n_dofs()),
+      if (!solve(r_w,
                  r_p,
                  data.n_alpha() > 0 ? Vec(data.b) : Vec(),
                  x.w,

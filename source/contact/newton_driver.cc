@@ -521,7 +521,8 @@ namespace igabde
       const double        sigma = settings.armijo_sigma;
       const double        beta  = settings.armijo_beta;
       const unsigned int  m = data.n_rows(), na = data.n_alpha();
-      const unsigned int  d = data.n_components;
+      const unsigned int  d                  = data.n_components;
+      const bool          equilibrium_linear = op.equilibrium_is_linear();
 
       std::deque<double> theta_memory;
       NewtonBlocks       pieces;
@@ -682,7 +683,9 @@ namespace igabde
             first_norm = F_norm;
           ContactIterate              dx;
           ContactOperator::StepReport report;
-          const bool                  solved =
+          // At finite strain the tangent of the current iterate.
+          op.linearize(x);
+          const bool solved =
             op.newton_step(data,
                            pieces,
                            F,
@@ -740,8 +743,9 @@ namespace igabde
                   Jv.p[c * d + k] = s;
                 }
             Jv.alpha = na > 0 ? Vec(data.G.transpose() * v.p) : Vec();
-            // The displacement equations are linear: E(v) without q.
-            Jv.w = op.equilibrium_residual(v.p, v.w);
+            // The displacement equations' derivative (E(v) itself where
+            // they are linear).
+            Jv.w = op.equilibrium_derivative(v.p, v.w);
             return Jv;
           };
           const auto apply_JT = [&](const ContactIterate &h) {
@@ -824,10 +828,14 @@ namespace igabde
                      best_trial = std::numeric_limits<double>::max();
               while (t >= settings.min_step)
                 {
-                  // u and E are linear in x: updated, not recomputed.
+                  // u is linear in x, and E at small strain: updated, not
+                  // recomputed (E at finite strain is).
                   const ContactIterate xt = axpy(x, t, dx);
                   Vec                  ut = u_raw + t * du;
-                  F_trial.w = F.w.size() > 0 ? Vec(F.w + t * Jdx.w) : Vec();
+                  F_trial.w =
+                    F.w.size() == 0    ? Vec() :
+                    equilibrium_linear ? Vec(F.w + t * Jdx.w) :
+                                         op.equilibrium_residual(xt.p, xt.w);
                   const double th =
                     residual(data, law, xt, ut, F_trial, nullptr);
                   if (std::isfinite(th) && th < best_trial)

@@ -15,6 +15,7 @@
 #include <array>
 #include <cmath>
 #include <iomanip>
+#include <limits>
 #include <sstream>
 
 namespace igabde
@@ -50,6 +51,33 @@ namespace igabde
           n_u += body->n_dofs();
         }
       n_total = n_u + d * n_pairs + n_alpha;
+      finite.assign(bodies.size(), false);
+      reference.resize(bodies.size());
+      support_moves.resize(bodies.size());
+      loads.resize(bodies.size());
+      tangents.resize(bodies.size());
+      residuals.resize(bodies.size());
+      force_norms.assign(bodies.size(), 0.);
+      for (unsigned int b = 0; b < bodies.size(); ++b)
+        if (bodies[b]->finite_strain())
+          {
+            AssertThrow(bodies[b]->free_rigid_modes().empty(),
+                        base::ExcInput(
+                          bodies[b]->name() +
+                          " at Kinematics = finite is held by contact alone "
+                          "against " +
+                          bodies[b]->free_rigid_mode_names().front() +
+                          ", which is modelled at small strain only; add "
+                          "Supports or Face motions that hold it."));
+            AssertThrow(!krylov,
+                        ExcMessage("the full path at finite strain "
+                                   "factorises its Newton matrix (Contact/"
+                                   "Full system solver = mumps or klu)"));
+            finite[b]  = true;
+            any_finite = true;
+            tangents[b].reinit(bodies[b]->sparsity_pattern());
+            residuals[b].reinit(bodies[b]->n_dofs());
+          }
       held.assign(n_u, false);
       for (unsigned int b = 0; b < bodies.size(); ++b)
         for (types::global_dof_index i = 0; i < bodies[b]->n_dofs(); ++i)
@@ -135,8 +163,10 @@ namespace igabde
                   dsp.add(gi, gi);
                   continue;
                 }
+              // At finite strain the free rows depend on the held
+              // unknowns too, which move during the solve.
               for (auto e = K.begin(i); e != K.end(i); ++e)
-                if (!held[offsets[b] + e->column()])
+                if (finite[b] || !held[offsets[b] + e->column()])
                   dsp.add(gi, offsets[b] + e->column());
             }
         }
@@ -255,8 +285,19 @@ namespace igabde
       AssertDimension(w.size(), n_u);
       AssertDimension(p.size(), d * n_pairs);
       Eigen::VectorXd r(n_u);
+      // Bodies at finite strain: f_int(u_ref + w) - f_ext (not a number
+      // where an element inverts: no step may go there).
+      const bool finite_ok = !any_finite || evaluate_bodies(w, false);
       for (unsigned int b = 0; b < bodies.size(); ++b)
         {
+          if (finite[b])
+            {
+              for (unsigned int i = 0; i < bodies[b]->n_dofs(); ++i)
+                r[offsets[b] + i] = finite_ok ?
+                                      residuals[b][i] :
+                                      std::numeric_limits<double>::quiet_NaN();
+              continue;
+            }
           const SparseMatrix<double> &K = bodies[b]->stiffness_matrix();
           Vector<double>              wb(K.m()), rb(K.m());
           for (unsigned int i = 0; i < K.m(); ++i)
@@ -271,6 +312,175 @@ namespace igabde
       for (unsigned int g = 0; g < n_u; ++g)
         if (held[g])
           r[g] = w[g];
+      // At finite strain the held unknowns move to the supports' values.
+      for (unsigned int b = 0; b < bodies.size(); ++b)
+        if (finite[b])
+          for (unsigned int i = 0; i < bodies[b]->n_dofs(); ++i)
+            if (held[offsets[b] + i])
+              r[offsets[b] + i] -= support_moves[b][i];
+      return r;
+    }
+
+
+
+    template <int dim>
+    bool
+    CoupledSystem<dim>::finite_strain() const
+    {
+      return any_finite;
+    }
+
+
+
+    template <int dim>
+    void
+    CoupledSystem<dim>::set_reference(const Eigen::VectorXd     &u,
+                                      const std::vector<double> &step_factors)
+    {
+      if (!any_finite)
+        return;
+      AssertDimension(u.size(), n_u);
+      factors = step_factors;
+      for (unsigned int b = 0; b < bodies.size(); ++b)
+        if (finite[b])
+          {
+            const unsigned int n = bodies[b]->n_dofs();
+            reference[b].reinit(n);
+            for (unsigned int i = 0; i < n; ++i)
+              reference[b][i] = u[offsets[b] + i];
+            const Vector<double> g = bodies[b]->prescribed_values(factors);
+            support_moves[b].reinit(n);
+            for (unsigned int i = 0; i < n; ++i)
+              if (held[offsets[b] + i])
+                support_moves[b][i] = g[i] - reference[b][i];
+            loads[b] = bodies[b]->external_load_vector(factors);
+          }
+      have_residual = false;
+      linearized    = false;
+      linearize_bodies(Eigen::VectorXd::Zero(n_u));
+    }
+
+
+
+    template <int dim>
+    bool
+    CoupledSystem<dim>::evaluate_bodies(const Eigen::VectorXd &w,
+                                        const bool             tangent) const
+    {
+      const bool same_residual =
+        have_residual && residual_at.size() == w.size() && residual_at == w;
+      const bool same_tangent =
+        linearized && linearized_at.size() == w.size() && linearized_at == w;
+      if (same_residual && (!tangent || same_tangent))
+        return residual_finite;
+      residual_finite = true;
+      for (unsigned int b = 0; b < bodies.size(); ++b)
+        {
+          if (!finite[b])
+            continue;
+          const discretization::Body<dim> &body = *bodies[b];
+          Vector<double>                   u    = reference[b];
+          for (unsigned int i = 0; i < u.size(); ++i)
+            u[i] += w[offsets[b] + i];
+          residuals[b]            = 0.;
+          SparseMatrix<double> *T = tangent ? &tangents[b] : nullptr;
+          if (T != nullptr)
+            *T = 0.;
+          const double min_J =
+            body.internal_force(u, body.finite_law(), residuals[b], T);
+          if (!(min_J > 0.))
+            {
+              residual_finite = false;
+              continue;
+            }
+          const double internal = residuals[b].l2_norm();
+          if (!body.follower_pressures(factors).empty())
+            body.add_follower_pressure(u, factors, residuals[b], T);
+          residuals[b] -= loads[b];
+          force_norms[b] = std::max(internal, loads[b].l2_norm());
+        }
+      have_residual = true;
+      residual_at   = w;
+      if (tangent)
+        {
+          linearized    = true;
+          linearized_at = w;
+        }
+      return residual_finite;
+    }
+
+
+
+    template <int dim>
+    void
+    CoupledSystem<dim>::linearize_bodies(const Eigen::VectorXd &w)
+    {
+      if (any_finite)
+        evaluate_bodies(w, true);
+    }
+
+
+
+    template <int dim>
+    Eigen::VectorXd
+    CoupledSystem<dim>::tangent_equations(const Eigen::VectorXd &v_w,
+                                          const Eigen::VectorXd &v_p) const
+    {
+      if (!any_finite)
+        return displacement_equations(v_w, v_p);
+      Assert(linearized, ExcMessage("linearize_bodies() first"));
+      AssertDimension(v_w.size(), n_u);
+      AssertDimension(v_p.size(), d * n_pairs);
+      Eigen::VectorXd r(n_u);
+      for (unsigned int b = 0; b < bodies.size(); ++b)
+        {
+          const SparseMatrix<double> &K =
+            finite[b] ? tangents[b] : bodies[b]->stiffness_matrix();
+          // At finite strain the free rows depend on the held unknowns
+          // too (they move to the supports' values during the solve).
+          Vector<double> vb(K.m()), rb(K.m());
+          for (unsigned int i = 0; i < K.m(); ++i)
+            vb[i] =
+              held[offsets[b] + i] && !finite[b] ? 0. : v_w[offsets[b] + i];
+          K.vmult(rb, vb);
+          for (unsigned int i = 0; i < K.m(); ++i)
+            r[offsets[b] + i] = rb[i];
+        }
+      for (unsigned int row = 0; row < d * n_pairs; ++row)
+        for (const auto &[g, v] : C_rows[row])
+          r[g] -= v * v_p[row];
+      for (unsigned int g = 0; g < n_u; ++g)
+        if (held[g])
+          r[g] = v_w[g];
+      return r;
+    }
+
+
+
+    template <int dim>
+    Eigen::VectorXd
+    CoupledSystem<dim>::tangent_transpose(const Eigen::VectorXd &h) const
+    {
+      if (!any_finite)
+        return displacement_equations(h, Eigen::VectorXd::Zero(d * n_pairs));
+      Assert(linearized, ExcMessage("linearize_bodies() first"));
+      AssertDimension(h.size(), n_u);
+      Eigen::VectorXd r(n_u);
+      for (unsigned int b = 0; b < bodies.size(); ++b)
+        {
+          const SparseMatrix<double> &K =
+            finite[b] ? tangents[b] : bodies[b]->stiffness_matrix();
+          Vector<double> hb(K.m()), rb(K.m());
+          for (unsigned int i = 0; i < K.m(); ++i)
+            hb[i] = held[offsets[b] + i] ? 0. : h[offsets[b] + i];
+          K.Tvmult(rb, hb);
+          // J = [K_ff K_fh; 0 I] at finite strain: the held rows of J^T h
+          // are K_fh^T h_f + h_h.
+          for (unsigned int i = 0; i < K.m(); ++i)
+            r[offsets[b] + i] = !held[offsets[b] + i] ? rb[i] :
+                                finite[b] ? rb[i] + h[offsets[b] + i] :
+                                            h[offsets[b] + i];
+        }
       return r;
     }
 
@@ -283,8 +493,22 @@ namespace igabde
       const Eigen::VectorXd &p) const
     {
       Eigen::VectorXd r = Eigen::VectorXd::Zero(n_u);
+      // A body at finite strain: the size of its internal forces (with the
+      // reactions) and of its loads, and the moves of its held unknowns.
+      double finite_terms = 0.;
+      if (any_finite)
+        evaluate_bodies(w, false);
       for (unsigned int b = 0; b < bodies.size(); ++b)
         {
+          if (finite[b])
+            {
+              finite_terms += force_norms[b] * force_norms[b];
+              for (unsigned int i = 0; i < bodies[b]->n_dofs(); ++i)
+                if (held[offsets[b] + i])
+                  r[offsets[b] + i] =
+                    std::abs(w[offsets[b] + i]) + std::abs(support_moves[b][i]);
+              continue;
+            }
           const SparseMatrix<double> &K = bodies[b]->stiffness_matrix();
           for (types::global_dof_index i = 0; i < K.m(); ++i)
             {
@@ -302,7 +526,9 @@ namespace igabde
       for (unsigned int row = 0; row < d * n_pairs; ++row)
         for (const auto &[g, v] : C_rows[row])
           r[g] += std::abs(v * p[row]);
-      return r.norm();
+      if (!any_finite)
+        return r.norm();
+      return std::sqrt(r.squaredNorm() + finite_terms);
     }
 
 
@@ -325,9 +551,12 @@ namespace igabde
       };
       std::vector<types::global_dof_index> columns;
       std::vector<double>                  values;
+      Assert(!any_finite || linearized, ExcMessage("linearize_bodies() first"));
       for (unsigned int b = 0; b < bodies.size(); ++b)
         {
-          const SparseMatrix<double> &K = bodies[b]->stiffness_matrix();
+          // A body at finite strain: its tangent at the last linearisation.
+          const SparseMatrix<double> &K =
+            finite[b] ? tangents[b] : bodies[b]->stiffness_matrix();
           for (types::global_dof_index i = 0; i < K.m(); ++i)
             {
               const types::global_dof_index gi = offsets[b] + i;
@@ -341,7 +570,7 @@ namespace igabde
               columns.clear();
               values.clear();
               for (auto e = K.begin(i); e != K.end(i); ++e)
-                if (!held[offsets[b] + e->column()])
+                if (finite[b] || !held[offsets[b] + e->column()])
                   {
                     columns.push_back(offsets[b] + e->column());
                     values.push_back(e->value());

@@ -37,7 +37,8 @@ namespace igabde
                         const std::vector<double>                   &factors,
                         const NewtonSettings                        &settings,
                         Vector<double>                              &u,
-                        std::ostream                                *log)
+                        std::ostream                                *log,
+                        const Vector<double> *additional_load)
     {
       AssertThrow(body.free_rigid_modes().empty(),
                   ExcMessage("Body '" + body.name() +
@@ -62,7 +63,9 @@ namespace igabde
             return false;
         return true;
       };
-      const Vector<double> f_ext = body.external_load_vector(factors);
+      Vector<double> f_ext = body.external_load_vector(factors);
+      if (additional_load != nullptr)
+        f_ext += *additional_load;
 
       NewtonResult         result;
       SparseMatrix<double> K(body.sparsity_pattern());
@@ -196,13 +199,15 @@ namespace igabde
                            const std::vector<double> &,
                            const NewtonSettings &,
                            Vector<double> &,
-                           std::ostream *);
+                           std::ostream *,
+                           const Vector<double> *);
     template NewtonResult
     solve_finite_strain<3>(const Body<3> &,
                            const elasticity::HyperelasticMaterial<3> &,
                            const std::vector<double> &,
                            const NewtonSettings &,
                            Vector<double> &,
-                           std::ostream *);
+                           std::ostream *,
+                           const Vector<double> *);
   } // namespace discretization
 } // namespace igabde

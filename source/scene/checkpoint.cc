@@ -15,7 +15,7 @@ namespace igabde
     namespace
     {
       /// The format's name and version, the first entry of every file.
-      const std::string format = "igabde checkpoint 1";
+      const std::string format = "igabde checkpoint 2";
 
       std::vector<double>
       to_vector(const Eigen::VectorXd &v)
@@ -189,7 +189,11 @@ namespace igabde
       std::vector<int> status;
       for (const contact::ContactStatus s : state.status)
         status.push_back(static_cast<int>(s));
+      nlohmann::json finite_u = nlohmann::json::array();
+      for (const Vector<double> &u : state.finite_u)
+        finite_u.push_back(std::vector<double>(u.begin(), u.end()));
       return {{"p", to_vector(state.x.p)},
+              {"finite_u", finite_u},
               {"alpha", to_vector(state.x.alpha)},
               {"w", to_vector(state.x.w)},
               {"u_rel", to_vector(state.u_rel)},
@@ -214,6 +218,11 @@ namespace igabde
       for (const int s : j.at("status").get<std::vector<int>>())
         state.status.push_back(static_cast<contact::ContactStatus>(s));
       state.has_previous = j.at("has_previous").get<bool>();
+      for (const auto &u : j.at("finite_u"))
+        {
+          const std::vector<double> v = u.get<std::vector<double>>();
+          state.finite_u.emplace_back(v.begin(), v.end());
+        }
       stage.restore_state(state);
     }
 

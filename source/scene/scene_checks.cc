@@ -16,7 +16,8 @@ namespace igabde
     namespace
     {
       /**
-       * Refuses what a body at finite strain cannot follow (yet): contact,
+       * Refuses what a body at finite strain cannot follow (yet): contact
+       * on the condensed path or with the iterative full-system solver,
        * a held mean rotation and face moments (distributing couplings
        * linearised about the reference configuration), tractions from a
        * small-strain exact solution, and more than one MPI process.
@@ -43,12 +44,24 @@ namespace igabde
                 "solved at every point); set Plane model = "
                 "plane strain, or Material = saint "
                 "venant-kirchhoff."));
-            AssertThrow(!parameters.contact.enabled,
+            AssertThrow(!parameters.contact.enabled ||
+                          parameters.contact.path != contact::Path::condensed,
                         base::ExcInput(
                           where +
-                          "Kinematics = finite with Contact/Enabled = true: "
-                          "contact is solved at small strain only; set "
-                          "Kinematics = small, or Contact/Enabled = false."));
+                          "Kinematics = finite with Contact/Path = condensed: "
+                          "the condensation takes the small-strain stiffness "
+                          "once, and a body at finite strain changes its "
+                          "tangent in every Newton iteration; set "
+                          "Contact/Path = full (or auto)."));
+            AssertThrow(!parameters.contact.enabled ||
+                          parameters.contact.full_system_solver !=
+                            coupled::Solver::gmres_amg,
+                        base::ExcInput(
+                          where +
+                          "Kinematics = finite with Contact/Full system "
+                          "solver = gmres-amg: its multigrid is built once "
+                          "on the small-strain stiffness; set Contact/Full "
+                          "system solver = mumps (or klu)."));
             AssertThrow(body->hold_rotation_face < 0,
                         base::ExcInput(
                           where +

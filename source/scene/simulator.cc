@@ -383,7 +383,32 @@ namespace igabde
                                 record.diagnosis + ". " + record.advice));
                 }
             }
-          if (parameters.finite_strain())
+          if (parameters.finite_strain() && contact_stage)
+            {
+              // The contact solve has solved the bodies at finite strain
+              // too (one Newton iteration for both nonlinearities).
+              NewtonRecord newton;
+              newton.iterations       = record.newton_iterations;
+              newton.solves           = record.contact_solves;
+              newton.step_cuts        = record.step_cuts;
+              newton.residual         = record.residual;
+              newton.residual_history = record.residual_history;
+              newton.min_det_F        = std::numeric_limits<double>::infinity();
+              for (unsigned int b = 0; b < bodies.size(); ++b)
+                if (bodies[b]->finite_strain())
+                  {
+                    finite_state[b] = u[b];
+                    Vector<double> force(bodies[b]->n_dofs());
+                    newton.min_det_F = std::min(
+                      newton.min_det_F,
+                      bodies[b]->internal_force(u[b],
+                                                bodies[b]->finite_law(),
+                                                force,
+                                                nullptr));
+                  }
+              record.finite_strain = newton;
+            }
+          else if (parameters.finite_strain())
             {
               TimerOutput::Scope t(timer, "newton");
               solve_finite_strain_step(s + 1,

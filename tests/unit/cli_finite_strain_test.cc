@@ -13,10 +13,12 @@
 //   z, 3D about y): the displacement R (X - c) - (X - c) + d and zero
 //   stress, with det F = 1.
 // And the refusals at read time of what a finite-strain body cannot take.
+// Contact at finite strain: cli_finite_contact_test.cc.
 
 #include <gtest/gtest.h>
 
 #include "cli_helpers.h"
+#include "neo_hookean_closed_forms.h"
 #include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -52,30 +54,18 @@ namespace cli_finite_strain
            std::to_string(steps) + "\nend\n";
   }
 
-  /// The lateral stretch of plane-strain uniaxial stretch to @p stretch:
-  /// the root of mu (s^2 - 1) + lambda ln(stretch s) = 0 (S_22 = 0), by
-  /// bisection (the function grows with s).
+  /// The lateral stretch and P_11 of plane-strain uniaxial stretch to
+  /// @p stretch (neo_hookean_closed_forms.h).
   double
   lateral_stretch(const double stretch)
   {
-    double low = 1e-3, high = 1.;
-    for (unsigned int k = 0; k < 200; ++k)
-      {
-        const double s = 0.5 * (low + high);
-        (mu * (s * s - 1.) + lambda_L * std::log(stretch * s) < 0. ? low :
-                                                                     high) = s;
-      }
-    return 0.5 * (low + high);
+    return neo_hookean_closed_forms::lateral_stretch(stretch, E, nu);
   }
 
-  /// P_11 of that stretch: lambda (mu (1 - 1/lambda^2) + lambda_L ln J /
-  /// lambda^2), J = lambda s.
   double
   first_piola(const double stretch)
   {
-    const double J = stretch * lateral_stretch(stretch);
-    return stretch * (mu * (1. - 1. / (stretch * stretch)) +
-                      lambda_L * std::log(J) / (stretch * stretch));
+    return neo_hookean_closed_forms::uniaxial_first_piola(stretch, E, nu);
   }
 
   std::vector<double>
@@ -333,11 +323,18 @@ TEST(CliFiniteStrain, RefusedAtReadTime)
                  neo_hookean + "  set Hold rotation = 0\n",
                  "",
                  "Hold rotation holds the mean small rotation");
-  expect_refused("contact",
+  expect_refused("contact-condensed",
                  neo_hookean,
                  "subsection Body 2\n  set Type = rigid plane\nend\n"
-                 "subsection Contact\n  set Enabled = true\nend\n",
-                 "contact is solved at small strain only");
+                 "subsection Contact\n  set Enabled = true\n"
+                 "  set Path = condensed\nend\n",
+                 "set Contact/Path = full");
+  expect_refused("contact-gmres-amg",
+                 neo_hookean,
+                 "subsection Body 2\n  set Type = rigid plane\nend\n"
+                 "subsection Contact\n  set Enabled = true\n"
+                 "  set Full system solver = gmres-amg\nend\n",
+                 "Full system solver = gmres-amg");
   expect_refused("unknown-law",
                  finite + "  set Material = mooney-rivlin\n",
                  "",

@@ -4,7 +4,8 @@
 // partial slip with friction (tutorial 2: the slip of each step is an
 // increment from the last, so the friction history is part of the state)
 // on the condensed and on the full path, and the F1 elastica at finite
-// strain (each step's Newton starts from the last step's displacement).
+// strain (each step's Newton starts from the last step's displacement),
+// and F3, frictional contact at finite strain on the full path (both).
 // A checkpoint that dropped either would change every later step.
 
 #include <gtest/gtest.h>
@@ -114,6 +115,16 @@ TEST(CliRestart, ElasticaContinuesAtFiniteStrain)
   expect_restart_reproduces("f1-elastica.prm",
                             "--set 'Load path/Number of steps=5'",
                             2);
+}
+
+TEST(CliRestart, FrictionalContactContinuesAtFiniteStrain)
+{
+  // F3 on coarser meshes: the bodies' finite-strain states and the slip
+  // history both carry over (stopped in the middle of the shift).
+  expect_restart_reproduces("f3-finite-partial-slip.prm",
+                            "--set 'Body 1/Subdivisions=58, 8' "
+                            "--set 'Body 2/Subdivisions=70, 16'",
+                            3);
 }
 
 TEST(CliRestart, AnotherSceneOrNoCheckpointIsRefused)

@@ -118,6 +118,43 @@ namespace igabde
       }
 
       /**
+       * @brief Whether equilibrium_residual() is linear in (p, w): true on
+       * the condensed path and on the full path at small strain; false
+       * when a body of the full path is at finite strain (E = f_int(w) -
+       * f_ext - C^T p), whose Newton iterations then linearise() first and
+       * whose line search evaluates E at every trial point.
+       */
+      virtual bool
+      equilibrium_is_linear() const
+      {
+        return true;
+      }
+
+      /**
+       * @brief Linearises the displacement equations at @p x (the tangent
+       * of the bodies at finite strain, which newton_step(),
+       * equilibrium_derivative() and equilibrium_adjoint() then use);
+       * nothing where they are linear.
+       */
+      virtual void
+      linearize(const ContactIterate &x)
+      {
+        (void)x;
+      }
+
+      /**
+       * @brief The derivative of equilibrium_residual() at the point of the
+       * last linearize() along (@p v_p, @p v_w); where E is linear, E itself
+       * at (v_p, v_w).
+       */
+      virtual Eigen::VectorXd
+      equilibrium_derivative(const Eigen::VectorXd &v_p,
+                             const Eigen::VectorXd &v_w) const
+      {
+        return equilibrium_residual(v_p, v_w);
+      }
+
+      /**
        * @brief The size of the terms of equilibrium_residual():
        * || |K| |w| + |C|^T |p| || (the Oettli-Prager denominator of its
        * componentwise backward error); 0 on the condensed path.

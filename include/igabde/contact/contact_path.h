@@ -88,6 +88,20 @@ namespace igabde
       virtual std::string
       description(const CondensedContact<dim> &contact) const = 0;
 
+      /**
+       * @brief The bodies' displacement @p u the next solve's corrections
+       * start from and the load histories' factors @p factors, for the
+       * bodies at finite strain (CoupledOperator::set_reference()); nothing
+       * on the condensed path, which solves at small strain only.
+       */
+      virtual void
+      set_reference(const std::vector<Vector<double>> &u,
+                    const std::vector<double>         &factors)
+      {
+        (void)u;
+        (void)factors;
+      }
+
       /** @brief Nonzeros of a sparse Newton matrix (0 if none). */
       virtual double
       n_nonzeros() const
@@ -197,6 +211,10 @@ namespace igabde
 
       std::string
       description(const CondensedContact<dim> &contact) const override;
+
+      void
+      set_reference(const std::vector<Vector<double>> &u,
+                    const std::vector<double>         &factors) override;
 
       /** @brief Nonzeros of the coupled Newton matrix. */
       double

@@ -57,6 +57,16 @@ namespace igabde
       /** @brief Right-hand side of the equilibrium rows G^T p = b. */
       Eigen::VectorXd b;
 
+      /**
+       * @brief A floor of ||q|| in the measures relative to the size of the
+       * displacements (the relative natural map, the condition check), or
+       * 0. At finite strain q holds the pairs' displacement from the last
+       * step's state, which may be small where the bodies have moved far
+       * (every pair closed and held): the contact layer then sets it from
+       * the displacements of the pairs' points.
+       */
+      double displacement_scale = 0.;
+
       /** @brief Optional name (e.g. the file it was read from), for logs. */
       std::string name;
 

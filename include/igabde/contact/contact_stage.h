@@ -277,6 +277,9 @@ namespace igabde
         Eigen::VectorXd            previous_external;
         std::vector<ContactStatus> status;
         bool                       has_previous = false;
+        /// The displacement of each body at finite strain at the end of
+        /// the last step (empty for the others).
+        std::vector<Vector<double>> finite_u;
       };
 
       State
@@ -328,6 +331,15 @@ namespace igabde
       /// Local components per pair: 1 frictionless, dim with friction.
       unsigned int
       n_components() const;
+
+      /**
+       * @brief Whether a body is at finite strain: the full path then solves
+       * its equilibrium with the contact (f_int(u) - f_ext - C^T p = 0 with
+       * its tangent in every Newton iteration); solve_step() takes its
+       * state from the last step, not from @p u.
+       */
+      bool
+      finite_strain() const;
 
     private:
       Eigen::VectorXd
@@ -398,7 +410,10 @@ namespace igabde
       ContactIterate             x;
       Eigen::VectorXd            u_rel, previous_external;
       std::vector<ContactStatus> status;
-      bool                       has_previous = false;
+      /// The displacement of each body at finite strain after the last
+      /// step (State::finite_u).
+      std::vector<Vector<double>> finite_u;
+      bool                        has_previous = false;
     };
   } // namespace contact
 } // namespace igabde

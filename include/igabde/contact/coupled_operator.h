@@ -94,6 +94,19 @@ namespace igabde
                       const std::vector<bool> &closed,
                       ContactIterate          &x) override;
 
+      /** @brief False when a body is at finite strain (finite_strain()). */
+      bool
+      equilibrium_is_linear() const override;
+
+      /** @brief linearize_bodies() at x.w. */
+      void
+      linearize(const ContactIterate &x) override;
+
+      /** @brief tangent_equations(v_w, v_p). */
+      Eigen::VectorXd
+      equilibrium_derivative(const Eigen::VectorXd &v_p,
+                             const Eigen::VectorXd &v_w) const override;
+
       // --- The primitives an implementation provides.
 
       /** @brief C w: the pairs' relative displacements caused by w. */
@@ -143,6 +156,70 @@ namespace igabde
             Eigen::VectorXd       &dalpha,
             std::string           &why,
             const double           relative_tolerance = 1e-12) const = 0;
+
+      /**
+       * @brief Whether a body of the system is at finite strain: its rows of
+       * displacement_equations() are then f_int(u_ref + w) - f_ext - C^T p,
+       * with u_ref the reference displacement of set_reference() (w is the
+       * correction from it; held unknowns keep their values there, w_i = 0),
+       * and the Newton matrix holds its tangent at the last
+       * linearize_bodies(). The rows of a body at small strain stay
+       * K w - C^T p.
+       */
+      virtual bool
+      finite_strain() const
+      {
+        return false;
+      }
+
+      /**
+       * @brief The displacement @p u (all unknowns, in the system's order)
+       * the corrections w of the next solve start from, and the load
+       * histories' factors @p factors of the loads f_ext; linearises at
+       * w = 0. Nothing at small strain, where w is the contact part of the
+       * displacement.
+       */
+      virtual void
+      set_reference(const Eigen::VectorXd     &u,
+                    const std::vector<double> &factors)
+      {
+        (void)u;
+        (void)factors;
+      }
+
+      /**
+       * @brief Assembles the tangent of the bodies at finite strain at the
+       * correction @p w (nothing when it is the last one, or at small
+       * strain).
+       */
+      virtual void
+      linearize_bodies(const Eigen::VectorXd &w)
+      {
+        (void)w;
+      }
+
+      /**
+       * @brief The linearised displacement equations K_T v_w - C^T v_p (held
+       * unknowns: v_w,i), K_T the bodies' tangent at the last
+       * linearize_bodies() (K at small strain: displacement_equations()
+       * itself).
+       */
+      virtual Eigen::VectorXd
+      tangent_equations(const Eigen::VectorXd &v_w,
+                        const Eigen::VectorXd &v_p) const
+      {
+        return displacement_equations(v_w, v_p);
+      }
+
+      /**
+       * @brief K_T^T h over the unknowns not held, h_i on the held ones (K
+       * symmetric at small strain: displacement_equations(h, 0)).
+       */
+      virtual Eigen::VectorXd
+      tangent_transpose(const Eigen::VectorXd &h) const
+      {
+        return displacement_equations(h, Eigen::VectorXd::Zero(n_rows()));
+      }
 
       /** @brief Iterations of the last solve() (0 for a direct one). */
       virtual unsigned int

@@ -141,6 +141,31 @@ namespace igabde
       double
       n_nonzeros() const override;
 
+      bool
+      finite_strain() const override;
+
+      /**
+       * At finite strain the held unknowns of a body at finite strain move
+       * from their values in @p u to the supports' values at @p factors
+       * during the solve: their rows are w_i = g_i - u_i, so that the
+       * first Newton step moves the supports and predicts the inside and
+       * the contact with them (moving the supports alone would distort
+       * the elements next to them).
+       */
+      void
+      set_reference(const Eigen::VectorXd     &u,
+                    const std::vector<double> &factors) override;
+
+      void
+      linearize_bodies(const Eigen::VectorXd &w) override;
+
+      Eigen::VectorXd
+      tangent_equations(const Eigen::VectorXd &v_w,
+                        const Eigen::VectorXd &v_p) const override;
+
+      Eigen::VectorXd
+      tangent_transpose(const Eigen::VectorXd &h) const override;
+
       /**
        * @brief Progress lines of factorisations that may take more than a
        * second go to @p stream (nullptr: none).
@@ -198,6 +223,32 @@ namespace igabde
       std::string factorization_error;
       /// Where progress lines go (nullptr: nowhere).
       std::ostream *progress = nullptr;
+
+      /// The bodies at finite strain: per body whether it is, its
+      /// reference displacement u_ref (set_reference()), the held unknowns'
+      /// moves g - u_ref, the external loads at the step's factors and the
+      /// factors (follower pressures), its tangent at the last
+      /// linearize_bodies() and the correction w it was taken at.
+      std::vector<bool>                         finite;
+      bool                                      any_finite = false;
+      std::vector<Vector<double>>               reference, support_moves, loads;
+      std::vector<double>                       factors;
+      mutable std::vector<SparseMatrix<double>> tangents;
+      mutable Eigen::VectorXd                   linearized_at;
+      mutable bool                              linearized = false;
+      /// The residual f_int - f_ext (follower pressures included) of each
+      /// body at finite strain at the correction residual_at, and the
+      /// norms of f_int and f_ext there (the scale of the equations).
+      mutable std::vector<Vector<double>> residuals;
+      mutable Eigen::VectorXd             residual_at;
+      mutable bool                        have_residual   = false;
+      mutable bool                        residual_finite = true;
+      mutable std::vector<double>         force_norms;
+
+      /// The residuals at @p w (cached for the last w); with @p tangent
+      /// also the tangents. False where an element inverts (det F <= 0).
+      bool
+      evaluate_bodies(const Eigen::VectorXd &w, const bool tangent) const;
 
       /// gmres-amg: the iteration limit, the displacement block K (held
       /// rows: scale times identity) and its AMG, D^-1 C^T of the Schur

@@ -64,7 +64,9 @@ namespace igabde
      * while it does not decrease ||R|| (backtracking line search). Each
      * iteration's relative residual and the observed rate log(r_k / r_k-1) /
      * log(r_k-1 / r_k-2) go to @p log (nullptr: silent). A body with free rigid
-     * modes has a singular tangent and is refused.
+     * modes has a singular tangent and is refused. @p additional_load
+     * (nullptr: none) joins f_ext (the contact forces of the last step,
+     * held fixed in the contact solve's predictor).
      */
     template <int dim>
     NewtonResult
@@ -73,7 +75,8 @@ namespace igabde
                         const std::vector<double>                   &factors,
                         const NewtonSettings                        &settings,
                         Vector<double>                              &u,
-                        std::ostream                                *log);
+                        std::ostream                                *log,
+                        const Vector<double> *additional_load = nullptr);
   } // namespace discretization
 } // namespace igabde
 
