@@ -120,6 +120,11 @@ namespace igabde
     void
     BackgroundWriter::add(std::function<void()> job)
     {
+      {
+        std::lock_guard<std::mutex> lock(mutex);
+        ++running[group];
+        update_written();
+      }
       jobs.emplace_back(group,
                         dealii::Threads::new_task([this, job, g = group]() {
                           const auto start = std::chrono::steady_clock::now();
@@ -137,7 +142,14 @@ namespace igabde
                           std::lock_guard<std::mutex> lock(mutex);
                           job_seconds += taken.count();
                           if (error)
-                            errors.emplace_back(g, error);
+                            {
+                              errors.emplace_back(g, error);
+                              if (first_failed == 0 || g < first_failed)
+                                first_failed = g;
+                            }
+                          if (--running[g] == 0)
+                            running.erase(g);
+                          update_written();
                         }));
     }
 
@@ -170,7 +182,6 @@ namespace igabde
         else
           job.second.join();
       jobs.swap(kept);
-      joined_through = std::max(joined_through, last);
       std::exception_ptr first;
       {
         // The jobs of these groups have ended: their errors, first come
@@ -192,10 +203,31 @@ namespace igabde
 
 
 
-    unsigned int
-    BackgroundWriter::finished_groups() const
+    void
+    BackgroundWriter::update_written()
     {
-      return joined_through;
+      unsigned int w = std::numeric_limits<unsigned int>::max();
+      if (!running.empty())
+        w = running.begin()->first - 1;
+      if (first_failed > 0)
+        w = std::min(w, first_failed - 1);
+      written.store(w);
+    }
+
+
+
+    unsigned int
+    BackgroundWriter::written_groups() const
+    {
+      return written.load();
+    }
+
+
+
+    const std::atomic<unsigned int> &
+    BackgroundWriter::written_groups_counter() const
+    {
+      return written;
     }
 
 

@@ -9,6 +9,7 @@
 #include <dlfcn.h>
 #include <filesystem>
 #include <iomanip>
+#include <limits>
 #include <sstream>
 #include <system_error>
 
@@ -22,6 +23,30 @@ namespace igabde
       std::ostringstream out;
       out << x;
       return out.str();
+    }
+
+
+
+    double
+    largest_magnitude(const double *data, const std::size_t n)
+    {
+      double largest = 0.;
+      for (std::size_t i = 0; i < n; ++i)
+        {
+          if (!std::isfinite(data[i]))
+            return std::numeric_limits<double>::infinity();
+          largest = std::max(largest, std::abs(data[i]));
+        }
+      return largest;
+    }
+
+
+
+    double
+    largest_squarable_entry(const std::size_t n)
+    {
+      return std::sqrt(std::numeric_limits<double>::max() /
+                       static_cast<double>(std::max<std::size_t>(n, 1)));
     }
 
 

@@ -241,6 +241,10 @@ namespace igabde
             }
           if (d.norm() <= 1e-10 * b.norm())
             {
+              // Nothing active and the descent negligible: b is not a load
+              // the norms can measure (zero or overflowing).
+              if (set.empty())
+                return false;
               // b in the span of the active rows: the multipliers (the
               // rigid contact forces) decide.
               const Vec lambda = As.transpose().colPivHouseholderQr().solve(b);

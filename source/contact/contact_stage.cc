@@ -633,6 +633,32 @@ namespace igabde
               U(m * i + s) - previous_external(m * i + s) - carry(m * i + s);
         }
       problem.b = rigid_mode_load(factors);
+      // Loads or load factors past double arithmetic: the solver's norms
+      // would overflow and no answer exists (base::largest_squarable_entry).
+      {
+        const double largest =
+          std::max(base::largest_magnitude(problem.q.data(), problem.q.size()),
+                   base::largest_magnitude(problem.b.data(), problem.b.size()));
+        const double limit =
+          base::largest_squarable_entry(problem.q.size() + problem.b.size());
+        std::string factor_list;
+        for (const double f : factors)
+          factor_list +=
+            (factor_list.empty() ? "" : ", ") + base::number_text(f);
+        AssertThrow(
+          largest <= limit,
+          base::ExcInput(
+            "the contact problem at the history factors (" + factor_list +
+            ") " +
+            (std::isfinite(largest) ?
+               "reaches " + base::number_text(largest) + ", past the " +
+                 base::number_text(limit) +
+                 " whose square double precision can hold" :
+               "is not finite") +
+            " (the pairs' displacements under the loads and the floating "
+            "bodies' loads): check the magnitudes (and units) of the loads "
+            "and of Load path/Load factors"));
+      }
 
       ContactSolverResult solution;
       {

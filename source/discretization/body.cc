@@ -125,6 +125,7 @@ namespace igabde
       assembled       = true;
       assembled_share = false;
       matrix_entries  = sparsity.n_nonzero_elements();
+      check_load_magnitudes();
     }
 
 
@@ -160,6 +161,43 @@ namespace igabde
                             ArrayView<double>(f.data(), f.size()));
       if (!history_rhs.empty())
         load_rhs = history_rhs[0];
+      check_load_magnitudes();
+    }
+
+
+
+    template <int dim>
+    void
+    Body<dim>::check_load_magnitudes() const
+    {
+      const double limit = base::largest_squarable_entry(n_unknowns);
+      for (unsigned int h = 0; h < history_rhs.size(); ++h)
+        {
+          const double largest = base::largest_magnitude(history_rhs[h].data(),
+                                                         history_rhs[h].size());
+          if (largest <= limit)
+            continue;
+          const std::string &name = description().name;
+          const std::string  section =
+            name.rfind("body", 0) == 0 ? "Body " + name.substr(4) : name;
+          const std::string history =
+            h == 0 ? "Load path/Load factors" :
+            h == 1 ? "Load path/Displacement factors" :
+                     "load history " + std::to_string(h - 1) +
+                       " of Load path/Histories";
+          AssertThrow(false,
+                      base::ExcInput(
+                        section + ": the loads that follow " + history +
+                        (std::isfinite(largest) ?
+                           " reach " + base::number_text(largest) +
+                             ", past the " + base::number_text(limit) +
+                             " whose square double precision can hold" :
+                           " are not finite") +
+                        ": no solve has an answer; check the magnitudes "
+                        "(and units) of " +
+                        section +
+                        "/Tractions, Body force, Point loads and Moments"));
+        }
     }
 
 
@@ -204,6 +242,7 @@ namespace igabde
                                   layout.world);
       if (n_h > 0)
         load_rhs = history_rhs[0];
+      check_load_magnitudes();
       unsigned long long entries = matrix_entries;
       Utilities::MPI::broadcast(&entries, 1, layout.root, layout.world);
       matrix_entries = entries;

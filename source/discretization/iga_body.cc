@@ -312,7 +312,7 @@ namespace igabde
                                     1e-12 * std::max({std::abs(value),
                                                       std::abs(it->second),
                                                       diameter}),
-                                  ExcMessage(
+                                  base::ExcInput(
                                     "Body '" + name +
                                     "': two supports prescribe different "
                                     "values of component " +
@@ -324,7 +324,7 @@ namespace igabde
                       // whichever came last.
                       AssertThrow(value == 0. ||
                                     this->prescribed_history[i] == bc.history,
-                                  ExcMessage(
+                                  base::ExcInput(
                                     "Body '" + name +
                                     "': two supports prescribe component " +
                                     std::to_string(c) +
@@ -386,15 +386,16 @@ namespace igabde
               std::string(&corner == &corners.front() ? "" : ", ") + "(" +
               base::to_string(corner.second) + ")";
           AssertThrow(at != corners.end(),
-                      ExcMessage("Body '" + name + "': the point support at (" +
-                                 base::to_string(support.location) +
-                                 ") is not a corner of the patch" +
-                                 (spaces.size() > 1 ? "es" : "") +
-                                 "; a NURBS body takes point supports at "
-                                 "its corners " +
-                                 corner_list +
-                                 " (or use Discretization/Type = lagrange, "
-                                 "whose every mesh node can take one)."));
+                      base::ExcInput("Body '" + name +
+                                     "': the point support at (" +
+                                     base::to_string(support.location) +
+                                     ") is not a corner of the patch" +
+                                     (spaces.size() > 1 ? "es" : "") +
+                                     "; a NURBS body takes point supports at "
+                                     "its corners " +
+                                     corner_list +
+                                     " (or use Discretization/Type = lagrange, "
+                                     "whose every mesh node can take one)."));
           for (unsigned int c = 0; c < dim; ++c)
             if (support.components[c])
               {
@@ -406,13 +407,13 @@ namespace igabde
                               (values[i] == value &&
                                (value == 0. || this->prescribed_history[i] ==
                                                  support.history)),
-                            ExcMessage("Body '" + name +
-                                       "': a point support prescribes "
-                                       "component " +
-                                       std::to_string(c) +
-                                       " at a corner where a support "
-                                       "prescribes another value (or the "
-                                       "same on another history)."));
+                            base::ExcInput("Body '" + name +
+                                           "': a point support prescribes "
+                                           "component " +
+                                           std::to_string(c) +
+                                           " at a corner where a support "
+                                           "prescribes another value (or the "
+                                           "same on another history)."));
                 if (values.find(i) == values.end() || value != 0.)
                   this->prescribed_history[i] = support.history;
                 values[i] = value;

@@ -600,7 +600,7 @@ namespace igabde
                 AssertThrow((bc.value[this->dof_components[i]] == 0. &&
                              !bc.field[this->dof_components[i]]) ||
                               this->prescribed_history[i] == bc.history,
-                            ExcMessage(
+                            base::ExcInput(
                               "Body '" + this->description().name +
                               "': two supports prescribe component " +
                               std::to_string(this->dof_components[i]) +
@@ -649,19 +649,20 @@ namespace igabde
                                   i) == value &&
                                   (value == 0. || this->prescribed_history[i] ==
                                                     support.history),
-                                ExcMessage(
+                                base::ExcInput(
                                   "Body '" + this->description().name +
                                   "': a point support prescribes a node "
                                   "where a support prescribes another value "
                                   "(or the same on another history)."));
                   }
               AssertThrow(found,
-                          ExcMessage("Body '" + this->description().name +
-                                     "': the point support at (" +
-                                     base::to_string(support.location) +
-                                     ") is not a node of the FE_Q(" +
-                                     std::to_string(fe.degree) +
-                                     ") mesh; put it at a vertex or node."));
+                          base::ExcInput(
+                            "Body '" + this->description().name +
+                            "': the point support at (" +
+                            base::to_string(support.location) +
+                            ") is not a node of the FE_Q(" +
+                            std::to_string(fe.degree) +
+                            ") mesh; put it at a vertex or node."));
             }
         }
       this->constraints.close();

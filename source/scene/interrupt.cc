@@ -6,6 +6,7 @@
 #include <csignal>
 #include <fcntl.h>
 #include <unistd.h>
+#include <vector>
 
 namespace igabde
 {
@@ -15,54 +16,81 @@ namespace igabde
     {
       /**
        * What a SIGINT or SIGTERM leaves behind. While a run goes on, the
-       * simulator keeps here, rendered in advance, the summary.json it would
-       * end with if interrupted now (the finished load steps, status
-       * 'interrupted' and the reason) and the line for the screen; the
-       * handler only writes them out (open/write/close are
+       * simulator keeps here, rendered in advance, the files it would end
+       * with if interrupted now (summary.json with the finished load steps,
+       * status 'interrupted' and the reason; steps.csv; the .pvd series)
+       * and the line for the screen, for each number of steps that may be
+       * written by then; the handler picks the one the background writer's
+       * counter allows, only writes (open/write/close are
        * async-signal-safe) and ends the process with 128 + the signal. Two
        * buffers: the simulator renders into the one the handler does not
        * read, then publishes it.
        */
+      struct RenderedRun
+      {
+        unsigned int steps = 0;
+        /// [0: SIGINT, 1: SIGTERM]: the summary and the screen line.
+        std::array<std::string, 2> summary;
+        std::array<std::string, 2> line;
+        /// (path, text): steps.csv and the .pvd series.
+        std::vector<std::pair<std::string, std::string>> files;
+      };
+
       struct InterruptRecord
       {
         /// Set by InterruptHandler: only the command-line run handles
         /// signals.
         bool        enabled = false;
         std::string summary_path;
-        std::string steps_path;
         std::string log_path;
-        /// [buffer][0: SIGINT, 1: SIGTERM]: the summary and the screen line.
-        std::array<std::array<std::string, 2>, 2> summary;
-        std::array<std::array<std::string, 2>, 2> line;
-        /// [buffer]: steps.csv with the same steps as the summary.
-        std::array<std::string, 2> steps;
-        std::atomic<int>           published{-1};
+        /// [buffer]: the candidates by increasing steps.
+        std::array<std::vector<RenderedRun>, 2> runs;
+        /// [buffer]: where the written steps are counted, and from which
+        /// step.
+        std::array<const std::atomic<unsigned int> *, 2> written_groups{};
+        std::array<unsigned int, 2>                      group_offset{};
+        std::atomic<int>                                 published{-1};
       };
 
       InterruptRecord interrupt_record;
+
+      void
+      write_out(const std::string &path, const std::string &text)
+      {
+        const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        if (fd >= 0)
+          {
+            [[maybe_unused]] const auto n =
+              ::write(fd, text.data(), text.size());
+            ::close(fd);
+          }
+      }
 
       extern "C" void
       write_interrupted_summary_and_exit(int signal)
       {
         const int b = interrupt_record.published.load();
         const int s = (signal == SIGINT ? 0 : 1);
-        if (b >= 0)
+        if (b >= 0 && !interrupt_record.runs[b].empty())
           {
-            const auto write_out = [](const std::string &path,
-                                      const std::string &text) {
-              const int fd =
-                ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-              if (fd >= 0)
-                {
-                  [[maybe_unused]] const auto n =
-                    ::write(fd, text.data(), text.size());
-                  ::close(fd);
-                }
-            };
-            write_out(interrupt_record.summary_path,
-                      interrupt_record.summary[b][s]);
-            write_out(interrupt_record.steps_path, interrupt_record.steps[b]);
-            const std::string          &line = interrupt_record.line[b][s];
+            const auto &runs = interrupt_record.runs[b];
+            // The steps whose files have all been written by now.
+            unsigned int written = 0;
+            if (interrupt_record.written_groups[b] != nullptr)
+              {
+                const unsigned int groups =
+                  interrupt_record.written_groups[b]->load();
+                const unsigned int offset = interrupt_record.group_offset[b];
+                written = groups > ~0u - offset ? ~0u : groups + offset;
+              }
+            std::size_t k = 0;
+            while (k + 1 < runs.size() && runs[k + 1].steps <= written)
+              ++k;
+            const RenderedRun &run = runs[k];
+            write_out(interrupt_record.summary_path, run.summary[s]);
+            for (const auto &file : run.files)
+              write_out(file.first, file.second);
+            const std::string          &line = run.line[s];
             [[maybe_unused]] const auto n =
               ::write(STDERR_FILENO, line.data(), line.size());
             const int log =
@@ -99,7 +127,6 @@ namespace igabde
       sigaction(SIGTERM, &previous_term, nullptr);
       interrupt_record.enabled = false;
       interrupt_record.summary_path.clear();
-      interrupt_record.steps_path.clear();
       interrupt_record.log_path.clear();
     }
 
@@ -114,35 +141,46 @@ namespace igabde
 
 
     void
-    publish_interrupted_summary(const nlohmann::json &summary,
-                                const std::string    &steps_csv,
-                                const std::string    &output_directory,
-                                const std::string    &run_phase)
+    publish_interrupted_summary(const std::vector<InterruptedRun> &candidates,
+                                const std::atomic<unsigned int> *written_groups,
+                                const unsigned int               group_offset,
+                                const std::string &output_directory)
     {
-      if (!interrupt_record.enabled)
+      if (!interrupt_record.enabled || candidates.empty())
         return;
-      const int      b    = 1 - std::max(0, interrupt_record.published.load());
-      nlohmann::json copy = summary;
-      copy["status"]      = "interrupted";
-      for (const int s : {0, 1})
+      const int b = 1 - std::max(0, interrupt_record.published.load());
+      std::vector<RenderedRun> &runs = interrupt_record.runs[b];
+      runs.assign(candidates.size(), RenderedRun());
+      for (std::size_t k = 0; k < candidates.size(); ++k)
         {
-          const std::string reason = std::string("interrupted by ") +
-                                     (s == 0 ? "SIGINT" : "SIGTERM") +
-                                     " during " + run_phase;
-          copy["error"]                  = reason;
-          interrupt_record.summary[b][s] = copy.dump(2) + "\n";
-          interrupt_record.line[b][s]    = "igabde: " + reason +
-                                        "; the finished steps are in " +
-                                        output_directory + "/\n";
+          const InterruptedRun &candidate = candidates[k];
+          nlohmann::json        copy      = candidate.summary;
+          copy["status"]                  = "interrupted";
+          runs[k].steps                   = candidate.steps;
+          for (const int s : {0, 1})
+            {
+              const std::string reason = std::string("interrupted by ") +
+                                         (s == 0 ? "SIGINT" : "SIGTERM") +
+                                         " during " + candidate.run_phase;
+              copy["error"]      = reason;
+              runs[k].summary[s] = copy.dump(2) + "\n";
+              runs[k].line[s]    = "igabde: " + reason +
+                                "; the finished steps are in " +
+                                output_directory + "/\n";
+            }
+          runs[k].files.emplace_back(output_directory + "/steps.csv",
+                                     candidate.steps_csv);
+          for (const auto &file : candidate.files)
+            runs[k].files.push_back(file);
         }
       // Set once, before the first publication: the handler reads it.
       if (interrupt_record.summary_path.empty())
         {
           interrupt_record.summary_path = output_directory + "/summary.json";
-          interrupt_record.steps_path   = output_directory + "/steps.csv";
           interrupt_record.log_path     = output_directory + "/log.txt";
         }
-      interrupt_record.steps[b] = steps_csv;
+      interrupt_record.written_groups[b] = written_groups;
+      interrupt_record.group_offset[b]   = group_offset;
       interrupt_record.published.store(b);
     }
 

@@ -217,6 +217,33 @@ namespace igabde
                    "are outside the model's range.";
               warn("the largest strain", text.str());
             }
+          // Contact that never happened: every pair open at every step (a
+          // gap larger than the bodies' approach), which no figure of the
+          // run says by itself.
+          const auto *pairs = context.pairs;
+          if (context.last_step && pairs != nullptr && !pairs->empty() &&
+              std::all_of(summary.load_steps.begin(),
+                          summary.load_steps.end(),
+                          [](const StepRecord &r) {
+                            return r.n_stick + r.n_slip + r.n_closed == 0;
+                          }))
+            {
+              std::size_t closest = 0;
+              for (std::size_t i = 1; i < pairs->size(); ++i)
+                if ((*pairs)[i].displacement_local[0] <
+                    (*pairs)[closest].displacement_local[0])
+                  closest = i;
+              text.str("");
+              text << "no contact pair closed in any load step: the smallest "
+                      "gap at the end is "
+                   << (*pairs)[closest].displacement_local[0] << " (at ("
+                   << base::to_string((*pairs)[closest].location)
+                   << ")), so the bodies never touch under these loads; if "
+                      "they should, check the initial gap against the push "
+                      "(the bodies' positions, Contact faces, the loads' "
+                      "direction and Load path).";
+              warn("no contact pair closed", text.str());
+            }
           const auto largest = stage ? stage->largest_sliding(u) : std::nullopt;
           if (!largest)
             return;
@@ -514,19 +541,28 @@ namespace igabde
             }
         }
 
-        void
-        write_series() const override
+        std::vector<std::pair<std::string, std::string>>
+        series(const unsigned int steps) const override
         {
+          std::vector<std::pair<std::string, std::string>> files;
           for (unsigned int b = 0; b < pvd_records.size(); ++b)
-            if (!pvd_records[b].empty())
-              {
-                std::ofstream pvd = base::open_for_writing(
-                  series_directory + "/" +
-                  (b < body_names.size() ? "solution-" + body_names[b] :
-                                           std::string("contact")) +
-                  ".pvd");
-                DataOutBase::write_pvd_record(pvd, pvd_records[b]);
-              }
+            {
+              std::vector<std::pair<double, std::string>> kept;
+              for (const auto &record : pvd_records[b])
+                if (record.first <= double(steps))
+                  kept.push_back(record);
+              if (kept.empty())
+                continue;
+              std::ostringstream pvd;
+              DataOutBase::write_pvd_record(pvd, kept);
+              files.emplace_back(series_directory + "/" +
+                                   (b < body_names.size() ?
+                                      "solution-" + body_names[b] :
+                                      std::string("contact")) +
+                                   ".pvd",
+                                 pvd.str());
+            }
+          return files;
         }
 
       private:

@@ -340,6 +340,7 @@ namespace igabde
       unsigned int         first = 0;
       if (parameters.output.restart)
         first = resume(scene, steps.size(), previous, finite_state);
+      resumed_steps = first;
       for (unsigned int s = first; s < steps.size(); ++s)
         {
           const auto [load_factor, displacement_factor] = steps[s];
@@ -368,10 +369,24 @@ namespace igabde
                                                 factors[2 + k]);
           if (controller)
             {
-              record_contact_outcome<dim>(
-                controller->advance(s + 1, previous, factors, u, timer),
-                parameters.contact.algorithm,
-                record);
+              // A step whose data no arithmetic can solve (loads past
+              // double precision) names the step.
+              typename LoadController<dim>::Outcome outcome;
+              try
+                {
+                  outcome =
+                    controller->advance(s + 1, previous, factors, u, timer);
+                }
+              catch (const base::ExcInput &e)
+                {
+                  AssertThrow(false,
+                              base::ExcInput("load step " +
+                                             std::to_string(s + 1) + ": " +
+                                             base::exception_message(e)));
+                }
+              record_contact_outcome<dim>(outcome,
+                                          parameters.contact.algorithm,
+                                          record);
               if (record.failed)
                 {
                   run_summary.load_steps.push_back(record);

@@ -35,17 +35,34 @@ namespace igabde
                           dim);
       };
       // What an interruption now would leave: the steps whose files are
-      // all written, in summary.json and steps.csv.
-      const auto publish = [&](const RunSummary &summary) {
-        const std::size_t k = summary.load_steps.size();
-        publish_interrupted_summary(
-          to_json(summary),
-          steps_csv(summary.load_steps),
-          output_directory,
-          run_phase + (run_phase.rfind("load step", 0) != 0 ? "" :
-                       k == 0 ? " (no step finished and written)" :
-                                " (steps 1.." + std::to_string(k) +
-                                  " finished and written)"));
+      // all written, in summary.json, steps.csv and the .pvd series; one
+      // candidate for each count of steps from @p written on, of which the
+      // interruption takes the largest the writer has finished by then.
+      const auto publish = [&](const RunSummary &summary,
+                               const std::size_t written) {
+        std::vector<InterruptedRun> candidates;
+        for (std::size_t k = written; k <= summary.load_steps.size(); ++k)
+          {
+            RunSummary part = summary;
+            part.load_steps.resize(k);
+            InterruptedRun run;
+            run.steps     = k;
+            run.summary   = to_json(part);
+            run.steps_csv = steps_csv(part.load_steps);
+            for (const auto &postprocessor : postprocessors)
+              for (auto &file : postprocessor->series(k))
+                run.files.push_back(std::move(file));
+            run.run_phase =
+              run_phase + (run_phase.rfind("load step", 0) != 0 ? "" :
+                           k == 0 ? " (no step finished and written)" :
+                                    " (steps 1.." + std::to_string(k) +
+                                      " finished and written)");
+            candidates.push_back(std::move(run));
+          }
+        publish_interrupted_summary(candidates,
+                                    &writer.written_groups_counter(),
+                                    resumed_steps,
+                                    output_directory);
       };
 
       // While the run goes on, the files are refreshed at most once a
@@ -55,12 +72,14 @@ namespace igabde
       // writes everything.
       if (status == "running" && written_once && since_written.wall_time() < 1.)
         {
-          RunSummary written = run_summary;
-          written.load_steps.resize(
-            std::min<std::size_t>(written.load_steps.size(),
-                                  writer.finished_groups()));
-          written.timing = timing_seconds(timer);
-          publish(written);
+          RunSummary running        = run_summary;
+          running.timing            = timing_seconds(timer);
+          const unsigned int groups = writer.written_groups();
+          publish(running,
+                  groups > running.load_steps.size() ?
+                    running.load_steps.size() :
+                    std::min<std::size_t>(running.load_steps.size(),
+                                          resumed_steps + groups));
           return;
         }
       since_written.restart();
@@ -79,7 +98,9 @@ namespace igabde
         }
       run_summary.output_background_seconds = writer.seconds();
       for (const auto &postprocessor : postprocessors)
-        postprocessor->write_series();
+        for (const auto &file :
+             postprocessor->series(run_summary.load_steps.size()))
+          base::write_file_atomically(file.first, file.second);
       base::write_file_atomically(output_directory + "/steps.csv",
                                   steps_csv(run_summary.load_steps));
 
@@ -88,7 +109,7 @@ namespace igabde
       base::write_file_atomically(output_directory + "/summary.json",
                                   json.dump(2) + "\n");
       if (status == "running")
-        publish(run_summary);
+        publish(run_summary, run_summary.load_steps.size());
       else
         withdraw_interrupted_summary();
 

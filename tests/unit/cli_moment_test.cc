@@ -186,8 +186,28 @@ TEST(CliPointSupports, NurbsPointSupportOffTheCornersIsRefused)
     cli::run_prm_scene(scratch.path,
                        "v1-plate-with-hole.prm",
                        "--set 'Body 1/Point supports=1.234, 0.5 : x'");
-  EXPECT_NE(run.status, 0) << run.output;
+  // An input error found when the body is built: exit status 2.
+  EXPECT_EQ(run.status, 2) << run.output;
   EXPECT_NE(run.output.find("is not a corner of the patch"), std::string::npos)
+    << run.output;
+}
+
+
+
+TEST(CliPointSupports, SupportsThatDisagreeWhereFacesMeetAreInputErrors)
+{
+  // Tutorial 2's block held at its bottom and moved by 0.1 at its left
+  // face: the corner they share cannot be at both. Found when the NURBS
+  // body is built; an input error (exit status 2) naming the faces.
+  const cli::ScratchFolder scratch("supports-disagree");
+  const auto               run =
+    cli::run_prm_scene(scratch.path,
+                       "tutorial-2-partial-slip.prm",
+                       "--set 'Body 2/Supports=2: x y; 0: x=0.1'");
+  EXPECT_EQ(run.status, 2) << run.output;
+  EXPECT_NE(run.output.find("two supports prescribe different values of "
+                            "component 0 where their faces meet"),
+            std::string::npos)
     << run.output;
 }
 

@@ -296,6 +296,95 @@ TEST(NoSilentWrongAnswer, NonFiniteResultsAreAFailure)
 
 
 
+TEST(NoSilentWrongAnswer, OverflowingLoadsEndWithOneLine)
+{
+  // Loads whose squares double precision cannot hold (past
+  // sqrt(DBL_MAX / n), about 1e150 for these meshes) have no answer: the
+  // contact solve's norms overflowed and a QR of an empty matrix crashed
+  // with SIGSEGV. The run ends with status 2, one line naming the loads
+  // and summary.json 'failed'.
+  const Scratch s("overflow");
+  for (const std::string pressure : {"1e308", "1e200"})
+    {
+      SCOPED_TRACE(pressure);
+      const std::string out = "out-" + pressure;
+      const auto        r =
+        run_igabde(scene("v3-contact-patch-2d.prm") +
+                     " --set 'Body 1/Tractions=3: pressure " + pressure +
+                     "' --set 'Output/Directory=" + out + "'",
+                   s.path);
+      EXPECT_EQ(r.status, 2) << r.output;
+      EXPECT_TRUE(contains(r.output,
+                           "Body 1: the loads that follow Load path/Load "
+                           "factors"))
+        << r.output;
+      EXPECT_TRUE(contains(r.output, "Body 1/Tractions")) << r.output;
+      const std::string summary =
+        read_file(cli::join(s.path, out + "/summary.json"));
+      EXPECT_TRUE(contains(summary, "\"status\": \"failed\"")) << summary;
+    }
+
+  // A load factor past double arithmetic in the second of V4's steps: the
+  // step is named and the first one is kept.
+  const auto r =
+    run_igabde(scene("v4-sliding-block.prm") +
+                 " --set 'Load path/Load factors=1, 1e300, 1'"
+                 " --set 'Load path/Displacement factors=0, 0, 0.1'"
+                 " --set 'Output/Directory=factor'",
+               s.path);
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_TRUE(contains(r.output,
+                       "load step 2: the contact problem at the history "
+                       "factors (1e+300, 0)"))
+    << r.output;
+  const nlohmann::json summary =
+    nlohmann::json::parse(read_file(cli::join(s.path, "factor/summary.json")));
+  EXPECT_EQ(summary.at("status"), "failed");
+  EXPECT_EQ(summary.at("load_steps").size(), 1u) << summary.dump(2);
+}
+
+
+
+TEST(NoSilentWrongAnswer, ContactThatNeverClosesIsAWarning)
+{
+  // Tutorial 2's disc pressed down by 0.2 from 0.5 above the block: no pair
+  // closes, and the run says so (before, it ended "ok" with zero forces
+  // and nothing else). From the touching position it closes: no warning.
+  const Scratch s("never-closes");
+  for (const std::string centre : {"8.5", "8"})
+    {
+      SCOPED_TRACE(centre);
+      const std::string out = "out-" + centre;
+      const auto        r   = run_igabde(
+        scene("tutorial-2-partial-slip.prm") + " --set 'Body 1/Centre=0, " +
+          centre +
+          "' --set 'Body 1/Subdivisions=24, 4'"
+                   " --set 'Body 2/Subdivisions=24, 6'"
+                   " --set 'Load path/Number of steps=2'"
+                   " --set 'Load path/Histories=press: 0.5, 1; shift: 0, 0'"
+                   " --set 'Output/Write vtu=false' --set 'Output/Directory=" +
+          out + "'",
+        s.path);
+      EXPECT_EQ(r.status, 0) << r.output;
+      const nlohmann::json summary = nlohmann::json::parse(
+        read_file(cli::join(s.path, out + "/summary.json")));
+      bool warned = false;
+      if (summary.contains("warnings"))
+        for (const auto &w : summary.at("warnings"))
+          warned =
+            warned || contains(w.get<std::string>(),
+                               "no contact pair closed in any load "
+                               "step: the smallest gap at the end is 0.3");
+      EXPECT_EQ(warned, centre == "8.5") << summary.dump(2);
+      EXPECT_EQ(contains(r.output,
+                         "warning: load step 2: no contact pair closed"),
+                centre == "8.5")
+        << r.output;
+    }
+}
+
+
+
 TEST(NoSilentWrongAnswer, AnOutputFileThatCannotBeWrittenFailsTheRun)
 {
   // The fields' VTU is written by a background job; a folder with a file

@@ -4,9 +4,12 @@
 #include <deal.II/base/data_out_base.h>
 #include <deal.II/base/thread_management.h>
 
+#include <atomic>
 #include <exception>
 #include <fstream>
 #include <functional>
+#include <limits>
+#include <map>
 #include <mutex>
 #include <streambuf>
 #include <string>
@@ -102,10 +105,19 @@ namespace igabde
       void
       wait();
 
-      /// The last group whose jobs, and all earlier groups' jobs, have
-      /// been waited for (0: none).
+      /**
+       * @brief The last group before the first one with a job still running
+       * or failed: every job of groups 1..written_groups() has ended and
+       * written its files (a group being filled counts once its jobs end;
+       * with no job running or failed, the largest unsigned int). An atomic
+       * read, safe in a signal handler (written_groups_counter()).
+       */
       unsigned int
-      finished_groups() const;
+      written_groups() const;
+
+      /// The counter written_groups() reads, for a signal handler.
+      const std::atomic<unsigned int> &
+      written_groups_counter() const;
 
       /// Wall seconds the jobs have taken, summed over jobs.
       double
@@ -125,8 +137,17 @@ namespace igabde
       /// output file that could not be written ended as a silent "ok".
       std::vector<std::pair<unsigned int, std::exception_ptr>> errors;
 
-      unsigned int       group          = 0;
-      unsigned int       joined_through = 0;
+      /// Recomputes written (under the mutex).
+      void
+      update_written();
+
+      unsigned int group = 0;
+      /// Jobs still running, per group (under the mutex).
+      std::map<unsigned int, unsigned int> running;
+      /// The first group a job of which failed (0: none).
+      unsigned int              first_failed = 0;
+      std::atomic<unsigned int> written{
+        std::numeric_limits<unsigned int>::max()};
       mutable std::mutex mutex;
       double             job_seconds = 0.;
     };

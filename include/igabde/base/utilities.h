@@ -51,6 +51,22 @@ namespace igabde
     std::string
     number_text(const double x);
 
+    /**
+     * @brief The largest magnitude among @p n values at @p data, or infinity
+     * if one is not finite.
+     */
+    double
+    largest_magnitude(const double *data, const std::size_t n);
+
+    /**
+     * @brief The largest entry a vector of @p n entries may hold for its
+     * squared Euclidean norm to stay finite in double precision:
+     * sqrt(DBL_MAX / n). The solvers' norms square the entries, so data
+     * past it have no answer in double arithmetic.
+     */
+    double
+    largest_squarable_entry(const std::size_t n);
+
     /// A point as messages write it: "0.5, 0" (the parentheses are the
     /// caller's).
     template <int dim>

@@ -847,6 +847,14 @@ namespace igabde
           &point_load);
 
     private:
+      /**
+       * @brief Refuses (base::ExcInput) a load vector with an entry that is
+       * not finite or past base::largest_squarable_entry(): the loads of the
+       * scene are beyond double arithmetic, and every solve would overflow.
+       */
+      void
+      check_load_magnitudes() const;
+
       /// The free rigid modes and their pins (solve_constraints).
       void
       find_free_rigid_modes();

@@ -17,6 +17,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace igabde
@@ -83,11 +84,18 @@ namespace igabde
               StepRecord             &record,
               RunSummary             &summary) = 0;
 
-      /// Writes what it gathers over the steps (a PVD series) as it stands;
-      /// called whenever the run writes summary.json.
-      virtual void
-      write_series() const
-      {}
+      /**
+       * @brief What it gathers over the steps (the PVD series) as files
+       * (path, text), holding steps 1..@p steps only; the run writes them
+       * whenever it writes summary.json, and an interruption writes those
+       * of the steps it keeps.
+       */
+      virtual std::vector<std::pair<std::string, std::string>>
+      series(const unsigned int steps) const
+      {
+        (void)steps;
+        return {};
+      }
 
       /**
        * A run that continues from a checkpoint after @p finished steps, in

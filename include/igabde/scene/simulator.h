@@ -187,6 +187,9 @@ namespace igabde
       /// Time since write_summary() last wrote its files.
       Timer since_written;
       bool  written_once = false;
+      /// Load steps taken from a checkpoint (--restart): the writer's first
+      /// group is the step after them.
+      unsigned int resumed_steps = 0;
       /// Where the run is, for the reason an interrupted run gives.
       std::string run_phase;
     };
