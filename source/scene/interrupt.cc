@@ -141,7 +141,7 @@ namespace igabde
 
 
     void
-    publish_interrupted_summary(const std::vector<InterruptedRun> &candidates,
+    publish_interrupted_summary(std::vector<InterruptedRun>      candidates,
                                 const std::atomic<unsigned int> *written_groups,
                                 const unsigned int               group_offset,
                                 const std::string &output_directory)
@@ -153,25 +153,31 @@ namespace igabde
       runs.assign(candidates.size(), RenderedRun());
       for (std::size_t k = 0; k < candidates.size(); ++k)
         {
-          const InterruptedRun &candidate = candidates[k];
-          nlohmann::json        copy      = candidate.summary;
-          copy["status"]                  = "interrupted";
-          runs[k].steps                   = candidate.steps;
+          InterruptedRun &candidate = candidates[k];
+          nlohmann::json &copy      = candidate.summary;
+          copy["status"]            = "interrupted";
+          runs[k].steps             = candidate.steps;
+          // Rendered once: the two signals' summaries differ in the
+          // error's signal name only.
+          copy["error"] = "interrupted by SIGINT during " + candidate.run_phase;
+          runs[k].summary[0]     = copy.dump(2) + "\n";
+          runs[k].summary[1]     = runs[k].summary[0];
+          const std::string from = "\"error\": \"interrupted by SIGINT";
+          const auto        at   = runs[k].summary[1].find(from);
+          if (at != std::string::npos)
+            runs[k].summary[1].replace(at,
+                                       from.size(),
+                                       "\"error\": \"interrupted by SIGTERM");
           for (const int s : {0, 1})
-            {
-              const std::string reason = std::string("interrupted by ") +
-                                         (s == 0 ? "SIGINT" : "SIGTERM") +
-                                         " during " + candidate.run_phase;
-              copy["error"]      = reason;
-              runs[k].summary[s] = copy.dump(2) + "\n";
-              runs[k].line[s]    = "igabde: " + reason +
-                                "; the finished steps are in " +
-                                output_directory + "/\n";
-            }
+            runs[k].line[s] = std::string("igabde: interrupted by ") +
+                              (s == 0 ? "SIGINT" : "SIGTERM") + " during " +
+                              candidate.run_phase +
+                              "; the finished steps are in " +
+                              output_directory + "/\n";
           runs[k].files.emplace_back(output_directory + "/steps.csv",
-                                     candidate.steps_csv);
-          for (const auto &file : candidate.files)
-            runs[k].files.push_back(file);
+                                     std::move(candidate.steps_csv));
+          for (auto &file : candidate.files)
+            runs[k].files.push_back(std::move(file));
         }
       // Set once, before the first publication: the handler reads it.
       if (interrupt_record.summary_path.empty())

@@ -59,7 +59,7 @@ namespace igabde
                                       " finished and written)");
             candidates.push_back(std::move(run));
           }
-        publish_interrupted_summary(candidates,
+        publish_interrupted_summary(std::move(candidates),
                                     &writer.written_groups_counter(),
                                     resumed_steps,
                                     output_directory);

@@ -61,7 +61,7 @@ namespace igabde
      * this process), else the first. Nothing without an InterruptHandler.
      */
     void
-    publish_interrupted_summary(const std::vector<InterruptedRun> &candidates,
+    publish_interrupted_summary(std::vector<InterruptedRun>      candidates,
                                 const std::atomic<unsigned int> *written_groups,
                                 const unsigned int               group_offset,
                                 const std::string &output_directory);
