@@ -80,7 +80,9 @@ namespace igabde
 
       template <int dim>
       NurbsPatch<dim>
-      read_patch(const pt::ptree &node, const std::string &where)
+      read_patch(const pt::ptree   &node,
+                 const std::string &where,
+                 bool              &planar_in_3d)
       {
         const std::string type = attribute(node, "type");
         const bool rational    = (type == "TensorNurbs" + std::to_string(dim));
@@ -145,7 +147,11 @@ namespace igabde
         const pt::ptree  &coefs = child(node, "coefs", where);
         const std::string geo_dim =
           attribute(coefs, "geoDim", std::to_string(dim));
-        AssertThrow(geo_dim == std::to_string(dim),
+        // G+Smo stores planar surfaces in 3D space (geoDim = 3): a 2D scene
+        // takes them when every z is zero.
+        planar_in_3d               = (dim == 2 && geo_dim == "3");
+        const unsigned int columns = planar_in_3d ? 3 : dim;
+        AssertThrow(geo_dim == std::to_string(dim) || planar_in_3d,
                     base::ExcInput(
                       where + "geoDim = " + geo_dim +
                       ", but the scene has Dimension = " + std::to_string(dim) +
@@ -153,19 +159,29 @@ namespace igabde
                       "D scene needs a " + std::to_string(dim) + "D patch in " +
                       std::to_string(dim) + "D space."));
         const std::vector<double> c = numbers(text(coefs), where + "coefs: ");
-        AssertThrow(c.size() == dim * n,
+        AssertThrow(c.size() == columns * n,
                     base::ExcInput(
                       where + "the knot vectors give " + std::to_string(n) +
-                      " control points (" + std::to_string(dim * n) +
+                      " control points (" + std::to_string(columns * n) +
                       " coordinates), but <coefs> holds " +
                       std::to_string(c.size()) + " numbers; give one row of " +
-                      std::to_string(dim) +
+                      std::to_string(columns) +
                       " coordinates per control point, direction 0 "
                       "fastest."));
         std::vector<Point<dim>> points(n);
         for (unsigned int a = 0; a < n; ++a)
-          for (unsigned int d = 0; d < dim; ++d)
-            points[a][d] = c[dim * a + d];
+          {
+            for (unsigned int d = 0; d < dim; ++d)
+              points[a][d] = c[columns * a + d];
+            AssertThrow(!planar_in_3d || c[columns * a + 2] == 0.,
+                        base::ExcInput(
+                          where + "geoDim = 3 and control point " +
+                          std::to_string(a) +
+                          " has z = " + base::number_text(c[columns * a + 2]) +
+                          ", but the scene has Dimension = 2; a 2D scene "
+                          "reads a patch stored in 3D space only when it "
+                          "lies in the plane z = 0 (every z zero)."));
+          }
 
         std::vector<double> weights(n, 1.);
         if (rational)
@@ -378,7 +394,14 @@ namespace igabde
                                               d + " and TensorNurbs" + d +
                                               " patches.")));
             }
-          geometry.patches.push_back(read_patch<dim>(node, patch_where));
+          bool planar_in_3d = false;
+          geometry.patches.push_back(
+            read_patch<dim>(node, patch_where, planar_in_3d));
+          if (planar_in_3d)
+            geometry.notes.push_back(
+              patch_where +
+              "stored in 3D space (geoDim = 3) with every z zero: read as a "
+              "2D patch.");
           index_of_id[id] = geometry.patches.size() - 1;
           check_jacobian(geometry.patches.back(), patch_where);
           check_patch_closure(geometry.patches.back(), patch_where);

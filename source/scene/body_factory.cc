@@ -71,6 +71,7 @@ namespace igabde
                                                       1),
                               std::make_move_iterator(geometry.patches.end()));
         d.interfaces = std::move(geometry.interfaces);
+        d.notes      = std::move(geometry.notes);
       }
 
       // The body grammar was read and checked with the parameters

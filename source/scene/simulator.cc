@@ -76,6 +76,9 @@ namespace igabde
       // Exact solution first: 'exact' tractions use it.
       exact  = make_exact_solution<dim>(parameters, scene_file);
       bodies = create_bodies<dim>(parameters, scene_file, exact);
+      for (const auto &body : bodies)
+        for (const std::string &note : body->description().notes)
+          pcout << "  info: " << note << std::endl;
       postprocessors =
         make_postprocessors<dim>(parameters, bodies.size(), root, writer);
       for (auto &body : bodies)

@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <string>
 
 namespace
@@ -154,6 +155,60 @@ TEST(CliGeometryFile, ExportedV2ReadBackGivesTheSameFigures)
                   1e-12);
       EXPECT_EQ(b.at("bodies")[0].at("patches"), 1);
     }
+}
+
+
+
+TEST(CliGeometryFile, PlanarFileStoredIn3dSpaceGivesTheSameFigures)
+{
+  // V2's exported quarter annulus rewritten as G+Smo stores planar
+  // surfaces (geoDim = 3, a zero z on every row): the 2D scene reads it,
+  // says so in one info line, and gives the built-in geometry's figures.
+  const cli::ScratchFolder folder("geometry-planar-3d");
+  const auto               built_in = cli::run_igabde("'" + v2 +
+                                          "' --quiet --export-geometry --set "
+                                                        "Output/Directory=built-in",
+                                        folder);
+  ASSERT_EQ(built_in.status, 0) << built_in.output;
+  std::istringstream in(
+    cli::read_file(cli::join(folder.path, "built-in/body1-geometry.xml")));
+  std::string line, planar;
+  bool        in_coefs = false;
+  while (std::getline(in, line))
+    {
+      if (line.find("<coefs") != std::string::npos)
+        {
+          const auto at = line.find("geoDim=\"2\"");
+          ASSERT_NE(at, std::string::npos) << line;
+          line.replace(at, 10, "geoDim=\"3\"");
+          in_coefs = true;
+        }
+      else if (line.find("</coefs>") != std::string::npos)
+        in_coefs = false;
+      else if (in_coefs && !line.empty())
+        line += " 0";
+      planar += line + "\n";
+    }
+  const std::string file = cli::join(folder.path, "planar.xml");
+  std::ofstream(file) << planar;
+  const auto from_file = cli::run_igabde(
+    "'" + v2 +
+      "' --set 'Body 1/Geometry=file' --set 'Body 1/Geometry file=" + file +
+      "' --set Discretization/Refinements=0 --set 'Output/Print "
+      "timing=false' --set Output/Directory=from-file",
+    folder);
+  ASSERT_EQ(from_file.status, 0) << from_file.output;
+  EXPECT_NE(from_file.output.find("info: " + file +
+                                  ": patch id 0: stored in 3D space "
+                                  "(geoDim = 3) with every z zero"),
+            std::string::npos)
+    << from_file.output;
+  const nlohmann::json a = summary(cli::join(folder.path, "built-in"));
+  const nlohmann::json b = summary(cli::join(folder.path, "from-file"));
+  EXPECT_EQ(a.at("n_dofs"), b.at("n_dofs"));
+  for (const std::string key : {"points", "point_stresses", "checks"})
+    if (a.contains(key))
+      expect_same_numbers(a.at(key), b.at(key), 1e-12, key);
 }
 
 

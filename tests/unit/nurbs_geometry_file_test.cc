@@ -274,6 +274,42 @@ TEST(GeometryFile, MeasuresOfExactGeometries)
 
 
 
+TEST(GeometryFile, PlanarPatchStoredIn3dSpaceIsReadIn2d)
+{
+  // G+Smo's planar/ files store surfaces with geoDim = 3 and z = 0: a 2D
+  // scene reads them as the same patch as with geoDim = 2, and says so.
+  const cli::ScratchFolder folder("geometry-planar", "unit");
+  const std::string        in_3d =
+    write(folder,
+          "in-3d.xml",
+          xml(patch_2d("0",
+                       "0 0 0.5 1 1",
+                       "0 0 1 1",
+                       "0 0 0\n0.5 -0.1 0\n1 0 0\n0 1 0\n0.5 1.2 0\n1 1 0\n",
+                       "",
+                       "1",
+                       "1",
+                       "3")));
+  const std::string in_2d =
+    write(folder,
+          "in-2d.xml",
+          xml(patch_2d("0",
+                       "0 0 0.5 1 1",
+                       "0 0 1 1",
+                       "0 0\n0.5 -0.1\n1 0\n0 1\n0.5 1.2\n1 1\n")));
+  const MultiPatchGeometry<2> a = read_geometry_file<2>(in_3d);
+  const MultiPatchGeometry<2> b = read_geometry_file<2>(in_2d);
+  ASSERT_EQ(a.patches.size(), 1u);
+  ASSERT_EQ(a.patches[0].n_control_points(), 6u);
+  for (unsigned int i = 0; i < 6; ++i)
+    EXPECT_EQ(a.patches[0].control_point(i), b.patches[0].control_point(i));
+  ASSERT_EQ(a.notes.size(), 1u);
+  EXPECT_NE(a.notes[0].find("geoDim = 3"), std::string::npos) << a.notes[0];
+  EXPECT_TRUE(b.notes.empty());
+}
+
+
+
 TEST(GeometryFile, BadFilesAreRefusedNamingTheFile)
 {
   const cli::ScratchFolder folder("geometry-bad", "unit");
@@ -318,12 +354,12 @@ TEST(GeometryFile, BadFilesAreRefusedNamingTheFile)
                  xml(patch_2d("0",
                               "0 0 1 1",
                               "0 0 1 1",
-                              "0 0 0\n1 0 0\n0 1 0\n1 1 0\n",
+                              "0 0 0\n1 0 0\n0 1 0.5\n1 1 0\n",
                               "",
                               "1",
                               "1",
                               "3")),
-                 "geoDim = 3");
+                 "geoDim = 3 and control point 2 has z = 0.5");
   expect_refused(folder,
                  "not-a-number.xml",
                  xml(

@@ -223,6 +223,9 @@ namespace igabde
     {
       /// Name used in output files and messages.
       std::string name = "body";
+      /// What was read differently from how the geometry file states it
+      /// (nurbs::MultiPatchGeometry::notes), for the log.
+      std::vector<std::string> notes;
       /// Exact geometry as a NURBS patch (coarsest description); of a
       /// multi-patch body, patch 0.
       nurbs::NurbsPatch<dim> geometry;

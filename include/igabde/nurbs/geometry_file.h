@@ -42,6 +42,9 @@ namespace igabde
       std::vector<PatchInterface>  interfaces;
       /// (patch, face) pairs of the MultiPatch's boundary list.
       std::vector<std::pair<unsigned int, unsigned int>> boundary;
+      /// What the reader took differently from how the file states it (one
+      /// line each, for the log): a planar patch stored in 3D space.
+      std::vector<std::string> notes;
     };
 
     /**
