@@ -74,15 +74,14 @@ namespace igabde
         if (b >= 0 && !interrupt_record.runs[b].empty())
           {
             const auto &runs = interrupt_record.runs[b];
-            // The steps whose files have all been written by now.
-            unsigned int written = 0;
+            // The steps whose files have all been written by now (in 64
+            // bits: the counter is the largest unsigned int when nothing is
+            // being written).
+            unsigned long long written = 0;
             if (interrupt_record.written_groups[b] != nullptr)
-              {
-                const unsigned int groups =
-                  interrupt_record.written_groups[b]->load();
-                const unsigned int offset = interrupt_record.group_offset[b];
-                written = groups > ~0u - offset ? ~0u : groups + offset;
-              }
+              written = static_cast<unsigned long long>(
+                          interrupt_record.written_groups[b]->load()) +
+                        interrupt_record.group_offset[b];
             std::size_t k = 0;
             while (k + 1 < runs.size() && runs[k + 1].steps <= written)
               ++k;

@@ -72,14 +72,14 @@ namespace igabde
       // writes everything.
       if (status == "running" && written_once && since_written.wall_time() < 1.)
         {
-          RunSummary running        = run_summary;
-          running.timing            = timing_seconds(timer);
-          const unsigned int groups = writer.written_groups();
+          RunSummary running = run_summary;
+          running.timing     = timing_seconds(timer);
+          // (In 64 bits: written_groups() is the largest unsigned int when
+          // nothing is being written.)
           publish(running,
-                  groups > running.load_steps.size() ?
-                    running.load_steps.size() :
-                    std::min<std::size_t>(running.load_steps.size(),
-                                          resumed_steps + groups));
+                  std::min<std::size_t>(running.load_steps.size(),
+                                        std::size_t(resumed_steps) +
+                                          writer.written_groups()));
           return;
         }
       since_written.restart();
