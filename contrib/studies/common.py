@@ -57,13 +57,15 @@ class Runner:
         self.study = study
         self.count = 0
 
-    def run(self, label, scene_file, sets):
+    def run(self, label, scene_file, sets, folder=None):
         """One run; returns a row (dict) that always has 'label', 'status'
         ('ok', 'failed', 'timeout', 'crashed') and 'diagnosis', and the
-        figures of summary.json when there is one."""
-        run_dir = os.path.join(self.out, "runs", label.replace(" ", "_")
-                               .replace(",", "").replace("=", "")
-                               .replace("/", "-"))
+        figures of summary.json when there is one. Its folder is
+        <out>/runs/@p folder, by default a name made from @p label."""
+        if folder is None:
+            folder = label.replace(" ", "_").replace(",", "") \
+                .replace("=", "").replace("/", "-")
+        run_dir = os.path.join(self.out, "runs", folder)
         os.makedirs(run_dir, exist_ok=True)
         summary_file = os.path.join(run_dir, "summary.json")
         if os.path.exists(summary_file):
@@ -175,6 +177,10 @@ def flatten(summary):
                            if k not in PHASES and k != "total")
     row["total_s"] = timing.get("total", float("nan"))
     row["contact_s"] = sum(timing.get(p, 0.) for p in CONTACT_PHASES)
+    peaks = [r.get("peak_memory_mib") for r in summary.get("ranks") or []
+             if isinstance(r.get("peak_memory_mib"), (int, float))]
+    row["peak_memory_mib"] = max(peaks) if peaks else float("nan")
+    row["dim"] = summary.get("dim")
     return row
 
 
