@@ -2,14 +2,16 @@
 (Hertz, a disc on a rigid plane), V6 (a disc on an elastic block) and B2
 (curved beams), every contact method and degree, each against a converged
 model of the same scene computed here, the Pareto front marked and the
-time split per phase."""
+time split per phase. Each scene is a sweep.Study (series: discretisation
+and method; levels: the meshes; reference: one run made first), run and
+compared by sweep.run_study, the code of `contrib/studies/run sweep`."""
 
 import os
 
 import common
+import sweep
 from common import g
-from pressure_reference import Reference, read_pairs
-from study_b2 import b2_probe_error, method_sets
+from study_b2 import method_sets
 
 V5 = common.scene("v5-hertz-2d.prm")
 V6 = common.scene("v6-cylinder-on-block.prm")
@@ -72,42 +74,47 @@ def v6_label(scale):
     return "%s+%s" % (common.mesh_label(disc), common.mesh_label(block))
 
 
-def pressure_rows(args, runner, scene, name, meshes, last, mesh_sets,
-                  mesh_label, reference_mesh):
-    """Every discretisation and method of @p scene on @p meshes, the pair
-    pressures of each run against those of NURBS p = 3 BDE on
-    @p reference_mesh (run first); returns (rows, reference row,
-    Reference or None)."""
-    reference_row = runner.run(
-        "%s reference NURBS p=3 BDE %s" % (name, mesh_label(reference_mesh)),
-        scene, dict(mesh_sets(reference_mesh),
-                    **method_sets("nurbs", 3, "bde", "condensed")))
-    reference = (Reference(read_pairs(reference_row["folder"]))
-                 if common.ok(reference_row) else None)
-    rows = []
+def scene_study(args, name, scene, meshes, last, mesh_sets, mesh_label,
+                reference_label, reference_sets, quantities, shown=(),
+                error_mode="each"):
+    """The study of one scene (sweep.Study): every discretisation with
+    every method (BDE with degree 2 only under --quick) is a series, its
+    meshes the levels up to @p last (index per method, or per
+    (discretisation, method)), against one reference run made first."""
+    series = []
     for dname, disc, degree in DISCRETISATIONS:
         for mname, algorithm, path, fkn in METHODS:
             if args.quick and not (mname == "BDE" and degree == 2):
                 continue
-            for mesh in meshes[:last[mname] + 1]:
-                sets = dict(method_sets(disc, degree, algorithm, path, fkn),
-                            **mesh_sets(mesh))
-                row = runner.run("%s %s %s %s" % (name, dname, mname,
-                                                  mesh_label(mesh)),
-                                 scene, sets)
-                row.update({"scene": name, "discretisation": dname,
-                            "method": mname, "mesh": mesh_label(mesh),
-                            "error": float("nan"),
-                            "largest_deviation": float("nan"),
-                            "error_johnson": float("nan")})
-                if common.ok(row):
-                    row["error_johnson"] = row.get(
-                        "check_pressure_l2_rel_error", float("nan"))
-                    if reference is not None:
-                        row["error"], row["largest_deviation"] = \
-                            reference.errors(read_pairs(row["folder"]))
-                rows.append(row)
-    return rows, reference_row, reference
+            n = last.get((dname, mname), last.get(mname, 2))
+            series.append(sweep.Series(
+                "%s, %s" % (dname, mname),
+                method_sets(disc, degree, algorithm, path, fkn),
+                [sweep.Level(mesh_label(m), mesh_sets(m),
+                             {"mesh": mesh_label(m)})
+                 for m in meshes[:n + 1]],
+                {"scene": name, "discretisation": dname, "method": mname,
+                 "config": "%s, %s" % (dname, mname)},
+                run_label="%s %s" % (dname, mname)))
+    return sweep.Study(name, scene, {}, series, quantities,
+                       sweep.ReferenceSpec("run", sets=reference_sets,
+                                           label=reference_label),
+                       shown=shown, error_mode=error_mode)
+
+
+def pressure_study(args, name, scene, meshes, last, mesh_sets, mesh_label,
+                   reference_mesh):
+    """V5 and V6: the pair pressures of each run against those of NURBS
+    p = 3 BDE on @p reference_mesh (pressure_reference.py), Johnson's
+    distance (checks.pressure_l2_rel_error) beside them."""
+    return scene_study(
+        args, name, scene, meshes, last, mesh_sets, mesh_label,
+        "reference NURBS p=3 BDE %s" % mesh_label(reference_mesh),
+        dict(mesh_sets(reference_mesh),
+             **method_sets("nurbs", 3, "bde", "condensed")),
+        [sweep.PressureProfile("error", largest="largest_deviation")],
+        shown=[sweep.Quantity("checks.pressure_l2_rel_error",
+                              "error_johnson")])
 
 
 SCENES = ("V5", "V6", "B2")
@@ -129,62 +136,46 @@ def pressure_reference_text(name, reference_row, reference, rows):
         g(reference_row["total_s"], 3), g(reference.half_width, 4), change)
 
 
-def accuracy_cost(args, runner):
-    rows = []
+def v5_sets(mesh):
+    return {"Body 1/Subdivisions": "%d, %d" % mesh, "Body 1/Grading": ""}
 
+
+def accuracy_cost(args, runner):
     # V5 and V6: the L2 distance of the pair pressures to a converged model
     # of the same scene (Johnson's distance beside it).
-    v5_meshes = V5_MESHES[:2] if args.quick else V5_MESHES
-    v5_rows, v5_ref_row, v5_ref = pressure_rows(
-        args, runner, V5, "V5", v5_meshes, V5_LAST,
-        lambda mesh: {"Body 1/Subdivisions": "%d, %d" % mesh,
-                      "Body 1/Grading": ""},
-        common.mesh_label, V5_MESHES[2] if args.quick else V5_REFERENCE_MESH)
-    rows += v5_rows
-    v6_scales = V6_SCALES[:1] if args.quick else V6_SCALES
-    v6_rows, v6_ref_row, v6_ref = pressure_rows(
-        args, runner, V6, "V6", v6_scales, V6_LAST, v6_sets, v6_label,
-        V6_SCALES[1] if args.quick else V6_REFERENCE_SCALE)
-    rows += v6_rows
-
+    v5 = pressure_study(
+        args, "V5", V5, V5_MESHES[:2] if args.quick else V5_MESHES, V5_LAST,
+        v5_sets, common.mesh_label,
+        V5_MESHES[2] if args.quick else V5_REFERENCE_MESH)
+    v6 = pressure_study(
+        args, "V6", V6, V6_SCALES[:1] if args.quick else V6_SCALES, V6_LAST,
+        v6_sets, v6_label, V6_SCALES[1] if args.quick else V6_REFERENCE_SCALE)
     # B2: the probe error against NURBS p = 2 with the B-Newton on a mesh
-    # finer than every compared run.
-    b2_meshes = common.B2_MESHES[:1] if args.quick else common.B2_MESHES
+    # finer than every compared run: max over A-D of |u_z - u_z,ref| over
+    # max |u_z,ref| (study_b2.b2_probe_error), the 'common' error.
     ref_mesh = common.B2_MESHES[1] if args.quick else B2_REFERENCE_MESH
-    reference = runner.run(
-        "B2 reference NURBS p=2 BDE %s" % common.mesh_label(ref_mesh), B2,
+    b2 = scene_study(
+        args, "B2", B2, common.B2_MESHES[:1] if args.quick
+        else common.B2_MESHES, B2_LAST, common.mesh_sets, common.mesh_label,
+        "reference NURBS p=2 BDE %s" % common.mesh_label(ref_mesh),
         dict(common.mesh_sets(ref_mesh),
-             **method_sets("nurbs", 2, "bde", "condensed")))
-    b2_rows = []
-    for dname, disc, degree in DISCRETISATIONS:
-        for mname, algorithm, path, fkn in METHODS:
-            if args.quick and not (mname == "BDE" and degree == 2):
-                continue
-            last = B2_LAST.get((dname, mname), 2)
-            for mesh in b2_meshes[:last + 1]:
-                sets = dict(common.mesh_sets(mesh),
-                            **method_sets(disc, degree, algorithm, path, fkn))
-                row = runner.run("B2 %s %s %s" % (dname, mname,
-                                                  common.mesh_label(mesh)),
-                                 B2, sets)
-                row.update({"scene": "B2", "discretisation": dname,
-                            "method": mname,
-                            "mesh": common.mesh_label(mesh)})
-                b2_rows.append(row)
-    for row in b2_rows:
-        row["error"] = (b2_probe_error(row, reference)
-                        if common.ok(row) and common.ok(reference)
-                        else float("nan"))
-    rows += b2_rows
+             **method_sets("nurbs", 2, "bde", "condensed")),
+        [sweep.Quantity("points.%s.2" % p, "uz_" + p)
+         for p in common.B2_PROBES], error_mode="common")
 
-    for r in rows:
-        r["config"] = "%s, %s" % (r["discretisation"], r["method"])
-    for scene in SCENES:
-        sub = [r for r in rows if r["scene"] == scene and common.ok(r) and
-               r["error"] == r["error"]]
-        for i in common.pareto_front([(r["total_s"], r["error"])
-                                      for r in sub]):
-            sub[i]["pareto"] = "yes"
+    results = {}
+    rows = []
+    for study in (v5, v6, b2):
+        res = sweep.run_study(study, runner)
+        for r in res.rows:
+            r["scene"] = study.name
+        results[study.name] = res
+        rows += res.rows
+    v5_ref_row = results["V5"].reference_row
+    v6_ref_row = results["V6"].reference_row
+    v5_ref = v5.quantities[0].reference
+    v6_ref = v6.quantities[0].reference
+    reference = results["B2"].reference_row
     common.write_csv(os.path.join(args.out, "accuracy-cost.csv"), rows,
                      COLUMNS)
 
@@ -215,24 +206,23 @@ def accuracy_cost(args, runner):
         for scene in SCENES:
             pressure = scene != "B2"
             f.write("\n#### %s\n\n" % scene)
-            f.write("| configuration | mesh | DOFs | status | error | " +
-                    ("largest | vs Johnson | " if pressure else "") +
-                    "Pareto | iterations | assembly s | factorization s | "
-                    "contact s | total s |\n")
-            f.write("|" + "---|" * (13 if pressure else 11) + "\n")
-            for r in rows:
-                if r["scene"] != scene:
-                    continue
-                f.write("| %s |\n" % " | ".join([
-                    r["config"], r["mesh"], g(r.get("n_dofs")), r["status"],
-                    g(r.get("error"), 3)] + ([
-                        g(r.get("largest_deviation"), 3),
-                        g(r.get("error_johnson"), 3)] if pressure else []) + [
-                    r.get("pareto", ""),
-                    g(r.get("newton_iterations")),
-                    g(r.get("t_assembly_s"), 3),
-                    g(r.get("t_factorization_s"), 3),
-                    g(r.get("contact_s"), 3), g(r.get("total_s"), 3)]))
+            sweep.write_table(
+                f, [r for r in rows if r["scene"] == scene],
+                [("configuration", lambda r: r["config"]),
+                 ("mesh", lambda r: r["mesh"]),
+                 ("DOFs", lambda r: g(r.get("n_dofs"))),
+                 ("status", lambda r: r["status"]),
+                 ("error", lambda r: g(r.get("error"), 3))] +
+                ([("largest", lambda r: g(r.get("largest_deviation"), 3)),
+                  ("vs Johnson", lambda r: g(r.get("error_johnson"), 3))]
+                 if pressure else []) +
+                [("Pareto", lambda r: r.get("pareto", "")),
+                 ("iterations", lambda r: g(r.get("newton_iterations"))),
+                 ("assembly s", lambda r: g(r.get("t_assembly_s"), 3)),
+                 ("factorization s",
+                  lambda r: g(r.get("t_factorization_s"), 3)),
+                 ("contact s", lambda r: g(r.get("contact_s"), 3)),
+                 ("total s", lambda r: g(r.get("total_s"), 3))])
         f.write(common.failure_notes(rows))
 
     plt = common.pyplot()
