@@ -23,7 +23,7 @@ RUN = os.path.join(ROOT, "contrib", "studies", "run")
 V5 = os.path.join(ROOT, "prm", "v5-hertz-2d.prm")
 
 SWEEP = ["--sweep", "Type+Degree=nurbs+2,lagrange+2",
-         "--sweep", "Subdivisions=16,4; 32,8; 64,16",
+         "--sweep", "Subdivisions=16,4 | 32,8 | 64,16",
          "--set", "Body 1/Grading="]
 
 COLUMNS = ["series", "Type", "Degree", "Subdivisions", "n_dofs",
@@ -145,8 +145,8 @@ def main():
                   "--reference", "richardson"], "mesh sweep"),
                 (["--reference", "finest"], "--quantity"),
                 (["--sweep", "Subdivisions=16,4", "--quantity",
-                  "checks.x"], "separate the values with ';'"),
-                (["--sweep", "Subdivisions=16,4;", "--quantity",
+                  "checks.x"], "separate the values with '|'"),
+                (["--sweep", "Subdivisions=16,4|", "--quantity",
                   "checks.no_such_check"], "checks.no_such_check")):
             out = os.path.join(tmp, "bad")
             proc = run(igabde, out, extra)

@@ -113,9 +113,12 @@ def test_lookup():
 def test_grammar():
     check(sweep.split_values("nurbs, lagrange") == ["nurbs", "lagrange"],
           "comma list")
-    check(sweep.split_values("10,10,3; 20,20,6") == ["10,10,3", "20,20,6"],
-          "semicolon list")
-    check(sweep.split_values("10,10,3;") == ["10,10,3"], "one list value")
+    check(sweep.split_values("10,10,3 | 20,20,6") == ["10,10,3",
+                                                      "20,20,6"],
+          "bar list")
+    check(sweep.split_values("10,10,3|") == ["10,10,3"], "one list value")
+    check(sweep.split_values("band 0: 0, 0.15, 8; 5: 4 | 5: 4") ==
+          ["band 0: 0, 0.15, 8; 5: 4", "5: 4"], "values with semicolons")
     parameters = {"Discretization/Type": {
         "pattern_description": "[Selection nurbs|lagrange ]"},
         "Discretization/Degree": {
@@ -132,7 +135,7 @@ def test_grammar():
     check(s.sets(s.values[1]) == {"Discretization/Type": "lagrange",
                                   "Discretization/Degree": "1"},
           "joint sweep sets")
-    s = sweep.Sweep("Subdivisions=10,10,3; 14,14,4", parameters, scene)
+    s = sweep.Sweep("Subdivisions=10,10,3 | 14,14,4", parameters, scene)
     check(s.keys == [["Body 1/Subdivisions", "Body 2/Subdivisions"]],
           "a body parameter is every body that sets it: %r" % s.keys)
     check(sweep.resolve("Hertz radius", parameters, scene) ==

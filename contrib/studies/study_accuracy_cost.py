@@ -112,7 +112,7 @@ def pressure_study(args, name, scene, meshes, last, mesh_sets, mesh_label,
         "reference NURBS p=3 BDE %s" % mesh_label(reference_mesh),
         dict(mesh_sets(reference_mesh),
              **method_sets("nurbs", 3, "bde", "condensed")),
-        [sweep.PressureProfile("error", largest="largest_deviation")],
+        [sweep.PressureProfile("pressure_l2", largest="largest_deviation")],
         shown=[sweep.Quantity("checks.pressure_l2_rel_error",
                               "error_johnson")])
 

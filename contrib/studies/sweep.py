@@ -485,40 +485,47 @@ def csv_columns(study, parameters):
 def reference_text(study, res):
     """One paragraph: what each quantity is compared with."""
     ref = study.reference
-    parts = []
     rr = res.reference_row
+    given, from_run, extrapolated, distances = [], [], [], []
     for q in study.quantities:
         if q.distance:
-            parts.append("%s: distance to the pair-pressure profile of the "
-                         "reference run" % q.label)
+            distances.append(q.label)
         elif q.label in ref.values:
-            parts.append("%s: the given value %s" % (q.label,
-                                                     g(ref.values[q.label],
-                                                       8)))
+            given.append("%s = %s" % (q.label, g(ref.values[q.label], 8)))
         elif ref.kind in ("finest", "run"):
-            parts.append("%s: %s" % (q.label, g(res.references.get(q.key),
-                                                 8)))
+            from_run.append("%s = %s" % (q.label,
+                                         g(res.references.get(q.key), 8)))
         else:
-            parts.append("%s: the Richardson extrapolation of each series' "
-                         "three finest runs (below)" % q.label)
-    if ref.kind in ("finest", "run"):
+            extrapolated.append(q.label)
+    parts = []
+    if from_run or distances:
         who = ("the finest run (most unknowns%s)" % (
             ", among %s" % ", ".join("%s=%s" % kv for kv in ref.match.items())
             if ref.match else "") if ref.kind == "finest"
             else "a reference run")
         if rr is not None:
             what = "%s, %s, %s unknowns, %s s" % (
-                who, rr["label"], g(rr.get("n_dofs")), g(rr.get("total_s"), 3))
+                who, rr["label"], g(rr.get("n_dofs")),
+                g(rr.get("total_s"), 3))
             if not common.ok(rr):
                 what += ": %s, %s" % (rr["status"], rr["diagnosis"])
         else:
             what = who + ": none"
-        parts.insert(0, "Reference: " + what)
-    else:
-        parts.insert(0, "Reference")
-    mode = ("each quantity's |q − q_ref| / |q_ref|" if study.error_mode ==
+        if from_run:
+            what += ": " + ", ".join(from_run)
+        if distances:
+            what += "; %s: the L2 distance of the pair pressures to its " \
+                "pair-pressure profile" % ", ".join(distances)
+        parts.append(what)
+    if extrapolated:
+        parts.append("for %s the Richardson extrapolation of each series' "
+                     "three finest runs (the table below)" %
+                     ", ".join(extrapolated))
+    if given:
+        parts.append("given: " + ", ".join(given))
+    mode = ("|q − q_ref| / |q_ref| per quantity" if study.error_mode ==
             "each" else "|q − q_ref| / max |q_ref| over the quantities")
-    text = parts[0] + "; " + "; ".join(parts[1:]) + ". Error: " + mode
+    text = "Reference: " + "; ".join(parts) + ". Error: " + mode
     if len(study.quantities) > 1:
         text += ", the row's error the largest"
     return text + "."
@@ -740,11 +747,11 @@ def check_value(key, value, parameters):
 
 
 def split_values(text):
-    """A value list: separated by ';' when the text has one (values that
-    hold commas, such as Subdivisions; empty items dropped, so that 'a,b;'
-    is the one value a,b), else by ','."""
-    if ";" in text:
-        return [v.strip() for v in text.split(";") if v.strip()]
+    """A value list: separated by '|' when the text has one (values that
+    hold commas or semicolons, such as Subdivisions or Grading; empty items
+    dropped, so that 'a,b|' is the one value a,b), else by ','."""
+    if "|" in text:
+        return [v.strip() for v in text.split("|") if v.strip()]
     return [v.strip() for v in text.split(",")]
 
 
@@ -762,7 +769,7 @@ class Sweep:
             raise UsageError("--sweep %r: an empty name" % text)
         self.keys = [resolve(n, parameters, scene) for n in self.names]
         self.values = []
-        if ";" not in values and "," in values:
+        if "|" not in values and "," in values:
             # Commas between the values of a parameter whose own value is
             # a list (Subdivisions = 64, 16) are most likely that list.
             for n, keys in zip(self.names, self.keys):
@@ -770,8 +777,8 @@ class Sweep:
                 if lists:
                     raise UsageError(
                         "--sweep %r: %s is a list in the scene (%s); "
-                        "separate the values with ';' (%s=%s; ...), one "
-                        "value as %s=%s;" % (text, n, lists[0], n, values,
+                        "separate the values with '|' (%s=%s | ...), one "
+                        "value as %s=%s|" % (text, n, lists[0], n, values,
                                              n, values))
         for v in split_values(values):
             parts = [p.strip() for p in v.split("+")] \
@@ -864,6 +871,12 @@ def build(args, parameters):
     keys = [q.key for q in quantities + shown]
     if len(set(keys)) != len(keys):
         raise UsageError("two quantities have the same label")
+    reserved = set(csv_columns(Study("", "", {}, [], [], None), names)) | \
+        {"level", "dim"}
+    for q in quantities + shown:
+        if q.key in reserved:
+            raise UsageError("the label %s is a column of the table: give "
+                             "the quantity another (PATH=LABEL)" % q.key)
 
     values = {}
     for t in args.reference_value:
@@ -976,7 +989,7 @@ NAME is a parameter as `--set` takes it (Section/Name) or short: Type,
 Degree, Refinements (Discretization/), Algorithm, Path (Contact/), a body's
 parameter such as Subdivisions or Grading (every body of the scene that sets
 it), or any name one section has. Values are separated by commas, or by
-semicolons when one of them holds commas ("Subdivisions=10,10,3; 20,20,6").
+bars when one of them holds commas ("Subdivisions=10,10,3 | 20,20,6").
 NAME1+NAME2=a+b,c+d sweeps two parameters together. The mesh sweep
 (Refinements or Subdivisions, or --refine NAME) orders each series coarse
 to fine; a series is one combination of the other sweeps' values.
