@@ -1008,7 +1008,8 @@ kind. Error: each (default) |q - q_ref| / |q_ref| per quantity, the row's
 error the largest; common: |q - q_ref| / max |q_ref| over the quantities.
 
 A run that fails is a row with its diagnosis; bad input stops before the
-first run with one line and exit status 2. --dry-run lists the runs."""
+first run (a quantity's path that the first run's summary.json lacks: after
+it) with one line and exit status 2. --dry-run lists the runs."""
 
 
 def main(argv):
