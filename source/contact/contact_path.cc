@@ -30,16 +30,20 @@ namespace igabde
 
 
     template <int dim>
-    std::vector<discretization::PointOperator<dim>>
-    CondensedPath<dim>::factorization_interface(
+    discretization::FactorizationRequest<dim>
+    CondensedPath<dim>::factorization_request(
       const unsigned int                   b,
       const std::vector<ContactPair<dim>> &pairs) const
     {
-      std::vector<discretization::PointOperator<dim>> ops;
+      // The flexibility on the pairs and the field recovery solve with the
+      // bodies' factors; K is read no more than the support reactions do.
+      discretization::FactorizationRequest<dim> request;
       if (schur)
         for (const auto &pair : pairs)
-          ops.push_back(b == 0 ? pair.op1 : pair.op2);
-      return ops;
+          request.interface.push_back(b == 0 ? pair.op1 : pair.op2);
+      request.matrix_read_afterwards = false;
+      request.solves_afterwards      = true;
+      return request;
     }
 
 
@@ -116,14 +120,17 @@ namespace igabde
 
 
     template <int dim>
-    std::vector<discretization::PointOperator<dim>>
-    CoupledPath<dim>::factorization_interface(
+    discretization::FactorizationRequest<dim>
+    CoupledPath<dim>::factorization_request(
       const unsigned int,
       const std::vector<ContactPair<dim>> &) const
     {
-      // The coupled system is factorised as a whole; the bodies only
-      // solve their load cases.
-      return {};
+      // The coupled system is assembled from every body's K on every rank
+      // and factorised as a whole; the bodies only solve their load cases.
+      discretization::FactorizationRequest<dim> request;
+      request.matrix_read_afterwards = true;
+      request.solves_afterwards      = false;
+      return request;
     }
 
 

@@ -326,20 +326,62 @@ namespace igabde
 
 
     template <int dim>
-    bool
-    ContactStage<dim>::solves_with_bodies() const
+    std::vector<base::MemoryItem>
+    ContactStage<dim>::memory_record() const
     {
-      return contact_path->solves_with_bodies();
+      const auto pair_bytes = [](const std::vector<ContactPair<dim>> &pairs) {
+        double bytes = base::vector_bytes(pairs);
+        for (const auto &pair : pairs)
+          for (const auto *op : {&pair.op1, &pair.op2})
+            bytes +=
+              base::vector_bytes(op->weights) + base::vector_bytes(op->dofs);
+        return bytes;
+      };
+      std::vector<base::MemoryItem> items;
+      items.push_back({"contact: pairs",
+                       pair_bytes(pair_list) + pair_bytes(contact.pairs) +
+                         base::vector_bytes(pair_spacing),
+                       false});
+      const ContactProblem &problem = contact.problem;
+      items.push_back({"contact: condensed problem (W, rigid-mode columns)",
+                       double(problem.W.size() + problem.G.size() +
+                              contact.alpha_basis.size() +
+                              contact.rigid_mode_history_loads.size()) *
+                         sizeof(double),
+                       false});
+      if (contact_path)
+        for (auto &item : contact_path->op().memory_record())
+          items.push_back(std::move(item));
+      return items;
     }
 
 
 
     template <int dim>
-    std::vector<discretization::PointOperator<dim>>
-    ContactStage<dim>::factorization_interface(const unsigned int b) const
+    void
+    ContactStage<dim>::setup(
+      TimerOutput &timer,
+      const std::function<void(const discretization::FactorizationReport &)>
+        &factorized)
     {
-      Assert(contact_path, ExcMessage("build_pairs() first"));
-      return contact_path->factorization_interface(b, pair_list);
+      build_pairs(timer);
+      std::vector<discretization::FactorizationRequest<dim>> requests;
+      for (unsigned int b = 0; b < bodies.size(); ++b)
+        requests.push_back(contact_path->factorization_request(b, pair_list));
+      const discretization::FactorizationReport report =
+        discretization::factorize_bodies(bodies,
+                                         requests,
+                                         timer,
+                                         bodies[0]->parallel_layout().world);
+      if (factorized)
+        factorized(report);
+      Timer clock;
+      prepare(timer);
+      if (settings.progress)
+        log << "  [progress] "
+            << (resolved_path == Path::full ? "coupled system" : "condensation")
+            << ", " << std::setprecision(3) << clock.wall_time() << " s"
+            << std::setprecision(6) << std::endl;
     }
 
 

@@ -1,3 +1,4 @@
+#include <igabde/base/memory_record.h>
 #include <igabde/base/utilities.h>
 #include <igabde/linear_algebra/sparse_cholesky.h>
 
@@ -823,6 +824,47 @@ namespace igabde
       row_start[n] = kept;
       columns.resize(kept);
       return linear_algebra::nested_dissection_order(n, row_start, columns, {});
+    }
+
+
+
+    template <int dim>
+    std::vector<base::MemoryItem>
+    CoupledSystem<dim>::memory_record() const
+    {
+      std::vector<base::MemoryItem> items;
+      items.push_back({"coupled system: matrix (this rank's rows)",
+                       double(matrix.memory_consumption()),
+                       true});
+      if (krylov)
+        items.push_back({"coupled system: displacement block and its AMG",
+                         double(K_matrix.memory_consumption()) +
+                           double(amg.memory_consumption()),
+                         true});
+      // The factor's reals and integers on this rank (MUMPS' INFO(9, 10));
+      // KLU reports no size.
+      if (direct)
+        items.push_back({"coupled system: factorisation",
+                         internal::mumps_local_bytes(*direct),
+                         true});
+      double whole =
+        base::vector_bytes(offsets) + double(held.capacity()) / 8. +
+        base::vector_bytes(C_rows) + double(G.size()) * sizeof(double) +
+        double(stiffness.size()) * sizeof(double) +
+        base::vector_bytes(pivot_order) +
+        double(linearized_at.size() + residual_at.size()) * sizeof(double);
+      for (const auto &row : C_rows)
+        whole += base::vector_bytes(row);
+      const std::array<const std::vector<Vector<double>> *, 4> sets = {
+        {&reference, &support_moves, &loads, &residuals}};
+      for (const auto *set : sets)
+        for (const auto &v : *set)
+          whole += v.memory_consumption();
+      for (const auto &tangent : tangents)
+        whole += tangent.memory_consumption();
+      items.push_back(
+        {"coupled system: rows of C, body tangents and vectors", whole, false});
+      return items;
     }
 
 

@@ -37,6 +37,23 @@ namespace igabde
 
 
 
+      double
+      mumps_local_bytes(Amesos_BaseSolver &solver)
+      {
+        auto *mumps = dynamic_cast<Amesos_Mumps *>(&solver);
+        if (mumps == nullptr)
+          return 0.;
+        // INFO(9), INFO(10): the factor's reals and integers on this rank
+        // (negative: millions).
+        const auto count = [](const int n) {
+          return n >= 0 ? double(n) : -1e6 * double(n);
+        };
+        const int *info = mumps->GetINFO();
+        return count(info[8]) * sizeof(double) + count(info[9]) * sizeof(int);
+      }
+
+
+
       int
       mumps_error(Amesos_BaseSolver &solver)
       {

@@ -100,6 +100,9 @@ namespace igabde
         assemble_share();
       else if (layout.matrix_everywhere || factorizes_here())
         ensure_assembled();
+      // K on the group's ranks only, unless the layout puts it everywhere
+      // (a later ensure_assembled() on every rank does).
+      assembled_everywhere = layout.matrix_everywhere;
       find_free_rigid_modes();
       hold_rotations();
     }
@@ -119,6 +122,7 @@ namespace igabde
     void
     Body<dim>::ensure_assembled()
     {
+      assembled_everywhere = true;
       if (assembled && !assembled_share)
         return;
       assemble();

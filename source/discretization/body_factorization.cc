@@ -112,7 +112,13 @@ namespace igabde
                          const bool keep_reaction_rows)
     {
       if (!factorizes_here())
-        return;
+        {
+          // The group solves; where K is read no more, this rank has no
+          // use for its pattern either (the pins were chosen from it).
+          if (keep_reaction_rows && !assembled)
+            sparsity.reinit(0, 0, 0);
+          return;
+        }
       // The unknowns the contact points touch, less those held at zero.
       std::vector<types::global_dof_index> interface_dofs;
       if (settings.linear_solver == discretization::LinearSolver::direct)
@@ -287,6 +293,71 @@ namespace igabde
     {
       return (linear_solver->cholesky ? linear_solver->cholesky->n_interface() :
                                         0);
+    }
+
+
+
+    template <int dim>
+    std::vector<base::MemoryItem>
+    Body<dim>::memory_record() const
+    {
+      const std::string             prefix = name() + ": ";
+      std::vector<base::MemoryItem> items;
+      items.push_back({prefix + "mesh", mesh_bytes(), false});
+
+      double tables =
+        base::vector_bytes(dof_locations) + base::vector_bytes(dof_components) +
+        double(on_boundary.capacity()) / 8. + constraints.memory_consumption() +
+        prescribed_constraints.memory_consumption() +
+        solve_constraints.memory_consumption() +
+        base::vector_bytes(dirichlet_dofs);
+      for (const auto &dofs : dirichlet_dofs)
+        tables += base::vector_bytes(dofs);
+      // A std::map node: the entry and three pointers and a colour.
+      tables +=
+        double(prescribed_history.size()) *
+        (sizeof(std::pair<const types::global_dof_index, unsigned int>) +
+         4 * sizeof(void *));
+      items.push_back({prefix + "unknowns' tables", tables, false});
+
+      // K and its pattern are divided where only the body's group holds
+      // them: the other ranks free the pattern once the group has
+      // factorised (the condensed path).
+      const bool matrix_divided =
+        !layout.matrix_everywhere && !assembled_everywhere;
+      items.push_back(
+        {prefix + "sparsity pattern",
+         double(sparsity.memory_consumption()) +
+           (reaction_sparsity ? reaction_sparsity->memory_consumption() : 0.),
+         matrix_divided});
+      // K's values are allocated for the whole pattern also where a rank
+      // assembles only its share of the cells.
+      items.push_back({prefix + "stiffness matrix",
+                       double(system_matrix.memory_consumption()),
+                       matrix_divided});
+
+      double vectors = load_rhs.memory_consumption();
+      for (const std::vector<Vector<double>> *set :
+           {&history_rhs, &u_history, &held_response})
+        for (const auto &v : *set)
+          vectors += v.memory_consumption();
+      items.push_back({prefix + "load vectors and solutions", vectors, false});
+
+      // MUMPS runs on the body's group (each rank a share of the factor,
+      // or the body's own ranks alone); UMFPACK and CG with AMG on every
+      // rank alike (UMFPACK's own LU is not counted: it reports no size).
+      const LinearSolver &ls = *linear_solver;
+      if (ls.cholesky)
+        items.push_back(
+          {prefix + "factorisation", ls.cholesky->local_bytes(), true});
+      else
+        items.push_back(
+          {prefix + "factorisation",
+           double(ls.constrained_matrix.memory_consumption()) +
+             (ls.amg_matrix ? ls.amg_matrix->memory_consumption() : 0.) +
+             (ls.amg ? ls.amg->memory_consumption() : 0.),
+           false});
+      return items;
     }
 
 
@@ -574,6 +645,10 @@ namespace igabde
     Body<2>::n_interface_dofs() const;
     template unsigned int
     Body<3>::n_interface_dofs() const;
+    template std::vector<base::MemoryItem>
+    Body<2>::memory_record() const;
+    template std::vector<base::MemoryItem>
+    Body<3>::memory_record() const;
     template double
     Body<2>::factor_entries() const;
     template double

@@ -131,6 +131,25 @@ namespace igabde
 
 
     template <int dim>
+    double
+    IgaBody<dim>::mesh_bytes() const
+    {
+      double bytes = 0.;
+      for (const PatchSpace &space : spaces)
+        {
+          bytes += space.mesh.memory_consumption() +
+                   space.geometry.memory_consumption() +
+                   base::vector_bytes(space.numbers);
+          for (unsigned int d = 0; d < dim; ++d)
+            bytes += base::vector_bytes(space.breaks[d]) +
+                     base::vector_bytes(space.sample_coordinates[d]);
+        }
+      return bytes;
+    }
+
+
+
+    template <int dim>
     unsigned int
     IgaBody<dim>::n_elements() const
     {

@@ -211,6 +211,20 @@ namespace igabde
 
 
     template <int dim>
+    double
+    LagrangeBody<dim>::mesh_bytes() const
+    {
+      double bytes =
+        triangulation.memory_consumption() + dof_handler.memory_consumption() +
+        euler_vector.memory_consumption() + base::vector_bytes(cell_parameters);
+      for (const auto &patch : patches)
+        bytes += patch.memory_consumption();
+      return bytes;
+    }
+
+
+
+    template <int dim>
     unsigned int
     LagrangeBody<dim>::n_elements() const
     {

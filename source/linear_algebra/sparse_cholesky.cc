@@ -1,3 +1,4 @@
+#include <igabde/base/memory_record.h>
 #include <igabde/linear_algebra/sparse_cholesky.h>
 
 #include <deal.II/base/exceptions.h>
@@ -728,6 +729,31 @@ namespace igabde
     SparseCholesky::factor_flops() const
     {
       return (data->mumps_alive ? data->id.rinfog[2] : data->flops);
+    }
+
+
+
+    double
+    SparseCholesky::local_bytes() const
+    {
+      const Data &d = *data;
+      // INFO(9), INFO(10): the reals and integers of the factor on this
+      // rank (negative: millions). What MUMPS allocates beyond them is
+      // workspace of the factorisation, which the peak shows.
+      const auto count = [](const MUMPS_INT n) {
+        return n >= 0 ? double(n) : -1e6 * double(n);
+      };
+      double bytes =
+        (d.mumps_alive ? count(d.id.info[8]) * sizeof(double) +
+                           count(d.id.info[9]) * sizeof(MUMPS_INT) :
+                         0.);
+      bytes += base::vector_bytes(d.free_dofs) +
+               base::vector_bytes(d.reduced_index) +
+               base::vector_bytes(d.interface) + base::vector_bytes(d.rows) +
+               base::vector_bytes(d.cols) + base::vector_bytes(d.values) +
+               base::vector_bytes(d.schur_factor) +
+               double(d.schur.m()) * d.schur.n() * sizeof(double);
+      return bytes;
     }
 
 

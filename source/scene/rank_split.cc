@@ -87,8 +87,9 @@ namespace igabde
 
 
     std::pair<std::map<std::string, double>, nlohmann::json>
-    gather_rank_figures(const TimerOutput              &timer,
-                        const std::vector<std::string> &factorised_here)
+    gather_rank_figures(const TimerOutput                   &timer,
+                        const std::vector<std::string>      &factorised_here,
+                        const std::vector<base::MemoryItem> &held_here)
     {
       const MPI_Comm world  = MPI_COMM_WORLD;
       auto           timing = timing_seconds(timer);
@@ -112,11 +113,31 @@ namespace igabde
         Utilities::MPI::gather(world,
                                std::pair(memory.VmHWM / 1024., factorised_here),
                                0);
-      nlohmann::json ranks = nlohmann::json::array();
+      std::vector<std::pair<std::string, std::pair<double, bool>>> held;
+      for (const base::MemoryItem &item : held_here)
+        held.push_back({item.name, {item.bytes, item.divided}});
+      const auto       all_held = Utilities::MPI::gather(world, held, 0);
+      constexpr double mib      = 1024. * 1024.;
+      nlohmann::json   ranks    = nlohmann::json::array();
       for (unsigned int r = 0; r < peaks.size(); ++r)
-        ranks.push_back({{"rank", r},
-                         {"peak_memory_mib", peaks[r].first},
-                         {"factorises", peaks[r].second}});
+        {
+          nlohmann::json items      = nlohmann::json::array();
+          double         replicated = 0., divided = 0.;
+          for (const auto &[name, entry] : all_held[r])
+            {
+              (entry.second ? divided : replicated) += entry.first;
+              items.push_back({{"name", name},
+                               {"mib", entry.first / mib},
+                               {"divided", entry.second}});
+            }
+          ranks.push_back({{"rank", r},
+                           {"peak_memory_mib", peaks[r].first},
+                           {"factorises", peaks[r].second},
+                           {"held",
+                            {{"replicated_mib", replicated / mib},
+                             {"divided_mib", divided / mib},
+                             {"items", items}}}});
+        }
       return {timing, ranks};
     }
 

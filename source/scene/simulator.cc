@@ -170,40 +170,11 @@ namespace igabde
 
     template <int dim>
     void
-    Simulator<dim>::factorize_bodies(const contact::ContactStage<dim> *stage)
+    Simulator<dim>::record_factorization(
+      const discretization::FactorizationReport &report)
     {
-      TimerOutput::Scope t(timer, "factorization");
-      // Each group factorises its body (the groups at the same time), then
-      // every rank receives what it did not compute.
-      std::vector<double> seconds(bodies.size(), 0.), flops(bodies.size(), 0.);
-      // A body at finite strain factorises its tangent in every Newton
-      // iteration instead.
-      for (unsigned int b = 0; b < bodies.size(); ++b)
-        if (bodies[b]->factorizes_here() && !bodies[b]->finite_strain())
-          {
-            Timer clock;
-            // What the contact path needs of the body (a Schur interface on
-            // the contact face, or nothing). Without contact or on the
-            // condensed path, K is read after its factorisation only in the
-            // support reactions: its other rows go as soon as MUMPS has
-            // read it.
-            bodies[b]->factorize(
-              stage != nullptr ?
-                stage->factorization_interface(b) :
-                std::vector<discretization::PointOperator<dim>>(),
-              stage == nullptr || stage->solves_with_bodies());
-            seconds[b] = clock.wall_time();
-            flops[b]   = bodies[b]->factor_flops();
-          }
-      for (auto &body : bodies)
-        body->share_factorization();
-      {
-        std::vector<double> largest(seconds.size());
-        Utilities::MPI::max(seconds, MPI_COMM_WORLD, largest);
-        seconds = largest;
-        Utilities::MPI::max(flops, MPI_COMM_WORLD, largest);
-        flops = largest;
-      }
+      const std::vector<double> &seconds = report.seconds;
+      const std::vector<double> &flops   = report.flops;
       for (unsigned int b = 0; b < bodies.size(); ++b)
         {
           if (bodies[b]->factor_entries() > 0. && summary.contains("bodies") &&
@@ -247,7 +218,12 @@ namespace igabde
                      static_cast<bool>(body->description().body_force_field);
       if (!parameters.contact.enabled)
         {
-          factorize_bodies(nullptr);
+          record_factorization(discretization::factorize_bodies(
+            bodies,
+            std::vector<discretization::FactorizationRequest<dim>>(
+              bodies.size()),
+            timer,
+            MPI_COMM_WORLD));
           record_setup(parameters, nullptr, body_force, summary);
           return;
         }
@@ -267,30 +243,11 @@ namespace igabde
                                         &pcout.get_stream() :
                                         nullptr,
                                       MPI_COMM_WORLD));
-      contact_stage->build_pairs(timer);
-      // The coupled system reads every body's K on every rank.
-      if (contact_stage->path() == contact::Path::full)
-        {
-          TimerOutput::Scope t(timer, "assembly");
-          for (auto &body : bodies)
-            body->ensure_assembled();
-        }
-      factorize_bodies(contact_stage.get());
-      // The full path factorises the coupled system on its own: the
-      // bodies' factors have served their load cases, and would otherwise
-      // stay in memory beside the coupled system's.
-      if (!contact_stage->solves_with_bodies())
-        for (auto &body : bodies)
-          body->release_factorization();
-      Timer clock;
-      contact_stage->prepare(timer);
-      if (parameters.output.progress)
-        pcout << "  [progress] "
-              << (contact_stage->path() == contact::Path::full ?
-                    "coupled system" :
-                    "condensation")
-              << ", " << std::setprecision(3) << clock.wall_time() << " s"
-              << std::setprecision(6) << std::endl;
+      contact_stage->setup(
+        timer,
+        [this](const discretization::FactorizationReport &report) {
+          record_factorization(report);
+        });
       const contact::ContactSummary s = contact_stage->summary();
       record_setup(parameters, &s, body_force, summary);
       run_summary.warnings.insert(run_summary.warnings.end(),
@@ -647,8 +604,15 @@ namespace igabde
         TimerOutput::Scope t(timer, "output");
         writer.wait();
       }
+      std::vector<base::MemoryItem> held;
+      for (const auto &body : bodies)
+        for (auto &item : body->memory_record())
+          held.push_back(std::move(item));
+      if (contact_stage)
+        for (auto &item : contact_stage->memory_record())
+          held.push_back(std::move(item));
       std::tie(final_timing, run_summary.ranks) =
-        gather_rank_figures(timer, factorised_here);
+        gather_rank_figures(timer, factorised_here, held);
       write_summary("ok", "");
     }
 

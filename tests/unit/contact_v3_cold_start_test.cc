@@ -89,10 +89,7 @@ TEST(ContactV3, BNewtonFromZeroForcesGivesTheUniformPressure)
         std::ostringstream log;
         TimerOutput timer(log, TimerOutput::never, TimerOutput::wall_times);
         contact::ContactStage<2> stage(cs, bodies, nullptr, log);
-        stage.build_pairs(timer);
-        for (unsigned int b = 0; b < bodies.size(); ++b)
-          bodies[b]->factorize(stage.factorization_interface(b));
-        stage.prepare(timer);
+        stage.setup(timer);
 
         // One load step through the stage sets q and b of the condensed
         // problem for load factor 1.

@@ -122,10 +122,7 @@ namespace
     std::ostringstream log;
     TimerOutput        timer(log, TimerOutput::never, TimerOutput::wall_times);
     contact::ContactStage<dim> stage(cs, bodies, nullptr, log);
-    stage.build_pairs(timer);
-    for (unsigned int b = 0; b < bodies.size(); ++b)
-      bodies[b]->factorize(stage.factorization_interface(b));
-    stage.prepare(timer);
+    stage.setup(timer);
     std::vector<Vector<double>> u;
     for (const auto &body : bodies)
       u.push_back(body->load_solution());

@@ -1,6 +1,8 @@
 #ifndef igabde_contact_contact_operator_h
 #define igabde_contact_contact_operator_h
 
+#include <igabde/base/memory_record.h>
+
 #include <igabde/contact/contact_law.h>
 #include <igabde/contact/contact_problem.h>
 
@@ -64,6 +66,16 @@ namespace igabde
       /** @brief The path's name for logs: "condensed" or "full". */
       virtual std::string
       path_name() const = 0;
+
+      /**
+       * @brief What this rank holds for the operator beyond the contact
+       * problem's data (base::MemoryItem; empty where nothing is counted).
+       */
+      virtual std::vector<base::MemoryItem>
+      memory_record() const
+      {
+        return {};
+      }
 
       /** @brief Rows of u and p: pairs times components per pair. */
       virtual unsigned int

@@ -2,6 +2,7 @@
 #define igabde_contact_contact_path_h
 
 #include <igabde/discretization/body.h>
+#include <igabde/discretization/factorization_request.h>
 
 #include <igabde/contact/condensation.h>
 #include <igabde/contact/contact_operator.h>
@@ -51,12 +52,12 @@ namespace igabde
       virtual ~ContactPath() = default;
 
       /**
-       * @brief The point operators whose unknowns body @p b must keep as
-       * a Schur interface when it factorises (empty: a plain
-       * factorisation).
+       * @brief What body @p b's factorisation must provide for this path
+       * (a Schur interface on the pairs' unknowns, or none) and what must
+       * stay after its load cases (K whole, the factor).
        */
-      virtual std::vector<discretization::PointOperator<dim>>
-      factorization_interface(
+      virtual discretization::FactorizationRequest<dim>
+      factorization_request(
         const unsigned int                   b,
         const std::vector<ContactPair<dim>> &pairs) const = 0;
 
@@ -108,14 +109,6 @@ namespace igabde
       {
         return 0.;
       }
-
-      /**
-       * @brief Whether prepare() and add_response() solve with the bodies'
-       * factorisations; where not, the bodies may free them once their
-       * load cases are solved.
-       */
-      virtual bool
-      solves_with_bodies() const = 0;
     };
 
 
@@ -139,8 +132,8 @@ namespace igabde
         std::ostream                                         &log,
         const bool                                            progress);
 
-      std::vector<discretization::PointOperator<dim>>
-      factorization_interface(
+      discretization::FactorizationRequest<dim>
+      factorization_request(
         const unsigned int                   b,
         const std::vector<ContactPair<dim>> &pairs) const override;
 
@@ -160,12 +153,6 @@ namespace igabde
       description(const CondensedContact<dim> &contact) const override;
 
       /** @brief True: the condensation and the field recovery solve. */
-      bool
-      solves_with_bodies() const override
-      {
-        return true;
-      }
-
     private:
       const std::vector<const discretization::Body<dim> *> bodies;
       const unsigned int                                   m;
@@ -192,8 +179,8 @@ namespace igabde
                   const std::string         &context,
                   std::ostream              &log);
 
-      std::vector<discretization::PointOperator<dim>>
-      factorization_interface(
+      discretization::FactorizationRequest<dim>
+      factorization_request(
         const unsigned int                   b,
         const std::vector<ContactPair<dim>> &pairs) const override;
 
@@ -221,12 +208,6 @@ namespace igabde
       n_nonzeros() const override;
 
       /** @brief False: the coupled system is factorised on its own. */
-      bool
-      solves_with_bodies() const override
-      {
-        return false;
-      }
-
     private:
       const std::vector<const discretization::Body<dim> *> bodies;
       const unsigned int                                   m;

@@ -2,6 +2,7 @@
 #define igabde_contact_contact_stage_h
 
 #include <igabde/discretization/body.h>
+#include <igabde/discretization/factorization_request.h>
 
 #include <igabde/contact/condensation.h>
 #include <igabde/contact/contact_law.h>
@@ -170,9 +171,8 @@ namespace igabde
      * the post-solve condition check, and the contact forces back to the
      * fields. It sees the bodies only through discretization::Body, writes
      * no file and knows no scene check: the postprocessors read
-     * pair_states(). The simulator's part: build_pairs(), then each body
-     * factorised for factorization_interface(), then prepare(), then
-     * solve_step() per load step.
+     * pair_states(). The simulator's part: setup(), then solve_step() per
+     * load step.
      */
     template <int dim>
     class ContactStage
@@ -194,36 +194,22 @@ namespace igabde
       ~ContactStage();
 
       /**
-       * @brief Builds the pairs and frames and chooses the path (the bodies
-       * need not be factorised yet).
+       * @brief Everything before the first load step, in order: the pairs
+       * and frames, the path (condensed or full), each body's factorisation
+       * as the path asks it (discretization::factorize_bodies(): a Schur
+       * interface on the pairs' unknowns or none, K and the factor kept
+       * or freed after the load cases), then the contact problem on that
+       * path. @p factorized receives what the factorisations cost as soon
+       * as they are done (progress, records), before the contact problem
+       * is formed. Collective on the bodies' world.
        */
       void
-      build_pairs(TimerOutput &timer);
+      setup(
+        TimerOutput &timer,
+        const std::function<void(const discretization::FactorizationReport &)>
+          &factorized = {});
 
-      /**
-       * @brief What body @p b must factorise for: the point operators whose
-       * unknowns it keeps as a Schur interface (empty: a plain
-       * factorisation).
-       */
-      std::vector<discretization::PointOperator<dim>>
-      factorization_interface(const unsigned int b) const;
-
-      /**
-       * @brief Whether the bodies' factorisations serve after their load
-       * cases (the condensation, the field recovery); false on the full
-       * path, which factorises the coupled system on its own.
-       */
-      bool
-      solves_with_bodies() const;
-
-      /**
-       * @brief Forms the contact problem on the path build_pairs() chose
-       * (the bodies must be factorised) and reports what was formed.
-       */
-      void
-      prepare(TimerOutput &timer);
-
-      /// The path taken (condensed or full; known after build_pairs()).
+      /// The path taken (condensed or full; known after setup()).
       Path
       path() const;
 
@@ -296,6 +282,15 @@ namespace igabde
       summary() const;
 
       /**
+       * @brief What this rank holds for the contact (base::MemoryItem): the
+       * pairs with their point operators, the condensed problem (W, the
+       * rigid-mode columns) and the path's operator (the coupled system's
+       * rows on the full path). After setup(); not collective.
+       */
+      std::vector<base::MemoryItem>
+      memory_record() const;
+
+      /**
        * @brief The largest tangential displacement between the two points
        * of a pair at the displacements @p u (total, not the step's slip),
        * relative to the pair spacing there (the distance from the pair's
@@ -342,6 +337,15 @@ namespace igabde
       finite_strain() const;
 
     private:
+      /// The pairs and frames; chooses the path.
+      void
+      build_pairs(TimerOutput &timer);
+
+      /// Forms the contact problem on the chosen path (the bodies
+      /// factorised) and reports what was formed.
+      void
+      prepare(TimerOutput &timer);
+
       Eigen::VectorXd
       relative_displacement(const std::vector<Vector<double>> &u) const;
 

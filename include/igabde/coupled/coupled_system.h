@@ -170,6 +170,15 @@ namespace igabde
        * @brief Progress lines of factorisations that may take more than a
        * second go to @p stream (nullptr: none).
        */
+      /**
+       * @brief This rank's rows of the coupled matrix and of the
+       * displacement block with its AMG (divided), MUMPS' factor on this
+       * rank (divided), and the bodies' tangents, the vectors and the
+       * rows of C every rank holds whole.
+       */
+      std::vector<base::MemoryItem>
+      memory_record() const override;
+
       void
       report_progress_to(std::ostream *stream);
 

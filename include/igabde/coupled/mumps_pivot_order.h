@@ -31,6 +31,14 @@ namespace igabde
       mumps_factorization_flops(Amesos_BaseSolver &solver);
 
       /**
+       * @brief Bytes of the factor on this rank after the last numeric
+       * factorisation of @p solver if it is Amesos' MUMPS solver (its
+       * reals and integers, INFO(9) and INFO(10)), else 0.
+       */
+      double
+      mumps_local_bytes(Amesos_BaseSolver &solver);
+
+      /**
        * @brief MUMPS' error code INFOG(1) after the last phase of @p solver
        * if it is Amesos' MUMPS solver (0: no error), else 0.
        */

@@ -1,6 +1,8 @@
 #ifndef igabde_discretization_body_h
 #define igabde_discretization_body_h
 
+#include <igabde/base/memory_record.h>
+
 #include <igabde/discretization/rigid_modes.h>
 #include <igabde/discretization/settings.h>
 
@@ -239,11 +241,19 @@ namespace igabde
       /**
        * @brief Sets where the assembly and the factorisation run (before
        * setup_system()). factorize() is then collective on the layout's
-       * group (a rank outside it does nothing), share_assembly(),
+       * group (a rank outside it only frees K's pattern when K is read no
+       * more: @p keep_reaction_rows), share_assembly(),
        * share_factorization(), solve() and support_reaction() on its world.
        */
       void
       set_parallel_layout(const ParallelLayout &layout);
+
+      /// Where the assembly and the factorisation run.
+      const ParallelLayout &
+      parallel_layout() const
+      {
+        return layout;
+      }
 
       /**
        * @brief After setup_system() on every rank: the ranks that did not
@@ -386,6 +396,22 @@ namespace igabde
       /// Number of elements (knot spans or cells).
       virtual unsigned int
       n_elements() const = 0;
+
+      /**
+       * @brief What this rank holds for the body, by kind ("NAME: mesh",
+       * "NAME: unknowns' tables", "NAME: sparsity pattern", "NAME: stiffness
+       * matrix", "NAME: load vectors and solutions", "NAME: factorisation"),
+       * from the sizes of the data structures' allocations, and whether the
+       * ranks divide it (base::MemoryItem). Not collective.
+       */
+      std::vector<base::MemoryItem>
+      memory_record() const;
+
+      /// Bytes of the mesh and the geometry (the patches' knot-span
+      /// meshes and control nets, or the triangulation, the DoF handler and
+      /// the geometry field): the "mesh" of memory_record().
+      virtual double
+      mesh_bytes() const = 0;
 
       /// The body's description (include body_description.h to use it).
       const BodyDescription<dim> &
@@ -924,6 +950,10 @@ namespace igabde
       std::ostream *progress_stream = nullptr;
       /// Whether K and the load vectors were assembled on this rank.
       bool assembled = false;
+      /// Whether every rank of the layout's world holds K whole
+      /// (ParallelLayout::matrix_everywhere, or ensure_assembled(), which
+      /// every rank calls): memory_record()'s K is then replicated.
+      bool assembled_everywhere = false;
       /// Whether K holds this rank's share of the group's cells only (the
       /// load vectors are whole: summed over the group).
       bool assembled_share = false;

@@ -77,6 +77,9 @@ namespace igabde
       unsigned int
       n_elements() const override;
 
+      double
+      mesh_bytes() const override;
+
       /// @brief Number of patches.
       unsigned int
       n_patches() const override;

@@ -50,6 +50,9 @@ namespace igabde
       unsigned int
       n_elements() const override;
 
+      double
+      mesh_bytes() const override;
+
       PointOperator<dim>
       point_operator(const Point<dim> &location) const override;
 

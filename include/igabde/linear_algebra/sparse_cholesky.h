@@ -154,6 +154,15 @@ namespace igabde
       double
       factor_flops() const;
 
+      /**
+       * @brief Bytes this rank holds for the factorisation: the factor's
+       * reals and integers on this rank as MUMPS reports them (INFO(9),
+       * INFO(10); its workspace is not counted), the copy of the matrix
+       * handed to it, the Schur complement and its factor, the index maps.
+       */
+      double
+      local_bytes() const;
+
     private:
       struct Data;
       std::unique_ptr<Data> data;

@@ -59,6 +59,17 @@ namespace igabde
       unsigned int
       n_control_points() const;
 
+      /// Bytes of the knot vectors, control points and weights.
+      double
+      memory_consumption() const
+      {
+        double bytes = double(points.capacity()) * sizeof(Point<dim>) +
+                       double(weights.capacity()) * sizeof(double);
+        for (const KnotVector &k : knots)
+          bytes += double(k.knots().capacity()) * sizeof(double);
+        return bytes;
+      }
+
       /// Control point @p a (physical coordinates, not homogeneous).
       const Point<dim> &
       control_point(const unsigned int a) const;

@@ -1,6 +1,8 @@
 #ifndef igabde_scene_rank_split_h
 #define igabde_scene_rank_split_h
 
+#include <igabde/base/memory_record.h>
+
 #include <igabde/discretization/body.h>
 
 #include <deal.II/base/conditional_ostream.h>
@@ -47,11 +49,14 @@ namespace igabde
     /**
      * @brief At the end of a run (collective): the seconds of every phase
      * of @p timer, the largest over the ranks, and summary.json's "ranks"
-     * (each rank's peak memory and the bodies in @p factorised_here).
+     * (each rank's peak memory, the bodies in @p factorised_here, and
+     * @p held_here, what the rank holds: its replicated and divided MiB and
+     * the items).
      */
     std::pair<std::map<std::string, double>, nlohmann::json>
-    gather_rank_figures(const TimerOutput              &timer,
-                        const std::vector<std::string> &factorised_here);
+    gather_rank_figures(const TimerOutput                   &timer,
+                        const std::vector<std::string>      &factorised_here,
+                        const std::vector<base::MemoryItem> &held_here = {});
   } // namespace scene
 } // namespace igabde
 

@@ -4,6 +4,7 @@
 #include <igabde/base/files.h>
 
 #include <igabde/discretization/body.h>
+#include <igabde/discretization/factorization_request.h>
 #include <igabde/discretization/finite_strain_solver.h>
 
 #include <igabde/scene/parameters.h>
@@ -82,14 +83,17 @@ namespace igabde
       setup_bodies();
 
       /**
-       * Factorises every body; with @p stage and the Schur condensation,
-       * onto the unknowns of its contact points. Under MPI with the direct
-       * solver the ranks are split among the bodies (in proportion to their
-       * estimated factor sizes), each group factorises its body at the same
-       * time as the other, and the results are shared with every rank.
+       * Prints what the bodies' factorisations cost (progress lines) and
+       * records their factor sizes in the summary. The factorisations
+       * themselves run in discretization::factorize_bodies(), called by the
+       * contact stage's setup() (or directly without contact): under MPI
+       * with the direct solver the ranks are split among the bodies (in
+       * proportion to their estimated factor sizes), each group factorises
+       * its body at the same time as the others, and the results are
+       * shared with every rank.
        */
       void
-      factorize_bodies(const contact::ContactStage<dim> *stage);
+      record_factorization(const discretization::FactorizationReport &report);
 
       /// With contact: the contact stage (pairs, condensation or coupled
       /// system) and its facts in the summary; the factorisation either way.
