@@ -1,8 +1,4 @@
-// Element count against unknowns for the five meshes of the curved-beam
-// scene B2 (scenes.md): quadratic NURBS (control points of the curved-beam
-// patch after degree elevation and knot insertion), FE_Q(2) (a DoFHandler on
-// the same knot-span mesh) and the 20-node serendipity count of ANSYS SOLID95
-// (vertices plus edges of that mesh). Per beam and for the two beams.
+// b2_dof_table: see `usage` below (also printed by --help).
 
 #include <igabde/base/utilities.h>
 
@@ -18,12 +14,25 @@
 #include <deal.II/fe/fe_q.h>
 #include <deal.II/fe/fe_system.h>
 
+#include "option_value.h"
 #include <array>
 #include <iostream>
+
+namespace
+{
+  const char *const usage =
+    R"(Element count against unknowns for the five meshes of the curved-beam
+scene B2 (scenes.md): quadratic NURBS (control points of the curved-beam
+patch after degree elevation and knot insertion), FE_Q(2) (a DoFHandler on
+the same knot-span mesh) and the 20-node serendipity count of ANSYS SOLID95
+(vertices plus edges of that mesh). Per beam and for the two beams.
+)";
+} // namespace
 
 int
 main(int argc, char **argv)
 {
+  igabde::benchmarks::answer_help(argc, argv, usage);
   // MUMPS (the direct solver) runs on MPI_COMM_SELF.
   const igabde::base::LightMpiSingleton    light_mpi_singleton;
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);

@@ -1,41 +1,4 @@
-// The B-Newton alone against the number of contact unknowns, measured
-// against the floor of its algorithm: each iteration factorises the reduced
-// Newton matrix (the pairs that carry unknowns in the current piece; open
-// pairs drop out) densely through LAPACK, so the solve cannot be faster
-// than the sum over its iterations of one factorisation of that size.
-//
-// Problems:
-//  - an elastic half-space (E, nu) under a rigid indenter, the pairs on an
-//    n x n grid of square patches (side h) on its surface. W is the
-//    Boussinesq-Cerruti flexibility of the half-space: point-force kernels
-//    between distinct patches, the exact centre displacement of a
-//    uniformly loaded square patch on the diagonal (normal: (1-nu) L F /
-//    (pi G a), tangential: (2-nu) L F / (2 pi G a), L = ln(1+sqrt 2), a =
-//    h/2). It is dense, symmetric and positive definite, like the W of a
-//    condensed elastic body. Cases:
-//      hertz-mindlin     sphere (R = 2) pressed by delta = 0.04 and shifted
-//                        tangentially by 0.2 delta: contact disc of radius
-//                        ~0.28 inside the unit grid, partial slip
-//                        (Cattaneo-Mindlin), open pairs outside
-//      flat-punch        flat punch pressed by 1e-4, mu = 0.3: every pair
-//                        closed; nu = 0.3 couples normal and tangential
-//                        displacements, so the rim slips (the LU path)
-//      flat-punch-stick  the same punch with mu = 10: every pair closed and
-//                        sticking (the Cholesky path)
-//  - any FCLIB or Siconos problem file (--fclib), e.g. the condensed
-//    problem of a scene written with Output/FCLIB export = true (B2's
-//    curved beams: a flexibility from the bodies' Schur complements).
-//
-// Usage: bnewton_scaling [--pairs 169,441,900,2025,3364]
-//                        [--cases hertz-mindlin,flat-punch,flat-punch-stick]
-//                        [--fclib FILE]... [--repeat 1]
-// (a single number as first argument is --pairs with that one size). Prints
-// one Markdown row per problem: rows, final open/stick/slip, iterations,
-// the largest reduced system, the factorisation flops summed over the
-// iterations (n^3/3 for a Cholesky iteration, every pair closed or open
-// and none slipping; 2 n^3/3 for an LU), the solve's seconds (best of
-// --repeat), the flop rate they imply, and the rate of LAPACK's LU
-// (dgetrf) alone on a matrix of the largest reduced size: the floor.
+// bnewton_scaling: see `usage` below (also printed by --help).
 
 #include <igabde/contact/bnewton.h>
 #include <igabde/contact/condition_check.h>
@@ -57,6 +20,50 @@
 #include <sstream>
 #include <string>
 #include <vector>
+
+namespace
+{
+  const char *const usage =
+    R"(The B-Newton alone against the number of contact unknowns, measured
+against the floor of its algorithm: each iteration factorises the reduced
+Newton matrix (the pairs that carry unknowns in the current piece; open
+pairs drop out) densely through LAPACK, so the solve cannot be faster
+than the sum over its iterations of one factorisation of that size.
+
+Problems:
+ - an elastic half-space (E, nu) under a rigid indenter, the pairs on an
+   n x n grid of square patches (side h) on its surface. W is the
+   Boussinesq-Cerruti flexibility of the half-space: point-force kernels
+   between distinct patches, the exact centre displacement of a
+   uniformly loaded square patch on the diagonal (normal: (1-nu) L F /
+   (pi G a), tangential: (2-nu) L F / (2 pi G a), L = ln(1+sqrt 2), a =
+   h/2). It is dense, symmetric and positive definite, like the W of a
+   condensed elastic body. Cases:
+     hertz-mindlin     sphere (R = 2) pressed by delta = 0.04 and shifted
+                       tangentially by 0.2 delta: contact disc of radius
+                       ~0.28 inside the unit grid, partial slip
+                       (Cattaneo-Mindlin), open pairs outside
+     flat-punch        flat punch pressed by 1e-4, mu = 0.3: every pair
+                       closed; nu = 0.3 couples normal and tangential
+                       displacements, so the rim slips (the LU path)
+     flat-punch-stick  the same punch with mu = 10: every pair closed and
+                       sticking (the Cholesky path)
+ - any FCLIB or Siconos problem file (--fclib), e.g. the condensed
+   problem of a scene written with Output/FCLIB export = true (B2's
+   curved beams: a flexibility from the bodies' Schur complements).
+
+Usage: bnewton_scaling [--pairs 169,441,900,2025,3364]
+                       [--cases hertz-mindlin,flat-punch,flat-punch-stick]
+                       [--fclib FILE]... [--repeat 1]
+(a single number as first argument is --pairs with that one size). Prints
+one Markdown row per problem: rows, final open/stick/slip, iterations,
+the largest reduced system, the factorisation flops summed over the
+iterations (n^3/3 for a Cholesky iteration, every pair closed or open
+and none slipping; 2 n^3/3 for an LU), the solve's seconds (best of
+--repeat), the flop rate they imply, and the rate of LAPACK's LU
+(dgetrf) alone on a matrix of the largest reduced size: the floor.
+)";
+} // namespace
 
 using namespace igabde::contact;
 
@@ -237,6 +244,7 @@ namespace
 int
 main(int argc, char **argv)
 {
+  igabde::benchmarks::answer_help(argc, argv, usage);
   using igabde::benchmarks::option_value;
   const std::string         tool  = "bnewton_scaling";
   std::vector<unsigned int> pairs = {169, 441, 900, 2025, 3364};

@@ -1,10 +1,4 @@
-// Accuracy against cost for an elasticity scene with an exact solution:
-// runs the scene over a range of uniform refinements and prints a Markdown
-// table of DOFs, relative L2 and energy errors, observed rates and wall time
-// per phase.
-//
-// Usage: convergence_study SCENE.prm TYPE DEGREE FIRST LAST
-//   e.g. convergence_study prm/v1-plate-with-hole.prm nurbs 2 1 5
+// convergence_study: see `usage` below (also printed by --help).
 
 #include <igabde/base/utilities.h>
 
@@ -19,9 +13,23 @@
 #include <iostream>
 #include <sstream>
 
+namespace
+{
+  const char *const usage =
+    R"(Accuracy against cost for an elasticity scene with an exact solution:
+runs the scene over a range of uniform refinements and prints a Markdown
+table of DOFs, relative L2 and energy errors, observed rates and wall time
+per phase.
+
+Usage: convergence_study SCENE.prm TYPE DEGREE FIRST LAST
+  e.g. convergence_study prm/v1-plate-with-hole.prm nurbs 2 1 5
+)";
+} // namespace
+
 int
 main(int argc, char **argv)
 {
+  igabde::benchmarks::answer_help(argc, argv, usage);
   using igabde::benchmarks::option_value;
   const std::string tool = "convergence_study";
   // MUMPS (the direct solver) runs on MPI_COMM_SELF.

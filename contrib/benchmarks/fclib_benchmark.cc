@@ -1,23 +1,4 @@
-// Runs igabde's damped B-Newton contact solver on every local/global 2D and
-// 3D FCLIB / Siconos problem found under a folder and prints a table.
-//
-// Usage: fclib_benchmark [--only TEXT] [--log] [--repeat N] [folder]
-//                        [max_iterations] [seconds_per_problem] [max_rows]
-//   --only TEXT          run only the problems whose file name contains TEXT
-//   --log                print the solver's iterations
-//   --repeat N           solve each problem N times, the fastest counting
-//                        (default 1: the first solve in a process pays
-//                        start-up costs; repeat to time small problems or
-//                        to profile one)
-//   folder               default $IGABDE_FCLIB_DIR, else
-//                        ../shared/fclib/data (run from the repository root)
-//   max_iterations       iteration budget per problem (default 300)
-//   seconds_per_problem  wall-time limit per solve (default 60)
-//   max_rows             larger problems (rows of the dense W) are skipped
-//                        (default 6000)
-//
-// "solved" means the FCLIB relative natural-map error |p - P_K(p - u_hat)|
-// / |q| is <= 1e-8 (the measure of research/contact-solvers.md §4).
+// fclib_benchmark: see `usage` below (also printed by --help).
 
 #include <igabde/contact/bnewton.h>
 #include <igabde/contact/condition_check.h>
@@ -34,11 +15,38 @@
 #include <string>
 #include <vector>
 
+namespace
+{
+  const char *const usage =
+    R"(Runs igabde's damped B-Newton contact solver on every local/global 2D and
+3D FCLIB / Siconos problem found under a folder and prints a table.
+
+Usage: fclib_benchmark [--only TEXT] [--log] [--repeat N] [folder]
+                       [max_iterations] [seconds_per_problem] [max_rows]
+  --only TEXT          run only the problems whose file name contains TEXT
+  --log                print the solver's iterations
+  --repeat N           solve each problem N times, the fastest counting
+                       (default 1: the first solve in a process pays
+                       start-up costs; repeat to time small problems or
+                       to profile one)
+  folder               default $IGABDE_FCLIB_DIR, else
+                       ../shared/fclib/data (run from the repository root)
+  max_iterations       iteration budget per problem (default 300)
+  seconds_per_problem  wall-time limit per solve (default 60)
+  max_rows             larger problems (rows of the dense W) are skipped
+                       (default 6000)
+
+"solved" means the FCLIB relative natural-map error |p - P_K(p - u_hat)|
+/ |q| is <= 1e-8 (the measure of research/contact-solvers.md §4).
+)";
+} // namespace
+
 using namespace igabde::contact;
 
 int
 main(int argc, char **argv)
 {
+  igabde::benchmarks::answer_help(argc, argv, usage);
   using igabde::benchmarks::option_value;
   const std::string tool   = "fclib_benchmark";
   std::string       folder = "../shared/fclib/data";

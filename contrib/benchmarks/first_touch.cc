@@ -1,15 +1,4 @@
-// What writing fresh memory costs on this machine against writing memory
-// already mapped: the floor under a sparse factorisation that fills
-// gigabytes of factor and working space once (doc/performance.md, "B2 at
-// 16x64x16"). One anonymous mapping of --gib GiB, written twice with
-// memset: the first pass maps every page (the kernel zeroes it, and a
-// virtual machine's host may have to back it), the second only writes.
-// With 2 MiB (transparent huge) pages and with 4 KiB pages, --repeat times
-// each: the first write of the first mapping (memory new to the process),
-// and the best first and second writes of the repeats (later mappings may
-// get back the pages the earlier ones returned).
-//
-// Usage: build/first_touch [--gib 2] [--repeat 3]
+// first_touch: see `usage` below (also printed by --help).
 
 #include "option_value.h"
 #include <algorithm>
@@ -20,6 +9,24 @@
 #include <limits>
 #include <string>
 #include <sys/mman.h>
+
+namespace
+{
+  const char *const usage =
+    R"(What writing fresh memory costs on this machine against writing memory
+already mapped: the floor under a sparse factorisation that fills
+gigabytes of factor and working space once (doc/performance.md, "B2 at
+16x64x16"). One anonymous mapping of --gib GiB, written twice with
+memset: the first pass maps every page (the kernel zeroes it, and a
+virtual machine's host may have to back it), the second only writes.
+With 2 MiB (transparent huge) pages and with 4 KiB pages, --repeat times
+each: the first write of the first mapping (memory new to the process),
+and the best first and second writes of the repeats (later mappings may
+get back the pages the earlier ones returned).
+
+Usage: build/first_touch [--gib 2] [--repeat 3]
+)";
+} // namespace
 
 namespace
 {
@@ -35,6 +42,7 @@ namespace
 int
 main(int argc, char **argv)
 {
+  igabde::benchmarks::answer_help(argc, argv, usage);
   using igabde::benchmarks::option_value;
   double       gib    = 2.;
   unsigned int repeat = 3;

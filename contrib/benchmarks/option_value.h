@@ -41,6 +41,19 @@ namespace igabde::benchmarks
       }
     return value;
   }
+
+  /// Prints @p usage and ends the program with status 0 when an argument
+  /// is -h or --help: every helper program answers --help.
+  inline void
+  answer_help(const int argc, char **argv, const char *usage)
+  {
+    for (int a = 1; a < argc; ++a)
+      if (std::string(argv[a]) == "-h" || std::string(argv[a]) == "--help")
+        {
+          std::cout << usage;
+          std::exit(0);
+        }
+  }
 } // namespace igabde::benchmarks
 
 #endif

@@ -101,7 +101,13 @@ namespace cli_interrupt
     const std::size_t kept = steps_done.size();
     if (status == "ok")
       {
-        EXPECT_NE(result.output.find("exit 0"), std::string::npos)
+        // Finished before the signal, or the signal came after the last
+        // record while the process was ending (freeing its memory,
+        // MPI_Finalize): the records are the whole run either way.
+        EXPECT_TRUE(
+          result.output.find("exit 0") != std::string::npos ||
+          result.output.find(signal == "INT" ? "exit 130" : "exit 143") !=
+            std::string::npos)
           << result.output;
         EXPECT_EQ(kept, n_steps);
       }

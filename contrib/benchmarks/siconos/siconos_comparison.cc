@@ -1,55 +1,12 @@
-// igabde's B-Newton beside Siconos' FCLIB solvers, in one process and run,
-// on every local/global 2D and 3D problem under a folder (FCLIB HDF5 and
-// Siconos numerics .dat), every answer judged by the same measure.
-//
-// Usage: siconos_comparison [--only TEXT] [--max-rows N] [--max-iterations N]
-//                           [--w-prepared] [folder]
-//   folder            default $IGABDE_FCLIB_DIR, else ../shared/fclib/data
-//   --only TEXT       only the problems whose file name contains TEXT
-//   --max-rows N      larger problems (rows of the condensed W) are left
-//                     out (default 6000: our dense W)
-//   --max-iterations  Siconos' iteration budget (default 1000 for the
-//                     Newton and proximal solvers, 10 times that for NSGS)
-//   --w-prepared      igabde's time leaves out the preparation of its W
-//                     (the operator over the dense W, W's structure: its
-//                     sparse copy and symmetry), as Siconos' time leaves
-//                     out the conversion to its sparse-block storage;
-//                     without it igabde's time includes them
-//   --verify FILE [--agree TOL]   (in any order)
-//                     instead of the table: hand the FCLIB local problem
-//                     FILE (e.g. a scene's Output/FCLIB export) to Siconos
-//                     (3D: PROX and NSN-AC; 2D: Lemke's pivoting method and
-//                     NSGS) at internal tolerance 1e-14 and compare their
-//                     forces with the solution stored in the file; exit
-//                     status 0 if the first solver's answer meets FCLIB's
-//                     measure at 1e-8 and lies within TOL of the stored one
-//                     (relative), or without --agree within the distance the
-//                     two answers' FCLIB errors allow (the natural-map error
-//                     bound); ctests with scenes from prm/
-//
-// Each problem is read once, by igabde's reader (a global problem condensed
-// through its sparse M, W = H^T M^-1 H), and handed to both: igabde's
-// B-Newton works on the dense W, Siconos' solvers on the same W in their
-// sparse-block storage (blocks of the contact's size, exact zeros left
-// out), the storage they are written for. (Debian's Siconos is built
-// without FCLIB, so it cannot read the HDF5 files itself.) Every answer r
-// is judged on that problem by FCLIB's relative natural-map error
-// |r - P_K(r - (W r + q + mu |u_t| e_n))| / |q| (not by Siconos' own
-// measure, which divides by max(|q|, |r|, |u|)); "solved" is an error
-// <= 1e-8. Siconos' internal tolerance starts at 1e-8 and is tightened
-// (1e-10, 1e-12, 1e-14) until its answer passes or its solver stops
-// converging; the time is that of the run whose answer is reported. Times
-// are the solve alone (reading and conversion excluded), milliseconds, the
-// fastest of repeated runs (at least two for a solve under a second, more
-// while they take under 20 ms together: see run_again()), for both sides
-// alike. igabde stops as soon as the FCLIB error passes
-// (BNewtonSettings::fclib_stopping), as Siconos does.
+// siconos_comparison: see `usage` below (also printed by --help).
 
 #include <igabde/contact/bnewton.h>
 #include <igabde/contact/contact_law.h>
 #include <igabde/contact/contact_operator.h>
 #include <igabde/contact/contact_problem.h>
 #include <igabde/contact/fclib_reader.h>
+
+#include <deal.II/base/mpi.h>
 
 #include <Eigen/Eigenvalues>
 
@@ -76,6 +33,64 @@
 #include <unistd.h>
 #include <utility>
 #include <vector>
+
+namespace
+{
+  const char *const usage =
+    R"(igabde's B-Newton beside Siconos' FCLIB solvers, in one process and run,
+on every local/global 2D and 3D problem under a folder (FCLIB HDF5 and
+Siconos numerics .dat), every answer judged by the same measure.
+
+Usage: siconos_comparison [--only TEXT] [--max-rows N] [--max-iterations N]
+                          [--w-prepared] [folder]
+  folder            default $IGABDE_FCLIB_DIR, else ../shared/fclib/data
+  --only TEXT       only the problems whose file name contains TEXT
+  --max-rows N      larger problems (rows of the condensed W) are left
+                    out (default 6000: our dense W)
+  --max-iterations  Siconos' iteration budget (default 1000 for the
+                    Newton and proximal solvers, 10 times that for NSGS)
+  --w-prepared      igabde's time leaves out the preparation of its W
+                    (the operator over the dense W, W's structure: its
+                    sparse copy and symmetry), as Siconos' time leaves
+                    out the conversion to its sparse-block storage;
+                    without it igabde's time includes them
+  --verify FILE [--agree TOL]   (in any order)
+                    instead of the table: hand the FCLIB local problem
+                    FILE (e.g. a scene's Output/FCLIB export) to Siconos
+                    (3D: PROX and NSN-AC; 2D: Lemke's pivoting method and
+                    NSGS) at internal tolerance 1e-14 and compare their
+                    forces with the solution stored in the file; exit
+                    status 0 ("same answer") if the first of them to meet
+                    FCLIB's measure at 1e-8 lies within TOL of the stored
+                    one (relative), or without --agree within the distance
+                    the two answers' FCLIB errors allow (the natural-map
+                    error bound; where W is only semidefinite, if both
+                    meet 1e-8); 1 ("DIFFERENT answer") if not, or if the
+                    stored solution does not meet 1e-8; 3 ("no verdict")
+                    when neither Siconos solver meets 1e-8, naming both;
+                    2 for bad input; ctests with scenes from prm/ and the
+                    FCLIB problems
+
+Each problem is read once, by igabde's reader (a global problem condensed
+through its sparse M, W = H^T M^-1 H), and handed to both: igabde's
+B-Newton works on the dense W, Siconos' solvers on the same W in their
+sparse-block storage (blocks of the contact's size, exact zeros left
+out), the storage they are written for. (Debian's Siconos is built
+without FCLIB, so it cannot read the HDF5 files itself.) Every answer r
+is judged on that problem by FCLIB's relative natural-map error
+|r - P_K(r - (W r + q + mu |u_t| e_n))| / |q| (not by Siconos' own
+measure, which divides by max(|q|, |r|, |u|)); "solved" is an error
+<= 1e-8. Siconos' internal tolerance starts at 1e-8 and is tightened
+(1e-10, 1e-12, 1e-14) until its answer passes or its solver stops
+converging; the time is that of the run whose answer is reported. Times
+are the solve alone (reading and conversion excluded), milliseconds, the
+fastest of repeated runs (at least two for a solve under a second, more
+while they take under 20 ms together: see run_again()), for both sides
+alike. igabde stops as soon as the FCLIB error passes
+(BNewtonSettings::fclib_stopping), as Siconos does.
+)";
+} // namespace
+
 
 using namespace igabde::contact;
 
@@ -376,9 +391,8 @@ namespace
                   << " stores no solution to compare with\n";
         return 2;
       }
-    FrictionContactProblem *fcp    = siconos_problem(problem);
-    const int               n      = problem.n_rows();
-    bool                    passed = false;
+    FrictionContactProblem *fcp = siconos_problem(problem);
+    const int               n   = problem.n_rows();
     // How far two answers may lie apart given their FCLIB errors: for a
     // strongly monotone problem the natural map bounds the distance to the
     // solution, |r - r*| <= (1 + lambda_max) / lambda_min |F_nat(r)|
@@ -395,9 +409,14 @@ namespace
                                  problem.q.norm() /
                                  std::max(reference.r.norm(), 1e-300);
     std::cout << "stored solution: FCLIB error " << std::scientific
-              << std::setprecision(2) << reference_error
-              << "; |r - r*| / |r| <= " << amplification
-              << " x (the FCLIB error)" << std::defaultfloat << '\n';
+              << std::setprecision(2) << reference_error;
+    if (lambda_min > 1e-12 * std::abs(lambda_max))
+      std::cout << "; |r - r*| / |r| <= " << amplification
+                << " x (the FCLIB error)";
+    else
+      std::cout << "; W is not positive definite (smallest eigenvalue "
+                << lambda_min << ")";
+    std::cout << std::defaultfloat << '\n';
     // 3D: PROX (judged) and NSN-AC on the sparse-block storage; 2D:
     // Lemke's pivoting method on the equivalent LCP (judged: exact up to
     // round-off where it ends) and NSGS, both on a dense copy (Siconos'
@@ -412,6 +431,10 @@ namespace
         std::vector<std::pair<int, const char *>>{
           {SICONOS_FRICTION_2D_LEMKE, "Lemke"},
           {SICONOS_FRICTION_2D_NSGS, "NSGS"}};
+    // The first solver that meets FCLIB's measure at 1e-8 judges; one that
+    // does not is named, and if none does there is no verdict.
+    std::string judge, failures;
+    double      judged_difference = 0., judged_error = 0.;
     for (const auto &[id, label] : solvers)
       {
         std::vector<double> r(n, 0.), u(n, 0.);
@@ -430,18 +453,75 @@ namespace
                   << std::scientific << std::setprecision(2) << error
                   << ", |r - r_file| / |r_file| " << difference
                   << std::defaultfloat << '\n';
-        const double bound = amplification * (error + reference_error);
-        std::cout << "    allowed by the two errors: " << std::scientific
-                  << std::setprecision(2) << bound << std::defaultfloat << '\n';
-        if (id == solvers.front().first)
-          passed = lambda_min > 0. && error <= 1e-8 &&
-                   difference <= (agreement > 0. ? agreement : bound);
+        if (error > 1e-8)
+          {
+            std::ostringstream why;
+            why << label << " (info " << info << ", FCLIB error "
+                << std::scientific << std::setprecision(2) << error << ")";
+            failures += (failures.empty() ? "" : ", ") + why.str();
+          }
+        else if (judge.empty())
+          {
+            judge             = label;
+            judged_difference = difference;
+            judged_error      = error;
+          }
       }
     if (dense != nullptr)
       frictionContactProblem_free(dense);
     frictionContactProblem_free(fcp);
-    std::cout << (passed ? "same answer" : "DIFFERENT answer") << '\n';
-    return passed ? 0 : 1;
+
+    // The verdict on the stored solution, by the judge's answer.
+    const bool definite = lambda_min > 1e-12 * std::abs(lambda_max);
+    if (judge.empty())
+      {
+        std::cout << "no verdict: no Siconos solver solved the problem to "
+                     "FCLIB's 1e-8: "
+                  << failures << '\n';
+        return 3;
+      }
+    if (!failures.empty())
+      std::cout << "not solved to 1e-8 by " << failures << '\n';
+    std::cout << std::scientific << std::setprecision(2);
+    if (reference_error > 1e-8)
+      {
+        std::cout << "DIFFERENT answer: the stored solution does not solve "
+                     "the problem (FCLIB error "
+                  << reference_error << " > 1e-8); " << judge
+                  << " does (FCLIB error " << judged_error << ")\n";
+        return 1;
+      }
+    if (agreement > 0.)
+      {
+        const bool same = judged_difference <= agreement;
+        std::cout << (same ? "same answer" : "DIFFERENT answer") << ": "
+                  << judge << " and the stored solution differ by "
+                  << judged_difference << (same ? " <= " : " > ") << agreement
+                  << " (--agree)\n";
+        return same ? 0 : 1;
+      }
+    if (!definite)
+      {
+        // W only semidefinite: the solution need not be unique, and the
+        // natural map bounds no distance; both answers solve the problem.
+        std::cout << "same answer: " << judge
+                  << " and the stored solution both solve the problem "
+                     "(FCLIB errors "
+                  << judged_error << " and " << reference_error
+                  << "); W is not positive definite (smallest eigenvalue "
+                  << lambda_min
+                  << "), so the solution need not be unique "
+                     "(they differ by "
+                  << judged_difference << ")\n";
+        return 0;
+      }
+    const double bound = amplification * (judged_error + reference_error);
+    const bool   same  = judged_difference <= bound;
+    std::cout << (same ? "same answer" : "DIFFERENT answer") << ": " << judge
+              << " and the stored solution differ by " << judged_difference
+              << (same ? " <= " : " > ") << bound
+              << ", the distance their FCLIB errors allow\n";
+    return same ? 0 : 1;
   }
 } // namespace
 
@@ -450,6 +530,10 @@ namespace
 int
 main(int argc, char **argv)
 {
+  igabde::benchmarks::answer_help(argc, argv, usage);
+  // Siconos' sparse solvers call MUMPS, which in this process is the MPI
+  // build igabde links (one dmumps_c serves both): MPI must be running.
+  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   using igabde::benchmarks::option_value;
   const std::string tool   = "siconos_comparison";
   std::string       folder = "../shared/fclib/data";
@@ -478,7 +562,7 @@ main(int argc, char **argv)
       else if (a.rfind("--", 0) == 0)
         {
           std::cerr << "siconos_comparison: unknown option or missing value: "
-                    << a << " (see the usage at the top of the source)\n";
+                    << a << " (see --help)\n";
           return 2;
         }
       else
