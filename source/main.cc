@@ -46,8 +46,8 @@ namespace
          "Runs the scene SCENE.prm and writes summary.json, tables, the "
          "log and\nVTU/PVD fields into its output folder (Output/Directory, "
          "default\noutput/<scene name>/). --set overrides any parameter "
-         "(repeatable).\n--quiet leaves out the progress lines (Output/Progress = "
-         "false).\n--export-geometry also writes each body's refined geometry as "
+         "(repeatable).\n--quiet prints only warnings and errors on screen; log.txt "
+         "keeps\nevery line (Output/Quiet = true, Output/Progress = false).\n--export-geometry also writes each body's refined geometry as "
          "a G+Smo\nXML file and its control net as VTU (Output/Export "
          "geometry = true).\n--force runs a scene whose size estimate exceeds the free "
          "memory\n(without it, such a scene stops at once with the estimate); "
@@ -158,7 +158,10 @@ main(int argc, char **argv)
           overrides.emplace_back("Output/Restart", "true");
         }
       else if (arg == "--quiet" || arg == "-q")
-        overrides.emplace_back("Output/Progress", "false");
+        {
+          overrides.emplace_back("Output/Progress", "false");
+          overrides.emplace_back("Output/Quiet", "true");
+        }
       else if (arg == "--export-geometry")
         overrides.emplace_back("Output/Export geometry", "true");
       else if (arg == "--set")

@@ -83,6 +83,52 @@ namespace igabde
 
 
 
+    WarningLines::WarningLines(std::streambuf *target)
+      : target(target)
+    {}
+
+
+
+    WarningLines::~WarningLines()
+    {
+      end_line();
+      target->pubsync();
+    }
+
+
+
+    int
+    WarningLines::overflow(int c)
+    {
+      if (c == EOF)
+        return !EOF;
+      line.push_back(static_cast<char>(c));
+      if (c == '\n')
+        end_line();
+      return c;
+    }
+
+
+
+    int
+    WarningLines::sync()
+    {
+      return target->pubsync();
+    }
+
+
+
+    void
+    WarningLines::end_line()
+    {
+      if (line.find("warning:") != std::string::npos ||
+          line.find("error:") != std::string::npos)
+        target->sputn(line.data(), static_cast<std::streamsize>(line.size()));
+      line.clear();
+    }
+
+
+
     void
     write_file_atomically(const std::string &path, const std::string &text)
     {

@@ -25,7 +25,7 @@ namespace igabde
         RigidModeColumns                                     &modes,
         const std::vector<const discretization::Body<dim> *> &bodies,
         const std::string                                    &context,
-        std::ostream                                         &log)
+        std::vector<bool>                                    &held)
       {
         const Eigen::Index n = modes.G.cols();
         if (n == 0 || modes.G.rows() == 0)
@@ -71,9 +71,7 @@ namespace igabde
                 "no pair along a direction that carries force; frictionless "
                 "pairs push only along their normals). Hold it with a support "
                 "(Supports) or give the contact friction."));
-            log << "  " << name
-                << " moves no contact pair and carries no load: held at zero"
-                << std::endl;
+            held[main] = true;
           }
         modes.basis         = V.leftCols(rank);
         modes.G             = modes.G * modes.basis;
@@ -122,14 +120,23 @@ namespace igabde
               for (unsigned int s = 0; s < m; ++s)
                 result.G(m * i + s, a) = sign * (pair_list[i].frame[s] * r);
             }
-          log << "  " << bodies[b]->name() << ": free rigid mode '"
-              << bodies[b]->free_rigid_mode_names()[k]
-              << "' closed by the contact equilibrium (exact, no springs)"
-              << std::endl;
         }
       result.basis =
         Eigen::MatrixXd::Identity(alpha_modes.size(), alpha_modes.size());
-      hold_unresisted_modes(result, bodies, context, log);
+      std::vector<bool> held(alpha_modes.size(), false);
+      hold_unresisted_modes(result, bodies, context, held);
+      // One line per mode, once its fate is known.
+      for (unsigned int a = 0; a < alpha_modes.size(); ++a)
+        {
+          const auto [b, k] = alpha_modes[a];
+          log << "  " << bodies[b]->name() << ": free rigid mode '"
+              << bodies[b]->free_rigid_mode_names()[k] << "' "
+              << (held[a] ? "moves no contact pair and carries no load: held "
+                            "at zero" :
+                            "closed by the contact equilibrium (exact, no "
+                            "springs)")
+              << std::endl;
+        }
       return result;
     }
 

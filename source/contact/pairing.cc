@@ -178,8 +178,13 @@ namespace igabde
                "away from " +
                master.description() +
                (master.deformable() ?
-                  std::string("; check Contact/Slave face and "
-                              "Contact/Master face.") :
+                  std::string(
+                    ": the slave face reaches past the part of the master "
+                    "that faces it (or the faces are the wrong ones). Every "
+                    "point of Contact/Slave face must face Contact/Master "
+                    "face: choose a slave face that lies within the "
+                    "master's extent, or swap Body 1 and Body 2 so that the "
+                    "smaller face is the slave (Body 1's).") :
                   std::string(" (check Body 2/Plane normal: it must "
                               "point towards Body 1) and Contact/Slave "
                               "face."));

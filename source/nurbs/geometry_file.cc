@@ -40,8 +40,10 @@ namespace igabde
         return node.get_value<std::string>();
       }
 
-      /// Every number of @p text (base::parse_doubles); @p where ends in
-      /// ": " as the other messages of this file.
+      /// Every number of @p text (base::parse_doubles), a rational literal
+      /// "p/q" as G+Smo writes exact coordinates (filedata/planar's
+      /// "1/9") included; @p where ends in ": " as the other messages of
+      /// this file.
       std::vector<double>
       numbers(const std::string &text, const std::string &where)
       {
@@ -49,7 +51,38 @@ namespace igabde
         while (!context.empty() &&
                (context.back() == ' ' || context.back() == ':'))
           context.pop_back();
-        return base::parse_doubles(text, context);
+        if (text.find('/') == std::string::npos)
+          return base::parse_doubles(text, context);
+        std::string cleaned = text;
+        std::replace(cleaned.begin(), cleaned.end(), ',', ' ');
+        std::istringstream  in(cleaned);
+        std::vector<double> values;
+        std::string         token;
+        while (in >> token)
+          {
+            const auto slash = token.find('/');
+            if (slash == std::string::npos)
+              {
+                values.push_back(base::parse_doubles(token, context).front());
+                continue;
+              }
+            const std::string         numerator = token.substr(0, slash);
+            const std::string         denominator = token.substr(slash + 1);
+            const bool                one_slash =
+              denominator.find('/') == std::string::npos;
+            const std::vector<double> p =
+              one_slash ? base::parse_doubles(numerator, context) :
+                          std::vector<double>();
+            const std::vector<double> q =
+              one_slash ? base::parse_doubles(denominator, context) :
+                          std::vector<double>();
+            AssertThrow(p.size() == 1 && q.size() == 1 && q[0] != 0.,
+                        base::ExcInput(context + ": '" + token +
+                                       "' is not a number; a fraction reads "
+                                       "p/q with q not zero, as 5/18."));
+            values.push_back(p[0] / q[0]);
+          }
+        return values;
       }
 
 

@@ -34,6 +34,26 @@ namespace igabde
           << size << " deep.";
         return w.str();
       }
+
+      /// Units: a contact zone a thousand times smaller than the radius is
+      /// rarely the scene meant; E given in Pa where the lengths are in mm
+      /// (and the forces in N) makes the bodies 10^6 times too stiff and
+      /// the Hertz zone 10^3 (line contact) or 10^2 (point contact) times
+      /// too small. Empty where the zone is not that small.
+      std::string
+      units_hint(const double a, const double R, const std::string &size)
+      {
+        if (!(a < 1e-3 * R))
+          return "";
+        std::ostringstream w;
+        w << " The " << size << " is only " << a / R
+          << " of the radius " << R
+          << ": if that is not meant, check the units (E, loads and "
+             "lengths in one system: with lengths in mm and forces in N, "
+             "E is in MPa = N/mm^2; E in Pa makes the bodies 10^6 times too "
+             "stiff).";
+        return w.str();
+      }
     } // namespace
 
 
@@ -253,7 +273,8 @@ namespace igabde
             << " next to the axis); its half-width, peak pressure and "
                "profile error measure the pair spacing, not the method. "
                "Refine the contact face (Discretization/Refinements or Body "
-               "1/Subdivisions) until the half-width spans several pairs.";
+               "1/Subdivisions) until the half-width spans several pairs."
+            << units_hint(a, R, "half-width");
           result.warnings.push_back(w.str());
         }
       if (element_depth > 2. * a)
@@ -347,7 +368,8 @@ namespace igabde
                "and profile error measure the pair spacing, not the method. "
                "Refine the contact face (Body 1/Subdivisions or Grading "
                "toward the contact) until the zone spans several pairs in "
-               "each direction.";
+               "each direction."
+            << units_hint(a, R, "contact radius");
           result.warnings.push_back(w.str());
         }
       if (element_depth > 2. * a)

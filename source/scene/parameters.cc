@@ -49,6 +49,12 @@ namespace igabde
                           "every phase that can take long (assembly, "
                           "factorisation, condensation, contact iterations); "
                           "the command-line flag --quiet sets it to false.");
+        prm.declare_entry("Quiet",
+                          "false",
+                          Patterns::Bool(),
+                          "Print only warnings and errors on screen; "
+                          "log.txt keeps every line. The command-line flag "
+                          "--quiet sets it (and Progress = false).");
         prm.declare_entry("Solver details",
                           "true",
                           Patterns::Bool(),
@@ -111,6 +117,7 @@ namespace igabde
         write_vtu       = prm.get_bool("Write vtu");
         print_timing    = prm.get_bool("Print timing");
         progress        = prm.get_bool("Progress");
+        quiet           = prm.get_bool("Quiet");
         solver_details  = prm.get_bool("Solver details");
         export_geometry = prm.get_bool("Export geometry");
         fclib_export    = prm.get_bool("FCLIB export");

@@ -179,6 +179,12 @@ namespace igabde
           // moved apart by more than the pair spacing (pairs formed once in the
           // reference configuration no longer face each other).
           const double strain_limit = 0.1, sliding_limit = 1.;
+          const double smallest_strain = 1e-8;
+          const char  *units_advice =
+            "units: E, loads and lengths must be in one system (with "
+            "lengths in mm and forces in N, E is in MPa = N/mm^2; E in Pa "
+            "makes the bodies 10^6 times too stiff, lengths in m with E in "
+            "MPa 10^6 times too soft).";
           const auto   warn = [&](const std::string &kind,
                                 const std::string &text) {
             for (const std::string &w : warnings)
@@ -215,6 +221,22 @@ namespace igabde
                 << "), beyond 0.1, where the quadratic term that small-strain "
                    "elasticity drops reaches 5 % of the strain: the results "
                    "are outside the model's range.";
+              if (strain.first > 100. * strain_limit)
+                text << " A strain this large usually means inconsistent "
+                     << units_advice;
+              warn("the largest strain", text.str());
+            }
+          // So small a strain under a load is rarely meant either: steel
+          // at its yield stress strains 1e-3, and E in Pa where the
+          // lengths are in mm scales every strain by 1e-6.
+          else if (strain.first > 0. && strain.first < smallest_strain)
+            {
+              text << "the largest strain is " << strain.first << " (Body "
+                   << strain_body + 1 << " at ("
+                   << base::to_string(strain.second)
+                   << ")), below 1e-8: so small a strain usually means "
+                      "inconsistent "
+                   << units_advice;
               warn("the largest strain", text.str());
             }
           // Contact that never happened: every pair open at every step (a

@@ -45,6 +45,7 @@ namespace igabde
         double       r_scale        = 1.;
         bool         verbose        = false;
         bool         progress       = true;
+        bool         quiet          = false;
         std::string  directory;
       };
 
@@ -58,7 +59,8 @@ namespace igabde
                                             "Contact/r scale",
                                             "Contact/Verbose",
                                             "Output/Directory",
-                                            "Output/Progress"};
+                                            "Output/Progress",
+                                            "Output/Quiet"};
         ParameterHandler            prm;
         AllParameters::declare_parameters(prm);
         std::set<std::string> given;
@@ -71,7 +73,8 @@ namespace igabde
                           "has no bodies, mesh or load path; --fclib reads "
                           "Contact/Tolerance, Contact/Max iterations, "
                           "Contact/r scale, Contact/Verbose, "
-                          "Output/Directory and Output/Progress."));
+                          "Output/Directory, Output/Progress and "
+                          "Output/Quiet."));
             apply_override(prm, path, value);
             given.insert(path);
           }
@@ -87,6 +90,7 @@ namespace igabde
         prm.enter_subsection("Output");
         s.directory = base::trim(prm.get("Directory"));
         s.progress  = prm.get_bool("Progress");
+        s.quiet     = prm.get_bool("Quiet");
         prm.leave_subsection();
         if (s.directory.empty())
           s.directory = "output/" + std::filesystem::path(file).stem().string();
@@ -203,8 +207,10 @@ namespace igabde
       if (root)
         log_file.open(dir + "/log.txt");
       // Rank 0 prints and logs; the other ranks' log discards.
-      base::TeeBuffer tee(std::cout.rdbuf(), log_file.rdbuf());
-      std::ostream    log(root ? static_cast<std::streambuf *>(&tee) : nullptr);
+      base::WarningLines warnings_only(std::cout.rdbuf());
+      base::TeeBuffer    tee(settings.quiet ? &warnings_only : std::cout.rdbuf(),
+                          log_file.rdbuf());
+      std::ostream log(root ? static_cast<std::streambuf *>(&tee) : nullptr);
 
       nlohmann::json summary;
       summary["mode"]    = "fclib";

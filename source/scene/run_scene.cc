@@ -187,8 +187,12 @@ namespace igabde
       std::ofstream log_file;
       if (root)
         log_file.open(dir + "/log.txt");
-      base::TeeBuffer tee(std::cout.rdbuf(), log_file.rdbuf());
-      std::ostream    log(&tee);
+      // With --quiet the screen gets the warnings and errors only.
+      base::WarningLines warnings_only(std::cout.rdbuf());
+      base::TeeBuffer    tee(parameters.output.quiet ? &warnings_only :
+                                                    std::cout.rdbuf(),
+                          log_file.rdbuf());
+      std::ostream       log(&tee);
       log << std::setprecision(6);
 
       // The failing rank's message; with several ranks, the others are

@@ -126,9 +126,6 @@ namespace igabde
                 << " elements, " << body->n_dofs() << " unknowns ("
                 << body->discretization_name() << ", degree "
                 << parameters.discretization.degree << ")" << std::endl;
-          for (const auto &name : body->free_rigid_mode_names())
-            pcout << "    free rigid mode left by the supports: " << name
-                  << " (closed by the contact equilibrium)" << std::endl;
           std::string held;
           for (const auto &name : body->held_rigid_mode_names())
             held += (held.empty() ? "" : ", ") + name;

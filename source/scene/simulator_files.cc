@@ -113,12 +113,13 @@ namespace igabde
       else
         withdraw_interrupted_summary();
 
-      // deal.II's timing table, to a file always and to the screen unless
-      // the scene switches it off.
+      // deal.II's timing table, to a file always and to the screen at the
+      // end of a run that finished unless the scene switches it off (after
+      // a failure the error line stays the last one).
       timing_table.str("");
       timer.print_summary();
       std::ofstream(output_directory + "/timing.txt") << timing_table.str();
-      if (parameters.output.print_timing && status != "running")
+      if (parameters.output.print_timing && status == "ok")
         pcout << timing_table.str() << std::flush;
     }
 

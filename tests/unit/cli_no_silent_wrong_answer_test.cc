@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -63,6 +64,11 @@ TEST(NoSilentWrongAnswer, DegreeBelowTheExactGeometryIsRefused)
     << r.output;
   EXPECT_FALSE(
     contains(read_file(cli::join(s.path, "out/summary.json")), "\"ok\""));
+  // The error line is the last thing on screen: no timing table after it
+  // (the timing stays in timing.txt and summary.json).
+  EXPECT_FALSE(contains(r.output, "wallclock")) << r.output;
+  EXPECT_TRUE(
+    contains(read_file(cli::join(s.path, "out/timing.txt")), "wallclock"));
 }
 
 
@@ -478,4 +484,191 @@ TEST(NoSilentWrongAnswer, HertzZoneBelowThePairSpacingIsAWarning)
     contains(tiny.output + read_file(cli::join(s.path, "tiny/log.txt")),
              "Refine the contact face"))
     << tiny.output;
+}
+
+
+
+TEST(NoSilentWrongAnswer, EachFreeRigidModeGetsOneTrueLine)
+{
+  // Tutorial 1's disc has no support: frictionless on the plane, its
+  // sideways slide moves no pair along a normal and carries no load (held
+  // at zero); its vertical translation and its rotation are closed by the
+  // contact equilibrium. Each mode is named once, with its fate (before,
+  // every mode was first said to be closed by the contact, and the slide
+  // then held at zero). Without contact a free mode is refused and no
+  // line claims a contact that does not exist.
+  const Scratch     s("rigid-modes");
+  const std::string coarse = " --set 'Body 1/Subdivisions=40, 4'"
+                             " --set 'Output/Write vtu=false'";
+  const auto        r      = run_igabde(scene("tutorial-1-disc-on-plane.prm") +
+                               coarse + " --set 'Output/Directory=contact'",
+                             s.path);
+  ASSERT_EQ(r.status, 0) << r.output;
+  const std::string log = read_file(cli::join(s.path, "contact/log.txt"));
+  const auto lines_with = [&](const std::string &what) {
+    std::vector<std::string> found;
+    std::istringstream       in(log);
+    for (std::string line; std::getline(in, line);)
+      if (contains(line, what))
+        found.push_back(line);
+    return found;
+  };
+  EXPECT_EQ(lines_with("rigid mode").size(), 3u) << log;
+  const auto slide = lines_with("'translation x'");
+  ASSERT_EQ(slide.size(), 1u) << log;
+  EXPECT_TRUE(contains(slide[0], "held at zero")) << slide[0];
+  const auto lift = lines_with("'translation y'");
+  ASSERT_EQ(lift.size(), 1u) << log;
+  EXPECT_TRUE(contains(lift[0], "closed by the contact equilibrium"))
+    << lift[0];
+
+  // V5's quarter disc is held on its symmetry axis only: without contact
+  // its vertical translation is free.
+  const auto alone = run_igabde(scene("v5-hertz-2d.prm") +
+                                  " --set 'Output/Write vtu=false'"
+                                  " --set 'Contact/Enabled=false'"
+                                  " --set 'Output/Directory=none'",
+                                s.path);
+  EXPECT_EQ(alone.status, 2) << alone.output;
+  EXPECT_TRUE(contains(alone.output, "has no contact; add Supports"))
+    << alone.output;
+  EXPECT_FALSE(contains(alone.output, "closed by")) << alone.output;
+}
+
+
+
+TEST(NoSilentWrongAnswer, StrainsAndContactZonesFarOutOfScaleMentionUnits)
+{
+  // V5 with E in "Pa" (x 1e6, lengths and loads unchanged): Johnson's
+  // half-width shrinks by 10^3 to 1.9e-4 of R, below one pair spacing; the
+  // unresolved-zone warning now also says to check the units. The strain
+  // falls by 10^6: below 1e-8 for V3's patch test (pressure 1, E = 1000:
+  // strain 1e-3, x 1e-6 = 1e-9), a warning of its own. E x 1e-6 on V3
+  // makes the strain 1e3: the out-of-range warning says units too. At the
+  // scenes' own E none of these appear.
+  const Scratch     s("units");
+  const std::string quiet = " --quiet --set 'Output/Write vtu=false'";
+  const auto        warnings_of = [&](const std::string &folder) {
+    const nlohmann::json summary = nlohmann::json::parse(
+      read_file(cli::join(s.path, folder + "/summary.json")));
+    std::string all;
+    if (summary.contains("warnings"))
+      for (const auto &w : summary.at("warnings"))
+        all += w.get<std::string>() + "\n";
+    return all;
+  };
+  struct Case
+  {
+    std::string scene, sets, folder;
+    bool        units;
+  };
+  const std::vector<Case> cases = {
+    {"v5-hertz-2d.prm", "", "v5", false},
+    {"v5-hertz-2d.prm", " --set \"Body 1/Young's modulus=1e9\"", "v5-pa", true},
+    {"v3-contact-patch-2d.prm", "", "v3", false},
+    {"v3-contact-patch-2d.prm",
+     " --set \"Body 1/Young's modulus=1e9\""
+     " --set \"Body 2/Young's modulus=1e9\"",
+     "v3-stiff",
+     true},
+    {"v3-contact-patch-2d.prm",
+     " --set \"Body 1/Young's modulus=1e-3\""
+     " --set \"Body 2/Young's modulus=1e-3\"",
+     "v3-soft",
+     true}};
+  for (const auto &c : cases)
+    {
+      SCOPED_TRACE(c.folder);
+      const auto r = run_igabde(scene(c.scene) + quiet + c.sets +
+                                  " --set 'Output/Directory=" + c.folder + "'",
+                                s.path);
+      ASSERT_EQ(r.status, 0) << r.output;
+      const std::string w = warnings_of(c.folder);
+      EXPECT_EQ(contains(w, "check the units") ||
+                  contains(w, "inconsistent units"),
+                c.units)
+        << w;
+    }
+}
+
+
+
+TEST(NoSilentWrongAnswer, ProjectionsOntoACurvedMasterFromAfarConverge)
+{
+  // A block [0, 1] x [2.5, 3.5] held 1.5 above the outer arc r = 1 of a
+  // quarter annulus (weighted-gap pairs, the slave face y = 2.5). Its
+  // points lie farther than twice the arc's radius from its centre, where
+  // the Gauss-Newton projection without the curvature term diverges: the
+  // set-up failed ("did not converge in 100 iterations"). Each pair's
+  // gap, the N_j-weighted mean of the pointwise gap g(x) = |x| - 1 over
+  // the support of N_j, must meet g at the pair's centroid to within the
+  // second-order term: max |g''| (about 1 / 2.5) times half the square of
+  // the support's half-width (3 spans of 1/16 over 2): 2e-3. A projection
+  // stuck at the arc's end (0, 1) would be off by up to 0.1.
+  const Scratch     s("projection");
+  const std::string block =
+    "set Dimension = 2\n"
+    "subsection Discretization\n  set Type = nurbs\n  set Degree = 2\nend\n"
+    "subsection Body 1\n  set Geometry = box\n"
+    "  set Lower corner = 0, 2.5\n  set Upper corner = 1, 3.5\n"
+    "  set Subdivisions = 16, 8\n  set Young's modulus = 1000\n"
+    "  set Poisson's ratio = 0.3\n  set Supports = 0: x; 3: y\nend\n"
+    "subsection Body 2\n  set Type = deformable\n"
+    "  set Geometry = quarter annulus\n  set Inner radius = 0.5\n"
+    "  set Outer radius = 1\n  set Subdivisions = 8, 16\n"
+    "  set Young's modulus = 1000\n  set Poisson's ratio = 0.3\n"
+    "  set Supports = 0: x, y; 3: x\nend\n"
+    "subsection Contact\n  set Enabled = true\n"
+    "  set Pairing = weighted-gap-standard\n  set Slave face = 2\n"
+    "  set Master face = 1\nend\n"
+    "subsection Output\n  set Write vtu = false\nend\n";
+  std::ofstream(cli::join(s.path, "block.prm")) << block;
+  const auto r =
+    run_igabde("block.prm --quiet --set 'Output/Directory=out'", s.path);
+  ASSERT_EQ(r.status, 0) << r.output;
+  std::istringstream csv(read_file(cli::join(s.path, "out/contact-0001.csv")));
+  std::string        line;
+  std::getline(csv, line);
+  ASSERT_EQ(line.rfind("pair,x,y,area,gap,", 0), 0u) << line;
+  unsigned int n = 0;
+  while (std::getline(csv, line))
+    {
+      std::array<double, 5> v;
+      std::istringstream    fields(line);
+      std::string           field;
+      for (double &value : v)
+        {
+          std::getline(fields, field, ',');
+          value = std::stod(field);
+        }
+      EXPECT_NEAR(v[4], std::hypot(v[1], v[2]) - 1., 2e-3) << line;
+      ++n;
+    }
+  EXPECT_EQ(n, 18u);
+
+  // The slave face reaching past the master's facing part (the block
+  // replaced by a disc of radius 8 touching the arc's end from above): a
+  // set-up error that says so and how to mend it.
+  std::ofstream(cli::join(s.path, "disc.prm"))
+    << "set Dimension = 2\n"
+       "subsection Discretization\n  set Type = nurbs\n  set Degree = 2\nend\n"
+       "subsection Body 1\n  set Geometry = half disc\n  set Centre = 0, 9\n"
+       "  set Radius = 8\n  set Subdivisions = 40, 8\n"
+       "  set Young's modulus = 1000\n  set Poisson's ratio = 0.3\n"
+       "  set Supports = 3: x\n  set Tractions = 3: vector 0, -0.1\nend\n"
+       "subsection Body 2\n  set Type = deformable\n"
+       "  set Geometry = quarter annulus\n  set Inner radius = 0.5\n"
+       "  set Outer radius = 1\n  set Subdivisions = 16, 16\n"
+       "  set Young's modulus = 1000\n  set Poisson's ratio = 0.3\n"
+       "  set Supports = 0: x, y\nend\n"
+       "subsection Contact\n  set Enabled = true\n"
+       "  set Pairing = weighted-gap\n  set Slave face = 2\n"
+       "  set Master face = 1\nend\n"
+       "subsection Output\n  set Write vtu = false\nend\n";
+  const auto past =
+    run_igabde("disc.prm --quiet --set 'Output/Directory=past'", s.path);
+  EXPECT_EQ(past.status, 2) << past.output;
+  EXPECT_TRUE(contains(past.output, "reaches past the part of the master"))
+    << past.output;
+  EXPECT_FALSE(contains(past.output, "did not converge")) << past.output;
 }

@@ -310,6 +310,52 @@ TEST(GeometryFile, PlanarPatchStoredIn3dSpaceIsReadIn2d)
 
 
 
+TEST(GeometryFile, RationalLiteralsAreReadAsTheirQuotients)
+{
+  // G+Smo writes exact coordinates as fractions ("1/9", "5/18" in its
+  // planar/multiPatches files): read as p / q, the same patch as the
+  // decimals; a fraction with a zero or missing part is refused.
+  const cli::ScratchFolder folder("geometry-rational", "unit");
+  const std::string        fractions =
+    write(folder,
+          "fractions.xml",
+          xml(patch_2d("0",
+                       "0 0 1/2 1 1",
+                       "0 0 1 1",
+                       "0 0\n1/2 -1/10\n1 0\n0 1\n1/2 6/5\n1 1\n",
+                       "1 5/18 1 1 2/3 1")));
+  const std::string decimals =
+    write(folder,
+          "decimals.xml",
+          xml(patch_2d("0",
+                       "0 0 0.5 1 1",
+                       "0 0 1 1",
+                       "0 0\n0.5 -0.1\n1 0\n0 1\n0.5 1.2\n1 1\n",
+                       "1 0.2777777777777778 1 1 0.6666666666666666 1")));
+  const MultiPatchGeometry<2> a = read_geometry_file<2>(fractions);
+  const MultiPatchGeometry<2> b = read_geometry_file<2>(decimals);
+  ASSERT_EQ(a.patches.size(), 1u);
+  ASSERT_EQ(a.patches[0].n_control_points(), 6u);
+  for (unsigned int i = 0; i < 6; ++i)
+    {
+      EXPECT_LE(a.patches[0].control_point(i).distance(
+                  b.patches[0].control_point(i)),
+                1e-15);
+      EXPECT_NEAR(a.patches[0].weight(i), b.patches[0].weight(i), 1e-15);
+    }
+  for (const std::string bad : {"1/0", "1/", "/3", "1/2/3"})
+    {
+      const std::string path = write(
+        folder,
+        "bad.xml",
+        xml(patch_2d("0", "0 0 1 1", "0 0 1 1", "0 0\n1 0\n0 1\n1 " + bad + "\n")));
+      EXPECT_NE(refusal<2>(path).find("'" + bad + "'"), std::string::npos)
+        << bad << ": " << refusal<2>(path);
+    }
+}
+
+
+
 TEST(GeometryFile, BadFilesAreRefusedNamingTheFile)
 {
   const cli::ScratchFolder folder("geometry-bad", "unit");

@@ -39,6 +39,35 @@ namespace igabde
     };
 
     /**
+     * @brief A stream buffer that passes to @p target only the lines that
+     * are warnings or errors (that contain "warning:" or "error:"), whole:
+     * the screen of a run with --quiet, beside a log file that keeps every
+     * line.
+     */
+    class WarningLines : public std::streambuf
+    {
+    public:
+      explicit WarningLines(std::streambuf *target);
+
+      ~WarningLines() override;
+
+    protected:
+      int
+      overflow(int c) override;
+
+      int
+      sync() override;
+
+    private:
+      /// Passes the line held so far on when it is a warning or an error.
+      void
+      end_line();
+
+      std::streambuf *target;
+      std::string     line;
+    };
+
+    /**
      * @brief Writes @p text to @p path through a neighbouring temporary file
      * and a rename, so a reader (or an interrupted run) finds either the old
      * file or the new one, never half of one.

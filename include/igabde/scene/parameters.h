@@ -124,6 +124,9 @@ namespace igabde
       /// Print progress lines (phase, elapsed seconds) for phases that can
       /// take long; --quiet turns them off.
       bool progress = true;
+      /// Print only warnings and errors on screen (--quiet); log.txt keeps
+      /// every line.
+      bool quiet = false;
       /// Print the contact solver's line per solve (iterations, residuals,
       /// contact counts) and step-cut notices (off in scene tests: they are
       /// not physical results); summary.json always has them.
