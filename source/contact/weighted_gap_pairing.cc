@@ -116,17 +116,17 @@ namespace igabde
               H = gn;
               for (unsigned int b = 0; b < n; ++b)
                 {
-                  const double h = 1e-6 * extent;
+                  const double h  = 1e-6 * extent;
                   Point<n>     up = eta, down = eta;
-                  up[b]   = std::min(eta[b] + h, grid.breaks[b].back());
-                  down[b] = std::max(eta[b] - h, grid.breaks[b].front());
+                  up[b]         = std::min(eta[b] + h, grid.breaks[b].back());
+                  down[b]       = std::max(eta[b] - h, grid.breaks[b].front());
                   const auto pu = master.face_point(up);
                   const auto pd = master.face_point(down);
                   for (unsigned int a = 0; a < n; ++a)
-                    H[a][b] -= r * (pu.tangents[a] - pd.tangents[a]) /
-                               (up[b] - down[b]);
+                    H[a][b] -=
+                      r * (pu.tangents[a] - pd.tangents[a]) / (up[b] - down[b]);
                 }
-              H = 0.5 * (H + transpose(H));
+              H                   = 0.5 * (H + transpose(H));
               const bool   newton = H[0][0] > 0. && determinant(H) > 0.;
               Tensor<1, n> step   = invert(newton ? H : gn) * g;
               // Shortened until f falls by a tenth of a thousandth of the

@@ -66,10 +66,9 @@ namespace igabde
                 values.push_back(base::parse_doubles(token, context).front());
                 continue;
               }
-            const std::string         numerator = token.substr(0, slash);
-            const std::string         denominator = token.substr(slash + 1);
-            const bool                one_slash =
-              denominator.find('/') == std::string::npos;
+            const std::string numerator   = token.substr(0, slash);
+            const std::string denominator = token.substr(slash + 1);
+            const bool one_slash = denominator.find('/') == std::string::npos;
             const std::vector<double> p =
               one_slash ? base::parse_doubles(numerator, context) :
                           std::vector<double>();

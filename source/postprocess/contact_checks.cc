@@ -46,8 +46,7 @@ namespace igabde
         if (!(a < 1e-3 * R))
           return "";
         std::ostringstream w;
-        w << " The " << size << " is only " << a / R
-          << " of the radius " << R
+        w << " The " << size << " is only " << a / R << " of the radius " << R
           << ": if that is not meant, check the units (E, loads and "
              "lengths in one system: with lengths in mm and forces in N, "
              "E is in MPa = N/mm^2; E in Pa makes the bodies 10^6 times too "

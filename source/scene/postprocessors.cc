@@ -185,7 +185,7 @@ namespace igabde
             "lengths in mm and forces in N, E is in MPa = N/mm^2; E in Pa "
             "makes the bodies 10^6 times too stiff, lengths in m with E in "
             "MPa 10^6 times too soft).";
-          const auto   warn = [&](const std::string &kind,
+          const auto warn = [&](const std::string &kind,
                                 const std::string &text) {
             for (const std::string &w : warnings)
               if (w.find(kind) != std::string::npos)

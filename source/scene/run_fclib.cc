@@ -208,7 +208,7 @@ namespace igabde
         log_file.open(dir + "/log.txt");
       // Rank 0 prints and logs; the other ranks' log discards.
       base::WarningLines warnings_only(std::cout.rdbuf());
-      base::TeeBuffer    tee(settings.quiet ? &warnings_only : std::cout.rdbuf(),
+      base::TeeBuffer tee(settings.quiet ? &warnings_only : std::cout.rdbuf(),
                           log_file.rdbuf());
       std::ostream log(root ? static_cast<std::streambuf *>(&tee) : nullptr);
 

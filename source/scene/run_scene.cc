@@ -192,7 +192,7 @@ namespace igabde
       base::TeeBuffer    tee(parameters.output.quiet ? &warnings_only :
                                                     std::cout.rdbuf(),
                           log_file.rdbuf());
-      std::ostream       log(&tee);
+      std::ostream log(&tee);
       log << std::setprecision(6);
 
       // The failing rank's message; with several ranks, the others are

@@ -500,12 +500,12 @@ TEST(NoSilentWrongAnswer, EachFreeRigidModeGetsOneTrueLine)
   const Scratch     s("rigid-modes");
   const std::string coarse = " --set 'Body 1/Subdivisions=40, 4'"
                              " --set 'Output/Write vtu=false'";
-  const auto        r      = run_igabde(scene("tutorial-1-disc-on-plane.prm") +
-                               coarse + " --set 'Output/Directory=contact'",
-                             s.path);
+  const auto r = run_igabde(scene("tutorial-1-disc-on-plane.prm") + coarse +
+                              " --set 'Output/Directory=contact'",
+                            s.path);
   ASSERT_EQ(r.status, 0) << r.output;
   const std::string log = read_file(cli::join(s.path, "contact/log.txt"));
-  const auto lines_with = [&](const std::string &what) {
+  const auto        lines_with = [&](const std::string &what) {
     std::vector<std::string> found;
     std::istringstream       in(log);
     for (std::string line; std::getline(in, line);)
@@ -524,11 +524,11 @@ TEST(NoSilentWrongAnswer, EachFreeRigidModeGetsOneTrueLine)
 
   // V5's quarter disc is held on its symmetry axis only: without contact
   // its vertical translation is free.
-  const auto alone = run_igabde(scene("v5-hertz-2d.prm") +
-                                  " --set 'Output/Write vtu=false'"
-                                  " --set 'Contact/Enabled=false'"
-                                  " --set 'Output/Directory=none'",
-                                s.path);
+  const auto alone =
+    run_igabde(scene("v5-hertz-2d.prm") + " --set 'Output/Write vtu=false'"
+                                          " --set 'Contact/Enabled=false'"
+                                          " --set 'Output/Directory=none'",
+               s.path);
   EXPECT_EQ(alone.status, 2) << alone.output;
   EXPECT_TRUE(contains(alone.output, "has no contact; add Supports"))
     << alone.output;
@@ -547,7 +547,7 @@ TEST(NoSilentWrongAnswer, StrainsAndContactZonesFarOutOfScaleMentionUnits)
   // makes the strain 1e3: the out-of-range warning says units too. At the
   // scenes' own E none of these appear.
   const Scratch     s("units");
-  const std::string quiet = " --quiet --set 'Output/Write vtu=false'";
+  const std::string quiet       = " --quiet --set 'Output/Write vtu=false'";
   const auto        warnings_of = [&](const std::string &folder) {
     const nlohmann::json summary = nlohmann::json::parse(
       read_file(cli::join(s.path, folder + "/summary.json")));

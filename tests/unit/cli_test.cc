@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
 
 namespace
@@ -248,4 +249,35 @@ TEST(Cli, SummaryNamesTheAllocatorTheBuildLinked)
   else
     EXPECT_NE(summary.find("\"memory_allocator\":"), std::string::npos)
       << summary;
+}
+
+
+
+TEST(Cli, QuietLeavesTheScreenToWarningsAndErrors)
+{
+  // V6's partial-slip load path warns at its last step (paired points
+  // past one pair spacing): with --quiet that warning is all the screen
+  // shows, the log keeps every line; without it the steps print too.
+  const cli::ScratchFolder scratch("quiet");
+  const std::string        scene =
+    "'" +
+    cli::join(std::string(IGABDE_SOURCE_DIR), "prm/v6-partial-slip-force.prm") +
+    "' --set 'Output/Write vtu=false'";
+  const auto quiet =
+    run_igabde(scene + " --quiet --set 'Output/Directory=quiet'", scratch.path);
+  ASSERT_EQ(quiet.status, 0) << quiet.output;
+  std::istringstream lines(quiet.output);
+  unsigned int       n_lines = 0;
+  for (std::string line; std::getline(lines, line); ++n_lines)
+    EXPECT_NE(line.find("warning:"), std::string::npos) << line;
+  EXPECT_GE(n_lines, 1u) << quiet.output;
+  const std::string log = read_file(cli::join(scratch.path, "quiet/log.txt"));
+  EXPECT_NE(log.find("Load step 1/"), std::string::npos) << log;
+  EXPECT_NE(log.find("warning:"), std::string::npos) << log;
+
+  const auto loud =
+    run_igabde(scene + " --set 'Output/Directory=loud'", scratch.path);
+  ASSERT_EQ(loud.status, 0) << loud.output;
+  EXPECT_NE(loud.output.find("Load step 1/"), std::string::npos);
+  EXPECT_NE(loud.output.find("wallclock"), std::string::npos);
 }

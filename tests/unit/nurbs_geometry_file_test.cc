@@ -345,10 +345,13 @@ TEST(GeometryFile, RationalLiteralsAreReadAsTheirQuotients)
     }
   for (const std::string bad : {"1/0", "1/", "/3", "1/2/3"})
     {
-      const std::string path = write(
-        folder,
-        "bad.xml",
-        xml(patch_2d("0", "0 0 1 1", "0 0 1 1", "0 0\n1 0\n0 1\n1 " + bad + "\n")));
+      const std::string path =
+        write(folder,
+              "bad.xml",
+              xml(patch_2d("0",
+                           "0 0 1 1",
+                           "0 0 1 1",
+                           "0 0\n1 0\n0 1\n1 " + bad + "\n")));
       EXPECT_NE(refusal<2>(path).find("'" + bad + "'"), std::string::npos)
         << bad << ": " << refusal<2>(path);
     }
