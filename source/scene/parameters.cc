@@ -420,6 +420,26 @@ namespace igabde
                           "Direction of the symmetry axis of the Hertz "
                           "contact (the load direction). Empty: y in 2D, z "
                           "in 3D.");
+        prm.declare_entry("Hertz radii",
+                          "",
+                          Patterns::Anything(),
+                          "Elliptical point contact (3D, with Hertz point "
+                          "load): the principal radii of curvature (m) of "
+                          "the contact surfaces at the contact point, along "
+                          "Hertz principal direction and across it, 'R1x, "
+                          "R1y' for Body 1 on a flat or 'R1x, R1y; R2x, "
+                          "R2y' for both bodies; 'flat' for a straight "
+                          "direction (a cylinder along y: 'R, flat'). The "
+                          "two bodies' principal directions are taken "
+                          "aligned. Adds checks.hertz_semi_axes (Johnson "
+                          "sec. 4.2, elliptic integrals). Empty: the sphere "
+                          "of Hertz radius.");
+        prm.declare_entry("Hertz principal direction",
+                          "",
+                          Patterns::Anything(),
+                          "The direction along which the first radius of "
+                          "each body in Hertz radii is measured; at right "
+                          "angles to Hertz axis direction. Empty: x.");
       }
       prm.leave_subsection();
     }
@@ -431,12 +451,14 @@ namespace igabde
     {
       prm.enter_subsection("Checks");
       {
-        uniform_pressure          = prm.get_double("Uniform pressure");
-        hertz_line_load           = prm.get_double("Hertz line load");
-        hertz_point_load          = prm.get_double("Hertz point load");
-        hertz_radius              = prm.get_double("Hertz radius");
-        hertz_axis_point_text     = prm.get("Hertz axis point");
-        hertz_axis_direction_text = prm.get("Hertz axis direction");
+        uniform_pressure               = prm.get_double("Uniform pressure");
+        hertz_line_load                = prm.get_double("Hertz line load");
+        hertz_point_load               = prm.get_double("Hertz point load");
+        hertz_radius                   = prm.get_double("Hertz radius");
+        hertz_axis_point_text          = prm.get("Hertz axis point");
+        hertz_axis_direction_text      = prm.get("Hertz axis direction");
+        hertz_radii_text               = prm.get("Hertz radii");
+        hertz_principal_direction_text = prm.get("Hertz principal direction");
       }
       prm.leave_subsection();
     }

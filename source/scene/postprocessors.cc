@@ -812,7 +812,56 @@ namespace igabde
                       report_warnings(friction_note("Johnson's"));
                     }
                 }
-              if (parameters.checks.hertz_point_load > 0.)
+              if (parameters.checks.hertz_point_load > 0. &&
+                  !parameters.checks.hertz_curvatures.empty())
+                {
+                  if constexpr (dim == 3)
+                    {
+                      const auto &k = parameters.checks.hertz_curvatures;
+                      const auto &t =
+                        parameters.checks.hertz_principal_direction;
+                      postprocess::HertzEllipticCheck hertz;
+                      hertz.load = lambda * parameters.checks.hertz_point_load;
+                      hertz.curvature_x = 0.5 * (k[0] + k[2]);
+                      hertz.curvature_y = 0.5 * (k[1] + k[3]);
+                      hertz.effective_modulus =
+                        postprocess::effective_modulus<dim>(
+                          bodies[0]->material(),
+                          bodies.size() > 1 ? &bodies[1]->material() : nullptr);
+                      std::tie(hertz.axis_point, hertz.axis_direction) =
+                        hertz_axis<dim>(parameters.checks);
+                      hertz.principal_direction =
+                        Tensor<1, 3>({t[0], t[1], t[2]});
+                      const auto  r                    = hertz.evaluate(*pairs);
+                      const auto &x                    = r.exact;
+                      checks["hertz_semi_axes_exact"]  = {x.semi_axis_x,
+                                                          x.semi_axis_y};
+                      checks["hertz_eccentricity"]     = x.eccentricity;
+                      checks["hertz_semi_axes_moment"] = {r.semi_axis_x_moment,
+                                                          r.semi_axis_y_moment};
+                      checks["hertz_semi_axes_moment_error"] = std::max(
+                        std::abs(r.semi_axis_x_moment / x.semi_axis_x - 1.),
+                        std::abs(r.semi_axis_y_moment / x.semi_axis_y - 1.));
+                      checks["hertz_peak_pressure"]       = r.peak_pressure;
+                      checks["hertz_peak_pressure_exact"] = x.peak_pressure;
+                      checks["hertz_peak_pressure_error"] =
+                        std::abs(r.peak_pressure / x.peak_pressure - 1.);
+                      checks["pressure_l2_rel_error"] = r.profile_l2_error;
+                      checks["hertz_loaded_pairs"]    = r.n_loaded;
+                      pcout << "  Hertz (elliptical): semi-axes "
+                            << std::setprecision(5) << r.semi_axis_x_moment
+                            << ", " << r.semi_axis_y_moment << " (Hertz "
+                            << x.semi_axis_x << ", " << x.semi_axis_y
+                            << "), peak pressure " << r.peak_pressure
+                            << " (Hertz " << x.peak_pressure
+                            << "), profile L2 error " << std::setprecision(3)
+                            << r.profile_l2_error << std::setprecision(6)
+                            << std::endl;
+                      report_warnings(r.warnings);
+                      report_warnings(friction_note("Hertz's"));
+                    }
+                }
+              else if (parameters.checks.hertz_point_load > 0.)
                 {
                   if constexpr (dim == 3)
                     {

@@ -7,6 +7,7 @@
 
 #include <deal.II/base/mpi.h>
 
+#include <cmath>
 #include <string>
 
 namespace igabde
@@ -279,6 +280,11 @@ namespace igabde
                   base::ExcInput(f + "Checks/Hertz point load is the 3D "
                                      "point contact of a sphere; in 2D set "
                                      "Checks/Hertz line load instead."));
+      AssertThrow(base::trim(checks.hertz_radii_text).empty() ||
+                    checks.hertz_point_load > 0.,
+                  base::ExcInput(f + "Checks/Hertz radii describes an "
+                                     "elliptical point contact (3D): set "
+                                     "Checks/Hertz point load too."));
       if (checks.hertz_line_load > 0. || checks.hertz_point_load > 0.)
         {
           if (!checks.hertz_axis_direction_text.empty())
@@ -290,7 +296,73 @@ namespace igabde
             checks.hertz_axis_point = read_point(checks.hertz_axis_point_text,
                                                  dimension,
                                                  f + "Checks/Hertz axis point");
+          if (!base::trim(checks.hertz_radii_text).empty())
+            {
+              const std::string where = f + "Checks/Hertz radii";
+              const auto bodies = base::split(checks.hertz_radii_text, ';');
+              AssertThrow(bodies.size() <= 2,
+                          base::ExcInput(where + " = '" +
+                                         checks.hertz_radii_text +
+                                         "' names more than two bodies; "
+                                         "write 'R1x, R1y; R2x, R2y'."));
+              std::vector<double> k(4, 0.);
+              for (unsigned int b = 0; b < bodies.size(); ++b)
+                {
+                  const auto radii = base::split(bodies[b], ',');
+                  AssertThrow(radii.size() == 2,
+                              base::ExcInput(where + " = '" +
+                                             checks.hertz_radii_text +
+                                             "': give two radii per body "
+                                             "(along Hertz principal "
+                                             "direction and across it), "
+                                             "e.g. '2, 1' or '2, 1; flat, "
+                                             "flat'."));
+                  for (unsigned int d = 0; d < 2; ++d)
+                    {
+                      const std::string r = base::trim(radii[d]);
+                      if (r == "flat")
+                        continue;
+                      const double R = base::parse_doubles(r, where).at(0);
+                      AssertThrow(R > 0.,
+                                  base::ExcInput(where + ": radius '" + r +
+                                                 "' must be positive (a "
+                                                 "concave surface is not "
+                                                 "a Hertz contact), or "
+                                                 "'flat'."));
+                      k[2 * b + d] = 1. / R;
+                    }
+                }
+              AssertThrow(k[0] + k[2] > 0. && k[1] + k[3] > 0.,
+                          base::ExcInput(where + " = '" +
+                                         checks.hertz_radii_text +
+                                         "': the surfaces are flat along "
+                                         "one direction together, a line "
+                                         "contact; use Hertz line load in "
+                                         "a 2D scene."));
+              checks.hertz_curvatures = k;
+              checks.hertz_principal_direction =
+                base::trim(checks.hertz_principal_direction_text).empty() ?
+                  std::vector<double>{1., 0., 0.} :
+                  read_direction(checks.hertz_principal_direction_text,
+                                 dimension,
+                                 f + "Checks/Hertz principal direction");
+              std::vector<double> axis = checks.hertz_axis_direction;
+              if (axis.empty())
+                axis = {0., 0., 1.};
+              const auto  &t = checks.hertz_principal_direction;
+              const double dot =
+                t[0] * axis[0] + t[1] * axis[1] + t[2] * axis[2];
+              const double norms = std::sqrt(
+                (t[0] * t[0] + t[1] * t[1] + t[2] * t[2]) *
+                (axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]));
+              AssertThrow(std::abs(dot) < 1e-6 * norms,
+                          base::ExcInput(
+                            f + "Checks/Hertz principal direction must lie "
+                                "at right angles to Checks/Hertz axis "
+                                "direction (the load direction)."));
+            }
           AssertThrow(checks.hertz_radius > 0. ||
+                        !checks.hertz_curvatures.empty() ||
                         body1.geometry != Geometry::file,
                       base::ExcInput(f + "Checks/Hertz radius = 0 takes "
                                          "Body 1/Radius, which a geometry "

@@ -489,3 +489,36 @@ TEST(CliBadInput, HertzChecksOfTheOtherDimension)
                                "Checks/Hertz radius = 0 takes Body 1/Radius",
                                "v7-sphere-on-block.prm");
 }
+
+
+
+TEST(CliBadInput, HertzRadiiThatDescribeNoEllipticalContact)
+{
+  // Checks/Hertz radii on the elliptical scene: each case one line naming
+  // the parameter, when the scene is read.
+  const std::string scene = "hertz-elliptical-contact.prm";
+  expect_refused_at_parse_time("radii-one",
+                               "Checks/Hertz radii=2",
+                               "give two radii per body",
+                               scene);
+  expect_refused_at_parse_time("radii-negative",
+                               "Checks/Hertz radii=-2, 1",
+                               "must be positive",
+                               scene);
+  expect_refused_at_parse_time("radii-line",
+                               "Checks/Hertz radii=flat, 1; flat, 2",
+                               "a line contact",
+                               scene);
+  expect_refused_at_parse_time("radii-three",
+                               "Checks/Hertz radii=2, 1; 1, 1; 1, 1",
+                               "more than two bodies",
+                               scene);
+  expect_refused_at_parse_time("radii-direction",
+                               "Checks/Hertz principal direction=0, 0, 1",
+                               "at right angles",
+                               scene);
+  expect_refused_at_parse_time("radii-no-load",
+                               "Checks/Hertz point load=0",
+                               "set Checks/Hertz point load too",
+                               scene);
+}

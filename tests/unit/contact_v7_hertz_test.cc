@@ -130,4 +130,39 @@ namespace v7_hertz_test
     expect_hertz(run_v7("lagrange", "--set 'Discretization/Type=lagrange'"),
                  1e-5);
   }
+
+
+  // The elliptical contact of prm/hertz-elliptical-contact.prm: V7's
+  // sector stretched by sqrt 2 in x (an ellipsoid with principal radii 2
+  // and 1 at its lowest point) on the same block and mesh. The load is the
+  // traction times the stretched inner face's area (contrib/geometry/
+  // sphere-sector --inner-face-area, in closed form), a quarter of
+  // P = 1.014283211633063, which the scene gives the check. The semi-axes
+  // (force moments) and the peak must meet Johnson's elliptical Hertz
+  // within 2 %, the criterion of V7 for the same reasons; its closed form
+  // itself is checked against Boussinesq's half-space
+  // (HertzEllipticCheck.ClosedFormIndentsTheHalfSpaceByTheGap).
+  TEST(ContactV7Hertz, EllipticalContactOfAnEllipsoidMeetsHertz)
+  {
+    const cli::ScratchFolder scratch("elliptical", "v7");
+    const cli::SceneRun      scene =
+      cli::run_prm_scene(scratch.path, "hertz-elliptical-contact.prm", "");
+    ASSERT_EQ(scene.status, 0) << scene.output;
+    const auto &checks = scene.summary.at("checks");
+    const auto  exact  = checks.at("hertz_semi_axes_exact");
+    const auto  moment = checks.at("hertz_semi_axes_moment");
+    // The stretched sector's exact semi-axes, from B/A = 2: the longer
+    // along x (the smaller curvature).
+    EXPECT_GT(exact[0].get<double>(), 1.5 * exact[1].get<double>());
+    for (unsigned int d = 0; d < 2; ++d)
+      EXPECT_NEAR(moment[d].get<double>() / exact[d].get<double>(), 1., 0.02)
+        << d;
+    EXPECT_LE(checks.at("hertz_peak_pressure_error").get<double>(), 0.02);
+    // The check's load is the scene's: the contact resultant balances it.
+    EXPECT_NEAR(4. * scene.summary.at("load_steps")[0]
+                       .at("total_contact_force")[2]
+                       .get<double>(),
+                1.014283211633063,
+                1e-8);
+  }
 } // namespace v7_hertz_test

@@ -170,6 +170,63 @@ namespace igabde
       Result
       evaluate(const std::vector<contact::PairState<3>> &pairs) const;
     };
+
+    /**
+     * @brief Hertz's elliptical point contact (Johnson, Contact Mechanics
+     * §4.2): two bodies whose principal directions of curvature at the
+     * contact point are aligned, with principal radii (R1x, R1y) and
+     * (R2x, R2y) along e_x = principal_direction and e_y = axis x e_x (a
+     * flat direction has curvature 0), pressed by P. The gap is
+     * A x^2 + B y^2 with A = (1/R1x + 1/R2x)/2, B = (1/R1y + 1/R2y)/2; the
+     * contact is the ellipse x^2/a_x^2 + y^2/a_y^2 <= 1 carrying
+     * p = p0 sqrt(1 - x^2/a_x^2 - y^2/a_y^2), p0 = 3 P / (2 pi a_x a_y).
+     * With a >= b the semi-axes along the smaller and the larger of A, B
+     * and e = sqrt(1 - b^2/a^2), Johnson's (4.39)-(4.41):
+     * B/A = ((a/b)^2 E(e) - K(e)) / (K(e) - E(e)) for the larger over the
+     * smaller, and a^3 = 3 P (K(e) - E(e)) / (2 pi E* e^2 A_small); K, E
+     * the complete elliptic integrals of modulus e. A = B gives the
+     * sphere. As for HertzPointCheck, a half or quarter model gives the
+     * whole contact's figures, P its whole load.
+     */
+    struct HertzEllipticCheck
+    {
+      double       load              = 0.;
+      double       curvature_x       = 0.; ///< A = (1/R1x + 1/R2x) / 2
+      double       curvature_y       = 0.; ///< B = (1/R1y + 1/R2y) / 2
+      double       effective_modulus = 0.;
+      Point<3>     axis_point;
+      Tensor<1, 3> axis_direction;
+      Tensor<1, 3> principal_direction;
+
+      struct Exact
+      {
+        double semi_axis_x = 0., semi_axis_y = 0.;
+        double peak_pressure = 0.;
+        double eccentricity  = 0.;
+      };
+
+      /// Johnson's semi-axes and peak pressure for these inputs.
+      Exact
+      exact() const;
+
+      struct Result
+      {
+        Exact exact;
+        /// Semi-axes from the second moments of the pair forces: Hertz's
+        /// profile has int p x^2 dA / int p dA = a_x^2 / 5 (and y), so
+        /// a_x = sqrt(5 sum F_i x_i^2 / sum F_i).
+        double semi_axis_x_moment = 0., semi_axis_y_moment = 0.;
+        double peak_pressure = 0.;
+        /// sqrt(sum A_i (p_i - p(x_i))^2 / sum A_i p(x_i)^2) over the pairs
+        /// inside 1.2 times the ellipse.
+        double                   profile_l2_error = 0.;
+        unsigned int             n_loaded         = 0;
+        std::vector<std::string> warnings;
+      };
+
+      Result
+      evaluate(const std::vector<contact::PairState<3>> &pairs) const;
+    };
   } // namespace postprocess
 } // namespace igabde
 

@@ -362,6 +362,16 @@ namespace igabde
       /// Their texts as the scene writes them.
       std::string hertz_axis_point_text;
       std::string hertz_axis_direction_text;
+      /// Elliptical point contact: the principal curvatures (1/R, 0 for a
+      /// flat direction) of Body 1 and Body 2 along the principal
+      /// direction and across it, {k1x, k1y, k2x, k2y}; empty: the
+      /// sphere of hertz_radius.
+      std::vector<double> hertz_curvatures;
+      /// Along which the first radius of each body is measured (3 values);
+      /// empty: x.
+      std::vector<double> hertz_principal_direction;
+      std::string         hertz_radii_text;
+      std::string         hertz_principal_direction_text;
 
       /// Declares the "Checks" subsection.
       static void
