@@ -116,8 +116,9 @@ namespace igabde
               H = gn;
               for (unsigned int b = 0; b < n; ++b)
                 {
-                  const double h  = 1e-6 * extent;
-                  Point<n>     up = eta, down = eta;
+                  const double h =
+                    1e-6 * (grid.breaks[b].back() - grid.breaks[b].front());
+                  Point<n> up = eta, down = eta;
                   up[b]         = std::min(eta[b] + h, grid.breaks[b].back());
                   down[b]       = std::max(eta[b] - h, grid.breaks[b].front());
                   const auto pu = master.face_point(up);
@@ -126,9 +127,22 @@ namespace igabde
                     H[a][b] -=
                       r * (pu.tangents[a] - pd.tangents[a]) / (up[b] - down[b]);
                 }
-              H                   = 0.5 * (H + transpose(H));
+              H = 0.5 * (H + transpose(H));
+              // Coordinates on a bound that the descent direction g pushes
+              // past stay there (projected Newton); the others take the
+              // step of their own block.
+              std::array<bool, n> held;
+              for (unsigned int k = 0; k < n; ++k)
+                held[k] = (eta[k] <= grid.breaks[k].front() && g[k] < 0.) ||
+                          (eta[k] >= grid.breaks[k].back() && g[k] > 0.);
               const bool   newton = H[0][0] > 0. && determinant(H) > 0.;
               Tensor<1, n> step   = invert(newton ? H : gn) * g;
+              if (std::any_of(held.begin(), held.end(), [](bool h) {
+                    return h;
+                  }))
+                for (unsigned int k = 0; k < n; ++k)
+                  step[k] =
+                    held[k] ? 0. : g[k] / (H[k][k] > 0. ? H[k][k] : gn[k][k]);
               // Shortened until f falls by a tenth of a thousandth of the
               // linear model's decrease; none does at the minimum (within
               // round-off), which ends the search.
@@ -137,11 +151,14 @@ namespace igabde
                 {
                   const Point<n> next   = clamped(eta + alpha * step);
                   const double   f_next = objective(next);
-                  if (f_next <= f - 1e-4 * (g * (next - eta)) && f_next <= f)
+                  if (f_next <= f - 1e-4 * (g * (next - eta)) && f_next < f)
                     {
-                      moved = (next - eta).norm() > 1e-14 * extent;
-                      eta   = next;
-                      f     = f_next;
+                      for (unsigned int k = 0; k < n; ++k)
+                        moved = moved || std::abs(next[k] - eta[k]) >
+                                           1e-14 * (grid.breaks[k].back() -
+                                                    grid.breaks[k].front());
+                      eta = next;
+                      f   = f_next;
                       break;
                     }
                 }

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
+#include <sstream>
 
 namespace igabde
 {
@@ -185,9 +186,13 @@ namespace igabde
       result.min_J     = min_J;
       result.converged = (residual <= settings.tolerance && reached);
       if (!result.converged && result.diagnosis.empty())
-        result.diagnosis = "the residual is " + std::to_string(residual) +
-                           " after " + std::to_string(result.iterations) +
-                           " iterations";
+        {
+          std::ostringstream text;
+          text << std::setprecision(3) << "the residual is " << residual
+               << " after " << result.iterations << " iterations (tolerance "
+               << settings.tolerance << ")";
+          result.diagnosis = text.str();
+        }
       return result;
     }
 
