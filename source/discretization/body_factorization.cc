@@ -402,6 +402,7 @@ namespace igabde
           // flops, minimum degree in 2D, where it is the faster of the two
           // (doc/performance.md, "Cost growth").
           using Order = linear_algebra::SparseCholesky::PivotOrder;
+          linear_solver->cholesky->set_progress(progress_stream, name());
           linear_solver->cholesky->initialize(system_matrix,
                                               eliminated,
                                               interface_dofs,

@@ -8,12 +8,20 @@
 #include <deal.II/lac/lapack_templates.h>
 
 #include <algorithm>
+#include <atomic>
+#include <chrono>
 #include <cmath>
+#include <condition_variable>
 #include <dmumps_c.h>
+#include <iomanip>
 #include <metis.h>
 #include <mpi.h>
+#include <mutex>
 #include <numeric>
+#include <ostream>
+#include <sstream>
 #include <string>
+#include <thread>
 #include <type_traits>
 
 namespace igabde
@@ -121,6 +129,108 @@ namespace igabde
 
 
 
+    namespace
+    {
+      /**
+       * Progress of one numerical factorisation, which MUMPS does in one
+       * call: every 5 s a line on @p stream with the seconds so far and an
+       * estimate of those left, from MUMPS' flop estimate of the analysis
+       * (RINFOG(1)) and the rate of the longest factorisation this process
+       * has finished (40 GFlop/s before the first: what numerical
+       * factorisations of 3e11 flops, those that take seconds, reached on
+       * this project's 2-core machine; doc/performance.md). A
+       * factorisation under 5 s prints nothing.
+       */
+      class FactorisationTicker
+      {
+      public:
+        FactorisationTicker(std::ostream      *stream,
+                            const std::string &label,
+                            const double       estimated_flops)
+          : start(std::chrono::steady_clock::now())
+        {
+          if (stream == nullptr || !(estimated_flops > 0.))
+            return;
+          const double rate = measured_rate.load();
+          thread = std::thread([this, stream, label, estimated_flops, rate] {
+            std::unique_lock<std::mutex> lock(mutex);
+            const double                 estimate = estimated_flops / rate;
+            while (!done.wait_for(lock, std::chrono::seconds(5), [this] {
+              return finished;
+            }))
+              {
+                const double       elapsed = seconds();
+                std::ostringstream line;
+                line << std::setprecision(3) << "  [progress] " << label
+                     << ": factorising, " << elapsed << " s";
+                if (elapsed < estimate)
+                  line << ", about " << estimate - elapsed << " s left";
+                else
+                  line << ", past the estimate of " << estimate << " s";
+                line << " (" << estimated_flops << " flops estimated, at "
+                     << rate / 1e9 << " GFlop/s)";
+                *stream << line.str() << std::endl;
+              }
+          });
+        }
+
+        /// Ends the progress lines; @p flops done teach the next estimate.
+        void
+        finish(const double flops)
+        {
+          const double elapsed = seconds();
+          stop();
+          // The longest factorisation so far sets the rate: short ones run
+          // below the rate of large dense fronts.
+          if (flops > 0. && elapsed > longest.load())
+            {
+              longest.store(elapsed);
+              measured_rate.store(flops / elapsed);
+            }
+        }
+
+        ~FactorisationTicker()
+        {
+          stop();
+        }
+
+      private:
+        double
+        seconds() const
+        {
+          return std::chrono::duration<double>(
+                   std::chrono::steady_clock::now() - start)
+            .count();
+        }
+
+        void
+        stop()
+        {
+          if (!thread.joinable())
+            return;
+          {
+            std::lock_guard<std::mutex> lock(mutex);
+            finished = true;
+          }
+          done.notify_all();
+          thread.join();
+        }
+
+        static std::atomic<double>                  measured_rate;
+        static std::atomic<double>                  longest;
+        const std::chrono::steady_clock::time_point start;
+        std::mutex                                  mutex;
+        std::condition_variable                     done;
+        bool                                        finished = false;
+        std::thread                                 thread;
+      };
+
+      std::atomic<double> FactorisationTicker::measured_rate{4e10};
+      std::atomic<double> FactorisationTicker::longest{0.};
+    } // namespace
+
+
+
     struct SparseCholesky::Data
     {
       DMUMPS_STRUC_C id{};
@@ -138,6 +248,10 @@ namespace igabde
       double flops = 0.;
       /// release() was called: no solves.
       bool released = false;
+      /// Where the factorisation's progress lines go (the host's), and the
+      /// name they give.
+      std::ostream *progress = nullptr;
+      std::string   label;
 
       /// Global index of each free unknown (MUMPS' numbering minus one).
       std::vector<types::global_dof_index> free_dofs;
@@ -421,8 +535,12 @@ namespace igabde
           else if (pivot_order == PivotOrder::nested_dissection)
             d.call(1); // METIS failed: MUMPS orders.
 
-          // Factorisation; more workspace if MUMPS asks.
+          // Factorisation; more workspace if MUMPS asks. A long one says
+          // how far it is every few seconds (FactorisationTicker).
           d.id.job = 2;
+          FactorisationTicker ticker(d.host ? d.progress : nullptr,
+                                     d.label,
+                                     d.id.rinfog[0]);
           for (unsigned int attempt = 0;; ++attempt)
             {
               dmumps_c(&d.id);
@@ -434,6 +552,7 @@ namespace igabde
                 }
               break;
             }
+          ticker.finish(d.id.rinfog[2]);
           d.check(2);
           // MUMPS reads the matrix again only for iterative refinement or
           // error analysis (ICNTL(10), ICNTL(11); neither is asked): the
@@ -754,6 +873,15 @@ namespace igabde
                base::vector_bytes(d.schur_factor) +
                double(d.schur.m()) * d.schur.n() * sizeof(double);
       return bytes;
+    }
+
+
+
+    void
+    SparseCholesky::set_progress(std::ostream *stream, const std::string &label)
+    {
+      data->progress = stream;
+      data->label    = label;
     }
 
 

@@ -11,22 +11,21 @@
 #include <Eigen/Eigenvalues>
 
 #include "../option_value.h"
+#include "protocol.h"
 #include <algorithm>
 #include <chrono>
 #include <csignal>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <limits>
 #include <optional>
-#include <siconos/numerics/FrictionContactProblem.h>
 #include <siconos/numerics/Friction_cst.h>
-#include <siconos/numerics/NonSmoothDrivers.h>
-#include <siconos/numerics/NumericsMatrix.h>
-#include <siconos/numerics/SolverOptions.h>
-#include <siconos/numerics/SparseBlockMatrix.h>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <sys/resource.h>
 #include <sys/wait.h>
@@ -57,8 +56,8 @@ Usage: siconos_comparison [--only TEXT] [--max-rows N] [--max-iterations N]
   --verify FILE [--agree TOL]   (in any order)
                     instead of the table: hand the FCLIB local problem
                     FILE (e.g. a scene's Output/FCLIB export) to Siconos
-                    (3D: PROX and NSN-AC; 2D: Lemke's pivoting method and
-                    NSGS) at internal tolerance 1e-14 and compare their
+                    (3D: PROX, NSN-AC, NSGS and ADMM; 2D: Lemke's
+                    pivoting method and NSGS) at internal tolerance 1e-14 and compare their
                     forces with the solution stored in the file; exit
                     status 0 ("same answer") if the first of them to meet
                     FCLIB's measure at 1e-8 lies within TOL of the stored
@@ -66,9 +65,14 @@ Usage: siconos_comparison [--only TEXT] [--max-rows N] [--max-iterations N]
                     the two answers' FCLIB errors allow (the natural-map
                     error bound; where W is only semidefinite, if both
                     meet 1e-8); 1 ("DIFFERENT answer") if not, or if the
-                    stored solution does not meet 1e-8; 3 ("no verdict")
-                    when neither Siconos solver meets 1e-8, naming both;
-                    2 for bad input; ctests with scenes from prm/ and the
+                    stored solution does not meet 1e-8. A file that stores
+                    no solution, or zeros (the FCLIB collection's
+                    placeholders), has igabde's B-Newton answer judged
+                    instead; 3 ("no verdict")
+                    when no Siconos solver meets 1e-8 (those after the
+                    first that does are not run), naming them; 4 for a
+                    problem that is not a Coulomb friction problem
+                    (rolling friction); 2 for bad input; ctests with scenes from prm/ and the
                     FCLIB problems
 
 Each problem is read once, by igabde's reader (a global problem condensed
@@ -76,7 +80,11 @@ through its sparse M, W = H^T M^-1 H), and handed to both: igabde's
 B-Newton works on the dense W, Siconos' solvers on the same W in their
 sparse-block storage (blocks of the contact's size, exact zeros left
 out), the storage they are written for. (Debian's Siconos is built
-without FCLIB, so it cannot read the HDF5 files itself.) Every answer r
+without FCLIB, so it cannot read the HDF5 files itself.) Each Siconos
+solve runs in a process of its own, siconos_solver beside this program,
+which links Siconos and its sequential MUMPS only: in one process with
+igabde's MPI MUMPS a single dmumps_c would serve both, and Siconos'
+sparse solvers would reach the MPI build. Every answer r
 is judged on that problem by FCLIB's relative natural-map error
 |r - P_K(r - (W r + q + mu |u_t| e_n))| / |q| (not by Siconos' own
 measure, which divides by max(|q|, |r|, |u|)); "solved" is an error
@@ -105,30 +113,7 @@ namespace
       .count();
   }
 
-  /// Whether a solve runs again after @p runs_done runs that took @p spent
-  /// ms together, the fastest @p fastest ms (the largest double before the
-  /// first run); the fastest run counts. A solve under a second runs at
-  /// least twice, and runs again while its runs have taken under 20 ms
-  /// together (at most 100 runs), so that a solve of microseconds is timed
-  /// warm. A first call pays start-up costs (OpenBLAS' threads, first-touch
-  /// page faults: 7.4 ms first against 2.6 ms after for igabde on
-  /// Box_Stacks-i0122), and Siconos' solves run in forked children, after
-  /// which the parent's (igabde's) next runs fault on pages again: in the
-  /// full run GFC3D_Example1 took 0.036 ms (2 minor page faults), 0.016 ms
-  /// (1), then 0.0016-0.0019 ms (none) from the third run on, and
-  /// NESpheres_30_1 0.13 ms (9), 0.024 ms (1), then 0.009 ms (2026-11-29).
-  /// Siconos and igabde are timed alike.
-  bool
-  run_again(const unsigned int runs_done,
-            const double       fastest,
-            const double       spent)
-  {
-    if (runs_done == 0)
-      return true;
-    if (runs_done == 1)
-      return fastest < 1000.;
-    return spent < 20. && runs_done < 100;
-  }
+  using siconos_protocol::run_again;
 
   struct Outcome
   {
@@ -159,173 +144,189 @@ namespace
     return std::max<long>(1, (W.array() != 0.).count());
   }
 
-  /// A Siconos problem owning @p W and copies of q and mu (Siconos frees
-  /// them with the problem).
-  FrictionContactProblem *
-  with_q_and_mu(const ContactProblem &problem, NumericsMatrix *W)
+  /// The problem as siconos_solver reads it: W's nonzero entries, q, mu.
+  siconos_protocol::Problem
+  protocol_problem(const ContactProblem &problem)
   {
-    const int n = problem.n_rows();
-    auto     *q = static_cast<double *>(malloc(n * sizeof(double)));
-    auto     *mu =
-      static_cast<double *>(malloc(problem.n_contacts * sizeof(double)));
-    std::copy(problem.q.data(), problem.q.data() + n, q);
-    std::copy(problem.mu.begin(), problem.mu.end(), mu);
-    return frictionContactProblem_new_with_data(problem.n_components,
-                                                problem.n_contacts,
-                                                W,
-                                                q,
-                                                mu);
-  }
-
-
-
-  /// The problem in Siconos' sparse-block storage (blocks of the
-  /// contact's size, the exact zeros of W left out): the storage its local
-  /// solvers are written for.
-  FrictionContactProblem *
-  siconos_problem(const ContactProblem &problem)
-  {
-    const int       d = problem.n_components, n = problem.n_rows();
-    NumericsMatrix *triplets = NM_create(NM_SPARSE, n, n);
-    NM_triplet_alloc(triplets, (W_nonzeros(problem.W)));
+    siconos_protocol::Problem p;
+    p.dimension   = problem.n_components;
+    p.contacts    = problem.n_contacts;
+    const int  n  = problem.n_rows();
+    const long nz = W_nonzeros(problem.W);
+    p.rows.reserve(nz);
+    p.columns.reserve(nz);
+    p.values.reserve(nz);
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i)
         if (problem.W(i, j) != 0.)
-          NM_entry(triplets, i, j, problem.W(i, j));
-    SparseBlockStructuredMatrix *blocks = SBM_new();
-    SBM_from_csparse(d, NM_csc(triplets), blocks);
-    NM_free(triplets);
-    return with_q_and_mu(problem, NM_new_SBM(n, n, blocks));
+          {
+            p.rows.push_back(i);
+            p.columns.push_back(j);
+            p.values.push_back(problem.W(i, j));
+          }
+    p.q.assign(problem.q.data(), problem.q.data() + n);
+    p.mu.assign(problem.mu.begin(), problem.mu.end());
+    return p;
   }
 
-  /// The problem with W in Siconos' dense (column-major) storage.
-  FrictionContactProblem *
-  siconos_dense(const ContactProblem &problem)
+  /// A scratch folder, removed with this object, holding the problem file
+  /// and the solver's reports; the solver runs in it too (Siconos' MUMPS
+  /// calls leave empty Fortran unit files, fort.N, in the working folder).
+  struct Scratch
   {
-    const int       n      = problem.n_rows();
-    NumericsMatrix *matrix = NM_create(NM_DENSE, n, n);
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i)
-        matrix->matrix0[i + static_cast<std::size_t>(j) * n] = problem.W(i, j);
-    return with_q_and_mu(problem, matrix);
-  }
+    std::string path;
 
-  /// What a solve in the child process reports to the parent.
-  struct Report
-  {
-    double error      = 1.;
-    double ms         = 0.;
-    int    iterations = 0;
-    int    info       = -1;
+    Scratch()
+    {
+      path =
+        (std::filesystem::temp_directory_path() / "siconos-XXXXXX").string();
+      if (mkdtemp(path.data()) == nullptr)
+        throw std::runtime_error(
+          "siconos_comparison: no scratch folder in " +
+          std::filesystem::temp_directory_path().string());
+    }
+
+    ~Scratch()
+    {
+      std::error_code ignored;
+      std::filesystem::remove_all(path, ignored);
+    }
+
+    std::string
+    file(const std::string &name) const
+    {
+      return (std::filesystem::path(path) / name).string();
+    }
   };
 
+  /// siconos_solver, beside this program.
+  std::string
+  solver_program()
+  {
+    return (std::filesystem::read_symlink("/proc/self/exe").parent_path() /
+            "siconos_solver")
+      .string();
+  }
+
   /**
-   * One Siconos solve at @p tolerance, in a child process with at most
-   * 8 GiB of address space and 120 s: some solvers exhaust the memory
-   * on some problems (NSN-AC on RockPile_tob1 took 24 GB) or abort, and
-   * the table must go on. Returns false if the child did not report.
+   * One Siconos solve at @p tolerance of the problem in @p scratch
+   * (problem.bin), by siconos_solver in a child process with at most 8 GiB
+   * of address space and 120 s: some solvers exhaust the memory on some
+   * problems (NSN-AC on RockPile_tob1 took 24 GB) or abort, and the table
+   * must go on. Returns false, with the reason in @p why, if the child did
+   * not report.
    */
   bool
-  solve_isolated(FrictionContactProblem *fcp,
-                 const ContactProblem   &problem,
-                 const int               solver_id,
-                 const int               max_iterations,
-                 const double            tolerance,
-                 Report                 &report,
-                 std::string            &why)
+  solve_isolated(const Scratch            &scratch,
+                 const int                 solver_id,
+                 const int                 max_iterations,
+                 const double              tolerance,
+                 const bool                dense,
+                 const bool                once,
+                 siconos_protocol::Report &report,
+                 std::string              &why)
   {
-    int channel[2];
-    if (pipe(channel) != 0)
-      {
-        why = "no pipe";
-        return false;
-      }
-    // The child works in a scratch folder of its own, removed here
-    // afterwards whatever became of the child: Siconos' solvers leave
-    // empty Fortran unit files (fort.N, from their MUMPS calls) in the
-    // working folder.
-    std::string scratch =
-      (std::filesystem::temp_directory_path() / "siconos-XXXXXX").string();
-    const bool have_scratch = mkdtemp(scratch.data()) != nullptr;
+    const std::string program = solver_program(),
+                      problem = scratch.file("problem.bin"),
+                      answer  = scratch.file("report.bin");
+    std::filesystem::remove(answer);
+    std::ostringstream tolerance_text;
+    tolerance_text << std::setprecision(17) << tolerance;
+    std::vector<std::string> args = {program,
+                                     problem,
+                                     answer,
+                                     std::to_string(solver_id),
+                                     tolerance_text.str(),
+                                     std::to_string(max_iterations)};
+    if (dense)
+      args.push_back("--dense");
+    if (once)
+      args.push_back("--once");
+    std::vector<char *> argv;
+    for (auto &a : args)
+      argv.push_back(a.data());
+    argv.push_back(nullptr);
     std::cout.flush();
     const pid_t child = fork();
     if (child == 0)
       {
-        close(channel[0]);
-        if (have_scratch && chdir(scratch.c_str()) != 0)
-          _exit(1);
+        if (chdir(scratch.path.c_str()) != 0)
+          _exit(126);
+        // Its output (Siconos' and MUMPS' messages) to a file, whose last
+        // line names a failure.
+        if (freopen("solver.log", "w", stdout) == nullptr ||
+            dup2(fileno(stdout), 2) < 0)
+          _exit(126);
         const rlimit memory = {8ul << 30, 8ul << 30};
         setrlimit(RLIMIT_AS, &memory);
         alarm(120);
-        const int           n = fcp->dimension * fcp->numberOfContacts;
-        std::vector<double> r, u;
-        Report              out;
-        out.ms       = std::numeric_limits<double>::max();
-        double spent = 0.;
-        for (unsigned int run = 0; run_again(run, out.ms, spent); ++run)
-          {
-            r.assign(n, 0.);
-            u.assign(n, 0.);
-            SolverOptions *options = solver_options_create(solver_id);
-            options->iparam[SICONOS_IPARAM_MAX_ITER] = max_iterations;
-            options->dparam[SICONOS_DPARAM_TOL]      = tolerance;
-            const auto start                         = Clock::now();
-            out.info                                 = fcp->dimension == 3 ?
-                                                         fc3d_driver(fcp, r.data(), u.data(), options) :
-                                                         fc2d_driver(fcp, r.data(), u.data(), options);
-            const double ms = milliseconds_since(start);
-            spent += ms;
-            out.ms         = std::min(out.ms, ms);
-            out.iterations = options->iparam[SICONOS_IPARAM_ITER_DONE];
-            solver_options_delete(options);
-          }
-        out.error =
-          fclib_error(problem, Eigen::Map<const Eigen::VectorXd>(r.data(), n));
-        const ssize_t written = write(channel[1], &out, sizeof(out));
-        _exit(written == sizeof(out) ? 0 : 1);
+        execv(program.c_str(), argv.data());
+        _exit(127);
       }
-    close(channel[1]);
-    const bool read_all =
-      child > 0 && read(channel[0], &report, sizeof(report)) ==
-                     static_cast<ssize_t>(sizeof(report));
-    close(channel[0]);
     int status = 0;
     if (child > 0)
       waitpid(child, &status, 0);
-    if (have_scratch)
+    // The last line the solver printed, if any.
+    std::string last_line;
+    {
+      std::ifstream log(scratch.file("solver.log"));
+      for (std::string line; std::getline(log, line);)
+        if (line.find_first_not_of(" \t*") != std::string::npos)
+          last_line = line.substr(line.find_first_not_of(" \t"));
+    }
+    if (child > 0 && WIFEXITED(status) && WEXITSTATUS(status) == 0 &&
+        std::filesystem::exists(answer))
+      try
+        {
+          report = siconos_protocol::read_report(answer);
+          return true;
+        }
+      catch (const std::exception &e)
+        {
+          why = e.what();
+          return false;
+        }
+    if (child > 0 && WIFEXITED(status) && WEXITSTATUS(status) == 0)
       {
-        std::error_code ignored;
-        std::filesystem::remove_all(scratch, ignored);
+        why =
+          "ended without an answer" +
+          (last_line.empty() ? std::string() : ", after \"" + last_line + "\"");
+        return false;
       }
-    if (!read_all)
-      why = WIFSIGNALED(status) ?
-              (WTERMSIG(status) == SIGALRM ?
-                 "time limit (120 s)" :
-               WTERMSIG(status) == SIGABRT ?
-                 "aborted (memory?)" :
-                 "killed by signal " + std::to_string(WTERMSIG(status))) :
-              "no answer";
-    return read_all;
+    why = child <= 0 ?
+            "no child process" :
+          WIFSIGNALED(status) ?
+            (WTERMSIG(status) == SIGALRM ? "time limit (120 s)" :
+             WTERMSIG(status) == SIGABRT ? "aborted (memory?)" :
+                                           "killed by signal " +
+                                             std::to_string(WTERMSIG(status))) :
+          WEXITSTATUS(status) == 127 ?
+            "cannot run " + program :
+            "siconos_solver exit status " + std::to_string(WEXITSTATUS(status));
+    return false;
   }
 
-  /// One Siconos solver on @p fcp, its tolerance tightened until our
+  /// One Siconos solver on the problem in @p scratch, its tolerance
+  /// tightened until our
   /// measure passes.
   Outcome
-  run_siconos(FrictionContactProblem *fcp,
-              const ContactProblem   &problem,
-              const int               solver_id,
-              const int               max_iterations)
+  run_siconos(const Scratch        &scratch,
+              const ContactProblem &problem,
+              const int             solver_id,
+              const int             max_iterations,
+              const bool            dense = false)
   {
     Outcome best;
     for (const double tolerance : {1e-8, 1e-10, 1e-12, 1e-14})
       {
-        Report      report;
-        std::string why;
-        if (!solve_isolated(fcp,
-                            problem,
+        siconos_protocol::Report report;
+        std::string              why;
+        if (!solve_isolated(scratch,
                             solver_id,
                             max_iterations,
                             tolerance,
+                            dense,
+                            false,
                             report,
                             why))
           {
@@ -341,7 +342,12 @@ namespace
         outcome.ms         = report.ms;
         outcome.iterations = report.iterations;
         outcome.tolerance  = tolerance;
-        outcome.error      = report.error;
+        outcome.error =
+          report.r.size() == static_cast<std::size_t>(problem.n_rows()) ?
+            fclib_error(problem,
+                        Eigen::Map<const Eigen::VectorXd>(report.r.data(),
+                                                          problem.n_rows())) :
+            1.;
         outcome.note =
           report.info == 0 ? "" : "info " + std::to_string(report.info);
         if (!best.ran || !best.note.empty() || outcome.error < best.error)
@@ -383,16 +389,54 @@ namespace
   int
   verify(const std::string &file, const double agreement)
   {
-    const ContactProblem problem   = read_fclib_problem(file);
-    const FclibSolution  reference = read_fclib_solution(file);
-    if (!reference.available || reference.r.size() != problem.n_rows())
+    const FclibFileKind kind = classify_fclib_file(file);
+    if (kind == FclibFileKind::hdf5_global_rolling)
+      {
+        std::cout << "left out: " << file
+                  << " is a rolling-friction problem, not a Coulomb "
+                     "friction problem (neither igabde nor Siconos' fc3d "
+                     "solvers take it): no verdict to give\n";
+        return 4;
+      }
+    if (kind != FclibFileKind::hdf5_local && kind != FclibFileKind::hdf5_global)
       {
         std::cerr << "siconos_comparison: " << file
-                  << " stores no solution to compare with\n";
+                  << " is not an FCLIB problem file (HDF5 with fclib_local "
+                     "or fclib_global)\n";
         return 2;
       }
-    FrictionContactProblem *fcp = siconos_problem(problem);
-    const int               n   = problem.n_rows();
+    const ContactProblem problem   = read_fclib_problem(file);
+    FclibSolution        reference = read_fclib_solution(file);
+    // The answer judged: the file's stored solution, or where it stores
+    // none (the FCLIB collection's problems), igabde's B-Newton answer.
+    std::string judged = "the stored solution";
+    // Many files of the FCLIB collection store zeros in /solution, a
+    // placeholder (doc/contact-solver.md): no answer to judge either.
+    const bool placeholder = reference.available &&
+                             reference.r.size() == problem.n_rows() &&
+                             reference.r.lpNorm<Eigen::Infinity>() == 0. &&
+                             problem.q.lpNorm<Eigen::Infinity>() > 0.;
+    if (placeholder)
+      std::cout << file << " stores zeros as its solution (a placeholder)\n";
+    if (!reference.available || reference.r.size() != problem.n_rows() ||
+        placeholder)
+      {
+        BNewtonSolver::Settings settings;
+        settings.tolerance      = 1e-10;
+        settings.max_iterations = 300;
+        reference.r             = BNewtonSolver(settings).solve(problem).p;
+        reference.available     = true;
+        judged                  = "igabde's B-Newton answer";
+        std::cout << file << (placeholder ? "" : " stores no solution")
+                  << ": igabde's B-Newton answer (FCLIB error "
+                  << std::scientific << std::setprecision(2)
+                  << fclib_error(problem, reference.r) << std::defaultfloat
+                  << ") is judged instead\n";
+      }
+    const Scratch scratch;
+    siconos_protocol::write(scratch.file("problem.bin"),
+                            protocol_problem(problem));
+    const int n = problem.n_rows();
     // How far two answers may lie apart given their FCLIB errors: for a
     // strongly monotone problem the natural map bounds the distance to the
     // solution, |r - r*| <= (1 + lambda_max) / lambda_min |F_nat(r)|
@@ -408,7 +452,7 @@ namespace
     const double amplification   = (1. + lambda_max) / lambda_min *
                                  problem.q.norm() /
                                  std::max(reference.r.norm(), 1e-300);
-    std::cout << "stored solution: FCLIB error " << std::scientific
+    std::cout << judged << ": FCLIB error " << std::scientific
               << std::setprecision(2) << reference_error;
     if (lambda_min > 1e-12 * std::abs(lambda_max))
       std::cout << "; |r - r*| / |r| <= " << amplification
@@ -417,17 +461,19 @@ namespace
       std::cout << "; W is not positive definite (smallest eigenvalue "
                 << lambda_min << ")";
     std::cout << std::defaultfloat << '\n';
-    // 3D: PROX (judged) and NSN-AC on the sparse-block storage; 2D:
+    // 3D: PROX (judged), NSN-AC, NSGS (Gauss-Seidel over the contacts, no
+    // sparse factorisation) and ADMM on the sparse-block storage; 2D:
     // Lemke's pivoting method on the equivalent LCP (judged: exact up to
     // round-off where it ends) and NSGS, both on a dense copy (Siconos'
     // 2D solvers other than NSGS take dense storage only).
-    const bool              three = problem.n_components == 3;
-    FrictionContactProblem *dense = three ? nullptr : siconos_dense(problem);
+    const bool three = problem.n_components == 3;
     const std::vector<std::pair<int, const char *>> solvers =
       three ?
         std::vector<std::pair<int, const char *>>{
           {SICONOS_FRICTION_3D_PROX, "PROX"},
-          {SICONOS_FRICTION_3D_NSN_AC, "NSN-AC"}} :
+          {SICONOS_FRICTION_3D_NSN_AC, "NSN-AC"},
+          {SICONOS_FRICTION_3D_NSGS, "NSGS"},
+          {SICONOS_FRICTION_3D_ADMM, "ADMM"}} :
         std::vector<std::pair<int, const char *>>{
           {SICONOS_FRICTION_2D_LEMKE, "Lemke"},
           {SICONOS_FRICTION_2D_NSGS, "NSGS"}};
@@ -437,21 +483,33 @@ namespace
     double      judged_difference = 0., judged_error = 0.;
     for (const auto &[id, label] : solvers)
       {
-        std::vector<double> r(n, 0.), u(n, 0.);
-        SolverOptions      *options              = solver_options_create(id);
-        options->iparam[SICONOS_IPARAM_MAX_ITER] = 10000;
-        options->dparam[SICONOS_DPARAM_TOL]      = 1e-14;
-        const int info                           = three ?
-                                                     fc3d_driver(fcp, r.data(), u.data(), options) :
-                                                     fc2d_driver(dense, r.data(), u.data(), options);
-        solver_options_delete(options);
-        const Eigen::Map<const Eigen::VectorXd> rs(r.data(), n);
+        siconos_protocol::Report report;
+        std::string              why;
+        if (!solve_isolated(scratch,
+                            id,
+                            10000,
+                            1e-14,
+                            !three,
+                            true,
+                            report,
+                            why) ||
+            report.r.size() != static_cast<std::size_t>(n))
+          {
+            std::cout << label << ": no answer (" << why << ")\n";
+            failures += (failures.empty() ? "" : ", ") + std::string(label) +
+                        " (no answer: " + why + ")";
+            continue;
+          }
+        const int                               info = report.info;
+        const Eigen::Map<const Eigen::VectorXd> rs(report.r.data(), n);
         const double error = fclib_error(problem, rs);
+        // Relative to the larger of the two (a stored answer may be zero).
         const double difference =
-          (rs - reference.r).norm() / std::max(reference.r.norm(), 1e-300);
+          (rs - reference.r).norm() /
+          std::max({reference.r.norm(), rs.norm(), 1e-300});
         std::cout << label << ": info " << info << ", FCLIB error "
                   << std::scientific << std::setprecision(2) << error
-                  << ", |r - r_file| / |r_file| " << difference
+                  << ", |r - r_file| / max(|r|, |r_file|) " << difference
                   << std::defaultfloat << '\n';
         if (error > 1e-8)
           {
@@ -460,19 +518,30 @@ namespace
                 << std::scientific << std::setprecision(2) << error << ")";
             failures += (failures.empty() ? "" : ", ") + why.str();
           }
-        else if (judge.empty())
+        else
           {
+            // The first that solves it judges; the rest are not run.
             judge             = label;
             judged_difference = difference;
             judged_error      = error;
+            break;
           }
       }
-    if (dense != nullptr)
-      frictionContactProblem_free(dense);
-    frictionContactProblem_free(fcp);
 
     // The verdict on the stored solution, by the judge's answer.
     const bool definite = lambda_min > 1e-12 * std::abs(lambda_max);
+    // An answer that does not meet FCLIB's measure is not a solution,
+    // whatever Siconos reaches.
+    if (judge.empty() && reference_error > 1e-8)
+      {
+        std::cout << std::scientific << std::setprecision(2)
+                  << "DIFFERENT answer: " << judged
+                  << " does not solve the problem (FCLIB error "
+                  << reference_error
+                  << " > 1e-8); no Siconos solver solved it either: "
+                  << failures << '\n';
+        return 1;
+      }
     if (judge.empty())
       {
         std::cout << "no verdict: no Siconos solver solved the problem to "
@@ -485,8 +554,8 @@ namespace
     std::cout << std::scientific << std::setprecision(2);
     if (reference_error > 1e-8)
       {
-        std::cout << "DIFFERENT answer: the stored solution does not solve "
-                     "the problem (FCLIB error "
+        std::cout << "DIFFERENT answer: " << judged
+                  << " does not solve the problem (FCLIB error "
                   << reference_error << " > 1e-8); " << judge
                   << " does (FCLIB error " << judged_error << ")\n";
         return 1;
@@ -495,7 +564,7 @@ namespace
       {
         const bool same = judged_difference <= agreement;
         std::cout << (same ? "same answer" : "DIFFERENT answer") << ": "
-                  << judge << " and the stored solution differ by "
+                  << judge << " and " << judged << " differ by "
                   << judged_difference << (same ? " <= " : " > ") << agreement
                   << " (--agree)\n";
         return same ? 0 : 1;
@@ -504,8 +573,8 @@ namespace
       {
         // W only semidefinite: the solution need not be unique, and the
         // natural map bounds no distance; both answers solve the problem.
-        std::cout << "same answer: " << judge
-                  << " and the stored solution both solve the problem "
+        std::cout << "same answer: " << judge << " and " << judged
+                  << " both solve the problem "
                      "(FCLIB errors "
                   << judged_error << " and " << reference_error
                   << "); W is not positive definite (smallest eigenvalue "
@@ -518,7 +587,7 @@ namespace
     const double bound = amplification * (judged_error + reference_error);
     const bool   same  = judged_difference <= bound;
     std::cout << (same ? "same answer" : "DIFFERENT answer") << ": " << judge
-              << " and the stored solution differ by " << judged_difference
+              << " and " << judged << " differ by " << judged_difference
               << (same ? " <= " : " > ") << bound
               << ", the distance their FCLIB errors allow\n";
     return same ? 0 : 1;
@@ -531,8 +600,8 @@ int
 main(int argc, char **argv)
 {
   igabde::benchmarks::answer_help(argc, argv, usage);
-  // Siconos' sparse solvers call MUMPS, which in this process is the MPI
-  // build igabde links (one dmumps_c serves both): MPI must be running.
+  // igabde's library starts MPI for its MUMPS; Siconos' solves run in
+  // siconos_solver processes of their own.
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   using igabde::benchmarks::option_value;
   const std::string tool   = "siconos_comparison";
@@ -640,7 +709,9 @@ main(int argc, char **argv)
                             " components)");
           continue;
         }
-      FrictionContactProblem *fcp = siconos_problem(problem);
+      const Scratch scratch;
+      siconos_protocol::write(scratch.file("problem.bin"),
+                              protocol_problem(problem));
       ++attempted;
 
       Outcome               ours;
@@ -673,21 +744,21 @@ main(int argc, char **argv)
       ours.error      = fclib_error(problem, r.p);
 
       const bool    three = problem.n_components == 3;
-      const Outcome nsn   = three ? run_siconos(fcp,
+      const Outcome nsn   = three ? run_siconos(scratch,
                                               problem,
                                               SICONOS_FRICTION_3D_NSN_AC,
                                               max_iterations) :
                                     Outcome();
       const Outcome nsgs =
-        run_siconos(fcp,
+        run_siconos(scratch,
                     problem,
                     three ? SICONOS_FRICTION_3D_NSGS : SICONOS_FRICTION_2D_NSGS,
                     10 * max_iterations);
-      const Outcome prox =
-        three ?
-          run_siconos(fcp, problem, SICONOS_FRICTION_3D_PROX, max_iterations) :
-          Outcome();
-      frictionContactProblem_free(fcp);
+      const Outcome prox = three ? run_siconos(scratch,
+                                               problem,
+                                               SICONOS_FRICTION_3D_PROX,
+                                               max_iterations) :
+                                   Outcome();
 
       // Speed against Siconos' fastest solver that solved it too.
       double best_siconos = std::numeric_limits<double>::max();

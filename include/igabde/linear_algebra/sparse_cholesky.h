@@ -10,6 +10,8 @@
 #include <functional>
 #include <memory>
 #include <mpi.h>
+#include <ostream>
+#include <string>
 #include <vector>
 
 namespace igabde
@@ -98,6 +100,15 @@ namespace igabde
                  const MPI_Comm communicator = MPI_COMM_SELF,
                  const bool     distributed_values        = false,
                  const std::function<void()> &matrix_read = {});
+
+      /**
+       * @brief Progress lines of the numerical factorisations to come, on
+       * @p stream (on the host; nullptr: none), naming @p label: every 5 s
+       * the seconds so far and an estimate of those left (MUMPS' flop
+       * estimate at the rate the longest finished factorisation reached).
+       */
+      void
+      set_progress(std::ostream *stream, const std::string &label);
 
       /**
        * @brief Hands the interface and the factor size from the world rank
