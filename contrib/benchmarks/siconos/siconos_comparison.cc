@@ -36,7 +36,7 @@
 namespace
 {
   const char *const usage =
-    R"(igabde's B-Newton beside Siconos' FCLIB solvers, in one process and run,
+    R"(igabde's B-Newton beside Siconos' FCLIB solvers, in one run,
 on every local/global 2D and 3D problem under a folder (FCLIB HDF5 and
 Siconos numerics .dat), every answer judged by the same measure.
 
