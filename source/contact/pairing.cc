@@ -245,6 +245,27 @@ namespace igabde
                                  " has no contact points."));
       std::vector<ContactPair<dim>> pairs;
       const auto                    index = index_samples(samples);
+      // A point's pressure is its force over its tributary area: a point
+      // whose collocated area is not positive (the Greville collocation of
+      // a face whose parametrisation nearly stops there, next to a repeated
+      // control point) cannot carry one, and its pair would give a wrong
+      // pressure without a sign of it.
+      for (const auto &s : slave)
+        AssertThrow(
+          s.tributary_area > 0.,
+          base::ExcInput(
+            context + ": the contact point (" + base::to_string(s.location) +
+            ") of Body 1's contact face gets the tributary area " +
+            [&] {
+              std::ostringstream o;
+              o << s.tributary_area;
+              return o.str();
+            }() +
+            ", not positive: the face's parametrisation nearly stops there "
+            "(a repeated or nearly repeated control point), and a "
+            "point-wise pair there cannot carry a pressure. Use "
+            "Contact/Pairing = weighted-gap (pairs that integrate the gap "
+            "over the face), or spread the face's control points."));
       for (const auto &s : slave)
         pairs.push_back(
           make_pair(s,

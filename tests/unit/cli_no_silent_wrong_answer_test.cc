@@ -672,3 +672,59 @@ TEST(NoSilentWrongAnswer, ProjectionsOntoACurvedMasterFromAfarConverge)
     << past.output;
   EXPECT_FALSE(contains(past.output, "did not converge")) << past.output;
 }
+
+
+
+TEST(NoSilentWrongAnswer, NonPositiveTributaryAreasAreRefused)
+{
+  // A block [0, 1]^2 (B-spline, degree 2 x 1, four spans) whose bottom
+  // face has its first two control points 1e-4 apart: the parametrisation
+  // nearly stops at the corner, and the Greville collocation gives the
+  // corner point the tributary area -0.019. Pressed by 1 onto a rigid
+  // plane, its node-to-surface pairs ended "ok" with a pressure
+  // uniformity error of 1.0 and no warning; they are now refused with one
+  // line. The weighted-gap pairs of the same face carry the uniform
+  // pressure exactly (to 1e-8).
+  const Scratch      s("tributary");
+  std::ostringstream coefs;
+  for (const double y : {0., 1.})
+    for (const double x : {0., 1e-4, 0.375, 0.625, 0.875, 1.})
+      coefs << x << ' ' << y << '\n';
+  std::ofstream(cli::join(s.path, "block.xml"))
+    << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<xml>\n"
+       "<Geometry type=\"TensorBSpline2\" id=\"0\">\n"
+       "<Basis type=\"TensorBSplineBasis2\">\n"
+       "<Basis type=\"BSplineBasis\" index=\"0\"><KnotVector degree=\"2\">"
+       "0 0 0 0.25 0.5 0.75 1 1 1</KnotVector></Basis>\n"
+       "<Basis type=\"BSplineBasis\" index=\"1\"><KnotVector degree=\"1\">"
+       "0 0 1 1</KnotVector></Basis>\n</Basis>\n<coefs geoDim=\"2\">\n"
+    << coefs.str() << "</coefs>\n</Geometry>\n</xml>\n";
+  std::ofstream(cli::join(s.path, "block.prm"))
+    << "set Dimension = 2\n"
+       "subsection Discretization\n  set Type = nurbs\n  set Degree = 2\nend\n"
+       "subsection Body 1\n  set Geometry = file\n"
+       "  set Geometry file = block.xml\n  set Young's modulus = 1000\n"
+       "  set Poisson's ratio = 0.3\n  set Supports = 0.0: x\n"
+       "  set Tractions = 0.3: pressure 1\nend\n"
+       "subsection Body 2\n  set Type = rigid plane\n"
+       "  set Plane point = 0, 0\n  set Plane normal = 0, 1\nend\n"
+       "subsection Contact\n  set Enabled = true\n"
+       "  set Slave face = 0.2\nend\n"
+       "subsection Checks\n  set Uniform pressure = 1\nend\n"
+       "subsection Output\n  set Write vtu = false\nend\n";
+  const auto refused =
+    run_igabde("block.prm --quiet --set 'Output/Directory=points'", s.path);
+  EXPECT_EQ(refused.status, 2) << refused.output;
+  EXPECT_TRUE(contains(refused.output, "gets the tributary area -0.019"))
+    << refused.output;
+  EXPECT_TRUE(contains(refused.output, "Contact/Pairing = weighted-gap"))
+    << refused.output;
+  const auto weighted = run_igabde("block.prm --quiet"
+                                   " --set 'Contact/Pairing=weighted-gap'"
+                                   " --set 'Output/Directory=weighted'",
+                                   s.path);
+  ASSERT_EQ(weighted.status, 0) << weighted.output;
+  const nlohmann::json summary = nlohmann::json::parse(
+    read_file(cli::join(s.path, "weighted/summary.json")));
+  EXPECT_LE(summary.at("checks").at("pressure_uniformity").get<double>(), 1e-8);
+}
