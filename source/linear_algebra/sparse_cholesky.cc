@@ -136,10 +136,10 @@ namespace igabde
        * call: every 5 s a line on @p stream with the seconds so far and an
        * estimate of those left, from MUMPS' flop estimate of the analysis
        * (RINFOG(1)) and the rate of the longest factorisation this process
-       * has finished (40 GFlop/s before the first: what numerical
-       * factorisations of 3e11 flops, those that take seconds, reached on
-       * this project's 2-core machine; doc/performance.md). A
-       * factorisation under 5 s prints nothing.
+       * has finished; before the first, a default rate of numerical
+       * factorisations that take seconds (doc/performance.md gives the
+       * measurement it comes from). A factorisation under 5 s prints
+       * nothing.
        */
       class FactorisationTicker
       {

@@ -67,7 +67,8 @@ namespace siconos_protocol
   write(const std::string &path, const Problem &p)
   {
     std::ofstream out(path, std::ios::binary);
-    out.write(reinterpret_cast<const char *>(&p.dimension), sizeof(p.dimension));
+    out.write(reinterpret_cast<const char *>(&p.dimension),
+              sizeof(p.dimension));
     out.write(reinterpret_cast<const char *>(&p.contacts), sizeof(p.contacts));
     put(out, p.rows);
     put(out, p.columns);

@@ -117,6 +117,15 @@ namespace igabde
     };
 
     /**
+     * @brief The accuracy checks (Checks: uniform pressure, Hertz line,
+     * point and elliptical contact, error norms), after the last load step
+     * (scene/accuracy_checks.cc).
+     */
+    template <int dim>
+    std::unique_ptr<Postprocessor<dim>>
+    make_accuracy_checks();
+
+    /**
      * @brief The postprocessors of a scene, in the order they run: the FCLIB
      * export (Output/FCLIB export, on rank 0), the model's range, the
      * forces, the step files (pair table, VTU/PVD; their files written by
