@@ -433,37 +433,10 @@ namespace igabde
 
 
     template <int dim>
-    std::optional<std::pair<double, Point<dim>>>
-    ContactStage<dim>::largest_sliding(
-      const std::vector<Vector<double>> &u) const
-    {
-      if (obstacle)
-        return std::nullopt;
-      std::pair<double, Point<dim>> result(0., Point<dim>());
-      for (unsigned int i = 0; i < pair_list.size(); ++i)
-        {
-          if (!(pair_spacing[i] > 0.))
-            continue;
-          const Tensor<1, dim> du = pair_list[i].op1.displacement(u[0]) -
-                                    pair_list[i].op2.displacement(u[1]);
-          const Tensor<1, dim> &n = pair_list[i].frame[0];
-          // A pair open by more than its spacing cannot touch in this
-          // configuration: where it now faces does not matter yet.
-          if (pair_list[i].gap + du * n > pair_spacing[i])
-            continue;
-          const double ratio = (du - (du * n) * n).norm() / pair_spacing[i];
-          if (ratio > result.first)
-            result = {ratio, pair_list[i].x1};
-        }
-      return result;
-    }
-
-
-
-    template <int dim>
     Eigen::VectorXd
     ContactStage<dim>::relative_displacement(
-      const std::vector<Vector<double>> &u) const
+      const std::vector<Vector<double>> &u,
+      const std::vector<double>         &factors) const
     {
       Eigen::VectorXd result(m * pair_list.size());
       for (unsigned int i = 0; i < pair_list.size(); ++i)
@@ -471,6 +444,8 @@ namespace igabde
           Tensor<1, dim> du = pair_list[i].op1.displacement(u[0]);
           if (!obstacle)
             du -= pair_list[i].op2.displacement(u[1]);
+          else if (obstacle->moves())
+            du -= obstacle->displacement(pair_list[i].x2, factors);
           for (unsigned int s = 0; s < m; ++s)
             result(m * i + s) = pair_list[i].frame[s] * du;
         }
@@ -628,7 +603,7 @@ namespace igabde
               }
             else
               moved[b] = u[b];
-          U = relative_displacement(moved);
+          U = relative_displacement(moved, factors);
           // The size of the pairs' displacements from the reference
           // configuration (q holds those from the predictor only).
           double sum = 0.;
@@ -647,7 +622,7 @@ namespace igabde
           problem.displacement_scale = std::sqrt(sum);
         }
       else
-        U = relative_displacement(u);
+        U = relative_displacement(u, factors);
       // What the previous step's contact forces contribute to the pair
       // displacements (subtracted from the tangential increments).
       Eigen::VectorXd carry = op.displacement(x.p, x.w);
@@ -906,61 +881,6 @@ namespace igabde
                  "contact faces";
         }
       return "";
-    }
-
-
-
-    template <int dim>
-    std::vector<PairState<dim>>
-    ContactStage<dim>::pair_states() const
-    {
-      std::vector<PairState<dim>> states;
-      if (status.empty())
-        return states;
-      for (unsigned int i = 0; i < pair_list.size(); ++i)
-        {
-          PairState<dim> s;
-          s.location = pair_list[i].x1;
-          s.normal   = pair_list[i].normal1;
-          s.area     = pair_list[i].area;
-          for (unsigned int k = 0; k < m; ++k)
-            {
-              s.force_local.push_back(x.p(m * i + k));
-              s.displacement_local.push_back(u_rel(m * i + k));
-            }
-          s.force = global_force(i, x.p);
-          for (unsigned int k = 1; k < m; ++k)
-            s.slip += u_rel(m * i + k) * pair_list[i].frame[k];
-          s.status = status[i];
-          states.push_back(s);
-        }
-      return states;
-    }
-
-
-
-    template <int dim>
-    ContactSummary
-    ContactStage<dim>::summary() const
-    {
-      ContactSummary s;
-      for (const auto &pair : pair_list)
-        s.initial_gaps = s.initial_gaps || pair.gap > 0.;
-      s.n_pairs        = pair_list.size();
-      s.n_unknowns     = contact.problem.n_rows() + contact.problem.n_alpha();
-      s.friction       = (m > 1);
-      s.rigid_obstacle = static_cast<bool>(obstacle);
-      s.floating_rigid_modes        = contact.alpha_modes.size();
-      s.pairs_left_out              = contact.n_dropped;
-      s.algorithm                   = settings.solver.algorithm;
-      s.path                        = resolved_path;
-      s.path_reason                 = path_why;
-      s.estimated_condensed_seconds = estimated_condensed_seconds;
-      s.estimated_full_seconds      = estimated_full_seconds;
-      s.cost_inputs                 = cost_inputs;
-      s.coupled_nonzeros = contact_path ? contact_path->n_nonzeros() : 0.;
-      s.warnings         = setup_warnings;
-      return s;
     }
 
 

@@ -1,7 +1,6 @@
 #include <igabde/base/utilities.h>
 
 #include <igabde/contact/contact_surface.h>
-#include <igabde/contact/obstacle.h>
 
 #include <limits>
 
@@ -160,76 +159,9 @@ namespace igabde
 
 
 
-    template <int dim>
-    bool
-    Obstacle<dim>::deformable() const
-    {
-      return false;
-    }
-
-
-
-    template <int dim>
-    const std::vector<discretization::SurfacePoint<dim>> &
-    Obstacle<dim>::sample_points() const
-    {
-      return no_samples;
-    }
-
-
-
-    template <int dim>
-    RigidPlane<dim>::RigidPlane(const Point<dim>     &point,
-                                const Tensor<1, dim> &normal_in)
-      : point(point)
-      , normal(normal_in)
-    {
-      AssertThrow(normal.norm() > 0.,
-                  ExcMessage("RigidPlane: the normal must not be zero."));
-      normal /= normal.norm();
-    }
-
-
-
-    template <int dim>
-    std::string
-    RigidPlane<dim>::description() const
-    {
-      return "the rigid plane";
-    }
-
-
-
-    template <int dim>
-    std::string
-    RigidPlane<dim>::kind() const
-    {
-      return "rigid plane";
-    }
-
-
-
-    template <int dim>
-    discretization::SurfacePoint<dim>
-    RigidPlane<dim>::closest_point(
-      const Point<dim> &location,
-      const discretization::SurfacePoint<dim> *) const
-    {
-      discretization::SurfacePoint<dim> result;
-      result.location = location - ((location - point) * normal) * normal;
-      result.normal   = normal;
-      return result;
-    }
-
-
-
     template class ContactSurface<2>;
     template class ContactSurface<3>;
     template class BodyFace<2>;
     template class BodyFace<3>;
-    template class Obstacle<2>;
-    template class Obstacle<3>;
-    template class RigidPlane<2>;
-    template class RigidPlane<3>;
   } // namespace contact
 } // namespace igabde

@@ -215,9 +215,15 @@ namespace igabde
               // The line and the sphere's checks also take the radius and
               // the depth of Body 1's elements under the contact.
               const auto set_hertz_inputs = [&](auto &hertz) {
-                hertz.radius = (parameters.checks.hertz_radius > 0. ?
-                                  parameters.checks.hertz_radius :
-                                  parameters.body1.radius);
+                // Default: the curved body's radius, the rigid
+                // obstacle's when Body 2 is a cylinder or sphere.
+                const BodyType other = parameters.body2.type;
+                hertz.radius         = parameters.checks.hertz_radius > 0. ?
+                                         parameters.checks.hertz_radius :
+                                         (other == BodyType::rigid_cylinder ||
+                                      other == BodyType::rigid_sphere ?
+                                            parameters.body2.radius :
+                                            parameters.body1.radius);
                 set_modulus_and_axis(hertz);
                 hertz.element_depth = element_depth_under_contact(
                   bodies[0]->geometry_patch(discretization::patch_of_face<dim>(

@@ -296,18 +296,55 @@ namespace igabde
     create_obstacle(const AllParameters &parameters,
                     const std::string   &scene_file)
     {
-      if (parameters.body2.type != BodyType::rigid_plane)
+      const BodyParameters &body = parameters.body2;
+      if (!is_obstacle(body.type))
         return nullptr;
-      // The scene reader has refused a zero or malformed normal already.
+      // The scene reader has refused zero normals and axes, radii <= 0 and
+      // malformed motions already.
       (void)scene_file;
-      Point<dim>     point;
-      Tensor<1, dim> normal;
-      for (unsigned int d = 0; d < dim; ++d)
+      const auto point_of = [](const std::vector<double> &values) {
+        Point<dim> p;
+        for (unsigned int d = 0; d < dim && d < values.size(); ++d)
+          p[d] = values[d];
+        return p;
+      };
+      std::unique_ptr<contact::Obstacle<dim>> obstacle;
+      switch (body.type)
         {
-          point[d]  = parameters.body2.plane_point[d];
-          normal[d] = parameters.body2.plane_normal[d];
+          case BodyType::rigid_plane:
+            obstacle = std::make_unique<contact::RigidPlane<dim>>(
+              point_of(body.plane_point),
+              point_of(body.plane_normal));
+            break;
+          case BodyType::rigid_cylinder:
+            obstacle = std::make_unique<contact::RigidCylinder<dim>>(
+              point_of(body.centre),
+              body.radius,
+              point_of(body.axis));
+            break;
+          case BodyType::rigid_sphere:
+            obstacle =
+              std::make_unique<contact::RigidSphere<dim>>(point_of(body.centre),
+                                                          body.radius);
+            break;
+          default:
+            Assert(false, ExcInternalError());
         }
-      return std::make_unique<contact::RigidPlane<dim>>(point, normal);
+      std::vector<contact::RigidMotion<dim>> motion;
+      for (const ObstacleMotionParameters &term : body.motion)
+        {
+          contact::RigidMotion<dim> m;
+          m.history     = parameters.load_path.history_index(term.history, 1);
+          m.translation = point_of(term.translation);
+          if (dim == 2)
+            m.rotation[2] = term.rotation[0];
+          else
+            for (unsigned int d = 0; d < 3; ++d)
+              m.rotation[d] = term.rotation[d];
+          motion.push_back(m);
+        }
+      obstacle->set_motion(motion);
+      return obstacle;
     }
 
 

@@ -619,6 +619,43 @@ namespace igabde
 
 
 
+    std::vector<ObstacleMotionParameters>
+    read_obstacle_motion(const std::string &text,
+                         const unsigned int dimension,
+                         const std::string &where)
+    {
+      const unsigned int n_rotations = (dimension == 2 ? 1u : 3u);
+      const std::string  form        = dimension == 2 ?
+                                         "'ux, uy' or 'ux, uy, rz'" :
+                                         "'ux, uy, uz' or 'ux, uy, uz, rx, ry, rz'";
+      std::vector<ObstacleMotionParameters> motion;
+      for (const std::string &entry : base::split(text, ';'))
+        {
+          const auto [item, history]       = split_history(entry);
+          const std::vector<double> values = base::parse_doubles(item, where);
+          AssertThrow(values.size() == dimension ||
+                        values.size() == dimension + n_rotations,
+                      base::ExcInput(
+                        where + ": '" + base::trim(item) + "' gives " +
+                        std::to_string(values.size()) +
+                        " values; a term of the obstacle's rigid motion is " +
+                        form +
+                        " (translation in m, rotation in rad about "
+                        "the obstacle's Centre or Plane point), optionally "
+                        "followed by '@ history'."));
+          ObstacleMotionParameters term;
+          term.translation.assign(values.begin(), values.begin() + dimension);
+          term.rotation.assign(n_rotations, 0.);
+          if (values.size() > dimension)
+            term.rotation.assign(values.begin() + dimension, values.end());
+          term.history = history;
+          motion.push_back(term);
+        }
+      return motion;
+    }
+
+
+
     BodyForceParameters
     read_body_force(const std::string &text,
                     const unsigned int dimension,

@@ -24,8 +24,15 @@ namespace igabde
                           Patterns::Selection(
                             base::selection_of(body_type_names)),
                           "deformable: a meshed elastic body. rigid plane: a "
-                          "fixed flat obstacle with no mesh and no unknowns "
-                          "(Body 2 only). none: no such body (Body 2 only).");
+                          "flat obstacle with no mesh and no unknowns (Plane "
+                          "point, Plane normal). rigid cylinder: a circle of "
+                          "Radius about Centre (2D) or the infinite circular "
+                          "cylinder of Radius about the axis through Centre "
+                          "along Axis (3D), touched from outside. rigid "
+                          "sphere (3D): the sphere of Radius about Centre, "
+                          "touched from outside. A rigid obstacle is fixed "
+                          "or moved by Motion (Body 2 only). none: no such "
+                          "body (Body 2 only).");
         prm.declare_entry(
           "Geometry",
           "box",
@@ -76,14 +83,16 @@ namespace igabde
         prm.declare_entry("Radius",
                           "8",
                           Patterns::Double(0.),
-                          "Radius (m) of the hertz quarter disc and of the "
-                          "full/half discs and cylinders.");
+                          "Radius (m) of the hertz quarter disc, of the "
+                          "full/half discs and cylinders, and of the rigid "
+                          "cylinder and sphere.");
         prm.declare_entry("Centre",
                           "",
                           Patterns::Anything(),
                           "full/half disc: centre (m), 'x, y'; full/half "
                           "cylinder: centre of the base face z = const, "
-                          "'x, y, z'. Empty: the origin.");
+                          "'x, y, z'; rigid cylinder: a point on its axis; "
+                          "rigid sphere: its centre. Empty: the origin.");
         prm.declare_entry("Width",
                           "1",
                           Patterns::Double(0.),
@@ -243,6 +252,23 @@ namespace igabde
                           "0, 1, 0",
                           Patterns::Anything(),
                           "rigid plane: normal pointing towards Body 1.");
+        prm.declare_entry("Axis",
+                          "0, 0, 1",
+                          Patterns::Anything(),
+                          "rigid cylinder (3D): the direction of its axis, "
+                          "not zero.");
+        prm.declare_entry(
+          "Motion",
+          "",
+          Patterns::Anything(),
+          "Rigid obstacles: the prescribed rigid motion, 'ux, uy[, uz]' "
+          "(m), or with the rotation 'ux, uy, rz' (2D) / 'ux, uy, uz, rx, "
+          "ry, rz' (3D; rad, small: linearised, about Centre, or Plane "
+          "point for a plane), scaled by the step's displacement factor (or "
+          "by the load history 'name' when the entry ends in '@ name'); "
+          "several entries separated by ';' add up, e.g. '0, -0.01; 0.02, 0 "
+          "@ slide' presses an indenter with the displacement factors and "
+          "slides it with the history 'slide'. Empty: fixed.");
       }
       prm.leave_subsection();
     }
@@ -301,7 +327,7 @@ namespace igabde
       std::string supports_text, tractions_text, point_loads_text, hold_text,
         moments_text, point_supports_text, face_motions_text, body_force_text,
         lower_text, upper_text, centre_text, subdivisions_text, grading_text,
-        point_text, normal_text;
+        point_text, normal_text, axis_text, motion_text;
       prm.enter_subsection(name);
       {
         type              = base::value_of(body_type_names, prm.get("Type"));
@@ -333,11 +359,20 @@ namespace igabde
         body_force_text     = prm.get("Body force");
         point_text          = prm.get("Plane point");
         normal_text         = prm.get("Plane normal");
+        axis_text           = prm.get("Axis");
+        motion_text         = prm.get("Motion");
       }
       prm.leave_subsection();
 
       body_force.assign(dimension, 0.);
-      const std::string where = context + name + "/";
+      const std::string where           = context + name + "/";
+      const auto        optional_vector = [&](const std::string &text,
+                                       const std::string &parameter) {
+        return base::trim(text).empty() ?
+                        std::vector<double>() :
+                        read_vector(text, dimension, where + parameter);
+      };
+      motion.clear();
       if (type == BodyType::rigid_plane)
         {
           plane_point =
@@ -353,6 +388,47 @@ namespace igabde
                                      "' must not be zero; give the normal "
                                      "pointing towards Body 1, e.g. '0, 1'."));
         }
+      if (type == BodyType::rigid_sphere)
+        AssertThrow(dimension == 3,
+                    base::ExcInput(where +
+                                   "Type = rigid sphere is a 3D obstacle; "
+                                   "in 2D use Type = rigid cylinder (a "
+                                   "circle of Radius about Centre)."));
+      if (type == BodyType::rigid_cylinder || type == BodyType::rigid_sphere)
+        {
+          centre = optional_vector(centre_text, "Centre");
+          if (centre.empty())
+            centre.assign(dimension, 0.);
+          AssertThrow(radius > 0.,
+                      base::ExcInput(
+                        where + "Radius = " + base::number_text(radius) +
+                        " must be > 0 (m) for a rigid " +
+                        (type == BodyType::rigid_sphere ? "sphere" :
+                                                          "cylinder") +
+                        "; give the obstacle's radius."));
+          if (type == BodyType::rigid_cylinder && dimension == 3)
+            {
+              axis = read_vector(axis_text, dimension, where + "Axis");
+              AssertThrow(std::any_of(axis.begin(),
+                                      axis.end(),
+                                      [](const double x) {
+                                        return x != 0.;
+                                      }),
+                          base::ExcInput(where + "Axis = '" + axis_text +
+                                         "' must not be zero; give the "
+                                         "direction of the cylinder's "
+                                         "axis, e.g. '0, 0, 1'."));
+            }
+        }
+      if (is_obstacle(type))
+        motion = read_obstacle_motion(motion_text, dimension, where + "Motion");
+      else
+        AssertThrow(base::trim(motion_text).empty(),
+                    base::ExcInput(where + "Motion is for rigid obstacles "
+                                           "(Type = rigid plane, cylinder or "
+                                           "sphere); move a deformable "
+                                           "body's faces with Face motions "
+                                           "or Supports."));
       supports.clear();
       tractions.clear();
       point_loads.clear();
@@ -364,12 +440,6 @@ namespace igabde
         return;
 
       // The points and counts of the geometry, each read once.
-      const auto optional_vector = [&](const std::string &text,
-                                       const std::string &parameter) {
-        return base::trim(text).empty() ?
-                 std::vector<double>() :
-                 read_vector(text, dimension, where + parameter);
-      };
       lower_corner = optional_vector(lower_text, "Lower corner");
       upper_corner = optional_vector(upper_text, "Upper corner");
       centre       = optional_vector(centre_text, "Centre");

@@ -286,6 +286,8 @@ namespace igabde
         r.largest_strain = j.at("largest_strain").get<double>();
       if (j.contains("largest_sliding"))
         r.largest_sliding = j.at("largest_sliding").get<double>();
+      if (j.contains("largest_normal_turn"))
+        r.largest_normal_turn = j.at("largest_normal_turn").get<double>();
       if (j.contains("bodies"))
         for (const auto &b : j.at("bodies"))
           {

@@ -57,10 +57,15 @@ namespace igabde
           summary["effects"] = effects;
           return;
         }
-      const contact::ContactSummary &s    = *contact;
-      const auto                    &c    = parameters.contact;
-      effects["tangential_unknowns"]      = s.friction;
-      effects["rigid_obstacle"]           = s.rigid_obstacle;
+      const contact::ContactSummary &s = *contact;
+      const auto                    &c = parameters.contact;
+      effects["tangential_unknowns"]   = s.friction;
+      effects["rigid_obstacle"]        = s.rigid_obstacle;
+      if (s.rigid_obstacle)
+        {
+          effects["obstacle_motion"] = s.obstacle_moves;
+          summary["obstacle"]        = s.obstacle_kind;
+        }
       effects["initial_gaps"]             = s.initial_gaps;
       effects["floating_rigid_modes"]     = s.floating_rigid_modes;
       effects["pairs_left_out_supported"] = s.pairs_left_out;

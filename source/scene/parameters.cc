@@ -407,7 +407,8 @@ namespace igabde
                           "0",
                           Patterns::Double(0.),
                           "Radius (m) of the Hertz cylinder or sphere; 0: "
-                          "Body 1/Radius.");
+                          "Body 2/Radius when Body 2 is a rigid cylinder or "
+                          "sphere, else Body 1/Radius.");
         prm.declare_entry("Hertz axis point",
                           "",
                           Patterns::Anything(),

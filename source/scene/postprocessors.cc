@@ -123,8 +123,10 @@ namespace igabde
           // a strain of 0.1, where the quadratic term the small-strain measure
           // drops (of relative size eps / 2) reaches 5 % of it; paired points
           // moved apart by more than the pair spacing (pairs formed once in the
-          // reference configuration no longer face each other).
-          const double strain_limit = 0.1, sliding_limit = 1.;
+          // reference configuration no longer face each other); a curved
+          // obstacle's normal turned by 0.1 rad from the one a pair keeps
+          // (its gap then off by the turn times half the slide).
+          const double strain_limit = 0.1, sliding_limit = 1., turn_limit = 0.1;
           const double smallest_strain = 1e-8;
           const char  *units_advice =
             "units: E, loads and lengths must be in one system (with "
@@ -212,7 +214,30 @@ namespace igabde
                       "direction and Load path).";
               warn("no contact pair closed", text.str());
             }
-          const auto largest = stage ? stage->largest_sliding(u) : std::nullopt;
+          const auto turn = stage ?
+                              stage->largest_normal_turn(u, context.factors) :
+                              std::nullopt;
+          if (turn)
+            {
+              record.largest_normal_turn = turn->first;
+              if (turn->first > turn_limit)
+                {
+                  text.str("");
+                  text << "the obstacle's normal at the pairs' points has "
+                          "turned by "
+                       << turn->first << " rad (at ("
+                       << base::to_string(turn->second)
+                       << ")) from the reference normal the pairs keep: "
+                          "past "
+                       << turn_limit
+                       << " rad the contact is outside the model's "
+                          "small-sliding range (its gaps are off by about "
+                          "the radius times half the turn squared).";
+                  warn("normal at the pairs' points has", text.str());
+                }
+            }
+          const auto largest =
+            stage ? stage->largest_sliding(u, context.factors) : std::nullopt;
           if (!largest)
             return;
           const auto &sliding    = *largest;

@@ -68,6 +68,8 @@ namespace igabde
         j["largest_strain"] = *r.largest_strain;
       if (r.largest_sliding)
         j["largest_sliding"] = *r.largest_sliding;
+      if (r.largest_normal_turn)
+        j["largest_normal_turn"] = *r.largest_normal_turn;
       if (!r.failed)
         {
           nlohmann::json per_body = nlohmann::json::array();

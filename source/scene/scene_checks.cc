@@ -130,7 +130,8 @@ namespace igabde
       check_finite_strain(parameters, f);
       AssertThrow(body1.type == BodyType::deformable,
                   base::ExcInput(f + "Body 1/Type must be 'deformable'; only "
-                                     "Body 2 may be a rigid plane."));
+                                     "Body 2 may be a rigid obstacle (rigid "
+                                     "plane, cylinder or sphere)."));
       AssertThrow(!output.fclib_export ||
                     (contact.enabled && contact.friction_coefficient > 0. &&
                      contact.algorithm == contact::Algorithm::bde &&
@@ -150,7 +151,9 @@ namespace igabde
       AssertThrow(!contact.enabled || body2.type != BodyType::none,
                   base::ExcInput(f + "Contact/Enabled is true but Body 2/Type "
                                      "is 'none'; set Body 2/Type to "
-                                     "'deformable' or 'rigid plane'."));
+                                     "'deformable' or a rigid obstacle "
+                                     "('rigid plane', 'rigid cylinder', "
+                                     "'rigid sphere')."));
       AssertThrow(contact.algorithm == contact::Algorithm::bde ||
                     contact.path != contact::Path::condensed,
                   base::ExcInput(f + "Contact/Algorithm = " +
@@ -420,6 +423,8 @@ namespace igabde
             known(m.history);
           for (const auto &p : body->point_supports)
             known(p.history);
+          for (const auto &m : body->motion)
+            known(m.history);
         }
       // A traction that depends on t gets one history per step: factor 1
       // at its step, 0 elsewhere, the expression evaluated at that step's

@@ -522,3 +522,64 @@ TEST(CliBadInput, HertzRadiiThatDescribeNoEllipticalContact)
                                "set Checks/Hertz point load too",
                                scene);
 }
+
+
+
+TEST(CliBadInput, RigidSphereInTwoDimensions)
+{
+  expect_refused_at_parse_time("sphere-2d",
+                               "Body 2/Type=rigid sphere",
+                               "Body 2/Type = rigid sphere is a 3D obstacle",
+                               "rigid-cylinder-on-block.prm");
+}
+
+
+
+TEST(CliBadInput, RigidCylinderWithoutRadius)
+{
+  expect_refused_at_parse_time("cylinder-radius",
+                               "Body 2/Radius=0",
+                               "Body 2/Radius = 0 must be > 0",
+                               "rigid-cylinder-on-block.prm");
+}
+
+
+
+TEST(CliBadInput, RigidCylinderWithZeroAxis)
+{
+  expect_refused_at_parse_time("cylinder-axis",
+                               "Body 2/Axis=0, 0, 0",
+                               "Body 2/Axis = '0, 0, 0' must not be zero",
+                               "rigid-sphere-on-block.prm",
+                               "--set 'Body 2/Type=rigid cylinder'");
+}
+
+
+
+TEST(CliBadInput, ObstacleMotionWithTheWrongNumberOfValues)
+{
+  // 2D: two translations, or two and one rotation; four is neither.
+  expect_refused_at_parse_time("motion-count",
+                               "Body 2/Motion=0, -0.1, 0, 1",
+                               "Body 2/Motion: '0, -0.1, 0, 1' gives 4 values",
+                               "rigid-cylinder-on-block.prm");
+}
+
+
+
+TEST(CliBadInput, ObstacleMotionOnADeformableBody)
+{
+  expect_refused_at_parse_time("motion-deformable",
+                               "Body 2/Motion=0, -0.1",
+                               "Body 2/Motion is for rigid obstacles");
+}
+
+
+
+TEST(CliBadInput, ObstacleMotionWithAnUndeclaredHistory)
+{
+  expect_refused_at_parse_time("motion-history",
+                               "Body 2/Motion=0, -0.1 @ press",
+                               "Body 2: load history 'press' is not declared",
+                               "rigid-cylinder-on-block.prm");
+}

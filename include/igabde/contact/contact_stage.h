@@ -137,10 +137,14 @@ namespace igabde
      */
     struct ContactSummary
     {
-      unsigned int n_pairs              = 0;
-      unsigned int n_unknowns           = 0;
-      bool         friction             = false;
-      bool         rigid_obstacle       = false;
+      unsigned int n_pairs        = 0;
+      unsigned int n_unknowns     = 0;
+      bool         friction       = false;
+      bool         rigid_obstacle = false;
+      /// The obstacle's kind ("rigid plane", ...; empty: none) and whether
+      /// a motion is prescribed for it.
+      std::string  obstacle_kind;
+      bool         obstacle_moves       = false;
       bool         initial_gaps         = false;
       unsigned int floating_rigid_modes = 0;
       unsigned int pairs_left_out       = 0;
@@ -298,12 +302,27 @@ namespace igabde
        * point: past 1, pairs formed once in the reference configuration no
        * longer face each other (the small-sliding model's range check).
        * Pairs whose current gap exceeds their spacing are left out: they
-       * cannot touch in this configuration.
+       * cannot touch in this configuration. Against a moving obstacle its
+       * motion at the history factors @p factors is the other point's.
        * None against a rigid plane, whose gap and normal stay exact
        * whatever the slide.
        */
       std::optional<std::pair<double, Point<dim>>>
-      largest_sliding(const std::vector<Vector<double>> &u) const;
+      largest_sliding(const std::vector<Vector<double>> &u,
+                      const std::vector<double>         &factors) const;
+
+      /**
+       * Against a curved rigid obstacle: the largest angle (rad) by which
+       * the obstacle's normal at a pair's current closest point has
+       * turned from the reference normal the pair keeps, the pair's
+       * tangential displacement relative to the obstacle over its
+       * curvature radius, and the pair's point; over the pairs whose
+       * current gap is at most their spacing. None without such an
+       * obstacle.
+       */
+      std::optional<std::pair<double, Point<dim>>>
+      largest_normal_turn(const std::vector<Vector<double>> &u,
+                          const std::vector<double>         &factors) const;
 
       /// The contact forces of the last solve on body @p b as a load vector
       /// of its unknowns.
@@ -346,8 +365,21 @@ namespace igabde
       void
       prepare(TimerOutput &timer);
 
+      /// The pairs' relative displacements in their frames: Body 1's
+      /// point's less the other body's, or less the obstacle's motion at
+      /// the history factors @p factors.
+      /// The largest tangential displacement of a pair, Body 1's point's
+      /// less the other's (or the obstacle's motion), over the pair
+      /// spacing or, @p over_radius, the obstacle's curvature radius; over
+      /// the pairs whose current gap is at most their spacing.
+      std::pair<double, Point<dim>>
+      largest_tangential(const std::vector<Vector<double>> &u,
+                         const std::vector<double>         &factors,
+                         const bool                         over_radius) const;
+
       Eigen::VectorXd
-      relative_displacement(const std::vector<Vector<double>> &u) const;
+      relative_displacement(const std::vector<Vector<double>> &u,
+                            const std::vector<double>         &factors) const;
 
       /// The warm start, or the bilateral start of the path, whichever
       /// has the smaller natural-map plus equilibrium residual.

@@ -154,6 +154,21 @@ namespace igabde
     };
 
     /**
+     * @brief One term of a rigid obstacle's Motion: the translation (m),
+     * dimension values, then the rotation (rad) about the obstacle's pivot
+     * (one value about z in 2D, three in 3D), zero when the entry gives
+     * the translation only.
+     */
+    struct ObstacleMotionParameters
+    {
+      std::vector<double> translation;
+      std::vector<double> rotation;
+      /// Load history scaling the term ('@ name'; empty: Displacement
+      /// factors).
+      std::string history;
+    };
+
+    /**
      * @brief Body n/Grading per parametric direction (dimension entries):
      * the ratio of the largest span to the smallest (1: uniform), the
      * smallest at the low end of the direction (toward_high false) or at
@@ -221,6 +236,16 @@ namespace igabde
     read_vector(const std::string &text,
                 const unsigned int dimension,
                 const std::string &where);
+
+    /**
+     * @brief Body n/Motion of a rigid obstacle: 'ux, uy[, uz]' or with the
+     * rotation 'ux, uy, rz' (2D) / 'ux, uy, uz, rx, ry, rz' (3D), each entry
+     * optionally '@ name', separated by ';'.
+     */
+    std::vector<ObstacleMotionParameters>
+    read_obstacle_motion(const std::string &text,
+                         const unsigned int dimension,
+                         const std::string &where);
 
     /**
      * @brief The faces of @p key: a face number f, or 'p.f' (face f of

@@ -33,8 +33,13 @@ namespace igabde
     {
       /// A meshed elastic body.
       deformable,
-      /// A fixed flat obstacle with no mesh and no unknowns (Body 2 only).
+      /// A flat obstacle with no mesh and no unknowns (Body 2 only).
       rigid_plane,
+      /// A circle (2D) or circular cylinder (3D) with no mesh and no
+      /// unknowns (Body 2 only).
+      rigid_cylinder,
+      /// A sphere (3D) with no mesh and no unknowns (Body 2 only).
+      rigid_sphere,
       /// No such body (Body 2 only).
       none
     };
@@ -67,10 +72,20 @@ namespace igabde
     };
 
     /** @brief The names of each enum's values as the scene writes them. */
-    inline constexpr base::ChoiceNames<BodyType, 3> body_type_names = {
+    inline constexpr base::ChoiceNames<BodyType, 5> body_type_names = {
       {{BodyType::deformable, "deformable"},
        {BodyType::rigid_plane, "rigid plane"},
+       {BodyType::rigid_cylinder, "rigid cylinder"},
+       {BodyType::rigid_sphere, "rigid sphere"},
        {BodyType::none, "none"}}};
+
+    /// Whether @p type is a rigid obstacle (no mesh, no unknowns).
+    inline bool
+    is_obstacle(const BodyType type)
+    {
+      return type == BodyType::rigid_plane ||
+             type == BodyType::rigid_cylinder || type == BodyType::rigid_sphere;
+    }
     /** @copydoc body_type_names */
     inline constexpr base::ChoiceNames<Geometry, 11> geometry_names = {
       {{Geometry::box, "box"},
@@ -236,6 +251,12 @@ namespace igabde
       /// Rigid plane: the normal pointing towards Body 1 (not zero),
       /// dimension values.
       std::vector<double> plane_normal = {0., 1., 0.};
+      /// Rigid cylinder (3D): the direction of its axis (not zero),
+      /// dimension values.
+      std::vector<double> axis = {0., 0., 1.};
+      /// Rigid obstacles: the prescribed rigid motion, one term per entry
+      /// of "ux, uy[, uz][, rotation] [@ history]; ...".
+      std::vector<ObstacleMotionParameters> motion;
 
       /// Declares the subsection @p name ("Body 1" or "Body 2").
       static void

@@ -112,6 +112,9 @@ namespace igabde
       std::optional<double> largest_strain;
       /// ContactStage::largest_sliding() (contact scenes, finished steps).
       std::optional<double> largest_sliding;
+      /// ContactStage::largest_normal_turn() (rad; against a curved
+      /// obstacle, finished steps).
+      std::optional<double> largest_normal_turn;
     };
 
     /// The load step as summary.json writes it.

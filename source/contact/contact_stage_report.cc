@@ -1,0 +1,157 @@
+#include <igabde/contact/contact_stage.h>
+
+#include <algorithm>
+
+// What the contact stage reports after a step: the pairs' states, its
+// summary, and the small-sliding range figures.
+
+namespace igabde
+{
+  namespace contact
+  {
+    template <int dim>
+    std::optional<std::pair<double, Point<dim>>>
+    ContactStage<dim>::largest_sliding(const std::vector<Vector<double>> &u,
+                                       const std::vector<double> &factors) const
+    {
+      if (obstacle)
+        return std::nullopt;
+      return largest_tangential(u, factors, false);
+    }
+
+
+
+    template <int dim>
+    std::optional<std::pair<double, Point<dim>>>
+    ContactStage<dim>::largest_normal_turn(
+      const std::vector<Vector<double>> &u,
+      const std::vector<double>         &factors) const
+    {
+      if (!obstacle || obstacle->flat())
+        return std::nullopt;
+      return largest_tangential(u, factors, true);
+    }
+
+
+
+    template <int dim>
+    std::pair<double, Point<dim>>
+    ContactStage<dim>::largest_tangential(const std::vector<Vector<double>> &u,
+                                          const std::vector<double> &factors,
+                                          const bool over_radius) const
+    {
+      std::pair<double, Point<dim>> result(0., Point<dim>());
+      for (unsigned int i = 0; i < pair_list.size(); ++i)
+        {
+          if (!(pair_spacing[i] > 0.))
+            continue;
+          const Tensor<1, dim> du =
+            pair_list[i].op1.displacement(u[0]) -
+            (obstacle ? obstacle->displacement(pair_list[i].x2, factors) :
+                        pair_list[i].op2.displacement(u[1]));
+          const Tensor<1, dim> &n = pair_list[i].frame[0];
+          // A pair open by more than its spacing cannot touch in this
+          // configuration: where it now faces does not matter yet.
+          if (pair_list[i].gap + du * n > pair_spacing[i])
+            continue;
+          const double ratio =
+            (du - (du * n) * n).norm() /
+            (over_radius ? obstacle->curvature_radius() : pair_spacing[i]);
+          if (ratio > result.first)
+            result = {ratio, pair_list[i].x1};
+        }
+      return result;
+    }
+
+
+
+    template <int dim>
+    std::vector<PairState<dim>>
+    ContactStage<dim>::pair_states() const
+    {
+      std::vector<PairState<dim>> states;
+      if (status.empty())
+        return states;
+      for (unsigned int i = 0; i < pair_list.size(); ++i)
+        {
+          PairState<dim> s;
+          s.location = pair_list[i].x1;
+          s.normal   = pair_list[i].normal1;
+          s.area     = pair_list[i].area;
+          for (unsigned int k = 0; k < m; ++k)
+            {
+              s.force_local.push_back(x.p(m * i + k));
+              s.displacement_local.push_back(u_rel(m * i + k));
+            }
+          s.force = global_force(i, x.p);
+          for (unsigned int k = 1; k < m; ++k)
+            s.slip += u_rel(m * i + k) * pair_list[i].frame[k];
+          s.status = status[i];
+          states.push_back(s);
+        }
+      return states;
+    }
+
+
+
+    template <int dim>
+    ContactSummary
+    ContactStage<dim>::summary() const
+    {
+      ContactSummary s;
+      for (const auto &pair : pair_list)
+        s.initial_gaps = s.initial_gaps || pair.gap > 0.;
+      s.n_pairs        = pair_list.size();
+      s.n_unknowns     = contact.problem.n_rows() + contact.problem.n_alpha();
+      s.friction       = (m > 1);
+      s.rigid_obstacle = static_cast<bool>(obstacle);
+      if (obstacle)
+        {
+          s.obstacle_kind  = obstacle->kind();
+          s.obstacle_moves = obstacle->moves();
+        }
+      s.floating_rigid_modes        = contact.alpha_modes.size();
+      s.pairs_left_out              = contact.n_dropped;
+      s.algorithm                   = settings.solver.algorithm;
+      s.path                        = resolved_path;
+      s.path_reason                 = path_why;
+      s.estimated_condensed_seconds = estimated_condensed_seconds;
+      s.estimated_full_seconds      = estimated_full_seconds;
+      s.cost_inputs                 = cost_inputs;
+      s.coupled_nonzeros = contact_path ? contact_path->n_nonzeros() : 0.;
+      s.warnings         = setup_warnings;
+      return s;
+    }
+
+
+
+    template std::optional<std::pair<double, Point<2>>>
+    ContactStage<2>::largest_sliding(const std::vector<Vector<double>> &,
+                                     const std::vector<double> &) const;
+    template std::optional<std::pair<double, Point<2>>>
+    ContactStage<2>::largest_normal_turn(const std::vector<Vector<double>> &,
+                                         const std::vector<double> &) const;
+    template std::pair<double, Point<2>>
+    ContactStage<2>::largest_tangential(const std::vector<Vector<double>> &,
+                                        const std::vector<double> &,
+                                        const bool) const;
+    template std::vector<PairState<2>>
+    ContactStage<2>::pair_states() const;
+    template ContactSummary
+    ContactStage<2>::summary() const;
+    template std::optional<std::pair<double, Point<3>>>
+    ContactStage<3>::largest_sliding(const std::vector<Vector<double>> &,
+                                     const std::vector<double> &) const;
+    template std::optional<std::pair<double, Point<3>>>
+    ContactStage<3>::largest_normal_turn(const std::vector<Vector<double>> &,
+                                         const std::vector<double> &) const;
+    template std::pair<double, Point<3>>
+    ContactStage<3>::largest_tangential(const std::vector<Vector<double>> &,
+                                        const std::vector<double> &,
+                                        const bool) const;
+    template std::vector<PairState<3>>
+    ContactStage<3>::pair_states() const;
+    template ContactSummary
+    ContactStage<3>::summary() const;
+  } // namespace contact
+} // namespace igabde
