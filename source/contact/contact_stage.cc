@@ -414,6 +414,37 @@ namespace igabde
       const std::string formed = contact_path->description(contact);
       if (settings.log_solves && !formed.empty())
         log << "  contact: " << formed << std::endl;
+      const PairingExclusions<dim> &e = pairing->exclusions();
+      if (e.n_left_out() > 0)
+        {
+          log << "  contact: left out " << e.n_left_out() << " of "
+              << e.candidates << " slave "
+              << (e.quadrature_points ? "quadrature points" : "points")
+              << " at set-up:";
+          const auto where = [&](const Point<dim> &x) {
+            std::ostringstream o;
+            o << " (the first at (" << x << "))";
+            return o.str();
+          };
+          std::string separator = " ";
+          if (e.not_facing > 0)
+            {
+              log << separator << e.not_facing << " turn away from the master"
+                  << where(e.first_not_facing);
+              separator = ", ";
+            }
+          if (e.outside > 0)
+            {
+              log << separator << e.outside << " lie beyond its extent"
+                  << where(e.first_outside);
+              separator = ", ";
+            }
+          if (e.unprojected > 0)
+            log << separator << e.unprojected
+                << " whose closest-point projection did not settle"
+                << where(e.first_unprojected);
+          log << std::endl;
+        }
       if (contact.n_dropped > 0)
         log << "  contact: left out " << contact.n_dropped
             << " pairs whose two points are both held by supports (zero "

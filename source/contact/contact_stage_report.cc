@@ -110,8 +110,16 @@ namespace igabde
           s.obstacle_kind  = obstacle->kind();
           s.obstacle_moves = obstacle->moves();
         }
-      s.floating_rigid_modes        = contact.alpha_modes.size();
-      s.pairs_left_out              = contact.n_dropped;
+      s.floating_rigid_modes = contact.alpha_modes.size();
+      s.pairs_left_out       = contact.n_dropped;
+      {
+        const PairingExclusions<dim> &e = pairing->exclusions();
+        s.slave_candidates              = e.candidates;
+        s.left_out_not_facing           = e.not_facing;
+        s.left_out_outside              = e.outside;
+        s.left_out_unprojected          = e.unprojected;
+        s.left_out_of_quadrature        = e.quadrature_points;
+      }
       s.algorithm                   = settings.solver.algorithm;
       s.path                        = resolved_path;
       s.path_reason                 = path_why;

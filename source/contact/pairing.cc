@@ -92,12 +92,9 @@ namespace igabde
         pair.x2                = m.location;
         pair.op2               = m.op;
         const Tensor<1, dim> n = m.normal;
-        AssertThrow(s.normal * n < 0.,
-                    base::ExcInput(
-                      internal::not_facing(context, s.location, master)));
-        pair.frame   = local_frame<dim>(n);
-        pair.normal1 = s.normal;
-        pair.gap     = (pair.x1 - pair.x2) * n;
+        pair.frame             = local_frame<dim>(n);
+        pair.normal1           = s.normal;
+        pair.gap               = (pair.x1 - pair.x2) * n;
         AssertThrow(pair.gap >= -1e-10 * size,
                     base::ExcInput(
                       internal::penetrates(context, master, pair.gap)));
@@ -164,8 +161,76 @@ namespace igabde
 
 
 
+    template <int dim>
+    bool
+    PairingExclusions<dim>::keep(const Point<dim>     &s,
+                                 const Tensor<1, dim> &n_s,
+                                 const Point<dim>     &m,
+                                 const Tensor<1, dim> &n_m,
+                                 const double          size)
+    {
+      ++candidates;
+      if (!(n_s * n_m < 0.))
+        {
+          if (not_facing++ == 0)
+            first_not_facing = s;
+          return false;
+        }
+      // At an orthogonal projection s - m is along the normal; a clamped
+      // one (past the master's edge) leaves a tangential offset. Round-off
+      // of the projection's Newton: far below 1e-8 of the scale.
+      const Tensor<1, dim> d      = s - m;
+      const Tensor<1, dim> offset = d - (d * n_m) * n_m;
+      if (offset.norm() > 1e-8 * std::max(size, d.norm()))
+        {
+          if (outside++ == 0)
+            first_outside = s;
+          return false;
+        }
+      return true;
+    }
+
+
+
+    template <int dim>
+    void
+    PairingExclusions<dim>::leave_out_unprojected(const Point<dim> &s)
+    {
+      ++candidates;
+      if (unprojected++ == 0)
+        first_unprojected = s;
+    }
+
+
+
     namespace internal
     {
+      template <int dim>
+      std::string
+      nothing_faces(const std::string            &context,
+                    const PairingExclusions<dim> &exclusions,
+                    const ContactSurface<dim>    &master)
+      {
+        if (exclusions.not_facing > 0)
+          return not_facing(context, exclusions.first_not_facing, master);
+        if (exclusions.outside == 0)
+          return context + ": the closest-point projection on " +
+                 master.description() +
+                 " settled for no contact point of "
+                 "Body 1 (the first tried at (" +
+                 base::to_string(exclusions.first_unprojected) +
+                 ")): check Contact/Slave face and Contact/Master face.";
+        return context +
+               ": no contact point of Body 1 lies within the "
+               "extent of " +
+               master.description() + " (the first at (" +
+               base::to_string(exclusions.first_outside) +
+               ") projects onto its edge): check Contact/Slave face and "
+               "Contact/Master face, and the bodies' placement.";
+      }
+
+
+
       template <int dim>
       std::string
       not_facing(const std::string         &context,
@@ -179,15 +244,16 @@ namespace igabde
                master.description() +
                (master.deformable() ?
                   std::string(
-                    ": the slave face reaches past the part of the master "
-                    "that faces it (or the faces are the wrong ones). Every "
-                    "point of Contact/Slave face must face Contact/Master "
-                    "face: choose a slave face that lies within the "
-                    "master's extent, or swap Body 1 and Body 2 so that the "
-                    "smaller face is the slave (Body 1's).") :
-                  std::string(" (check Body 2/Plane normal: it must "
-                              "point towards Body 1) and Contact/Slave "
-                              "face."));
+                    ", and so does every other point of Contact/Slave face: "
+                    "no part of it faces Contact/Master face; choose the "
+                    "faces that touch (Body 1's slave face, Body 2's master "
+                    "face).") :
+                  std::string(" (check Body 2: a plane's Plane normal "
+                              "must point towards Body 1; a cylinder, "
+                              "sphere or rigid surface must lie outside "
+                              "Body 1, a rigid surface's Contact/Master "
+                              "face with its outward side towards it) and "
+                              "Contact/Slave face."));
       }
 
 
@@ -266,19 +332,24 @@ namespace igabde
             "point-wise pair there cannot carry a pressure. Use "
             "Contact/Pairing = weighted-gap (pairs that integrate the gap "
             "over the face), or spread the face's control points."));
+      this->left_out = PairingExclusions<dim>();
       for (const auto &s : slave)
-        pairs.push_back(
-          make_pair(s,
-                    master.deformable() ?
-                      facing_point(s,
-                                   samples[index->nearest(s.location)],
-                                   master,
-                                   size,
-                                   context) :
-                      master.closest_point(s.location, nullptr),
-                    master,
-                    size,
-                    context));
+        {
+          const discretization::SurfacePoint<dim> m =
+            master.deformable() ?
+              facing_point(s,
+                           samples[index->nearest(s.location)],
+                           master,
+                           size,
+                           context) :
+              master.closest_point(s.location, nullptr);
+          if (this->left_out
+                .keep(s.location, s.normal, m.location, m.normal, size))
+            pairs.push_back(make_pair(s, m, master, size, context));
+        }
+      AssertThrow(!pairs.empty(),
+                  base::ExcInput(
+                    internal::nothing_faces(context, this->left_out, master)));
       return pairs;
     }
 
@@ -370,6 +441,16 @@ namespace igabde
     internal::not_facing<3>(const std::string &,
                             const Point<3> &,
                             const ContactSurface<3> &);
+    template struct PairingExclusions<2>;
+    template struct PairingExclusions<3>;
+    template std::string
+    internal::nothing_faces<2>(const std::string &,
+                               const PairingExclusions<2> &,
+                               const ContactSurface<2> &);
+    template std::string
+    internal::nothing_faces<3>(const std::string &,
+                               const PairingExclusions<3> &,
+                               const ContactSurface<3> &);
     template std::string
     internal::penetrates<2>(const std::string &,
                             const ContactSurface<2> &,

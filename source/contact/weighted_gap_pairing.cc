@@ -595,6 +595,32 @@ namespace igabde
     {
       constexpr unsigned int fd = dim - 1;
       const MasterSide<dim>  master_side(master, context);
+      this->left_out                   = PairingExclusions<dim>();
+      this->left_out.quadrature_points = true;
+      // The scale of round-off: the slave faces' extent, from their
+      // element corners along each face direction (a closed face, whose
+      // ends coincide, included).
+      double size = 0.;
+      {
+        std::vector<Point<dim>> corners;
+        for (const types::boundary_id slave_face : slave_faces)
+          {
+            const auto grid = slave_body.face_grid(slave_face);
+            Point<fd>  lo;
+            for (unsigned int k = 0; k < fd; ++k)
+              lo[k] = grid.breaks[k].front();
+            for (unsigned int k = 0; k < fd; ++k)
+              for (const double b : grid.breaks[k])
+                {
+                  Point<fd> eta = lo;
+                  eta[k]        = b;
+                  corners.push_back(
+                    slave_body.face_point(slave_face, eta).location);
+                }
+          }
+        for (const auto &c : corners)
+          size = std::max(size, c.distance(corners.front()));
+      }
 
       std::map<types::global_dof_index, WeightedIntegrals<dim>> integrals;
       const bool dual_basis = dual;
@@ -635,8 +661,20 @@ namespace igabde
                   lo[k] = sgrid.breaks[k][e];
                   hi[k] = sgrid.breaks[k][e + 1];
                 }
-              const auto cuts =
-                element_cuts(slave_body, slave_face, lo, hi, master_side);
+              // An element whose centre lines do not all project is
+              // integrated uncut: its points are projected one by one
+              // below, and those that do not settle are left out.
+              std::array<std::vector<double>, fd> cuts;
+              try
+                {
+                  cuts =
+                    element_cuts(slave_body, slave_face, lo, hi, master_side);
+                }
+              catch (const base::ExcInput &)
+                {
+                  for (unsigned int k = 0; k < fd; ++k)
+                    cuts[k] = {lo[k], hi[k]};
+                }
               std::map<types::global_dof_index, unsigned int> local;
               const Eigen::MatrixXd dual = dual_basis ?
                                              element_dual_basis(slave_body,
@@ -676,11 +714,24 @@ namespace igabde
                         weight *= (b - a) * rule.weight(iq);
                       }
                     const auto s = slave_body.face_point(slave_face, eta);
-                    const auto m = master_side.facing(s.location);
-                    AssertThrow(s.normal * m.normal < 0.,
-                                base::ExcInput(internal::not_facing(context,
-                                                                    s.location,
-                                                                    master)));
+                    discretization::FacePoint<dim> m;
+                    try
+                      {
+                        m = master_side.facing(s.location);
+                      }
+                    catch (const base::ExcInput &)
+                      {
+                        this->left_out.leave_out_unprojected(s.location);
+                        continue;
+                      }
+                    // The integrals run over the part of the slave face
+                    // that faces the master within its extent.
+                    if (!this->left_out.keep(s.location,
+                                             s.normal,
+                                             m.location,
+                                             m.normal,
+                                             size))
+                      continue;
                     const double dA   = weight * s.measure;
                     const double g    = (s.location - m.location) * m.normal;
                     min_pointwise_gap = std::min(min_pointwise_gap, g);
@@ -756,11 +807,14 @@ namespace igabde
           pair.op2     = make_operator<dim>(in.op2, in.area, dofs2);
           pairs.push_back(pair);
         }
+      AssertThrow(this->left_out.candidates > this->left_out.n_left_out(),
+                  base::ExcInput(
+                    internal::nothing_faces(context, this->left_out, master)));
       AssertThrow(!pairs.empty(),
                   base::ExcInput(context + ": Contact/Slave face " +
                                  slave_body.face_name(slave_faces.front()) +
                                  " of Body 1 has no contact points."));
-      double size = 0.;
+      size = 0.;
       for (const auto &pair : pairs)
         size = std::max(size, (pair.x1 - pairs[0].x1).norm());
       // Overlap is judged on the pointwise gap. A dual-weighted gap

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <boost/math/special_functions/ellint_1.hpp>
 #include <boost/math/special_functions/ellint_2.hpp>
+#include <boost/math/tools/minima.hpp>
 #include <boost/math/tools/toms748_solve.hpp>
 #include <cmath>
 #include <limits>
@@ -282,6 +283,115 @@ namespace igabde
       if (element_depth > 2. * a)
         result.warnings.push_back(
           depth_warning(element_depth, a, "half-width"));
+      return result;
+    }
+
+
+
+    double
+    RoundedPunchCheck::half_width() const
+    {
+      const double b = flat_half_width, R = corner_radius;
+      const double E = effective_modulus, P = line_load;
+      const auto   load_of = [&](const double a) {
+        const double phi0 = std::asin(std::min(1., b / a));
+        return E * a * a * (M_PI - 2. * phi0 - std::sin(2. * phi0)) / (4. * R);
+      };
+      // The load grows from 0 at a = b without bound: bracket, then
+      // TOMS 748 to round-off.
+      double hi = std::max(2. * b, std::sqrt(4. * P * R / (M_PI * E)));
+      while (load_of(hi) < P)
+        hi *= 2.;
+      std::uintmax_t iterations = 200;
+      const auto     bracket    = boost::math::tools::toms748_solve(
+        [&](const double a) {
+          return load_of(a) - P;
+        },
+        b,
+        hi,
+        boost::math::tools::eps_tolerance<double>(50),
+        iterations);
+      return 0.5 * (bracket.first + bracket.second);
+    }
+
+
+
+    double
+    RoundedPunchCheck::pressure(const double x_signed) const
+    {
+      const double x = std::abs(x_signed);
+      const double a = half_width();
+      if (x >= a)
+        return 0.;
+      const double b = flat_half_width, R = corner_radius;
+      const double phi0 = std::asin(std::min(1., b / a));
+      const double t0   = std::tan(0.5 * phi0);
+      const double s    = std::sqrt(a * a - x * x);
+      // L(sigma x) with a - s = x^2 / (a + s), the factor x cancelled: no
+      // cancellation near the axis, where L tends to ln(1 / t0).
+      const double q = x / (a + s);
+      const auto   L = [&](const double sigma) {
+        return std::log(std::abs((sigma + q) / (sigma * t0 + q))) -
+               std::log(
+                 std::abs((sigma * x + a + s) / (sigma * x * t0 + a + s)));
+      };
+      // (x - b) L(-x) vanishes at x = b, where L(-x) is singular, and
+      // (x + b) L(x) on the axis of a punch without a flat (Hertz).
+      double bracket = (M_PI - 2. * phi0) * s;
+      if (x + b != 0.)
+        bracket -= (x + b) * L(1.);
+      if (x != b)
+        bracket += (x - b) * L(-1.);
+      return effective_modulus / (2. * M_PI * R) * bracket;
+    }
+
+
+
+    RoundedPunchCheck::Result
+    RoundedPunchCheck::evaluate(
+      const std::vector<contact::PairState<2>> &pairs) const
+    {
+      Result       result;
+      const double a          = half_width();
+      result.half_width_exact = a;
+      // The peak lies in the corners' part of the contact, b <= x < a (at
+      // the axis when b = 0).
+      const double b = flat_half_width;
+      if (b > 0.)
+        {
+          const auto minimum = boost::math::tools::brent_find_minima(
+            [&](const double x) {
+              return -pressure(x);
+            },
+            b,
+            a,
+            50);
+          result.peak_location_exact = minimum.first;
+          result.peak_pressure_exact = -minimum.second;
+        }
+      if (!(result.peak_pressure_exact >= pressure(0.)))
+        {
+          result.peak_location_exact = 0.;
+          result.peak_pressure_exact = pressure(0.);
+        }
+
+      const Tensor<1, 2> e = axis_direction / axis_direction.norm();
+      const Tensor<1, 2> e_normal({-e[1], e[0]});
+      for (const auto &pair : pairs)
+        result.peak_pressure = std::max(result.peak_pressure, pair.pressure());
+      for (const auto &pair : pairs)
+        {
+          const double x = (pair.location - axis_point) * e_normal;
+          if (pair.pressure() > 1e-6 * result.peak_pressure)
+            ++result.n_loaded;
+          if (std::abs(x) >= 0.9 * a)
+            continue;
+          ++result.n_inner_pairs;
+          result.max_pair_deviation =
+            std::max(result.max_pair_deviation,
+                     std::abs(pair.pressure() - pressure(x)) /
+                       result.peak_pressure_exact);
+        }
       return result;
     }
 

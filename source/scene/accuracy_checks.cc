@@ -1,6 +1,7 @@
 // The accuracy checks of a scene (Checks: uniform pressure, Hertz line,
-// point and elliptical contact, error norms against an exact solution),
-// after the last load step: the AccuracyChecks postprocessor.
+// point and elliptical contact, the rounded punch, error norms against an
+// exact solution), after the last load step: the AccuracyChecks
+// postprocessor.
 
 #include <igabde/base/utilities.h>
 
@@ -136,7 +137,8 @@ namespace igabde
           const bool   contact_checks =
             pairs != nullptr && (parameters.checks.uniform_pressure > 0. ||
                                  parameters.checks.hertz_line_load > 0. ||
-                                 parameters.checks.hertz_point_load > 0.);
+                                 parameters.checks.hertz_point_load > 0. ||
+                                 parameters.checks.rounded_punch_load > 0.);
           const bool any_check        = exact || contact_checks;
           const bool references_apply = common && lambda != 0.;
           if (any_check && !references_apply)
@@ -249,7 +251,7 @@ namespace igabde
                     std::abs(beta) >= 1e-3)
                   {
                     std::ostringstream w;
-                    w << "Checks/Hertz: " << reference
+                    w << "Checks: " << reference
                       << " solution is frictionless; "
                          "with Contact/Friction coefficient = "
                       << parameters.contact.friction_coefficient
@@ -295,6 +297,42 @@ namespace igabde
                             << std::setprecision(6) << std::endl;
                       report_warnings(r.warnings);
                       report_warnings(friction_note("Johnson's"));
+                    }
+                }
+              if (parameters.checks.rounded_punch_load > 0.)
+                {
+                  if constexpr (dim == 2)
+                    {
+                      postprocess::RoundedPunchCheck punch;
+                      punch.line_load =
+                        lambda * parameters.checks.rounded_punch_load;
+                      punch.flat_half_width =
+                        parameters.checks.rounded_punch_flat_half_width;
+                      punch.corner_radius =
+                        parameters.checks.rounded_punch_corner_radius;
+                      set_modulus_and_axis(punch);
+                      const auto r                     = punch.evaluate(*pairs);
+                      checks["punch_half_width_exact"] = r.half_width_exact;
+                      checks["punch_peak_pressure"]    = r.peak_pressure;
+                      checks["punch_peak_pressure_exact"] =
+                        r.peak_pressure_exact;
+                      checks["punch_peak_location_exact"] =
+                        r.peak_location_exact;
+                      checks["punch_max_pair_deviation"] = r.max_pair_deviation;
+                      checks["punch_loaded_pairs"]       = r.n_loaded;
+                      checks["punch_inner_pairs"]        = r.n_inner_pairs;
+                      pcout
+                        << "  rounded punch: peak pressure "
+                        << std::setprecision(5) << r.peak_pressure
+                        << " (closed form " << r.peak_pressure_exact
+                        << " at |x| = " << r.peak_location_exact
+                        << "), half-width " << r.half_width_exact
+                        << ", largest pair deviation " << std::setprecision(3)
+                        << 100. * r.max_pair_deviation
+                        << " % of the peak inside 0.9 a" << std::setprecision(6)
+                        << std::endl;
+                      report_warnings(
+                        friction_note("Ciavarella, Hills and Monno's"));
                     }
                 }
               if (parameters.checks.hertz_point_load > 0. &&

@@ -299,9 +299,8 @@ namespace igabde
       const BodyParameters &body = parameters.body2;
       if (!is_obstacle(body.type))
         return nullptr;
-      // The scene reader has refused zero normals and axes, radii <= 0 and
-      // malformed motions already.
-      (void)scene_file;
+      // The scene reader has refused zero normals and axes, radii <= 0,
+      // missing faces and malformed motions already.
       const auto point_of = [](const std::vector<double> &values) {
         Point<dim> p;
         for (unsigned int d = 0; d < dim && d < values.size(); ++d)
@@ -327,6 +326,21 @@ namespace igabde
               std::make_unique<contact::RigidSphere<dim>>(point_of(body.centre),
                                                           body.radius);
             break;
+          case BodyType::rigid_surface:
+            {
+              // The exact geometry as given (no degree elevation), split
+              // into its Subdivisions: the closest-point search samples
+              // each span.
+              const nurbs::MultiPatchGeometry<dim> geometry =
+                make_geometry<dim>(body, scene_file + ": Body 2/", 1);
+              obstacle = std::make_unique<contact::RigidSurface<dim>>(
+                geometry.patches,
+                parameters.contact.master_faces,
+                body.geometry == Geometry::file ?
+                  body.geometry_file :
+                  "Geometry = " + to_string(body.geometry));
+              break;
+            }
           default:
             Assert(false, ExcInternalError());
         }

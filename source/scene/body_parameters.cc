@@ -30,9 +30,13 @@ namespace igabde
                           "cylinder of Radius about the axis through Centre "
                           "along Axis (3D), touched from outside. rigid "
                           "sphere (3D): the sphere of Radius about Centre, "
-                          "touched from outside. A rigid obstacle is fixed "
-                          "or moved by Motion (Body 2 only). none: no such "
-                          "body (Body 2 only).");
+                          "touched from outside. rigid surface: the exact "
+                          "Geometry (a built-in shape or a Geometry file, "
+                          "with its Subdivisions), rigid; Contact/Master "
+                          "face names the faces that Body 1 touches, e.g. "
+                          "a punch with rounded corners. A rigid obstacle "
+                          "is fixed or moved by Motion (Body 2 only). none: "
+                          "no such body (Body 2 only).");
         prm.declare_entry(
           "Geometry",
           "box",
@@ -263,8 +267,9 @@ namespace igabde
           Patterns::Anything(),
           "Rigid obstacles: the prescribed rigid motion, 'ux, uy[, uz]' "
           "(m), or with the rotation 'ux, uy, rz' (2D) / 'ux, uy, uz, rx, "
-          "ry, rz' (3D; rad, small: linearised, about Centre, or Plane "
-          "point for a plane), scaled by the step's displacement factor (or "
+          "ry, rz' (3D; rad, small: linearised, about Centre, Plane point "
+          "for a plane, the mean of the contact faces' centroids for a "
+          "rigid surface), scaled by the step's displacement factor (or "
           "by the load history 'name' when the entry ends in '@ name'); "
           "several entries separated by ';' add up, e.g. '0, -0.01; 0.02, 0 "
           "@ slide' presses an indenter with the displacement factors and "
@@ -425,8 +430,9 @@ namespace igabde
       else
         AssertThrow(base::trim(motion_text).empty(),
                     base::ExcInput(where + "Motion is for rigid obstacles "
-                                           "(Type = rigid plane, cylinder or "
-                                           "sphere); move a deformable "
+                                           "(Type = rigid plane, cylinder, "
+                                           "sphere or surface); move a "
+                                           "deformable "
                                            "body's faces with Face motions "
                                            "or Supports."));
       supports.clear();
@@ -436,7 +442,7 @@ namespace igabde
       face_motions.clear();
       point_supports.clear();
       body_force_expressions.clear();
-      if (type != BodyType::deformable)
+      if (type != BodyType::deformable && type != BodyType::rigid_surface)
         return;
 
       // The points and counts of the geometry, each read once.
@@ -450,6 +456,16 @@ namespace igabde
       grading             = g.ratio;
       grading_toward_high = g.toward_high;
       grading_band        = g.band;
+      if (type == BodyType::rigid_surface)
+        {
+          AssertThrow(!patch_faces_of(*this, dimension).names.empty(),
+                      base::ExcInput(
+                        where + "Geometry = " + to_string(geometry) +
+                        " does not exist in " + std::to_string(dimension) +
+                        "D; choose another geometry or "
+                        "Dimension."));
+          return;
+        }
 
       // What no material and no body can have, refused before any set-up.
       AssertThrow(youngs_modulus > 0.,

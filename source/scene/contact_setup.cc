@@ -70,11 +70,20 @@ namespace igabde
       effects["floating_rigid_modes"]     = s.floating_rigid_modes;
       effects["pairs_left_out_supported"] = s.pairs_left_out;
       summary["effects"]                  = effects;
-      summary["n_contact_pairs"]          = s.n_pairs;
-      summary["n_contact_unknowns"]       = s.n_unknowns;
-      summary["contact_algorithm"]        = contact::to_string(s.algorithm);
-      summary["contact_path"]             = contact::to_string(s.path);
-      summary["contact_path_reason"]      = s.path_reason;
+      if (s.left_out_not_facing + s.left_out_outside + s.left_out_unprojected >
+          0)
+        summary["contact_points_left_out"] = {
+          {"candidates", s.slave_candidates},
+          {"not_facing", s.left_out_not_facing},
+          {"outside_master", s.left_out_outside},
+          {"unprojected", s.left_out_unprojected},
+          {"points",
+           s.left_out_of_quadrature ? "quadrature points" : "slave points"}};
+      summary["n_contact_pairs"]     = s.n_pairs;
+      summary["n_contact_unknowns"]  = s.n_unknowns;
+      summary["contact_algorithm"]   = contact::to_string(s.algorithm);
+      summary["contact_path"]        = contact::to_string(s.path);
+      summary["contact_path_reason"] = s.path_reason;
       if (s.estimated_condensed_seconds > 0. || s.estimated_full_seconds > 0.)
         summary["contact_path_estimated_seconds"] = {
           {"condensed", s.estimated_condensed_seconds},

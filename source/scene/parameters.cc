@@ -276,7 +276,7 @@ namespace igabde
                           "3",
                           Patterns::Anything(),
                           "Patch face of Body 2 that may touch Body 1: f or "
-                          "p.f.");
+                          "p.f (also the faces of a rigid surface).");
         prm.declare_entry("Pair placement",
                           "greville",
                           Patterns::Selection(base::selection_of(
@@ -403,6 +403,29 @@ namespace igabde
                           "and pressure_l2_rel_error. P is the whole "
                           "sphere's load also in a half or quarter model. 0: "
                           "no such check.");
+        prm.declare_entry("Rounded punch load",
+                          "0",
+                          Patterns::Double(0.),
+                          "Line load P (N/m) of a rigid flat punch with "
+                          "rounded corners on Body 1 (2D, frictionless; "
+                          "Ciavarella, Hills & Monno 1998), whose profile is "
+                          "flat over |x| <= Rounded punch flat half-width "
+                          "about the Hertz axis and rounded beyond by "
+                          "Rounded punch corner radius: adds "
+                          "checks.punch_half_width_exact, "
+                          "punch_peak_pressure(_exact) and "
+                          "punch_max_pair_deviation (largest |p_i - p(x_i)| "
+                          "inside |x| < 0.9 a over the closed form's peak). "
+                          "0: no such check.");
+        prm.declare_entry("Rounded punch flat half-width",
+                          "0",
+                          Patterns::Double(0.),
+                          "Half-width b (m) of the punch's flat part.");
+        prm.declare_entry("Rounded punch corner radius",
+                          "0",
+                          Patterns::Double(0.),
+                          "Radius R (m) of the punch's rounded corners, R "
+                          "> 0 with a Rounded punch load.");
         prm.declare_entry("Hertz radius",
                           "0",
                           Patterns::Double(0.),
@@ -452,10 +475,15 @@ namespace igabde
     {
       prm.enter_subsection("Checks");
       {
-        uniform_pressure               = prm.get_double("Uniform pressure");
-        hertz_line_load                = prm.get_double("Hertz line load");
-        hertz_point_load               = prm.get_double("Hertz point load");
-        hertz_radius                   = prm.get_double("Hertz radius");
+        uniform_pressure   = prm.get_double("Uniform pressure");
+        hertz_line_load    = prm.get_double("Hertz line load");
+        hertz_point_load   = prm.get_double("Hertz point load");
+        hertz_radius       = prm.get_double("Hertz radius");
+        rounded_punch_load = prm.get_double("Rounded punch load");
+        rounded_punch_flat_half_width =
+          prm.get_double("Rounded punch flat half-width");
+        rounded_punch_corner_radius =
+          prm.get_double("Rounded punch corner radius");
         hertz_axis_point_text          = prm.get("Hertz axis point");
         hertz_axis_direction_text      = prm.get("Hertz axis direction");
         hertz_radii_text               = prm.get("Hertz radii");
@@ -795,7 +823,8 @@ namespace igabde
       // A geometry file is found from the scene file's folder and read
       // now, so that a bad file ends the run before anything is built.
       for (auto *body : {&body1, &body2})
-        if (body->type == BodyType::deformable &&
+        if ((body->type == BodyType::deformable ||
+             body->type == BodyType::rigid_surface) &&
             body->geometry == Geometry::file)
           {
             const std::string where =

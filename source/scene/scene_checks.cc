@@ -131,7 +131,8 @@ namespace igabde
       AssertThrow(body1.type == BodyType::deformable,
                   base::ExcInput(f + "Body 1/Type must be 'deformable'; only "
                                      "Body 2 may be a rigid obstacle (rigid "
-                                     "plane, cylinder or sphere)."));
+                                     "plane, cylinder, sphere or "
+                                     "surface)."));
       AssertThrow(!output.fclib_export ||
                     (contact.enabled && contact.friction_coefficient > 0. &&
                      contact.algorithm == contact::Algorithm::bde &&
@@ -153,7 +154,7 @@ namespace igabde
                                      "is 'none'; set Body 2/Type to "
                                      "'deformable' or a rigid obstacle "
                                      "('rigid plane', 'rigid cylinder', "
-                                     "'rigid sphere')."));
+                                     "'rigid sphere', 'rigid surface')."));
       AssertThrow(contact.algorithm == contact::Algorithm::bde ||
                     contact.path != contact::Path::condensed,
                   base::ExcInput(f + "Contact/Algorithm = " +
@@ -231,18 +232,22 @@ namespace igabde
                                 ")",
                               text);
           };
-          contact.slave_faces = read_contact_face(body1,
+          contact.slave_faces  = read_contact_face(body1,
                                                   "Body 1",
                                                   "Slave face",
                                                   contact.slave_face_text);
-          if (body2.type == BodyType::deformable)
+          const auto has_faces = [](const BodyParameters &body) {
+            return body.type == BodyType::deformable ||
+                   body.type == BodyType::rigid_surface;
+          };
+          if (has_faces(body2))
             contact.master_faces = read_contact_face(body2,
                                                      "Body 2",
                                                      "Master face",
                                                      contact.master_face_text);
           // A face of a patch the geometry file does not have.
           for (const auto *body : {&body1, &body2})
-            if (body->type == BodyType::deformable)
+            if (has_faces(*body))
               check_face_patches(*body,
                                  body == &body1 ? contact.slave_faces :
                                                   contact.master_faces,
@@ -275,6 +280,18 @@ namespace igabde
                         "contact only acts between the two bodies, so "
                         "nothing holds them against rigid motion; add "
                         "Supports to Body 2, e.g. '2: x y'."));
+      if (checks.rounded_punch_load > 0.)
+        {
+          AssertThrow(dimension == 2,
+                      base::ExcInput(f + "Checks/Rounded punch load is a "
+                                         "2D line contact; set it to 0 in "
+                                         "3D."));
+          AssertThrow(checks.rounded_punch_corner_radius > 0.,
+                      base::ExcInput(f + "Checks/Rounded punch corner radius "
+                                         "must be > 0 (m) with a Rounded "
+                                         "punch load; give the radius of "
+                                         "the punch's corners."));
+        }
       AssertThrow(checks.hertz_line_load == 0. || dimension == 2,
                   base::ExcInput(f + "Checks/Hertz line load is the 2D "
                                      "line contact; in 3D set Checks/Hertz "

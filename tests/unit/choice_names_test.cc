@@ -69,7 +69,8 @@ TEST(ChoiceNames, SelectionListsTheNamesInOrder)
 {
   EXPECT_EQ(base::selection_of(contact::path_names), "condensed|full|auto");
   EXPECT_EQ(base::selection_of(scene::body_type_names),
-            "deformable|rigid plane|none");
+            "deformable|rigid plane|rigid cylinder|rigid sphere|"
+            "rigid surface|none");
   EXPECT_EQ(to_string(contact::Algorithm::augmented_lagrange),
             "augmented-lagrange");
   EXPECT_EQ(to_string(contact::Path::automatic), "auto");

@@ -583,3 +583,35 @@ TEST(CliBadInput, ObstacleMotionWithAnUndeclaredHistory)
                                "Body 2: load history 'press' is not declared",
                                "rigid-cylinder-on-block.prm");
 }
+
+
+
+TEST(CliBadInput, RigidSurfaceFaceThatDoesNotExist)
+{
+  expect_refused_at_parse_time("surface-face",
+                               "Contact/Master face=7",
+                               "Contact/Master face (Body 2): face '7' must "
+                               "be a patch face 0..3",
+                               "rigid-punch-on-block.prm");
+}
+
+
+
+TEST(CliBadInput, RigidSurfaceGeometryFileMissing)
+{
+  expect_refused_at_parse_time("surface-file",
+                               "Body 2/Geometry file=nope.xml",
+                               "Body 2/Geometry file = nope.xml: ",
+                               "rigid-punch-on-block.prm");
+}
+
+
+
+TEST(CliBadInput, RoundedPunchCheckWithoutCornerRadius)
+{
+  expect_refused_at_parse_time("punch-radius",
+                               "Checks/Rounded punch corner radius=0",
+                               "Checks/Rounded punch corner radius must be > "
+                               "0 (m)",
+                               "rigid-punch-on-block.prm");
+}

@@ -1,6 +1,7 @@
 // Rigid curved and moving obstacles (#72 Deliver 4), run as a user runs
 // them: the scenes prm/rigid-cylinder-on-block.prm,
-// prm/rigid-sphere-on-block.prm and prm/rigid-cylinder-sliding.prm.
+// prm/rigid-sphere-on-block.prm, prm/rigid-punch-on-block.prm and
+// prm/rigid-cylinder-sliding.prm.
 // References, computed here from the scenes' data:
 // - Hertz's line and point contact of a rigid cylinder / sphere on an
 //   elastic half-space (Johnson, Contact Mechanics secs. 4.2, 5.2) with
@@ -9,10 +10,14 @@
 //   They leave room for what the scenes are not: the blocks are 20 a
 //   (2D) and 10 a (3D) deep, and the obstacle's normals tilt by x/R
 //   (a/R = 0.03 and 0.1), which Hertz drops.
+// - Ciavarella, Hills and Monno's pressure under a flat punch with
+//   rounded corners (2 % of its peak, the criterion).
 // - Coulomb's law once every closed pair slips: tangential force mu times
 //   the normal one in the pairs' frames, and the total contact force the
 //   sum of the pairs' forces along the circle's normals, which the test
 //   computes from the geometry by hand.
+
+#include <igabde/postprocess/contact_checks.h>
 
 #include <gtest/gtest.h>
 
@@ -103,6 +108,73 @@ namespace rigid_obstacle_test
     expect_line_hertz(run_scene("cylinder-lagrange",
                                 "rigid-cylinder-on-block.prm",
                                 "--set 'Discretization/Type=lagrange'"));
+  }
+
+
+
+  /// 2D: the rounded punch of prm/geometry/rounded-punch.xml (b = 0.5,
+  /// R = 16) pressed by P = 20 per unit length: every pair's pressure
+  /// against Ciavarella, Hills and Monno's closed form
+  /// (postprocess::RoundedPunchCheck::pressure(), itself checked against
+  /// the inversion integral by quadrature in RoundedPunch.*), within 2 %
+  /// of the closed form's peak inside 0.9 a.
+  void
+  expect_rounded_punch(const ObstacleRun &run)
+  {
+    ASSERT_EQ(run.summary.at("status"), "ok");
+    EXPECT_EQ(run.summary.at("obstacle"), "rigid surface");
+    igabde::postprocess::RoundedPunchCheck punch;
+    punch.line_load         = 20.;
+    punch.flat_half_width   = 0.5;
+    punch.corner_radius     = 16.;
+    punch.effective_modulus = e_star;
+    double peak_exact       = 0.;
+    for (unsigned int k = 0; k <= 1000; ++k)
+      peak_exact = std::max(peak_exact, punch.pressure(k * 1e-3));
+    // Inside 0.9 a, as for Hertz: at the edge p falls as sqrt(a - x).
+    const double a     = punch.half_width();
+    double       worst = 0., peak = 0.;
+    for (std::size_t r = 0; r < run.pairs.rows.size(); ++r)
+      {
+        const double x = run.pairs.number(r, "x"),
+                     p = run.pairs.number(r, "pressure");
+        if (x < 0.9 * a)
+          worst = std::max(worst, std::abs(p - punch.pressure(x)) / peak_exact);
+        peak = std::max(peak, p);
+      }
+    EXPECT_LE(worst, 0.02);
+    EXPECT_NEAR(peak / peak_exact, 1., 0.02);
+    // The summary's check says the same (its peak is located exactly).
+    const auto &checks = run.summary.at("checks");
+    EXPECT_NEAR(checks.at("punch_max_pair_deviation").get<double>(),
+                worst,
+                1e-3 * worst);
+    EXPECT_NEAR(checks.at("punch_peak_pressure_exact").get<double>(),
+                peak_exact,
+                1e-4 * peak_exact);
+    // Held vertically by the contact alone: the pairs carry P/2.
+    EXPECT_NEAR(run.summary.at("load_steps")[0]
+                  .at("total_contact_force")[1]
+                  .get<double>(),
+                -10.,
+                1e-8 * 20.);
+  }
+
+
+
+  TEST(RigidObstacle, RoundedPunchMeetsItsClosedFormNurbs)
+  {
+    expect_rounded_punch(
+      run_scene("punch-nurbs", "rigid-punch-on-block.prm", ""));
+  }
+
+
+
+  TEST(RigidObstacle, RoundedPunchMeetsItsClosedFormLagrange)
+  {
+    expect_rounded_punch(run_scene("punch-lagrange",
+                                   "rigid-punch-on-block.prm",
+                                   "--set 'Discretization/Type=lagrange'"));
   }
 
 

@@ -1,11 +1,18 @@
 // Rigid obstacles (include/igabde/contact/obstacle.h): the closest point
-// and outward normal of a circle, a cylinder and a sphere against points
-// placed by hand, and a prescribed rigid motion against its hand
-// evaluation u(x) = sum_k f_k (d_k + r_k x (x - c)).
+// and outward normal of a circle, a cylinder, a sphere and a NURBS rigid
+// surface against points placed by hand, and a prescribed rigid motion
+// against its hand evaluation u(x) = sum_k f_k (d_k + r_k x (x - c)).
+// The rounded punch's closed form (postprocess::RoundedPunchCheck) against
+// Hertz (its b = 0 limit), equilibrium, and the inversion integral
+// evaluated by quadrature.
 
 #include <igabde/base/utilities.h>
 
+#include <igabde/nurbs/geometry_builders.h>
+
 #include <igabde/contact/obstacle.h>
+
+#include <igabde/postprocess/contact_checks.h>
 
 #include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>
@@ -135,5 +142,143 @@ namespace obstacle_test
     sphere.set_motion(turn);
     expect_tensor(sphere.displacement(Point<3>(1., 2., 1.), {0., 1.}),
                   Tensor<1, 3>({-0.4, 0.2, 0.2}));
+  }
+
+
+  TEST(RigidObstacle, NurbsSurfaceIsItsExactCircle)
+  {
+    // The quarter annulus 1 <= r <= 2 as a rigid surface of its outer arc
+    // (face 1): the closest point of (3, 4) is 2 (0.6, 0.8), the normal
+    // (0.6, 0.8), the radius of curvature 2 (the rational arc is exact).
+    const std::vector<nurbs::NurbsPatch<2>> patches = {
+      nurbs::make_quarter_annulus(1., 2.)};
+    const contact::RigidSurface<2> arc(patches, {1}, "a quarter annulus");
+    const auto p = arc.closest_point(Point<2>(3., 4.), nullptr);
+    for (unsigned int d = 0; d < 2; ++d)
+      {
+        EXPECT_NEAR(p.location[d], (d == 0 ? 1.2 : 1.6), 1e-12) << d;
+        EXPECT_NEAR(p.normal[d], (d == 0 ? 0.6 : 0.8), 1e-12) << d;
+      }
+    EXPECT_NEAR(arc.curvature_radius(), 2., 1e-10);
+    EXPECT_FALSE(arc.flat());
+    EXPECT_EQ(arc.kind(), "rigid surface");
+    EXPECT_EQ(arc.description(), "the rigid surface of a quarter annulus");
+
+    // Its inner arc (face 0) is touched from the hole: the outward normal
+    // points to the centre.
+    const contact::RigidSurface<2> hole(patches, {0}, "a quarter annulus");
+    const auto q = hole.closest_point(Point<2>(0.3, 0.4), nullptr);
+    EXPECT_NEAR(q.location[0], 0.6, 1e-12);
+    EXPECT_NEAR(q.normal[1], -0.8, 1e-12);
+    EXPECT_NEAR(hole.curvature_radius(), 1., 1e-10);
+  }
+
+
+
+  TEST(RigidObstacle, NurbsSurfaceOfTwoFacesKeepsTheNearest)
+  {
+    // The box [0, 2] x [0, 1], faces 2 (bottom) and 1 (right): (3, 0.5) is
+    // nearest to the right face at (2, 0.5), (1, -1) to the bottom at
+    // (1, 0); both flat. The pivot is the mean of the faces' centroids,
+    // ((1, 0) + (2, 0.5)) / 2.
+    const std::vector<nurbs::NurbsPatch<2>> patches = {
+      nurbs::make_box(Point<2>(0., 0.), Point<2>(2., 1.))};
+    const contact::RigidSurface<2> box(patches, {2, 1}, "a box");
+    const auto right = box.closest_point(Point<2>(3., 0.5), nullptr);
+    EXPECT_NEAR(right.location[0], 2., 1e-12);
+    EXPECT_NEAR(right.location[1], 0.5, 1e-12);
+    EXPECT_NEAR(right.normal[0], 1., 1e-12);
+    const auto bottom = box.closest_point(Point<2>(1., -1.), nullptr);
+    EXPECT_NEAR(bottom.location[0], 1., 1e-12);
+    EXPECT_NEAR(bottom.location[1], 0., 1e-12);
+    EXPECT_NEAR(bottom.normal[1], -1., 1e-12);
+    EXPECT_TRUE(box.flat());
+    EXPECT_NEAR(box.pivot()[0], 1.5, 1e-12);
+    EXPECT_NEAR(box.pivot()[1], 0.25, 1e-12);
+  }
+
+
+
+  /// The rounded punch's pressure by quadrature of the inversion of the
+  /// half-plane's integral equation, p(x) = E* / (2 pi) sqrt(a^2 - x^2)
+  /// PV int h'(s) / (sqrt(a^2 - s^2) (s - x)) ds, written with
+  /// s = a sin(theta) over the two corners, the principal value's pole
+  /// subtracted and integrated in closed form: an evaluation independent
+  /// of the check's closed form.
+  double
+  punch_pressure_by_quadrature(const double x,
+                               const double a,
+                               const double b,
+                               const double R,
+                               const double e_star)
+  {
+    const double phi0 = std::asin(b / a), phi = std::asin(x / a);
+    const auto   g = [&](const double theta) {
+      return (a * std::sin(theta) - b) / R;
+    };
+    // int over (phi0, pi/2) of g / (a sin - c) for c = x and of
+    // g / (a sin + x); 20000 midpoints.
+    const unsigned int n     = 20000;
+    const double       h     = (M_PI / 2. - phi0) / n;
+    double             right = 0., left = 0.;
+    const bool         pole = (phi > phi0);
+    for (unsigned int k = 0; k < n; ++k)
+      {
+        const double theta = phi0 + (k + 0.5) * h;
+        left += h * g(theta) / (a * std::sin(theta) + x);
+        double f = g(theta) / (a * std::sin(theta) - x);
+        if (pole)
+          f -= g(phi) / (a * std::cos(phi) * (theta - phi));
+        right += h * f;
+      }
+    if (pole)
+      right += g(phi) / (a * std::cos(phi)) *
+               std::log((M_PI / 2. - phi) / (phi - phi0));
+    return e_star / (2. * M_PI) * std::sqrt(a * a - x * x) * (right + left);
+  }
+
+
+
+  TEST(RoundedPunch, ClosedFormMeetsHertzEquilibriumAndTheInversion)
+  {
+    const double e_star = 1000. / 0.91;
+    // b = 0: Hertz's cylinder of radius R, a = sqrt(4 P R / (pi E*)),
+    // p = p0 sqrt(1 - x^2 / a^2), p0 = 2 P / (pi a).
+    postprocess::RoundedPunchCheck hertz;
+    hertz.line_load         = 20.;
+    hertz.corner_radius     = 16.;
+    hertz.effective_modulus = e_star;
+    const double a_hertz    = std::sqrt(4. * 20. * 16. / (M_PI * e_star));
+    EXPECT_NEAR(hertz.half_width(), a_hertz, 1e-12 * a_hertz);
+    for (const double x : {0., 0.3, 0.7, 0.95})
+      EXPECT_NEAR(hertz.pressure(x * a_hertz),
+                  2. * 20. / (M_PI * a_hertz) * std::sqrt(1. - x * x),
+                  1e-10)
+        << x;
+
+    // b = 0.5: the load relation, and the pressure against the quadrature
+    // on the flat, at the knot x = b and in the corners; the force
+    // int p dx = P by Simpson's rule (p ~ sqrt(a - x) at the edge: 1e-4).
+    postprocess::RoundedPunchCheck punch = hertz;
+    punch.flat_half_width                = 0.5;
+    const double a                       = punch.half_width();
+    const double phi0                    = std::asin(0.5 / a);
+    EXPECT_NEAR(e_star * a * a * (M_PI - 2. * phi0 - std::sin(2. * phi0)) /
+                  (4. * 16.),
+                20.,
+                1e-10);
+    for (const double x : {0., 0.2, 0.45, 0.5, 0.55, 0.7, 0.9, 0.97})
+      EXPECT_NEAR(punch.pressure(x),
+                  punch_pressure_by_quadrature(x, a, 0.5, 16., e_star),
+                  1e-6 * punch.pressure(0.7))
+        << x;
+    const unsigned int n     = 20000;
+    double             force = 0.;
+    for (unsigned int k = 0; k <= n; ++k)
+      force += (k == 0 || k == n ? 1. : (k % 2 == 1 ? 4. : 2.)) *
+               punch.pressure(-a + 2. * a * k / n) * (2. * a / n) / 3.;
+    EXPECT_NEAR(force, 20., 1e-4 * 20.);
+    EXPECT_EQ(punch.pressure(a), 0.);
+    EXPECT_EQ(punch.pressure(-1.01 * a), 0.);
   }
 } // namespace obstacle_test

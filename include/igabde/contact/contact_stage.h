@@ -148,6 +148,14 @@ namespace igabde
       bool         initial_gaps         = false;
       unsigned int floating_rigid_modes = 0;
       unsigned int pairs_left_out       = 0;
+      /// The slave points the pairing considered and left out at set-up
+      /// (PairingExclusions): turned away from the master, beyond its
+      /// extent, not projected; whether they are quadrature points.
+      unsigned int slave_candidates       = 0;
+      unsigned int left_out_not_facing    = 0;
+      unsigned int left_out_outside       = 0;
+      unsigned int left_out_unprojected   = 0;
+      bool         left_out_of_quadrature = false;
       /// Contact/Algorithm.
       Algorithm algorithm = Algorithm::bde;
       /// The path taken (condensed or full), and why (Contact/Path = auto

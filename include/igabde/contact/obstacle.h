@@ -1,6 +1,8 @@
 #ifndef igabde_contact_obstacle_h
 #define igabde_contact_obstacle_h
 
+#include <igabde/nurbs/nurbs_patch.h>
+
 #include <igabde/contact/contact_surface.h>
 
 #include <deal.II/base/point.h>
@@ -58,9 +60,9 @@ namespace igabde
       const std::vector<discretization::SurfacePoint<dim>> &
       sample_points() const override;
 
-      /// Whether the surface is flat: sliding along it leaves a pair's gap
-      /// and normal exact.
-      virtual bool
+      /// Whether the surface is flat (an infinite curvature_radius()):
+      /// sliding along it leaves a pair's gap and normal exact.
+      bool
       flat() const;
 
       /// The radius of curvature of the surface (the smallest, where it
@@ -112,9 +114,6 @@ namespace igabde
 
       std::string
       kind() const override;
-
-      bool
-      flat() const override;
 
       Point<dim>
       pivot() const override;
@@ -209,6 +208,62 @@ namespace igabde
     private:
       const Point<dim> centre;
       const double     radius;
+    };
+
+
+
+    /**
+     * @brief A rigid surface of exact NURBS geometry: faces of the patches
+     * of a body's geometry (a built-in shape or a G+Smo file), touched
+     * from outside, e.g. a punch with rounded corners.
+     *
+     * The closest point is the projection on each face (Newton from the
+     * face's sampled breakpoints and span points,
+     * nurbs::NurbsPatch::closest_point_on_face()), the nearest of the
+     * faces kept; the normal is the patch's outward normal there.
+     * Rotations turn about the faces' centroid.
+     */
+    template <int dim>
+    class RigidSurface : public Obstacle<dim>
+    {
+    public:
+      /**
+       * @brief The faces @p faces (patch p's face f as 2 dim p + f) of
+       * @p patches; @p name says where the geometry comes from, for
+       * messages ("the rigid surface of punch.xml").
+       */
+      RigidSurface(const std::vector<nurbs::NurbsPatch<dim>> &patches,
+                   const std::vector<unsigned int>           &faces,
+                   const std::string                         &name);
+
+      std::string
+      description() const override;
+
+      std::string
+      kind() const override;
+
+      /// The smallest radius of curvature over the faces, from the turn of
+      /// the normal between neighbouring points, eight per knot span and
+      /// direction (exact on circular arcs); infinite for flat faces.
+      double
+      curvature_radius() const override;
+
+      /// The mean of the faces' centroids.
+      Point<dim>
+      pivot() const override;
+
+      /// The nearest of each face's closest point to @p location.
+      discretization::SurfacePoint<dim>
+      closest_point(
+        const Point<dim>                        &location,
+        const discretization::SurfacePoint<dim> *nearest) const override;
+
+    private:
+      std::vector<nurbs::NurbsPatch<dim>>                patches;
+      std::vector<std::pair<unsigned int, unsigned int>> faces;
+      std::string                                        name;
+      double                                             radius;
+      Point<dim>                                         centroid;
     };
   } // namespace contact
 } // namespace igabde

@@ -44,6 +44,57 @@ namespace igabde
     };
 
     /**
+     * @brief The slave points a pairing left out at set-up, and why: a
+     * point whose outward normal does not point against the master's at
+     * its closest point (the part of a face that turns away, such as the
+     * far side of a disc), and a point whose closest point is not its
+     * orthogonal projection (the projection is clamped to the master's
+     * edge: the point lies beyond the master's extent), and a point whose
+     * projection did not settle. Points are
+     * Body::surface_points() for point pairings, the quadrature points of
+     * the slave face for the weighted gap.
+     */
+    template <int dim>
+    struct PairingExclusions
+    {
+      /// Slave points considered.
+      unsigned int candidates = 0;
+      /// Left out: not facing the master.
+      unsigned int not_facing = 0;
+      /// Left out: beyond the master's extent.
+      unsigned int outside = 0;
+      /// Left out: the closest-point projection did not settle (a face
+      /// folding back on itself far from the slave point).
+      unsigned int unprojected = 0;
+      /// The first point of each kind (valid when its count is positive).
+      Point<dim> first_not_facing, first_outside, first_unprojected;
+      /// Whether the points are quadrature points (weighted gap).
+      bool quadrature_points = false;
+
+      /// Whether the slave point at @p s with outward normal @p n_s is
+      /// paired with the master point at @p m, normal @p n_m; counts it
+      /// otherwise. @p size is the scale of round-off (the slave face's
+      /// size).
+      bool
+      keep(const Point<dim>     &s,
+           const Tensor<1, dim> &n_s,
+           const Point<dim>     &m,
+           const Tensor<1, dim> &n_m,
+           const double          size);
+
+      /// Counts the slave point at @p s, whose projection did not settle.
+      void
+      leave_out_unprojected(const Point<dim> &s);
+
+      /// All points left out.
+      unsigned int
+      n_left_out() const
+      {
+        return not_facing + outside + unprojected;
+      }
+    };
+
+    /**
      * @brief How Body 1's contact face is paired with the surface it faces.
      * Implementations: NodeToNodePairing ("node-to-node", matching
      * surfaces), NodeToSurfacePairing ("node-to-surface", closest point),
@@ -62,15 +113,29 @@ namespace igabde
       /**
        * @brief The pairs of the patch faces @p slave_faces of @p slave_body
        * (Body 1: one face, or several of a multi-patch body forming one
-       * surface) against @p master, frames from the master normal. Throws
-       * an input error, naming @p context, when the surfaces do not face
-       * each other or Body 1 initially penetrates.
+       * surface) against @p master, frames from the master normal. Slave
+       * points that do not face the master or lie beyond it are left out
+       * and counted (exclusions()). Throws an input error, naming
+       * @p context, when no slave point faces the master or Body 1
+       * initially penetrates.
        */
       virtual std::vector<ContactPair<dim>>
       make_pairs(const discretization::Body<dim>       &slave_body,
                  const std::vector<types::boundary_id> &slave_faces,
                  const ContactSurface<dim>             &master,
                  const std::string                     &context) const = 0;
+
+      /// What the last make_pairs() left out (PairingExclusions); when it
+      /// would leave out every point it throws the input error instead.
+      const PairingExclusions<dim> &
+      exclusions() const
+      {
+        return left_out;
+      }
+
+    protected:
+      /// Filled by make_pairs().
+      mutable PairingExclusions<dim> left_out;
     };
 
 
@@ -256,6 +321,14 @@ namespace igabde
       not_facing(const std::string         &context,
                  const Point<dim>          &location,
                  const ContactSurface<dim> &master);
+
+      /// The refusal when every slave point was left out (@p exclusions):
+      /// none faces @p master, or none lies within its extent.
+      template <int dim>
+      std::string
+      nothing_faces(const std::string            &context,
+                    const PairingExclusions<dim> &exclusions,
+                    const ContactSurface<dim>    &master);
 
       /// The refusal of an initial penetration by @p gap (negative).
       template <int dim>

@@ -40,6 +40,9 @@ namespace igabde
       rigid_cylinder,
       /// A sphere (3D) with no mesh and no unknowns (Body 2 only).
       rigid_sphere,
+      /// Faces of an exact NURBS geometry (a built-in shape or a file),
+      /// rigid: no mesh and no unknowns (Body 2 only).
+      rigid_surface,
       /// No such body (Body 2 only).
       none
     };
@@ -72,11 +75,12 @@ namespace igabde
     };
 
     /** @brief The names of each enum's values as the scene writes them. */
-    inline constexpr base::ChoiceNames<BodyType, 5> body_type_names = {
+    inline constexpr base::ChoiceNames<BodyType, 6> body_type_names = {
       {{BodyType::deformable, "deformable"},
        {BodyType::rigid_plane, "rigid plane"},
        {BodyType::rigid_cylinder, "rigid cylinder"},
        {BodyType::rigid_sphere, "rigid sphere"},
+       {BodyType::rigid_surface, "rigid surface"},
        {BodyType::none, "none"}}};
 
     /// Whether @p type is a rigid obstacle (no mesh, no unknowns).
@@ -84,7 +88,8 @@ namespace igabde
     is_obstacle(const BodyType type)
     {
       return type == BodyType::rigid_plane ||
-             type == BodyType::rigid_cylinder || type == BodyType::rigid_sphere;
+             type == BodyType::rigid_cylinder ||
+             type == BodyType::rigid_sphere || type == BodyType::rigid_surface;
     }
     /** @copydoc body_type_names */
     inline constexpr base::ChoiceNames<Geometry, 11> geometry_names = {
@@ -373,6 +378,12 @@ namespace igabde
       /// Hertz point load P (N) on the sphere of radius hertz_radius against
       /// a flat (3D, V7); 0: no such check.
       double hertz_point_load = 0.;
+      /// Line load P (N/m) of a rigid flat punch with rounded corners
+      /// (2D, Ciavarella, Hills & Monno), its flat half-width b and corner
+      /// radius R (m); load 0: no such check.
+      double rounded_punch_load            = 0.;
+      double rounded_punch_flat_half_width = 0.;
+      double rounded_punch_corner_radius   = 0.;
       /// Radius of the Hertz cylinder or sphere; 0: Body 1/Radius.
       double hertz_radius = 0.;
       /// A point on the Hertz symmetry axis, and its direction (dimension
