@@ -313,97 +313,12 @@ namespace igabde
 
     template <int dim>
     RigidSurface<dim>::RigidSurface(
-      const std::vector<nurbs::NurbsPatch<dim>> &patches_in,
-      const std::vector<unsigned int>           &face_ids,
-      const std::string                         &name)
-      : name(name)
-      , radius(std::numeric_limits<double>::infinity())
+      std::unique_ptr<discretization::ExactSurface<dim>> surface,
+      const std::string                                 &name)
+      : surface(std::move(surface))
+      , name(name)
     {
-      AssertThrow(!face_ids.empty(),
-                  ExcMessage("RigidSurface: no faces given."));
-      // Only the patches that carry a face are kept.
-      std::vector<int> kept(patches_in.size(), -1);
-      for (const unsigned int id : face_ids)
-        {
-          const unsigned int p = id / (2 * dim), f = id % (2 * dim);
-          AssertThrow(p < patches_in.size(),
-                      ExcMessage("RigidSurface: face " + std::to_string(id) +
-                                 " is on a patch the geometry does not "
-                                 "have."));
-          if (kept[p] < 0)
-            {
-              kept[p] = patches.size();
-              patches.push_back(patches_in[p]);
-            }
-          faces.emplace_back(kept[p], f);
-        }
-
-      for (const auto &[p, f] : faces)
-        centroid += patches[p].face_centroid(f) / double(faces.size());
-
-      // The radius of curvature from the normal's turn between
-      // neighbouring sample points along each face direction: for a
-      // circle of radius R, |n_i - n_j| / |x_i - x_j| = 1 / R exactly.
-      constexpr unsigned int per_span = 8;
-      for (const auto &[p, f] : faces)
-        {
-          const nurbs::NurbsPatch<dim>        &patch  = patches[p];
-          const unsigned int                   normal = f / 2;
-          std::array<std::vector<double>, dim> samples;
-          for (unsigned int d = 0; d < dim; ++d)
-            {
-              if (d == normal)
-                {
-                  samples[d] = {f % 2 == 0 ? patch.parametric_lower()[d] :
-                                             patch.parametric_upper()[d]};
-                  continue;
-                }
-              const auto b = patch.breakpoints(d);
-              for (unsigned int s = 0; s + 1 < b.size(); ++s)
-                for (unsigned int j = 0; j < per_span; ++j)
-                  samples[d].push_back(b[s] + (b[s + 1] - b[s]) * (j + 0.5) /
-                                                per_span);
-            }
-          std::array<unsigned int, dim> count, index;
-          unsigned int                  total = 1;
-          for (unsigned int d = 0; d < dim; ++d)
-            {
-              count[d] = samples[d].size();
-              total *= count[d];
-            }
-          const auto xi_of = [&](const std::array<unsigned int, dim> &i) {
-            Point<dim> xi;
-            for (unsigned int d = 0; d < dim; ++d)
-              xi[d] = samples[d][i[d]];
-            return xi;
-          };
-          for (unsigned int k = 0; k < total; ++k)
-            {
-              unsigned int rest = k;
-              for (unsigned int d = 0; d < dim; ++d)
-                {
-                  index[d] = rest % count[d];
-                  rest /= count[d];
-                }
-              const Point<dim>     xi = xi_of(index);
-              const Point<dim>     x  = patch.value(xi);
-              const Tensor<1, dim> n  = patch.outward_normal(f, xi);
-              for (unsigned int d = 0; d < dim; ++d)
-                {
-                  if (d == normal || index[d] + 1 == count[d])
-                    continue;
-                  auto next = index;
-                  ++next[d];
-                  const Point<dim> xi_next = xi_of(next);
-                  const double     chord   = (patch.value(xi_next) - x).norm();
-                  const double     turn =
-                    (patch.outward_normal(f, xi_next) - n).norm();
-                  // Below round-off a turn is no curvature.
-                  if (chord > 0. && turn > 1e-12)
-                    radius = std::min(radius, chord / turn);
-                }
-            }
-        }
+      Assert(this->surface, ExcInternalError());
     }
 
 
@@ -430,7 +345,7 @@ namespace igabde
     double
     RigidSurface<dim>::curvature_radius() const
     {
-      return radius;
+      return surface->smallest_curvature_radius();
     }
 
 
@@ -439,7 +354,7 @@ namespace igabde
     Point<dim>
     RigidSurface<dim>::pivot() const
     {
-      return centroid;
+      return surface->centroid();
     }
 
 
@@ -450,21 +365,7 @@ namespace igabde
       const Point<dim> &location,
       const discretization::SurfacePoint<dim> *) const
     {
-      discretization::SurfacePoint<dim> best;
-      double distance = std::numeric_limits<double>::infinity();
-      for (const auto &[p, f] : faces)
-        {
-          const Point<dim> xi = patches[p].closest_point_on_face(f, location);
-          const Point<dim> x  = patches[p].value(xi);
-          if ((x - location).norm() < distance)
-            {
-              distance        = (x - location).norm();
-              best.location   = x;
-              best.parametric = xi;
-              best.normal     = patches[p].outward_normal(f, xi);
-            }
-        }
-      return best;
+      return surface->closest_point(location);
     }
 
 

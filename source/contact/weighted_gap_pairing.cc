@@ -697,6 +697,16 @@ namespace igabde
               unsigned int       nq_total = 1;
               for (unsigned int k = 0; k < fd; ++k)
                 nq_total *= nq;
+              // The element's quadrature points with their master points;
+              // those that do not face the master within its extent are
+              // left out, and the integrals run over the rest.
+              struct Sample
+              {
+                discretization::FacePoint<dim> s, m;
+                double                         weight;
+              };
+              std::vector<Sample> samples;
+              bool                whole = true;
               for (unsigned int piece = 0; piece < n_piece_total; ++piece)
                 for (unsigned int q = 0; q < nq_total; ++q)
                   {
@@ -713,70 +723,83 @@ namespace igabde
                         eta[k] = a + (b - a) * rule.point(iq)[0];
                         weight *= (b - a) * rule.weight(iq);
                       }
-                    const auto s = slave_body.face_point(slave_face, eta);
-                    discretization::FacePoint<dim> m;
+                    Sample sample;
+                    sample.s      = slave_body.face_point(slave_face, eta);
+                    sample.weight = weight;
                     try
                       {
-                        m = master_side.facing(s.location);
+                        sample.m = master_side.facing(sample.s.location);
                       }
                     catch (const base::ExcInput &)
                       {
-                        this->left_out.leave_out_unprojected(s.location);
+                        this->left_out.leave_out_unprojected(sample.s.location);
+                        whole = false;
                         continue;
                       }
-                    // The integrals run over the part of the slave face
-                    // that faces the master within its extent.
-                    if (!this->left_out.keep(s.location,
-                                             s.normal,
-                                             m.location,
-                                             m.normal,
-                                             size))
-                      continue;
-                    const double dA   = weight * s.measure;
-                    const double g    = (s.location - m.location) * m.normal;
-                    min_pointwise_gap = std::min(min_pointwise_gap, g);
-                    if (!dual_basis)
-                      {
-                        for (unsigned int a = 0; a < s.op.weights.size(); ++a)
-                          if (s.op.weights[a] != 0.)
-                            {
-                              const double w  = s.op.weights[a] * dA;
-                              auto        &in = integrals[s.op.dofs[a][0]];
-                              in.area += w;
-                              in.gap += w * g;
-                              in.normal += w * m.normal;
-                              in.x1 += w * s.location;
-                              in.x2 += w * m.location;
-                              add_row<dim>(s.op, w, in.op1, dofs1);
-                              add_row<dim>(m.op, w, in.op2, dofs2);
-                            }
-                      }
+                    if (this->left_out.keep(sample.s.location,
+                                            sample.s.normal,
+                                            sample.m.location,
+                                            sample.m.normal,
+                                            size))
+                      samples.push_back(sample);
                     else
-                      {
-                        Eigen::VectorXd N = Eigen::VectorXd::Zero(local.size());
-                        for (unsigned int a = 0; a < s.op.weights.size(); ++a)
-                          if (s.op.weights[a] != 0.)
-                            N(local.at(s.op.dofs[a][0])) = s.op.weights[a];
-                        const Eigen::VectorXd psi = dual * N;
-                        for (const auto &[key, j] : local)
-                          {
-                            const double w_n = N(j) * dA;
-                            const double w_d = psi(j) * dA;
-                            if (w_n == 0. && w_d == 0.)
-                              continue;
-                            auto &in = integrals[key];
-                            // Areas, frames and locations with the face basis
-                            // (non-negative); gaps and operators with the dual.
-                            in.area += w_n;
-                            in.gap += w_d * g;
-                            in.normal += w_n * m.normal;
-                            in.x1 += w_n * s.location;
-                            in.x2 += w_n * m.location;
-                            add_row<dim>(s.op, w_d, in.op1, dofs1);
-                            add_row<dim>(m.op, w_d, in.op2, dofs2);
-                          }
-                      }
+                      whole = false;
                   }
+              // The dual basis is biorthogonal over the whole element: on
+              // the part of one that faces the master its negative lobes
+              // would make a gap out of nothing, so a cut element weights
+              // with the face basis N_j (still a mean of the gap).
+              const bool dual_here = dual_basis && whole;
+              for (const Sample &sample : samples)
+                {
+                  const auto  &s      = sample.s;
+                  const auto  &m      = sample.m;
+                  const double weight = sample.weight;
+                  const double dA     = weight * s.measure;
+                  const double g      = (s.location - m.location) * m.normal;
+                  min_pointwise_gap   = std::min(min_pointwise_gap, g);
+                  if (!dual_here)
+                    {
+                      for (unsigned int a = 0; a < s.op.weights.size(); ++a)
+                        if (s.op.weights[a] != 0.)
+                          {
+                            const double w  = s.op.weights[a] * dA;
+                            auto        &in = integrals[s.op.dofs[a][0]];
+                            in.area += w;
+                            in.gap += w * g;
+                            in.normal += w * m.normal;
+                            in.x1 += w * s.location;
+                            in.x2 += w * m.location;
+                            add_row<dim>(s.op, w, in.op1, dofs1);
+                            add_row<dim>(m.op, w, in.op2, dofs2);
+                          }
+                    }
+                  else
+                    {
+                      Eigen::VectorXd N = Eigen::VectorXd::Zero(local.size());
+                      for (unsigned int a = 0; a < s.op.weights.size(); ++a)
+                        if (s.op.weights[a] != 0.)
+                          N(local.at(s.op.dofs[a][0])) = s.op.weights[a];
+                      const Eigen::VectorXd psi = dual * N;
+                      for (const auto &[key, j] : local)
+                        {
+                          const double w_n = N(j) * dA;
+                          const double w_d = psi(j) * dA;
+                          if (w_n == 0. && w_d == 0.)
+                            continue;
+                          auto &in = integrals[key];
+                          // Areas, frames and locations with the face basis
+                          // (non-negative); gaps and operators with the dual.
+                          in.area += w_n;
+                          in.gap += w_d * g;
+                          in.normal += w_n * m.normal;
+                          in.x1 += w_n * s.location;
+                          in.x2 += w_n * m.location;
+                          add_row<dim>(s.op, w_d, in.op1, dofs1);
+                          add_row<dim>(m.op, w_d, in.op2, dofs2);
+                        }
+                    }
+                }
             }
         }
 

@@ -1,5 +1,7 @@
 #include <igabde/base/utilities.h>
 
+#include <igabde/discretization/nurbs_surface.h>
+
 #include <igabde/postprocess/exact_solutions.h>
 #include <igabde/scene/body_factory.h>
 #include <igabde/scene/geometry.h>
@@ -334,8 +336,9 @@ namespace igabde
               const nurbs::MultiPatchGeometry<dim> geometry =
                 make_geometry<dim>(body, scene_file + ": Body 2/", 1);
               obstacle = std::make_unique<contact::RigidSurface<dim>>(
-                geometry.patches,
-                parameters.contact.master_faces,
+                discretization::make_nurbs_surface(
+                  geometry.patches,
+                  parameters.contact.master_faces),
                 body.geometry == Geometry::file ?
                   body.geometry_file :
                   "Geometry = " + to_string(body.geometry));

@@ -3,8 +3,10 @@
 // away from the master, and points beyond the master's extent, are left
 // out and counted (summary.json contact_points_left_out) instead of
 // refusing the scene. The references are second runs of the same scene
-// whose slave face is only the part that faces the master, and the
-// master's extent computed by hand from its geometry.
+// whose slave face is only the part that faces the master, the master's
+// extent computed by hand from its geometry, and for a contact at a patch
+// corner the same ring parametrised so that the contact lies inside a
+// patch.
 
 #include <gtest/gtest.h>
 
@@ -152,5 +154,194 @@ namespace contact_search_test
     for (std::size_t r = 0; r < run.pairs.rows.size(); ++r)
       farthest = std::max(farthest, run.pairs.number(r, "x"));
     EXPECT_LE(farthest, reach);
+  }
+
+
+  /// The ring 1 <= r <= 2 of @p patches exact NURBS patches (written by
+  /// contrib/geometry/annulus-patches into @p folder) under its own weight
+  /// (body force 1 per unit volume) on the rigid plane y = -2, held by
+  /// the contact alone; the outer arcs @p slave_faces touch the plane.
+  cli::SceneRun
+  run_ring(const std::string &folder,
+           const unsigned int patches,
+           const unsigned int angular_spans,
+           const std::string &slave_faces)
+  {
+    const cli::RunResult written =
+      cli::run_in(folder,
+                  "'" +
+                    cli::join(std::string(IGABDE_SOURCE_DIR),
+                              "contrib/geometry/annulus-patches") +
+                    "' --inner-radius 1 --radius 2 --angle 360 --patches " +
+                    std::to_string(patches) + " > ring.xml");
+    EXPECT_EQ(written.status, 0) << written.output;
+    const std::string scene =
+      "set Dimension = 2\n"
+      "subsection Discretization\n  set Type = nurbs\n  set Degree = 2\n"
+      "end\n"
+      "subsection Body 1\n  set Geometry = file\n"
+      "  set Geometry file = ring.xml\n  set Subdivisions = 4, " +
+      std::to_string(angular_spans) +
+      "\n  set Young's modulus = 1000\n  set Poisson's ratio = 0.3\n"
+      "  set Body force = 0, -1\nend\n"
+      "subsection Body 2\n  set Type = rigid plane\n"
+      "  set Plane point = 0, -2\n  set Plane normal = 0, 1\nend\n"
+      "subsection Contact\n  set Enabled = true\n  set Slave face = " +
+      slave_faces + "\nend\n";
+    cli::SceneRun run;
+    run.summary = cli::run_scene_text(folder, scene);
+    return run;
+  }
+
+
+
+  /// The contact's half-width from the second moment of the pair forces
+  /// about x = 0 (Hertz's profile: 2 sqrt(sum F x^2 / sum F)), and the
+  /// largest pair pressure.
+  std::pair<double, double>
+  moment_width_and_peak(const cli::CsvTable &pairs)
+  {
+    double force = 0., moment = 0., peak = 0.;
+    for (std::size_t r = 0; r < pairs.rows.size(); ++r)
+      {
+        const double x = pairs.number(r, "x"), f = pairs.number(r, "p_n");
+        force += f;
+        moment += f * x * x;
+        peak = std::max(peak, pairs.number(r, "pressure"));
+      }
+    return {2. * std::sqrt(moment / force), peak};
+  }
+
+
+
+  TEST(ContactSearch, ContactAtAPatchCornerMeetsTheSameContactInsideAPatch)
+  {
+    // Four patches of 90 degrees: the lowest point (270 degrees) is the
+    // corner between patches 2 and 3, whose outer arcs (face 1) together
+    // are the slave surface; each reaches up to the ring's equator, whose
+    // points turn away from the plane. Three patches of 120 degrees: the
+    // lowest point lies inside patch 2. The same angular spacing (200 and
+    // 267 spans a patch, 0.45 degrees); the ring's weight is 3 pi.
+    const cli::ScratchFolder corner_folder("corner", "contact-search");
+    const cli::ScratchFolder inside_folder("inside", "contact-search");
+    const cli::SceneRun      corner =
+      run_ring(corner_folder.path, 4, 200, "2.1+3.1");
+    const cli::SceneRun inside = run_ring(inside_folder.path, 3, 267, "2.1");
+    ASSERT_EQ(corner.summary.at("status"), "ok");
+    ASSERT_EQ(inside.summary.at("status"), "ok");
+    EXPECT_GT(corner.summary.at("contact_points_left_out")
+                .at("not_facing")
+                .get<unsigned int>(),
+              0u);
+    const double weight = 3. * M_PI;
+    for (const auto *run : {&corner, &inside})
+      EXPECT_NEAR(run->summary.at("load_steps")[0]
+                    .at("total_contact_force")[1]
+                    .get<double>(),
+                  weight,
+                  1e-8 * weight);
+
+    const auto corner_pairs =
+      cli::read_table(cli::join(corner_folder.path, "out/contact-0001.csv"));
+    const auto inside_pairs =
+      cli::read_table(cli::join(inside_folder.path, "out/contact-0001.csv"));
+    // The corner's pairs are mirror images about x = 0: the pressure is
+    // symmetric to the solver's accuracy.
+    std::vector<std::pair<double, double>> profile;
+    for (std::size_t r = 0; r < corner_pairs.rows.size(); ++r)
+      profile.emplace_back(corner_pairs.number(r, "x"),
+                           corner_pairs.number(r, "pressure"));
+    std::sort(profile.begin(), profile.end());
+    const auto [a_corner, peak_corner] = moment_width_and_peak(corner_pairs);
+    const auto [a_inside, peak_inside] = moment_width_and_peak(inside_pairs);
+    for (std::size_t k = 0; k < profile.size(); ++k)
+      {
+        const auto &mirror = profile[profile.size() - 1 - k];
+        EXPECT_NEAR(profile[k].first, -mirror.first, 1e-10) << k;
+        EXPECT_NEAR(profile[k].second, mirror.second, 1e-8 * peak_corner) << k;
+      }
+    // Two discretisations of one contact: each within the 0.5 % that the
+    // rigid-cylinder scenes show for moment radius and peak at about ten
+    // pairs per half-width, so within 1 % of each other.
+    EXPECT_NEAR(a_corner / a_inside, 1., 0.01);
+    EXPECT_NEAR(peak_corner / peak_inside, 1., 0.01);
+  }
+
+
+  TEST(ContactSearch, LargerCylinderAsSlaveTouchesOnlyWhereItTouches)
+  {
+    // A half disc R = 8 (the slave) pressed by P = 8 per unit length onto
+    // the top arc of a disc R = 2 (the master, 45 to 135 degrees, so
+    // |x| <= 1.41): the slave face reaches far beyond the master, whose
+    // projection clamps there; those points are left out. Hertz for two
+    // cylinders (R = 1 / (1/8 + 1/2), E* = E / (2 (1 - nu^2))) puts the
+    // contact's half-width at a = 0.172: every pair farther than 3 a from
+    // the axis must be open, for the point-wise and the weighted-gap
+    // pairs alike (the weighted gap's cut elements weight the gap with
+    // the face basis, not the dual one, whose lobes there made a
+    // penetration out of nothing), and both carry the load.
+    const std::string   scene = "set Dimension = 2\n"
+                                "subsection Discretization\n"
+                                "  set Type = nurbs\n  set Degree = 2\nend\n"
+                                "subsection Body 1\n"
+                                "  set Geometry = half disc\n"
+                                "  set Centre = 0, 8\n  set Radius = 8\n"
+                                "  set Subdivisions = 200, 8\n"
+                                "  set Grading = band 0: 0.45, 0.55, 8; 2: 4\n"
+                                "  set Young's modulus = 1000\n"
+                                "  set Poisson's ratio = 0.3\n"
+                                "  set Supports = 3: x\n"
+                                "  set Tractions = 3: vector 0, -0.5\nend\n"
+                                "subsection Body 2\n"
+                                "  set Type = deformable\n"
+                                "  set Geometry = full disc\n"
+                                "  set Centre = 0, -2\n  set Radius = 2\n"
+                                "  set Subdivisions = 64, 16\n"
+                                "  set Young's modulus = 1000\n"
+                                "  set Poisson's ratio = 0.3\n"
+                                "  set Supports = 2: x y\nend\n"
+                                "subsection Contact\n  set Enabled = true\n"
+                                "  set Slave face = 2\n"
+                                "  set Master face = 3\nend\n";
+    const double        a = std::sqrt(4. * 8. * 1.6 / (M_PI * 1000. / 1.82));
+    std::vector<double> widths;
+    for (const std::string pairing : {"node-to-surface", "weighted-gap"})
+      {
+        SCOPED_TRACE(pairing);
+        const cli::ScratchFolder folder("larger-slave-" + pairing,
+                                        "contact-search");
+        const auto               summary =
+          cli::run_scene_text(folder.path,
+                              scene + "subsection Contact\n  set Pairing = " +
+                                pairing + "\nend\n");
+        ASSERT_EQ(summary.at("status"), "ok");
+        EXPECT_FALSE(summary.contains("warnings")) << summary.at("warnings");
+        EXPECT_GT(summary.at("contact_points_left_out")
+                    .at("outside_master")
+                    .get<unsigned int>(),
+                  0u);
+        EXPECT_NEAR(summary.at("load_steps")[0]
+                      .at("total_contact_force")[1]
+                      .get<double>(),
+                    8.,
+                    1e-8 * 8.);
+        const auto pairs =
+          cli::read_table(cli::join(folder.path, "out/contact-0001.csv"));
+        for (std::size_t r = 0; r < pairs.rows.size(); ++r)
+          {
+            if (std::abs(pairs.number(r, "x")) > 3. * a)
+              {
+                EXPECT_EQ(pairs.number(r, "p_n"), 0.) << pairs.number(r, "x");
+              }
+          }
+        widths.push_back(moment_width_and_peak(pairs).first);
+      }
+    // The two pairings' contact widths agree as their discretisations do
+    // (the rigid-cylinder tables: within 1 %), and with Hertz's a to the
+    // 10 a/R % that the discs' tilted normals and finite size allow (a/R
+    // = 0.15 on the small disc: well inside 5 %).
+    EXPECT_NEAR(widths[0] / widths[1], 1., 0.01);
+    for (const double w : widths)
+      EXPECT_NEAR(w / a, 1., 0.05);
   }
 } // namespace contact_search_test

@@ -10,6 +10,8 @@
 
 #include <igabde/nurbs/geometry_builders.h>
 
+#include <igabde/discretization/nurbs_surface.h>
+
 #include <igabde/contact/obstacle.h>
 
 #include <igabde/postprocess/contact_checks.h>
@@ -152,7 +154,9 @@ namespace obstacle_test
     // (0.6, 0.8), the radius of curvature 2 (the rational arc is exact).
     const std::vector<nurbs::NurbsPatch<2>> patches = {
       nurbs::make_quarter_annulus(1., 2.)};
-    const contact::RigidSurface<2> arc(patches, {1}, "a quarter annulus");
+    const contact::RigidSurface<2> arc(
+      discretization::make_nurbs_surface(patches, {1}),
+      "a quarter annulus");
     const auto p = arc.closest_point(Point<2>(3., 4.), nullptr);
     for (unsigned int d = 0; d < 2; ++d)
       {
@@ -166,7 +170,9 @@ namespace obstacle_test
 
     // Its inner arc (face 0) is touched from the hole: the outward normal
     // points to the centre.
-    const contact::RigidSurface<2> hole(patches, {0}, "a quarter annulus");
+    const contact::RigidSurface<2> hole(
+      discretization::make_nurbs_surface(patches, {0}),
+      "a quarter annulus");
     const auto q = hole.closest_point(Point<2>(0.3, 0.4), nullptr);
     EXPECT_NEAR(q.location[0], 0.6, 1e-12);
     EXPECT_NEAR(q.normal[1], -0.8, 1e-12);
@@ -183,7 +189,9 @@ namespace obstacle_test
     // ((1, 0) + (2, 0.5)) / 2.
     const std::vector<nurbs::NurbsPatch<2>> patches = {
       nurbs::make_box(Point<2>(0., 0.), Point<2>(2., 1.))};
-    const contact::RigidSurface<2> box(patches, {2, 1}, "a box");
+    const contact::RigidSurface<2> box(
+      discretization::make_nurbs_surface(patches, {2, 1}),
+      "a box");
     const auto right = box.closest_point(Point<2>(3., 0.5), nullptr);
     EXPECT_NEAR(right.location[0], 2., 1e-12);
     EXPECT_NEAR(right.location[1], 0.5, 1e-12);

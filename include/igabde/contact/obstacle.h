@@ -1,13 +1,14 @@
 #ifndef igabde_contact_obstacle_h
 #define igabde_contact_obstacle_h
 
-#include <igabde/nurbs/nurbs_patch.h>
+#include <igabde/discretization/exact_surface.h>
 
 #include <igabde/contact/contact_surface.h>
 
 #include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -213,28 +214,21 @@ namespace igabde
 
 
     /**
-     * @brief A rigid surface of exact NURBS geometry: faces of the patches
-     * of a body's geometry (a built-in shape or a G+Smo file), touched
-     * from outside, e.g. a punch with rounded corners.
-     *
-     * The closest point is the projection on each face (Newton from the
-     * face's sampled breakpoints and span points,
-     * nurbs::NurbsPatch::closest_point_on_face()), the nearest of the
-     * faces kept; the normal is the patch's outward normal there.
-     * Rotations turn about the faces' centroid.
+     * @brief A rigid surface of exact geometry: faces of the patches of a
+     * body's geometry (a built-in shape or a G+Smo file), touched from
+     * outside, e.g. a punch with rounded corners. Its geometry is a
+     * discretization::ExactSurface (make_nurbs_surface()): the closest
+     * point and normal its projection gives, rotations about its faces'
+     * centroid, its smallest radius of curvature.
      */
     template <int dim>
     class RigidSurface : public Obstacle<dim>
     {
     public:
-      /**
-       * @brief The faces @p faces (patch p's face f as 2 dim p + f) of
-       * @p patches; @p name says where the geometry comes from, for
-       * messages ("the rigid surface of punch.xml").
-       */
-      RigidSurface(const std::vector<nurbs::NurbsPatch<dim>> &patches,
-                   const std::vector<unsigned int>           &faces,
-                   const std::string                         &name);
+      /// The surface @p surface; @p name says where the geometry comes
+      /// from, for messages ("the rigid surface of punch.xml").
+      RigidSurface(std::unique_ptr<discretization::ExactSurface<dim>> surface,
+                   const std::string                                 &name);
 
       std::string
       description() const override;
@@ -242,28 +236,23 @@ namespace igabde
       std::string
       kind() const override;
 
-      /// The smallest radius of curvature over the faces, from the turn of
-      /// the normal between neighbouring points, eight per knot span and
-      /// direction (exact on circular arcs); infinite for flat faces.
+      /// ExactSurface::smallest_curvature_radius().
       double
       curvature_radius() const override;
 
-      /// The mean of the faces' centroids.
+      /// ExactSurface::centroid().
       Point<dim>
       pivot() const override;
 
-      /// The nearest of each face's closest point to @p location.
+      /// ExactSurface::closest_point().
       discretization::SurfacePoint<dim>
       closest_point(
         const Point<dim>                        &location,
         const discretization::SurfacePoint<dim> *nearest) const override;
 
     private:
-      std::vector<nurbs::NurbsPatch<dim>>                patches;
-      std::vector<std::pair<unsigned int, unsigned int>> faces;
+      std::unique_ptr<discretization::ExactSurface<dim>> surface;
       std::string                                        name;
-      double                                             radius;
-      Point<dim>                                         centroid;
     };
   } // namespace contact
 } // namespace igabde
