@@ -13,6 +13,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <utility>
 
 // The weighted-gap (mortar-like) pairing: one pair per basis function of
 // the slave face, its integrals over the slave elements cut where the
@@ -741,7 +742,7 @@ namespace igabde
                                             sample.m.location,
                                             sample.m.normal,
                                             size))
-                      samples.push_back(sample);
+                      samples.push_back(std::move(sample));
                     else
                       whole = false;
                   }

@@ -456,16 +456,16 @@ namespace igabde
       grading             = g.ratio;
       grading_toward_high = g.toward_high;
       grading_band        = g.band;
+      // A geometry the dimension does not have (a rigid surface needs one
+      // as much as a deformable body).
+      const PatchFaces faces = patch_faces_of(*this, dimension);
+      AssertThrow(!faces.names.empty(),
+                  base::ExcInput(where + "Geometry = " + to_string(geometry) +
+                                 " does not exist in " +
+                                 std::to_string(dimension) +
+                                 "D; choose another geometry or Dimension."));
       if (type == BodyType::rigid_surface)
-        {
-          AssertThrow(!patch_faces_of(*this, dimension).names.empty(),
-                      base::ExcInput(
-                        where + "Geometry = " + to_string(geometry) +
-                        " does not exist in " + std::to_string(dimension) +
-                        "D; choose another geometry or "
-                        "Dimension."));
-          return;
-        }
+        return;
 
       // What no material and no body can have, refused before any set-up.
       AssertThrow(youngs_modulus > 0.,
@@ -494,13 +494,6 @@ namespace igabde
                     " is a finite-strain law, but Kinematics = "
                     "small; set Kinematics = finite (or "
                     "Material = linear)."));
-
-      const PatchFaces faces = patch_faces_of(*this, dimension);
-      AssertThrow(!faces.names.empty(),
-                  base::ExcInput(where + "Geometry = " + to_string(geometry) +
-                                 " does not exist in " +
-                                 std::to_string(dimension) +
-                                 "D; choose another geometry or Dimension."));
 
       supports  = read_supports(supports_text, faces, where + "Supports");
       tractions = read_tractions(tractions_text, faces, where + "Tractions");

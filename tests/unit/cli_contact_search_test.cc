@@ -28,15 +28,9 @@ namespace contact_search_test
             const std::string &scene_file,
             const std::string &sets)
   {
-    const cli::ScratchFolder scratch(name, "contact-search");
-    const cli::SceneRun      scene =
-      cli::run_prm_scene(scratch.path, scene_file, sets);
-    EXPECT_EQ(scene.status, 0) << scene.output;
-    SearchRun run;
-    run.summary = scene.summary;
-    run.pairs =
-      cli::read_table(cli::join(scratch.path, "out/contact-0001.csv"));
-    return run;
+    auto run =
+      cli::run_prm_scene_table(name, "contact-search", scene_file, sets);
+    return {std::move(run.summary), std::move(run.table)};
   }
 
 

@@ -212,6 +212,34 @@ namespace cli
       }
     return table;
   }
+  /// A shipped scene's summary.json and one of its CSV tables.
+  struct SceneTable
+  {
+    nlohmann::json summary;
+    CsvTable       table;
+  };
+
+  /**
+   * Runs prm/@p scene in a scratch folder @p name of @p group (removed
+   * afterwards) as run_prm_scene() does, expects exit status 0, and reads
+   * summary.json and the table @p table (relative to the folder).
+   */
+  inline SceneTable
+  run_prm_scene_table(const std::string &name,
+                      const std::string &group,
+                      const std::string &scene,
+                      const std::string &sets,
+                      const std::string &table = "out/contact-0001.csv")
+  {
+    const ScratchFolder scratch(name, group);
+    const SceneRun      run = run_prm_scene(scratch.path, scene, sets);
+    EXPECT_EQ(run.status, 0) << run.output;
+    SceneTable result;
+    result.summary = run.summary;
+    result.table   = read_table(join(scratch.path, table));
+    return result;
+  }
+
   /**
    * Writes @p text to @p folder/scene.prm and runs it as run_prm_scene()
    * runs a shipped scene; expects exit status 0 and returns summary.json.

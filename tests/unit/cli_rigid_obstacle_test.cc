@@ -43,14 +43,9 @@ namespace rigid_obstacle_test
             const std::string &sets,
             const std::string &table = "out/contact-0001.csv")
   {
-    const cli::ScratchFolder scratch(name, "rigid-obstacle");
-    const cli::SceneRun      scene =
-      cli::run_prm_scene(scratch.path, scene_file, sets);
-    EXPECT_EQ(scene.status, 0) << scene.output;
-    ObstacleRun run;
-    run.summary = scene.summary;
-    run.pairs   = cli::read_table(cli::join(scratch.path, table));
-    return run;
+    auto run =
+      cli::run_prm_scene_table(name, "rigid-obstacle", scene_file, sets, table);
+    return {std::move(run.summary), std::move(run.table)};
   }
 
 
