@@ -106,17 +106,21 @@ namespace igabde
       for (unsigned int a = 0; a < alpha_modes.size(); ++a)
         {
           const auto [b, k] = alpha_modes[a];
-          const auto  &mode = bodies[b]->free_rigid_modes()[k];
-          const double sign = (b == 0 ? 1. : -1.);
+          const auto &mode  = bodies[b]->free_rigid_modes()[k];
           result.loads(a)   = mode * bodies[b]->load_vector();
           for (unsigned int h = 0; h < bodies[b]->n_histories(); ++h)
             result.history_loads(a, h) =
               mode * bodies[b]->history_load_vector(h);
           for (unsigned int i = 0; i < nc; ++i)
             {
-              const Tensor<1, dim> r =
-                (b == 0 ? pair_list[i].op1 : pair_list[i].op2)
-                  .displacement(mode);
+              double      sign = 0.;
+              const auto *op   = pair_list[i].operator_on(b, sign);
+              if (op == nullptr)
+                {
+                  result.G.block(m * i, a, m, 1).setZero();
+                  continue;
+                }
+              const Tensor<1, dim> r = op->displacement(mode);
               for (unsigned int s = 0; s < m; ++s)
                 result.G(m * i + s, a) = sign * (pair_list[i].frame[s] * r);
             }
@@ -147,7 +151,6 @@ namespace igabde
     condense(const std::vector<ContactPair<dim>>                  &pair_list,
              const std::vector<const discretization::Body<dim> *> &bodies,
              const unsigned int                                    m,
-             const double                                          friction,
              const std::string                                    &context,
              std::ostream                                         &log,
              const bool                                            progress)
@@ -156,37 +159,48 @@ namespace igabde
       Eigen::MatrixXd    FL(m * nc, m * nc);
       FL.setZero();
       // Each body's share where it is factorised (under MPI the bodies'
-      // groups at the same time), then handed to every rank.
-      std::vector<FullMatrix<double>> flexibilities(bodies.size());
-      for (unsigned int b = 0; b < bodies.size(); ++b)
-        if (bodies[b]->factorizes_here())
-          {
-            std::vector<discretization::PointOperator<dim>> ops;
-            std::vector<Tensor<1, dim>>                     directions;
-            ops.reserve(m * nc);
-            directions.reserve(m * nc);
-            for (unsigned int j = 0; j < nc; ++j)
-              for (unsigned int s = 0; s < m; ++s)
-                {
-                  ops.push_back(b == 0 ? pair_list[j].op1 : pair_list[j].op2);
-                  directions.push_back(pair_list[j].frame[s]);
-                }
-            flexibilities[b] = bodies[b]->flexibility_in_group(ops, directions);
-          }
+      // groups at the same time), then handed to every rank: on the pairs
+      // that touch the body (rows[b], their rows of F^L), each direction
+      // with the sign of the body's side.
+      std::vector<FullMatrix<double>>        flexibilities(bodies.size());
+      std::vector<std::vector<unsigned int>> rows(bodies.size());
       for (unsigned int b = 0; b < bodies.size(); ++b)
         {
+          std::vector<discretization::PointOperator<dim>> ops;
+          std::vector<Tensor<1, dim>>                     directions;
+          for (unsigned int j = 0; j < nc; ++j)
+            {
+              double      sign = 0.;
+              const auto *op   = pair_list[j].operator_on(b, sign);
+              if (op == nullptr)
+                continue;
+              for (unsigned int s = 0; s < m; ++s)
+                {
+                  rows[b].push_back(m * j + s);
+                  ops.push_back(*op);
+                  directions.push_back(sign * pair_list[j].frame[s]);
+                }
+            }
+          if (bodies[b]->factorizes_here() && !ops.empty())
+            flexibilities[b] = bodies[b]->flexibility_in_group(ops, directions);
+        }
+      for (unsigned int b = 0; b < bodies.size(); ++b)
+        {
+          if (rows[b].empty())
+            continue;
           bodies[b]->share_flexibility(flexibilities[b]);
-          const FullMatrix<double> &Fb = flexibilities[b];
-          for (unsigned int i = 0; i < m * nc; ++i)
-            for (unsigned int j = 0; j < m * nc; ++j)
-              FL(i, j) += Fb(i, j);
+          const FullMatrix<double>        &Fb = flexibilities[b];
+          const std::vector<unsigned int> &r  = rows[b];
+          for (unsigned int i = 0; i < r.size(); ++i)
+            for (unsigned int j = 0; j < r.size(); ++j)
+              FL(r[i], r[j]) += Fb(i, j);
           // Dense blocks of the contact unknowns squared each (large at
           // B2's 16x64x16: doc/performance.md): none is kept longer than it
           // serves.
           flexibilities[b] = FullMatrix<double>();
           if (progress)
             log << "  contact: " << bodies[b]->name() << " condensed onto "
-                << m * nc << " pair directions"
+                << r.size() << " pair directions"
                 << (bodies[b]->has_schur_complement() ?
                       " (Schur complement on " +
                         std::to_string(bodies[b]->n_interface_dofs()) +
@@ -219,7 +233,7 @@ namespace igabde
             keep.push_back(i);
         }
       CondensedContact<dim> result =
-        kept_pairs_contact(pair_list, keep, modes, m, friction, context);
+        kept_pairs_contact(pair_list, keep, modes, m, context);
       ContactProblem &problem = result.problem;
       Eigen::MatrixXd W;
       if (keep.size() == nc)
@@ -257,7 +271,6 @@ namespace igabde
                        const std::vector<unsigned int>     &keep,
                        const RigidModeColumns              &modes,
                        const unsigned int                   m,
-                       const double                         friction,
                        const std::string                   &context)
     {
       AssertThrow(!keep.empty(),
@@ -280,7 +293,8 @@ namespace igabde
       problem.n_contacts   = result.pairs.size();
       problem.n_components = m;
       problem.q            = Eigen::VectorXd::Zero(m * result.pairs.size());
-      problem.mu.assign(result.pairs.size(), friction);
+      for (const ContactPair<dim> &pair : result.pairs)
+        problem.mu.push_back(pair.friction_coefficient);
       problem.name = context;
       problem.b    = Eigen::VectorXd::Zero(modes.G.cols());
       return result;
@@ -305,20 +319,17 @@ namespace igabde
                        const std::vector<unsigned int> &,
                        const RigidModeColumns &,
                        const unsigned int,
-                       const double,
                        const std::string &);
     template CondensedContact<3>
     kept_pairs_contact(const std::vector<ContactPair<3>> &,
                        const std::vector<unsigned int> &,
                        const RigidModeColumns &,
                        const unsigned int,
-                       const double,
                        const std::string &);
     template CondensedContact<2>
     condense(const std::vector<ContactPair<2>> &,
              const std::vector<const discretization::Body<2> *> &,
              const unsigned int,
-             const double,
              const std::string &,
              std::ostream &,
              const bool);
@@ -326,7 +337,6 @@ namespace igabde
     condense(const std::vector<ContactPair<3>> &,
              const std::vector<const discretization::Body<3> *> &,
              const unsigned int,
-             const double,
              const std::string &,
              std::ostream &,
              const bool);

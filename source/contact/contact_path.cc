@@ -13,14 +13,12 @@ namespace igabde
     CondensedPath<dim>::CondensedPath(
       const std::vector<const discretization::Body<dim> *> &bodies,
       const unsigned int                                    n_components,
-      const double                                          friction,
       const bool                                            schur,
       const std::string                                    &context,
       std::ostream                                         &log,
       const bool                                            progress)
       : bodies(bodies)
       , m(n_components)
-      , friction(friction)
       , schur(schur)
       , context(context)
       , log(log)
@@ -40,7 +38,11 @@ namespace igabde
       discretization::FactorizationRequest<dim> request;
       if (schur)
         for (const auto &pair : pairs)
-          request.interface.push_back(b == 0 ? pair.op1 : pair.op2);
+          {
+            double sign = 0.;
+            if (const auto *op = pair.operator_on(b, sign))
+              request.interface.push_back(*op);
+          }
       request.matrix_read_afterwards = false;
       request.solves_afterwards      = true;
       return request;
@@ -53,8 +55,7 @@ namespace igabde
     CondensedPath<dim>::prepare(const std::vector<ContactPair<dim>> &pairs,
                                 CondensedContact<dim>               &contact)
     {
-      contact =
-        condense<dim>(pairs, bodies, m, friction, context, log, progress);
+      contact   = condense<dim>(pairs, bodies, m, context, log, progress);
       condensed = std::make_unique<CondensedOperator>(contact.problem.W);
     }
 
@@ -99,15 +100,11 @@ namespace igabde
     CoupledPath<dim>::CoupledPath(
       const std::vector<const discretization::Body<dim> *> &bodies,
       const unsigned int                                    n_components,
-      const double                                          friction,
-      const bool                                            obstacle,
       const CoupledFactory<dim>                            &factory,
       const std::string                                    &context,
       std::ostream                                         &log)
       : bodies(bodies)
       , m(n_components)
-      , friction(friction)
-      , obstacle(obstacle)
       , factory(factory)
       , context(context)
       , log(log)
@@ -148,26 +145,27 @@ namespace igabde
       std::vector<unsigned int> keep;
       const double              max_g =
         modes.G.size() > 0 ? modes.G.cwiseAbs().maxCoeff() : 0.;
-      const unsigned int n_sides = obstacle ? 1u : 2u;
       for (unsigned int i = 0; i < pair_list.size(); ++i)
         {
           bool moves = false;
-          for (unsigned int side = 0; side < n_sides; ++side)
+          for (unsigned int b = 0; b < bodies.size(); ++b)
             {
-              const auto &op = side == 0 ? pair_list[i].op1 : pair_list[i].op2;
-              for (unsigned int k = 0; k < op.weights.size(); ++k)
+              double      sign = 0.;
+              const auto *op   = pair_list[i].operator_on(b, sign);
+              if (op == nullptr)
+                continue;
+              for (unsigned int k = 0; k < op->weights.size(); ++k)
                 for (unsigned int c = 0; c < dim; ++c)
-                  moves = moves || (op.weights[k] != 0. &&
-                                    !bodies[side]->is_held(op.dofs[k][c]));
+                  moves = moves || (op->weights[k] != 0. &&
+                                    !bodies[b]->is_held(op->dofs[k][c]));
             }
           const double g_row =
             modes.G.cols() > 0 ? modes.G.row(m * i).cwiseAbs().maxCoeff() : 0.;
           if (moves || g_row > 1e-12 * max_g)
             keep.push_back(i);
         }
-      contact =
-        kept_pairs_contact(pair_list, keep, modes, m, friction, context);
-      coupled = factory(bodies, contact.pairs, m, contact.problem.G, obstacle);
+      contact = kept_pairs_contact(pair_list, keep, modes, m, context);
+      coupled = factory(bodies, contact.pairs, m, contact.problem.G);
       static_cast<const ContactData &>(contact.problem).check_consistency();
     }
 

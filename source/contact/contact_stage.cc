@@ -20,21 +20,52 @@ namespace igabde
     ContactStage<dim>::ContactStage(
       const ContactSettings                                         &settings,
       const std::vector<std::unique_ptr<discretization::Body<dim>>> &bodies,
-      std::unique_ptr<Obstacle<dim>>                                 obstacle,
+      std::vector<std::unique_ptr<Obstacle<dim>>>                    obstacles,
       std::ostream                                                  &log,
       const CoupledFactory<dim> &coupled_factory)
       : settings(settings)
       , bodies(bodies)
-      , obstacle(std::move(obstacle))
+      , obstacles(std::move(obstacles))
       , coupled_factory(coupled_factory)
-      , pairing(create_pairing_strategy<dim>(settings.pairing))
       , log(log)
     {
-      AssertThrow(this->obstacle || bodies.size() == 2,
-                  base::ExcInput(settings.context +
-                                 ": contact needs Body 2 (deformable) or a "
-                                 "rigid plane."));
+      AssertThrow(!settings.interactions.empty(),
+                  ExcMessage("contact needs at least one interaction"));
+      for (const ContactInteraction &c : settings.interactions)
+        {
+          // The scene reader refuses these with the fix; here they are
+          // internal errors.
+          AssertThrow(c.slave_body < bodies.size() &&
+                        (c.master_body < bodies.size() ?
+                           c.master_body != c.slave_body :
+                           c.obstacle < this->obstacles.size()),
+                      base::ExcInput(settings.context + ": " + c.name +
+                                     " needs a deformable slave body and a "
+                                     "master that is another deformable body "
+                                     "or a rigid obstacle."));
+          pairings.push_back(create_pairing_strategy<dim>(c.pairing));
+        }
       finite_u.resize(bodies.size());
+    }
+
+
+
+    template <int dim>
+    const Obstacle<dim> *
+    ContactStage<dim>::obstacle_of(const ContactPair<dim> &pair) const
+    {
+      return pair.master_body < bodies.size() ? nullptr :
+                                                obstacles[pair.obstacle].get();
+    }
+
+
+
+    template <int dim>
+    std::string
+    ContactStage<dim>::body_label(const unsigned int b) const
+    {
+      return b < settings.body_labels.size() ? settings.body_labels[b] :
+                                               "Body " + std::to_string(b + 1);
     }
 
 
@@ -129,18 +160,45 @@ namespace igabde
     void
     ContactStage<dim>::build_pairs(TimerOutput &timer)
     {
-      m = (settings.friction_coefficient > 0. ? dim : 1);
+      m = 1;
+      for (const ContactInteraction &c : settings.interactions)
+        if (c.friction_coefficient > 0.)
+          m = dim;
       TimerOutput::Scope t(timer, "contact: pairs");
-      if (!obstacle)
-        master_face =
-          std::make_unique<BodyFace<dim>>(*bodies[1], settings.master_faces);
-      const ContactSurface<dim> &master =
-        obstacle ? static_cast<const ContactSurface<dim> &>(*obstacle) :
-                   *master_face;
-      pair_list   = pairing->make_pairs(*bodies[0],
-                                      settings.slave_faces,
-                                      master,
-                                      settings.context);
+      // The pairs of every interaction, in order.
+      pair_list.clear();
+      master_faces.clear();
+      for (unsigned int k = 0; k < settings.interactions.size(); ++k)
+        {
+          const ContactInteraction &c          = settings.interactions[k];
+          const bool                deformable = c.master_body < bodies.size();
+          master_faces.push_back(
+            deformable ? std::make_unique<BodyFace<dim>>(*bodies[c.master_body],
+                                                         c.master_faces) :
+                         nullptr);
+          const ContactSurface<dim> &master =
+            deformable ?
+              *master_faces.back() :
+              static_cast<const ContactSurface<dim> &>(*obstacles[c.obstacle]);
+          std::vector<ContactPair<dim>> pairs =
+            pairings[k]->make_pairs(*bodies[c.slave_body],
+                                    c.slave_faces,
+                                    master,
+                                    settings.interactions.size() == 1 ?
+                                      settings.context :
+                                      settings.context + " (" + c.name + ")");
+          for (ContactPair<dim> &pair : pairs)
+            {
+              pair.slave_body = c.slave_body;
+              pair.master_body =
+                deformable ? c.master_body : numbers::invalid_unsigned_int;
+              pair.obstacle =
+                deformable ? numbers::invalid_unsigned_int : c.obstacle;
+              pair.interaction          = k;
+              pair.friction_coefficient = c.friction_coefficient;
+              pair_list.push_back(std::move(pair));
+            }
+        }
       cost_inputs = compute_path_cost_inputs();
       // More contact unknowns than the face unknowns the pairs move: the
       // flexibility's rank is at most the latter, so the contact rows are
@@ -222,19 +280,15 @@ namespace igabde
       for (const auto &body : bodies)
         deformable.push_back(body.get());
       if (full)
-        contact_path =
-          std::make_unique<CoupledPath<dim>>(deformable,
-                                             m,
-                                             settings.friction_coefficient,
-                                             bool(obstacle),
-                                             coupled_factory,
-                                             settings.context,
-                                             log);
+        contact_path = std::make_unique<CoupledPath<dim>>(deformable,
+                                                          m,
+                                                          coupled_factory,
+                                                          settings.context,
+                                                          log);
       else
         contact_path =
           std::make_unique<CondensedPath<dim>>(deformable,
                                                m,
-                                               settings.friction_coefficient,
                                                settings.schur_condensation,
                                                settings.context,
                                                log,
@@ -261,23 +315,29 @@ namespace igabde
     {
       PathCostInputs inputs;
       inputs.contact_unknowns = m * pair_list.size();
-      // The unknowns the pair points move, per deformable body (the Schur
-      // complement of the condensed path is formed on them).
-      const unsigned int n_sides = obstacle ? 1u : 2u;
-      for (unsigned int side = 0; side < n_sides; ++side)
+      // The unknowns the pair points move, per deformable body that a pair
+      // touches (the Schur complement of the condensed path is formed on
+      // them).
+      for (unsigned int b = 0; b < bodies.size(); ++b)
         {
-          std::vector<bool> touched(bodies[side]->n_dofs(), false);
+          std::vector<bool> touched(bodies[b]->n_dofs(), false);
+          bool              any = false;
           for (const auto &pair : pair_list)
             {
-              const auto &op = side == 0 ? pair.op1 : pair.op2;
-              for (unsigned int k = 0; k < op.weights.size(); ++k)
+              double      sign = 0.;
+              const auto *op   = pair.operator_on(b, sign);
+              if (op == nullptr)
+                continue;
+              any = true;
+              for (unsigned int k = 0; k < op->weights.size(); ++k)
                 for (unsigned int c = 0; c < dim; ++c)
-                  if (op.weights[k] != 0. &&
-                      !bodies[side]->is_held(op.dofs[k][c]))
-                    touched[op.dofs[k][c]] = true;
+                  if (op->weights[k] != 0. &&
+                      !bodies[b]->is_held(op->dofs[k][c]))
+                    touched[op->dofs[k][c]] = true;
             }
-          inputs.face_unknowns.push_back(
-            std::count(touched.begin(), touched.end(), true));
+          if (any)
+            inputs.face_unknowns.push_back(
+              std::count(touched.begin(), touched.end(), true));
         }
       inputs.factor_entries = settings.factor_entries;
       inputs.dimension      = dim;
@@ -293,20 +353,23 @@ namespace igabde
     unsigned int
     ContactStage<dim>::n_moving_contact_unknowns() const
     {
-      const unsigned int n_sides = obstacle ? 1u : 2u;
-      unsigned int       moving  = 0;
+      unsigned int moving = 0;
       for (const auto &pair : pair_list)
         for (unsigned int k = 0; k < m; ++k)
           {
             bool moves = false;
-            for (unsigned int side = 0; side < n_sides && !moves; ++side)
+            for (const unsigned int b : {pair.slave_body, pair.master_body})
               {
-                const auto &op = side == 0 ? pair.op1 : pair.op2;
-                for (unsigned int j = 0; j < op.weights.size() && !moves; ++j)
+                double      sign = 0.;
+                const auto *op =
+                  b < bodies.size() ? pair.operator_on(b, sign) : nullptr;
+                if (op == nullptr || moves)
+                  continue;
+                for (unsigned int j = 0; j < op->weights.size() && !moves; ++j)
                   for (unsigned int c = 0; c < dim; ++c)
-                    if (op.weights[j] != 0. &&
+                    if (op->weights[j] != 0. &&
                         std::abs(pair.frame[k][c]) > 1e-12 &&
-                        !bodies[side]->is_held(op.dofs[j][c]))
+                        !bodies[b]->is_held(op->dofs[j][c]))
                       moves = true;
               }
             moving += moves;
@@ -405,20 +468,58 @@ namespace igabde
         for (unsigned int i = 0; i < pair_list.size(); ++i)
           pair_spacing[i] = nearest.spacing(i);
       }
-      const ContactProblem &problem = contact.problem;
-      log << "  contact: " << pair_list.size() << " pairs ("
-          << (obstacle ? obstacle->kind() : std::string("two bodies")) << ", "
-          << m * pair_list.size() << " contact unknowns"
-          << (m == 1 ? ", frictionless: no tangential unknowns" : "") << ")"
-          << std::endl;
+      const ContactProblem &problem        = contact.problem;
+      const unsigned int    n_interactions = settings.interactions.size();
+      {
+        std::string what;
+        if (n_interactions == 1)
+          {
+            const ContactInteraction &c = settings.interactions[0];
+            what                        = c.master_body < bodies.size() ?
+                                            "two bodies" :
+                                            obstacles[c.obstacle]->kind();
+          }
+        else
+          what = std::to_string(bodies.size()) + " bodies" +
+                 (obstacles.empty() ?
+                    std::string() :
+                    " and " + std::to_string(obstacles.size()) +
+                      (obstacles.size() == 1 ? " obstacle" : " obstacles")) +
+                 " in " + std::to_string(n_interactions) + " interactions";
+        log << "  contact: " << pair_list.size() << " pairs (" << what << ", "
+            << m * pair_list.size() << " contact unknowns"
+            << (m == 1 ? ", frictionless: no tangential unknowns" : "") << ")"
+            << std::endl;
+        if (n_interactions > 1)
+          {
+            std::vector<unsigned int> count(n_interactions, 0);
+            for (const auto &pair : pair_list)
+              ++count[pair.interaction];
+            for (unsigned int k = 0; k < n_interactions; ++k)
+              {
+                const ContactInteraction &c = settings.interactions[k];
+                log << "  contact: " << c.name << ": " << count[k] << " pairs, "
+                    << body_label(c.slave_body) << " on "
+                    << (c.master_body < bodies.size() ?
+                          body_label(c.master_body) :
+                          obstacles[c.obstacle]->description())
+                    << std::endl;
+              }
+          }
+      }
       const std::string formed = contact_path->description(contact);
       if (settings.log_solves && !formed.empty())
         log << "  contact: " << formed << std::endl;
-      const PairingExclusions<dim> &e = pairing->exclusions();
-      if (e.n_left_out() > 0)
+      for (unsigned int k = 0; k < n_interactions; ++k)
         {
-          log << "  contact: left out " << e.n_left_out() << " of "
-              << e.candidates << " slave "
+          const PairingExclusions<dim> &e = pairings[k]->exclusions();
+          if (e.n_left_out() == 0)
+            continue;
+          log << "  contact: "
+              << (n_interactions > 1 ? settings.interactions[k].name + ": " :
+                                       std::string())
+              << "left out " << e.n_left_out() << " of " << e.candidates
+              << " slave "
               << (e.quadrature_points ? "quadrature points" : "points")
               << " at set-up:";
           const auto where = [&](const Point<dim> &x) {
@@ -472,11 +573,15 @@ namespace igabde
       Eigen::VectorXd result(m * pair_list.size());
       for (unsigned int i = 0; i < pair_list.size(); ++i)
         {
-          Tensor<1, dim> du = pair_list[i].op1.displacement(u[0]);
-          if (!obstacle)
-            du -= pair_list[i].op2.displacement(u[1]);
-          else if (obstacle->moves())
-            du -= obstacle->displacement(pair_list[i].x2, factors);
+          const ContactPair<dim> &pair = pair_list[i];
+          Tensor<1, dim> du = pair.op1.displacement(u[pair.slave_body]);
+          if (const Obstacle<dim> *obstacle = obstacle_of(pair))
+            {
+              if (obstacle->moves())
+                du -= obstacle->displacement(pair.x2, factors);
+            }
+          else
+            du -= pair.op2.displacement(u[pair.master_body]);
           for (unsigned int s = 0; s < m; ++s)
             result(m * i + s) = pair_list[i].frame[s] * du;
         }
@@ -639,14 +744,17 @@ namespace igabde
           // configuration (q holds those from the predictor only).
           double sum = 0.;
           for (const auto &pair : pair_list)
-            for (unsigned int side = 0; side < (obstacle ? 1u : 2u); ++side)
+            for (const unsigned int b : {pair.slave_body, pair.master_body})
               {
-                const auto &op = side == 0 ? pair.op1 : pair.op2;
+                if (b >= bodies.size())
+                  continue;
+                double      sign = 0.;
+                const auto &op   = *pair.operator_on(b, sign);
                 for (unsigned int c = 0; c < dim; ++c)
                   {
                     double v = 0.;
                     for (unsigned int k = 0; k < op.weights.size(); ++k)
-                      v += op.weights[k] * moved[side][op.dofs[k][c]];
+                      v += op.weights[k] * moved[b][op.dofs[k][c]];
                     sum += v * v;
                   }
               }
@@ -817,13 +925,16 @@ namespace igabde
         std::vector<Vector<double>> loads;
         for (const auto &body : bodies)
           loads.emplace_back(body->n_dofs());
+        result.interaction_forces.resize(settings.interactions.size());
         for (unsigned int i = 0; i < pair_list.size(); ++i)
           {
-            const Tensor<1, dim> f = global_force(i, x.p);
+            const ContactPair<dim> &pair = pair_list[i];
+            const Tensor<1, dim>    f    = global_force(i, x.p);
             result.contact_force += f;
-            pair_list[i].op1.distribute(f, loads[0]);
-            if (!obstacle)
-              pair_list[i].op2.distribute(-f, loads[1]);
+            result.interaction_forces[pair.interaction] += f;
+            pair.op1.distribute(f, loads[pair.slave_body]);
+            if (pair.master_body < bodies.size())
+              pair.op2.distribute(-f, loads[pair.master_body]);
           }
         // The bodies' response (the path: solved already on the full
         // path, one solve per body on the condensed one).
@@ -901,7 +1012,7 @@ namespace igabde
           Eigen::Index main = 0;
           contact.alpha_basis.col(a).cwiseAbs().maxCoeff(&main);
           const auto [body, k] = contact.alpha_modes[main];
-          return "the load drives Body " + std::to_string(body + 1) +
+          return "the load drives " + body_label(body) +
                  "'s free rigid mode '" +
                  bodies[body]->free_rigid_mode_names()[k] +
                  "' in a direction no contact pair can resist (pairs only "
@@ -925,11 +1036,10 @@ namespace igabde
         return load;
       for (unsigned int i = 0; i < pair_list.size(); ++i)
         {
-          const Tensor<1, dim> f = global_force(i, x.p);
-          if (b == 0)
-            pair_list[i].op1.distribute(f, load);
-          else
-            pair_list[i].op2.distribute(-f, load);
+          double      sign = 0.;
+          const auto *op   = pair_list[i].operator_on(b, sign);
+          if (op != nullptr)
+            op->distribute(sign * global_force(i, x.p), load);
         }
       return load;
     }

@@ -14,7 +14,9 @@ namespace igabde
     ContactStage<dim>::largest_sliding(const std::vector<Vector<double>> &u,
                                        const std::vector<double> &factors) const
     {
-      if (obstacle)
+      if (std::none_of(pair_list.begin(), pair_list.end(), [&](const auto &p) {
+            return obstacle_of(p) == nullptr;
+          }))
         return std::nullopt;
       return largest_tangential(u, factors, false);
     }
@@ -27,7 +29,10 @@ namespace igabde
       const std::vector<Vector<double>> &u,
       const std::vector<double>         &factors) const
     {
-      if (!obstacle || obstacle->flat())
+      if (std::none_of(pair_list.begin(), pair_list.end(), [&](const auto &p) {
+            const Obstacle<dim> *obstacle = obstacle_of(p);
+            return obstacle != nullptr && !obstacle->flat();
+          }))
         return std::nullopt;
       return largest_tangential(u, factors, true);
     }
@@ -43,12 +48,19 @@ namespace igabde
       std::pair<double, Point<dim>> result(0., Point<dim>());
       for (unsigned int i = 0; i < pair_list.size(); ++i)
         {
-          if (!(pair_spacing[i] > 0.))
+          const ContactPair<dim> &pair     = pair_list[i];
+          const Obstacle<dim>    *obstacle = obstacle_of(pair);
+          // Over the radius: the pairs on curved obstacles; else those on
+          // deformable masters (a rigid plane's gap and normal stay exact
+          // whatever the slide).
+          if (!(pair_spacing[i] > 0.) ||
+              (over_radius ? obstacle == nullptr || obstacle->flat() :
+                             obstacle != nullptr))
             continue;
           const Tensor<1, dim> du =
-            pair_list[i].op1.displacement(u[0]) -
-            (obstacle ? obstacle->displacement(pair_list[i].x2, factors) :
-                        pair_list[i].op2.displacement(u[1]));
+            pair.op1.displacement(u[pair.slave_body]) -
+            (obstacle ? obstacle->displacement(pair.x2, factors) :
+                        pair.op2.displacement(u[pair.master_body]));
           const Tensor<1, dim> &n = pair_list[i].frame[0];
           // A pair open by more than its spacing cannot touch in this
           // configuration: where it now faces does not matter yet.
@@ -75,9 +87,10 @@ namespace igabde
       for (unsigned int i = 0; i < pair_list.size(); ++i)
         {
           PairState<dim> s;
-          s.location = pair_list[i].x1;
-          s.normal   = pair_list[i].normal1;
-          s.area     = pair_list[i].area;
+          s.location    = pair_list[i].x1;
+          s.interaction = pair_list[i].interaction;
+          s.normal      = pair_list[i].normal1;
+          s.area        = pair_list[i].area;
           for (unsigned int k = 0; k < m; ++k)
             {
               s.force_local.push_back(x.p(m * i + k));
@@ -104,22 +117,29 @@ namespace igabde
       s.n_pairs        = pair_list.size();
       s.n_unknowns     = contact.problem.n_rows() + contact.problem.n_alpha();
       s.friction       = (m > 1);
-      s.rigid_obstacle = static_cast<bool>(obstacle);
-      if (obstacle)
+      s.rigid_obstacle = !obstacles.empty();
+      for (const auto &obstacle : obstacles)
         {
-          s.obstacle_kind  = obstacle->kind();
-          s.obstacle_moves = obstacle->moves();
+          s.obstacle_kind +=
+            (s.obstacle_kind.empty() ? "" : ", ") + obstacle->kind();
+          s.obstacle_moves = s.obstacle_moves || obstacle->moves();
         }
+      s.n_interactions = settings.interactions.size();
+      s.interaction_pairs.assign(s.n_interactions, 0);
+      for (const auto &pair : pair_list)
+        ++s.interaction_pairs[pair.interaction];
       s.floating_rigid_modes = contact.alpha_modes.size();
       s.pairs_left_out       = contact.n_dropped;
-      {
-        const PairingExclusions<dim> &e = pairing->exclusions();
-        s.slave_candidates              = e.candidates;
-        s.left_out_not_facing           = e.not_facing;
-        s.left_out_outside              = e.outside;
-        s.left_out_unprojected          = e.unprojected;
-        s.left_out_of_quadrature        = e.quadrature_points;
-      }
+      for (const auto &pairing : pairings)
+        {
+          const PairingExclusions<dim> &e = pairing->exclusions();
+          s.slave_candidates += e.candidates;
+          s.left_out_not_facing += e.not_facing;
+          s.left_out_outside += e.outside;
+          s.left_out_unprojected += e.unprojected;
+          s.left_out_of_quadrature =
+            s.left_out_of_quadrature || e.quadrature_points;
+        }
       s.algorithm                   = settings.solver.algorithm;
       s.path                        = resolved_path;
       s.path_reason                 = path_why;

@@ -29,7 +29,6 @@ namespace igabde
       const std::vector<contact::ContactPair<dim>>         &pairs,
       const unsigned int                                    n_components,
       const Eigen::MatrixXd                                &G,
-      const bool                                            obstacle,
       const Solver                                          solver,
       const unsigned int krylov_max_iterations,
       const MPI_Comm     communicator)
@@ -86,17 +85,19 @@ namespace igabde
       AssertDimension(G.rows(), d * n_pairs);
 
       // C: per pair row, the unknowns of the two points in the local frame
-      // (Body 2 with the opposite sign).
+      // (the master body's with the opposite sign).
       C_rows.resize(d * n_pairs);
       for (unsigned int i = 0; i < n_pairs; ++i)
-        for (unsigned int side = 0; side < (obstacle ? 1u : 2u); ++side)
+        for (const unsigned int b : {pairs[i].slave_body, pairs[i].master_body})
           {
-            const auto  &op   = (side == 0 ? pairs[i].op1 : pairs[i].op2);
-            const double sign = (side == 0 ? 1. : -1.);
+            if (b >= bodies.size())
+              continue;
+            double      sign = 0.;
+            const auto &op   = *pairs[i].operator_on(b, sign);
             for (unsigned int k = 0; k < op.weights.size(); ++k)
               for (unsigned int c = 0; c < dim; ++c)
                 {
-                  const unsigned int g = offsets[side] + op.dofs[k][c];
+                  const unsigned int g = offsets[b] + op.dofs[k][c];
                   if (held[g])
                     continue;
                   for (unsigned int s = 0; s < d; ++s)
@@ -109,21 +110,25 @@ namespace igabde
                 }
           }
 
-      // Pair stiffness E A / h from the underlying elements.
-      double h = 0., inverse_modulus = 0.;
-      for (const auto *body : bodies)
-        {
-          h =
-            std::max(h,
-                     std::pow(body->measure() / body->n_elements(), 1. / dim));
-          inverse_modulus += 1. / body->material().youngs_modulus;
-        }
+      // Pair stiffness E A / h from the elements of the pair's bodies (E
+      // of the two in series, the larger element size).
       double mean_area = 0.;
       for (const auto &pair : pairs)
         mean_area += pair.area / std::max<double>(n_pairs, 1);
       stiffness.resize(n_pairs);
       for (unsigned int i = 0; i < n_pairs; ++i)
         {
+          double h = 0., inverse_modulus = 0.;
+          for (const unsigned int b :
+               {pairs[i].slave_body, pairs[i].master_body})
+            if (b < bodies.size())
+              {
+                h = std::max(h,
+                             std::pow(bodies[b]->measure() /
+                                        bodies[b]->n_elements(),
+                                      1. / dim));
+                inverse_modulus += 1. / bodies[b]->material().youngs_modulus;
+              }
           const double area = pairs[i].area > 0. ? pairs[i].area :
                               mean_area > 0.     ? mean_area :
                                                    std::pow(h, dim - 1);
@@ -987,14 +992,12 @@ namespace igabde
                const std::vector<const discretization::Body<dim> *> &bodies,
                const std::vector<contact::ContactPair<dim>>         &pairs,
                const unsigned int     n_components,
-               const Eigen::MatrixXd &G,
-               const bool             obstacle) {
+               const Eigen::MatrixXd &G) {
         auto system =
           std::make_unique<CoupledSystem<dim>>(bodies,
                                                pairs,
                                                n_components,
                                                G,
-                                               obstacle,
                                                solver,
                                                krylov_max_iterations,
                                                communicator);

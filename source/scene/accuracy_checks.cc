@@ -219,19 +219,19 @@ namespace igabde
               const auto set_hertz_inputs = [&](auto &hertz) {
                 // Default: the curved body's radius, the rigid
                 // obstacle's when Body 2 is a cylinder or sphere.
-                const BodyType other = parameters.body2.type;
+                const BodyType other = parameters.bodies[1].type;
                 hertz.radius         = parameters.checks.hertz_radius > 0. ?
                                          parameters.checks.hertz_radius :
                                          (other == BodyType::rigid_cylinder ||
                                       other == BodyType::rigid_sphere ?
-                                            parameters.body2.radius :
-                                            parameters.body1.radius);
+                                            parameters.bodies[1].radius :
+                                            parameters.bodies[0].radius);
                 set_modulus_and_axis(hertz);
                 hertz.element_depth = element_depth_under_contact(
                   bodies[0]->geometry_patch(discretization::patch_of_face<dim>(
-                    parameters.contact.slave_faces.front())),
+                    parameters.contact.interactions[0].slave_faces.front())),
                   discretization::local_face<dim>(
-                    parameters.contact.slave_faces.front()),
+                    parameters.contact.interactions[0].slave_faces.front()),
                   *pairs);
               };
               // Hertz's and Johnson's solutions are frictionless. Friction
@@ -247,14 +247,15 @@ namespace igabde
                                                  bodies.size() > 1 ?
                                                    &bodies[1]->material() :
                                                    nullptr);
-                if (parameters.contact.friction_coefficient > 0. &&
+                if (parameters.contact.interactions[0].friction_coefficient >
+                      0. &&
                     std::abs(beta) >= 1e-3)
                   {
                     std::ostringstream w;
                     w << "Checks: " << reference
                       << " solution is frictionless; "
                          "with Contact/Friction coefficient = "
-                      << parameters.contact.friction_coefficient
+                      << parameters.contact.interactions[0].friction_coefficient
                       << " between dissimilar bodies (Dundurs beta = "
                       << std::setprecision(3) << beta
                       << ") friction changes the contact (Spence's problem), "

@@ -21,8 +21,8 @@ namespace igabde
                         const std::string   &scene_file)
     {
       elasticity::IsotropicMaterial<dim> material;
-      material.youngs_modulus = parameters.body1.youngs_modulus;
-      material.poisson_ratio  = parameters.body1.poisson_ratio;
+      material.youngs_modulus = parameters.bodies[0].youngs_modulus;
+      material.poisson_ratio  = parameters.bodies[0].poisson_ratio;
       material.plane_model    = parameters.plane_model;
       const auto &e           = parameters.exact;
       if (e.type == ExactSolutionType::kirsch)
@@ -57,7 +57,8 @@ namespace igabde
     {
       const std::string where = scene_file + ": " + name + "/";
       discretization::BodyDescription<dim> d;
-      d.name                    = (name == "Body 1" ? "body1" : "body2");
+      // "Body 3" -> "body3": file names and log lines.
+      d.name                    = "body" + name.substr(name.find(' ') + 1);
       d.material.youngs_modulus = body.youngs_modulus;
       d.material.poisson_ratio  = body.poisson_ratio;
       d.material.plane_model    = parameters.plane_model;
@@ -273,18 +274,11 @@ namespace igabde
       const discretization::DiscretizationSettings &settings =
         parameters.discretization;
       std::vector<std::unique_ptr<discretization::Body<dim>>> bodies;
-      bodies.push_back(discretization::create_body<dim>(
-        make_body_description<dim>(parameters,
-                                   parameters.body1,
-                                   "Body 1",
-                                   scene_file,
-                                   exact),
-        settings));
-      if (parameters.body2.type == BodyType::deformable)
+      for (const unsigned int b : parameters.deformable_bodies())
         bodies.push_back(discretization::create_body<dim>(
           make_body_description<dim>(parameters,
-                                     parameters.body2,
-                                     "Body 2",
+                                     parameters.bodies[b],
+                                     "Body " + std::to_string(b + 1),
                                      scene_file,
                                      exact),
           settings));
@@ -293,83 +287,108 @@ namespace igabde
 
 
 
-    template <int dim>
-    std::unique_ptr<contact::Obstacle<dim>>
-    create_obstacle(const AllParameters &parameters,
-                    const std::string   &scene_file)
+    namespace
     {
-      const BodyParameters &body = parameters.body2;
-      if (!is_obstacle(body.type))
-        return nullptr;
-      // The scene reader has refused zero normals and axes, radii <= 0,
-      // missing faces and malformed motions already.
-      const auto point_of = [](const std::vector<double> &values) {
-        Point<dim> p;
-        for (unsigned int d = 0; d < dim && d < values.size(); ++d)
-          p[d] = values[d];
-        return p;
-      };
-      std::unique_ptr<contact::Obstacle<dim>> obstacle;
-      switch (body.type)
-        {
-          case BodyType::rigid_plane:
-            obstacle = std::make_unique<contact::RigidPlane<dim>>(
-              point_of(body.plane_point),
-              point_of(body.plane_normal));
-            break;
-          case BodyType::rigid_cylinder:
-            obstacle = std::make_unique<contact::RigidCylinder<dim>>(
-              point_of(body.centre),
-              body.radius,
-              point_of(body.axis));
-            break;
-          case BodyType::rigid_sphere:
-            obstacle =
-              std::make_unique<contact::RigidSphere<dim>>(point_of(body.centre),
-                                                          body.radius);
-            break;
-          case BodyType::rigid_surface:
-            {
-              // The exact geometry as given (no degree elevation), split
-              // into its Subdivisions: the closest-point search samples
-              // each span.
-              const nurbs::MultiPatchGeometry<dim> geometry =
-                make_geometry<dim>(body, scene_file + ": Body 2/", 1);
-              obstacle = std::make_unique<contact::RigidSurface<dim>>(
-                discretization::make_nurbs_surface(
-                  geometry.patches,
-                  parameters.contact.master_faces),
-                body.geometry == Geometry::file ?
-                  body.geometry_file :
-                  "Geometry = " + to_string(body.geometry));
+      template <int dim>
+      std::unique_ptr<contact::Obstacle<dim>>
+      create_obstacle(const AllParameters &parameters,
+                      const unsigned int   index,
+                      const std::string   &scene_file)
+      {
+        const BodyParameters &body = parameters.bodies[index];
+        const std::string     name = "Body " + std::to_string(index + 1);
+        // The scene reader has refused zero normals and axes, radii <= 0,
+        // missing faces and malformed motions already.
+        const auto point_of = [](const std::vector<double> &values) {
+          Point<dim> p;
+          for (unsigned int d = 0; d < dim && d < values.size(); ++d)
+            p[d] = values[d];
+          return p;
+        };
+        std::unique_ptr<contact::Obstacle<dim>> obstacle;
+        switch (body.type)
+          {
+            case BodyType::rigid_plane:
+              obstacle = std::make_unique<contact::RigidPlane<dim>>(
+                point_of(body.plane_point),
+                point_of(body.plane_normal));
               break;
-            }
-          default:
-            Assert(false, ExcInternalError());
-        }
-      std::vector<contact::RigidMotion<dim>> motion;
-      for (const ObstacleMotionParameters &term : body.motion)
-        {
-          contact::RigidMotion<dim> m;
-          m.history     = parameters.load_path.history_index(term.history, 1);
-          m.translation = point_of(term.translation);
-          if (dim == 2)
-            m.rotation[2] = term.rotation[0];
-          else
-            for (unsigned int d = 0; d < 3; ++d)
-              m.rotation[d] = term.rotation[d];
-          motion.push_back(m);
-        }
-      obstacle->set_motion(motion);
-      return obstacle;
+            case BodyType::rigid_cylinder:
+              obstacle = std::make_unique<contact::RigidCylinder<dim>>(
+                point_of(body.centre),
+                body.radius,
+                point_of(body.axis));
+              break;
+            case BodyType::rigid_sphere:
+              obstacle =
+                std::make_unique<contact::RigidSphere<dim>>(point_of(
+                                                              body.centre),
+                                                            body.radius);
+              break;
+            case BodyType::rigid_surface:
+              {
+                // The exact geometry as given (no degree elevation), split
+                // into its Subdivisions: the closest-point search samples
+                // each span; its faces those the interactions name.
+                const nurbs::MultiPatchGeometry<dim> geometry =
+                  make_geometry<dim>(body, scene_file + ": " + name + "/", 1);
+                std::vector<unsigned int> faces;
+                for (const InteractionParameters &c :
+                     parameters.contact.interactions)
+                  if (c.master_body == index + 1)
+                    faces.insert(faces.end(),
+                                 c.master_faces.begin(),
+                                 c.master_faces.end());
+                std::sort(faces.begin(), faces.end());
+                faces.erase(std::unique(faces.begin(), faces.end()),
+                            faces.end());
+                obstacle = std::make_unique<contact::RigidSurface<dim>>(
+                  discretization::make_nurbs_surface(geometry.patches, faces),
+                  body.geometry == Geometry::file ?
+                    body.geometry_file :
+                    "Geometry = " + to_string(body.geometry));
+                break;
+              }
+            default:
+              Assert(false, ExcInternalError());
+          }
+        std::vector<contact::RigidMotion<dim>> motion;
+        for (const ObstacleMotionParameters &term : body.motion)
+          {
+            contact::RigidMotion<dim> m;
+            m.history     = parameters.load_path.history_index(term.history, 1);
+            m.translation = point_of(term.translation);
+            if (dim == 2)
+              m.rotation[2] = term.rotation[0];
+            else
+              for (unsigned int d = 0; d < 3; ++d)
+                m.rotation[d] = term.rotation[d];
+            motion.push_back(m);
+          }
+        obstacle->set_motion(motion);
+        return obstacle;
+      }
+    } // namespace
+
+
+
+    template <int dim>
+    std::vector<std::unique_ptr<contact::Obstacle<dim>>>
+    create_obstacles(const AllParameters &parameters,
+                     const std::string   &scene_file)
+    {
+      std::vector<std::unique_ptr<contact::Obstacle<dim>>> obstacles;
+      for (const unsigned int b : parameters.obstacle_bodies())
+        obstacles.push_back(create_obstacle<dim>(parameters, b, scene_file));
+      return obstacles;
     }
 
 
 
-    template std::unique_ptr<contact::Obstacle<2>>
-    create_obstacle<2>(const AllParameters &, const std::string &);
-    template std::unique_ptr<contact::Obstacle<3>>
-    create_obstacle<3>(const AllParameters &, const std::string &);
+    template std::vector<std::unique_ptr<contact::Obstacle<2>>>
+    create_obstacles<2>(const AllParameters &, const std::string &);
+    template std::vector<std::unique_ptr<contact::Obstacle<3>>>
+    create_obstacles<3>(const AllParameters &, const std::string &);
     template std::optional<discretization::ExactSolution<2>>
     make_exact_solution<2>(const AllParameters &, const std::string &);
     template std::optional<discretization::ExactSolution<3>>

@@ -1,5 +1,7 @@
 #include <igabde/scene/contact_setup.h>
 
+#include <algorithm>
+
 namespace igabde
 {
   namespace scene
@@ -13,12 +15,35 @@ namespace igabde
     {
       contact::ContactSettings cs;
       const auto              &c = parameters.contact;
-      cs.friction_coefficient    = c.friction_coefficient;
-      cs.slave_faces             = c.slave_faces;
-      cs.master_faces            = c.master_faces;
-      cs.pairing                 = c.pairing;
-      cs.solver.algorithm        = c.algorithm;
-      cs.solver.path             = c.path;
+      // The scene numbers bodies 1 ... N; the stage its deformable bodies
+      // and its obstacles apart, from 0.
+      const std::vector<unsigned int> deformable =
+        parameters.deformable_bodies();
+      const std::vector<unsigned int> obstacles = parameters.obstacle_bodies();
+      const auto position = [](const std::vector<unsigned int> &list,
+                               const unsigned int               b) {
+        const auto i = std::find(list.begin(), list.end(), b);
+        return i == list.end() ? numbers::invalid_unsigned_int :
+                                 static_cast<unsigned int>(i - list.begin());
+      };
+      cs.interactions.clear();
+      for (const InteractionParameters &p : c.interactions)
+        {
+          contact::ContactInteraction ci;
+          ci.name                 = p.name;
+          ci.slave_body           = position(deformable, p.slave_body - 1);
+          ci.master_body          = position(deformable, p.master_body - 1);
+          ci.obstacle             = position(obstacles, p.master_body - 1);
+          ci.slave_faces          = p.slave_faces;
+          ci.master_faces         = p.master_faces;
+          ci.pairing              = p.pairing;
+          ci.friction_coefficient = p.friction_coefficient;
+          cs.interactions.push_back(ci);
+        }
+      for (const unsigned int b : deformable)
+        cs.body_labels.push_back("Body " + std::to_string(b + 1));
+      cs.solver.algorithm   = c.algorithm;
+      cs.solver.path        = c.path;
       cs.schur_condensation = c.condensation == contact::Condensation::schur &&
                               parameters.discretization.linear_solver ==
                                 discretization::LinearSolver::direct;
@@ -79,6 +104,21 @@ namespace igabde
           {"unprojected", s.left_out_unprojected},
           {"points",
            s.left_out_of_quadrature ? "quadrature points" : "slave points"}};
+      if (s.n_interactions > 1)
+        {
+          nlohmann::json list = nlohmann::json::array();
+          for (unsigned int k = 0; k < s.n_interactions; ++k)
+            {
+              const InteractionParameters &p = c.interactions[k];
+              list.push_back({{"name", p.name},
+                              {"slave_body", p.slave_body},
+                              {"master_body", p.master_body},
+                              {"friction_coefficient", p.friction_coefficient},
+                              {"pairing", contact::to_string(p.pairing)},
+                              {"n_pairs", s.interaction_pairs[k]}});
+            }
+          summary["contact_interactions"] = list;
+        }
       summary["n_contact_pairs"]     = s.n_pairs;
       summary["n_contact_unknowns"]  = s.n_unknowns;
       summary["contact_algorithm"]   = contact::to_string(s.algorithm);

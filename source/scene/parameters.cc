@@ -193,7 +193,19 @@ namespace igabde
         prm.declare_entry("Enabled",
                           "false",
                           Patterns::Bool(),
-                          "Whether Body 1 and Body 2 may touch.");
+                          "Whether the scene has contact: the interaction "
+                          "written here (Slave body on Master body) and "
+                          "those of Interaction 2 ... 8.");
+        prm.declare_entry("Slave body",
+                          "1",
+                          Patterns::Integer(1, max_bodies),
+                          "The first interaction's slave: Body k, a "
+                          "deformable body.");
+        prm.declare_entry("Master body",
+                          "2",
+                          Patterns::Integer(1, max_bodies),
+                          "The first interaction's master: Body k, "
+                          "deformable or rigid.");
         prm.declare_entry("Friction coefficient",
                           "0",
                           Patterns::Double(),
@@ -269,14 +281,15 @@ namespace igabde
         prm.declare_entry("Slave face",
                           "2",
                           Patterns::Anything(),
-                          "Patch face of Body 1 that may touch Body 2: f, "
-                          "or p.f for face f of patch p of a multi-patch "
-                          "geometry file.");
+                          "Patch face of the slave body that may touch the "
+                          "master: f, or p.f for face f of patch p of a "
+                          "multi-patch geometry file; several joined by '+'.");
         prm.declare_entry("Master face",
                           "3",
                           Patterns::Anything(),
-                          "Patch face of Body 2 that may touch Body 1: f or "
-                          "p.f (also the faces of a rigid surface).");
+                          "Patch face of the master body that may touch the "
+                          "slave: f or p.f, several joined by '+' (also the "
+                          "faces of a rigid surface).");
         prm.declare_entry("Pair placement",
                           "greville",
                           Patterns::Selection(base::selection_of(
@@ -294,7 +307,7 @@ namespace igabde
           "Pairing",
           "node-to-surface",
           Patterns::Selection(base::selection_of(contact::pairing_names)),
-          "How Body 1's contact face is paired with the surface it faces. "
+          "How the slave's contact face is paired with the surface it faces. "
           "node-to-surface: Body 1's points (Pair placement) with the "
           "coincident point where the meshes match, else the closest point "
           "of the master face (exact on NURBS); node-to-node: matching "
@@ -336,6 +349,43 @@ namespace igabde
                           "prescribed displacements interpolated linearly) "
                           "and retried, at most this many times in a row; "
                           "0 stops at the first failure.");
+        for (unsigned int k = 2; k <= max_interactions; ++k)
+          {
+            prm.enter_subsection("Interaction " + std::to_string(k));
+            prm.declare_entry("Slave body",
+                              "0",
+                              Patterns::Integer(0, max_bodies),
+                              "Body k whose faces touch the master in this "
+                              "interaction; 0: no such interaction.");
+            prm.declare_entry("Slave face",
+                              "",
+                              Patterns::Anything(),
+                              "Its patch faces: f or p.f, several joined by "
+                              "'+'.");
+            prm.declare_entry("Master body",
+                              "0",
+                              Patterns::Integer(0, max_bodies),
+                              "Body k (deformable or rigid) that the slave "
+                              "touches.");
+            prm.declare_entry("Master face",
+                              "",
+                              Patterns::Anything(),
+                              "Its patch faces: f or p.f, several joined by "
+                              "'+'.");
+            prm.declare_entry("Friction coefficient",
+                              "",
+                              Patterns::Anything(),
+                              "Coulomb mu >= 0 of this interaction; empty: "
+                              "Contact/Friction coefficient.");
+            prm.declare_entry(
+              "Pairing",
+              "as Contact",
+              Patterns::Selection("as Contact|" +
+                                  base::selection_of(contact::pairing_names)),
+              "As Contact/Pairing, for this interaction; as Contact: "
+              "Contact/Pairing.");
+            prm.leave_subsection();
+          }
       }
       prm.leave_subsection();
     }
@@ -347,8 +397,12 @@ namespace igabde
     {
       prm.enter_subsection("Contact");
       {
-        enabled              = prm.get_bool("Enabled");
-        friction_coefficient = prm.get_double("Friction coefficient");
+        enabled = prm.get_bool("Enabled");
+        interactions.assign(1, InteractionParameters());
+        InteractionParameters &first = interactions[0];
+        first.slave_body             = prm.get_integer("Slave body");
+        first.master_body            = prm.get_integer("Master body");
+        first.friction_coefficient   = prm.get_double("Friction coefficient");
         algorithm =
           base::value_of(contact::algorithm_names, prm.get("Algorithm"));
         penalty_factor            = prm.get_double("Penalty factor");
@@ -360,16 +414,43 @@ namespace igabde
         path = base::value_of(contact::path_names, prm.get("Path"));
         condensation =
           base::value_of(contact::condensation_names, prm.get("Condensation"));
-        slave_face_text  = base::trim(prm.get("Slave face"));
-        master_face_text = base::trim(prm.get("Master face"));
-        pair_placement   = base::value_of(discretization::pair_placement_names,
+        first.slave_face_text  = base::trim(prm.get("Slave face"));
+        first.master_face_text = base::trim(prm.get("Master face"));
+        pair_placement = base::value_of(discretization::pair_placement_names,
                                         prm.get("Pair placement"));
-        pairing   = base::value_of(contact::pairing_names, prm.get("Pairing"));
-        tolerance = prm.get_double("Tolerance");
+        first.pairing =
+          base::value_of(contact::pairing_names, prm.get("Pairing"));
+        tolerance      = prm.get_double("Tolerance");
         max_iterations = prm.get_integer("Max iterations");
         r_scale        = prm.get_double("r scale");
         verbose        = prm.get_bool("Verbose");
         max_step_cuts  = prm.get_integer("Max step cuts");
+        for (unsigned int k = 2; k <= max_interactions; ++k)
+          {
+            const std::string name = "Interaction " + std::to_string(k);
+            prm.enter_subsection(name);
+            if (prm.get_integer("Slave body") > 0 ||
+                prm.get_integer("Master body") > 0)
+              {
+                InteractionParameters c;
+                c.name             = "Contact/" + name;
+                c.slave_body       = prm.get_integer("Slave body");
+                c.master_body      = prm.get_integer("Master body");
+                c.slave_face_text  = base::trim(prm.get("Slave face"));
+                c.master_face_text = base::trim(prm.get("Master face"));
+                // An empty friction coefficient is Contact's; check_scene()
+                // reads the text, naming the file.
+                c.friction_text = base::trim(prm.get("Friction coefficient"));
+                c.friction_coefficient         = first.friction_coefficient;
+                const std::string pairing_text = prm.get("Pairing");
+                c.pairing =
+                  pairing_text == "as Contact" ?
+                    first.pairing :
+                    base::value_of(contact::pairing_names, pairing_text);
+                interactions.push_back(c);
+              }
+            prm.leave_subsection();
+          }
       }
       prm.leave_subsection();
     }
@@ -796,7 +877,10 @@ namespace igabde
       OutputParameters::declare_parameters(prm);
       declare_discretization_parameters(prm);
       BodyParameters::declare_parameters(prm, "Body 1", "deformable");
-      BodyParameters::declare_parameters(prm, "Body 2", "none");
+      for (unsigned int b = 2; b <= max_bodies; ++b)
+        BodyParameters::declare_parameters(prm,
+                                           "Body " + std::to_string(b),
+                                           "none");
       ExactSolutionParameters::declare_parameters(prm);
       ContactParameters::declare_parameters(prm);
       LoadPathParameters::declare_parameters(prm);
@@ -818,17 +902,22 @@ namespace igabde
       output.parse_parameters(prm);
       parse_discretization_parameters(prm, discretization);
       const std::string f = scene_file + ": ";
-      body1.parse_parameters(prm, "Body 1", dimension, f);
-      body2.parse_parameters(prm, "Body 2", dimension, f);
+      bodies.resize(max_bodies);
+      for (unsigned int b = 0; b < max_bodies; ++b)
+        bodies[b].parse_parameters(prm,
+                                   "Body " + std::to_string(b + 1),
+                                   dimension,
+                                   f);
       // A geometry file is found from the scene file's folder and read
       // now, so that a bad file ends the run before anything is built.
-      for (auto *body : {&body1, &body2})
-        if ((body->type == BodyType::deformable ||
+      for (unsigned int b = 0; b < max_bodies; ++b)
+        if (BodyParameters *body = &bodies[b];
+            (body->type == BodyType::deformable ||
              body->type == BodyType::rigid_surface) &&
             body->geometry == Geometry::file)
           {
-            const std::string where =
-              f + (body == &body1 ? "Body 1" : "Body 2") + "/Geometry file";
+            const std::string name  = "Body " + std::to_string(b + 1);
+            const std::string where = f + name + "/Geometry file";
             AssertThrow(!body->geometry_file.empty(),
                         base::ExcInput(where + " is empty; Geometry = file "
                                                "needs the path of a G+Smo "
@@ -845,10 +934,7 @@ namespace igabde
                                   dimension,
                                   discretization.degree,
                                   where + " = " + body->geometry_file + ": ");
-            check_face_patches(*body,
-                               {},
-                               dimension,
-                               f + (body == &body1 ? "Body 1" : "Body 2"));
+            check_face_patches(*body, {}, dimension, f + name);
           }
       exact.parse_parameters(prm);
       contact.parse_parameters(prm);
@@ -869,11 +955,46 @@ namespace igabde
     bool
     AllParameters::finite_strain() const
     {
-      for (const auto *body : {&body1, &body2})
-        if (body->type == BodyType::deformable &&
-            body->kinematics == elasticity::Kinematics::finite)
+      for (const BodyParameters &body : bodies)
+        if (body.type == BodyType::deformable &&
+            body.kinematics == elasticity::Kinematics::finite)
           return true;
       return false;
+    }
+
+
+
+    unsigned int
+    AllParameters::n_bodies() const
+    {
+      unsigned int n = 0;
+      while (n < bodies.size() && bodies[n].type != BodyType::none)
+        ++n;
+      return n;
+    }
+
+
+
+    std::vector<unsigned int>
+    AllParameters::deformable_bodies() const
+    {
+      std::vector<unsigned int> result;
+      for (unsigned int b = 0; b < n_bodies(); ++b)
+        if (bodies[b].type == BodyType::deformable)
+          result.push_back(b);
+      return result;
+    }
+
+
+
+    std::vector<unsigned int>
+    AllParameters::obstacle_bodies() const
+    {
+      std::vector<unsigned int> result;
+      for (unsigned int b = 0; b < n_bodies(); ++b)
+        if (is_obstacle(bodies[b].type))
+          result.push_back(b);
+      return result;
     }
   } // namespace scene
 } // namespace igabde

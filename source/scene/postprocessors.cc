@@ -387,8 +387,9 @@ namespace igabde
                   const unsigned int      n_bodies,
                   base::BackgroundWriter &writer)
           : write_fields(parameters.output.write_vtu)
-          , contact_faces(parameters.contact.slave_faces.begin(),
-                          parameters.contact.slave_faces.end())
+          , contact_faces(
+              parameters.contact.interactions[0].slave_faces.begin(),
+              parameters.contact.interactions[0].slave_faces.end())
           , pvd_records(n_bodies)
           , writer(writer)
           , this_rank(Utilities::MPI::this_mpi_process(MPI_COMM_WORLD))

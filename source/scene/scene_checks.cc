@@ -1,3 +1,4 @@
+#include <igabde/base/disjoint_sets.h>
 #include <igabde/base/utilities.h>
 
 #include <igabde/contact/contact_solver.h>
@@ -7,6 +8,7 @@
 
 #include <deal.II/base/mpi.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -26,13 +28,13 @@ namespace igabde
       void
       check_finite_strain(const AllParameters &parameters, const std::string &f)
       {
-        for (const auto *body : {&parameters.body1, &parameters.body2})
+        for (unsigned int b = 0; b < parameters.bodies.size(); ++b)
           {
+            const BodyParameters *body = &parameters.bodies[b];
             if (body->type != BodyType::deformable ||
                 body->kinematics != elasticity::Kinematics::finite)
               continue;
-            const std::string where =
-              f + (body == &parameters.body1 ? "Body 1" : "Body 2") + "/";
+            const std::string where = f + "Body " + std::to_string(b + 1) + "/";
             AssertThrow(
               parameters.dimension == 3 ||
                 parameters.plane_model ==
@@ -120,8 +122,8 @@ namespace igabde
     check_scene(AllParameters &parameters, const std::string &f)
     {
       const unsigned int dimension = parameters.dimension;
-      auto              &body1     = parameters.body1;
-      auto              &body2     = parameters.body2;
+      auto              &bodies    = parameters.bodies;
+      auto              &body1     = bodies[0];
       auto              &contact   = parameters.contact;
       auto              &exact     = parameters.exact;
       auto              &checks    = parameters.checks;
@@ -129,12 +131,51 @@ namespace igabde
       const auto        &output    = parameters.output;
       check_finite_strain(parameters, f);
       AssertThrow(body1.type == BodyType::deformable,
-                  base::ExcInput(f + "Body 1/Type must be 'deformable'; only "
-                                     "Body 2 may be a rigid obstacle (rigid "
-                                     "plane, cylinder, sphere or "
-                                     "surface)."));
+                  base::ExcInput(f +
+                                 "Body 1/Type must be 'deformable'; only "
+                                 "Body 2 ... Body " +
+                                 std::to_string(max_bodies) +
+                                 " may be rigid obstacles (rigid "
+                                 "plane, cylinder, sphere or "
+                                 "surface)."));
+      const unsigned int n_bodies  = parameters.n_bodies();
+      const auto         body_name = [](const unsigned int b) {
+        return "Body " + std::to_string(b + 1);
+      };
+      for (unsigned int b = n_bodies; b < bodies.size(); ++b)
+        AssertThrow(bodies[b].type == BodyType::none,
+                    base::ExcInput(f + body_name(b) + "/Type is '" +
+                                   to_string(bodies[b].type) + "' but " +
+                                   body_name(n_bodies) +
+                                   "/Type is 'none'; number the bodies from "
+                                   "Body 1 without gaps."));
+      auto &interactions = contact.interactions;
+      // The interactions' friction coefficients as written.
+      for (InteractionParameters &c : interactions)
+        if (!c.friction_text.empty())
+          {
+            const std::vector<double> mu =
+              base::parse_doubles(c.friction_text,
+                                  f + c.name + "/Friction coefficient");
+            AssertThrow(mu.size() == 1,
+                        base::ExcInput(f + c.name + "/Friction coefficient = " +
+                                       c.friction_text +
+                                       " is not one number; give mu >= 0 "
+                                       "or leave it empty for Contact's."));
+            c.friction_coefficient = mu[0];
+          }
+      for (const InteractionParameters &c : interactions)
+        AssertThrow(c.friction_coefficient >= 0.,
+                    base::ExcInput(
+                      f + c.name + "/Friction coefficient = " +
+                      base::number_text(c.friction_coefficient) +
+                      " is negative; use mu >= 0 (0 for frictionless)."));
+      const bool friction =
+        std::any_of(interactions.begin(), interactions.end(), [](auto &c) {
+          return c.friction_coefficient > 0.;
+        });
       AssertThrow(!output.fclib_export ||
-                    (contact.enabled && contact.friction_coefficient > 0. &&
+                    (contact.enabled && friction &&
                      contact.algorithm == contact::Algorithm::bde &&
                      contact.path != contact::Path::full),
                   base::ExcInput(
@@ -144,17 +185,59 @@ namespace igabde
                         "Path = condensed or auto): FCLIB's local problems "
                         "have two or three components per contact and a "
                         "flexibility W; set it to false for this scene."));
-      AssertThrow(contact.friction_coefficient >= 0.,
-                  base::ExcInput(
-                    f + "Contact/Friction coefficient = " +
-                    base::number_text(contact.friction_coefficient) +
-                    " is negative; use mu >= 0 (0 for frictionless)."));
-      AssertThrow(!contact.enabled || body2.type != BodyType::none,
+      AssertThrow(!contact.enabled || n_bodies >= 2,
                   base::ExcInput(f + "Contact/Enabled is true but Body 2/Type "
                                      "is 'none'; set Body 2/Type to "
                                      "'deformable' or a rigid obstacle "
                                      "('rigid plane', 'rigid cylinder', "
                                      "'rigid sphere', 'rigid surface')."));
+      if (contact.enabled)
+        for (const InteractionParameters &c : interactions)
+          {
+            const std::string bodies_known =
+              "; the scene has Body 1 ... " + body_name(n_bodies - 1) +
+              " (those before the first Type = none)";
+            AssertThrow(c.slave_body >= 1 && c.slave_body <= n_bodies,
+                        base::ExcInput(f + c.name + "/Slave body = " +
+                                       std::to_string(c.slave_body) +
+                                       " names no body" + bodies_known + "."));
+            AssertThrow(c.master_body >= 1 && c.master_body <= n_bodies,
+                        base::ExcInput(f + c.name + "/Master body = " +
+                                       std::to_string(c.master_body) +
+                                       " names no body" + bodies_known + "."));
+            AssertThrow(bodies[c.slave_body - 1].type == BodyType::deformable,
+                        base::ExcInput(
+                          f + c.name +
+                          "/Slave body = " + std::to_string(c.slave_body) +
+                          " is a " + to_string(bodies[c.slave_body - 1].type) +
+                          ", which has no unknowns; make the deformable "
+                          "body the slave and the obstacle the master."));
+            AssertThrow(c.master_body != c.slave_body,
+                        base::ExcInput(
+                          f + c.name + "/Master body = Slave body = " +
+                          std::to_string(c.slave_body) +
+                          ": a body in contact with itself is not modelled; "
+                          "name another body as the master."));
+            AssertThrow(!c.slave_face_text.empty() &&
+                          !c.master_face_text.empty(),
+                        base::ExcInput(f + c.name +
+                                       "/Slave face and Master face must "
+                                       "both name patch faces (f or p.f)."));
+          }
+      if (contact.enabled)
+        for (unsigned int k = 0; k < interactions.size(); ++k)
+          for (unsigned int l = 0; l < k; ++l)
+            AssertThrow(
+              !(interactions[k].slave_body == interactions[l].slave_body &&
+                interactions[k].master_body == interactions[l].master_body &&
+                interactions[k].slave_face_text ==
+                  interactions[l].slave_face_text &&
+                interactions[k].master_face_text ==
+                  interactions[l].master_face_text),
+              base::ExcInput(f + interactions[k].name + " repeats " +
+                             interactions[l].name +
+                             " (the same faces of the same bodies); remove "
+                             "one of them."));
       AssertThrow(contact.algorithm == contact::Algorithm::bde ||
                     contact.path != contact::Path::condensed,
                   base::ExcInput(f + "Contact/Algorithm = " +
@@ -163,11 +246,12 @@ namespace igabde
                                  "to 'full' or 'auto' (or use Algorithm = "
                                  "bde for the condensed path)."));
       // A held rotation is a constraint the coupled system has no rows for.
-      for (const auto *body : {&body1, &body2})
-        if (contact.enabled && body->type == BodyType::deformable &&
+      for (unsigned int b = 0; b < n_bodies; ++b)
+        if (const BodyParameters *body = &bodies[b];
+            contact.enabled && body->type == BodyType::deformable &&
             body->hold_rotation_face >= 0)
           {
-            const std::string name = (body == &body1 ? "Body 1" : "Body 2");
+            const std::string name = body_name(b);
             AssertThrow(contact.algorithm == contact::Algorithm::bde &&
                           contact.path != contact::Path::full,
                         base::ExcInput(
@@ -200,68 +284,86 @@ namespace igabde
                                      "Tangential penalty factor must be "
                                      "positive (FKN = 0.01 to 10 is the "
                                      "usual range)."));
-      for (const auto *body : {&body1, &body2})
-        for (const auto &traction : body->tractions)
+      for (unsigned int b = 0; b < n_bodies; ++b)
+        for (const auto &traction : bodies[b].tractions)
           AssertThrow(traction.kind != TractionParameters::Kind::exact ||
                         exact.type != ExactSolutionType::none,
-                      base::ExcInput(f +
-                                     (body == &body1 ? "Body 1" : "Body 2") +
+                      base::ExcInput(f + body_name(b) +
                                      "/Tractions: 'exact' needs Exact "
                                      "solution/Type other than none."));
-      AssertThrow(
-        (contact.pairing != contact::Pairing::weighted_gap &&
-         contact.pairing != contact::Pairing::weighted_gap_standard) ||
-          contact.pair_placement == discretization::PairPlacement::greville,
-        base::ExcInput(
-          f + "Contact/Pair placement = " + to_string(contact.pair_placement) +
-          " places point pairs, but Contact/Pairing = " +
-          contact::to_string(contact.pairing) +
-          " has one pair per basis function of the slave face; "
-          "remove Contact/Pair placement or use Pairing = "
-          "node-to-surface."));
+      for (const InteractionParameters &c : interactions)
+        AssertThrow(
+          (c.pairing != contact::Pairing::weighted_gap &&
+           c.pairing != contact::Pairing::weighted_gap_standard) ||
+            contact.pair_placement == discretization::PairPlacement::greville,
+          base::ExcInput(f + "Contact/Pair placement = " +
+                         to_string(contact.pair_placement) +
+                         " places point pairs, but " + c.name +
+                         "/Pairing = " + contact::to_string(c.pairing) +
+                         " has one pair per basis function of the slave face; "
+                         "remove Contact/Pair placement or use Pairing = "
+                         "node-to-surface."));
+      const auto has_faces = [](const BodyParameters &body) {
+        return body.type == BodyType::deformable ||
+               body.type == BodyType::rigid_surface;
+      };
       if (contact.enabled)
-        {
-          // The contact faces must exist on the bodies that carry them.
-          const auto read_contact_face = [&](const BodyParameters &body,
-                                             const std::string    &body_name,
-                                             const std::string    &parameter,
-                                             const std::string    &text) {
-            return read_faces(text,
-                              patch_faces_of(body, dimension),
-                              f + "Contact/" + parameter + " (" + body_name +
-                                ")",
-                              text);
-          };
-          contact.slave_faces  = read_contact_face(body1,
-                                                  "Body 1",
-                                                  "Slave face",
-                                                  contact.slave_face_text);
-          const auto has_faces = [](const BodyParameters &body) {
-            return body.type == BodyType::deformable ||
-                   body.type == BodyType::rigid_surface;
-          };
-          if (has_faces(body2))
-            contact.master_faces = read_contact_face(body2,
-                                                     "Body 2",
-                                                     "Master face",
-                                                     contact.master_face_text);
-          // A face of a patch the geometry file does not have.
-          for (const auto *body : {&body1, &body2})
-            if (has_faces(*body))
-              check_face_patches(*body,
-                                 body == &body1 ? contact.slave_faces :
-                                                  contact.master_faces,
+        for (InteractionParameters &c : interactions)
+          {
+            // The contact faces must exist on the bodies that carry them.
+            const auto read_contact_face = [&](const unsigned int b,
+                                               const std::string &parameter,
+                                               const std::string &text) {
+              return read_faces(text,
+                                patch_faces_of(bodies[b], dimension),
+                                f + c.name + "/" + parameter + " (" +
+                                  body_name(b) + ")",
+                                text);
+            };
+            const unsigned int s = c.slave_body - 1, m = c.master_body - 1;
+            c.slave_faces =
+              read_contact_face(s, "Slave face", c.slave_face_text);
+            if (has_faces(bodies[m]))
+              c.master_faces =
+                read_contact_face(m, "Master face", c.master_face_text);
+            // A face of a patch the geometry file does not have.
+            check_face_patches(bodies[s],
+                               c.slave_faces,
+                               dimension,
+                               f + body_name(s));
+            if (has_faces(bodies[m]))
+              check_face_patches(bodies[m],
+                                 c.master_faces,
                                  dimension,
-                                 f + (body == &body1 ? "Body 1" : "Body 2"));
-        }
-      // A body with no Supports at all is held by nothing but contact.
-      for (const auto *body : {&body1, &body2})
+                                 f + body_name(m));
+          }
+      // A body is held against rigid motion by its supports, or through
+      // the contact interactions by a body that is or by an obstacle: the
+      // deformable bodies the interactions join, each group with one held
+      // body at least.
+      const auto supported = [](const BodyParameters &body) {
+        return !body.supports.empty() || !body.point_supports.empty() ||
+               !body.face_motions.empty();
+      };
+      base::DisjointSets groups(n_bodies);
+      std::vector<bool>  in_interaction(n_bodies, false);
+      if (contact.enabled)
+        for (const InteractionParameters &c : interactions)
+          {
+            in_interaction[c.slave_body - 1]  = true;
+            in_interaction[c.master_body - 1] = true;
+            groups.join(c.slave_body - 1, c.master_body - 1);
+          }
+      std::vector<bool> held(n_bodies, false);
+      for (unsigned int b = 0; b < n_bodies; ++b)
+        if (bodies[b].type != BodyType::deformable || supported(bodies[b]))
+          held[groups.find(b)] = true;
+      for (unsigned int b = 0; b < n_bodies; ++b)
         {
-          const std::string name = (body == &body1 ? "Body 1" : "Body 2");
-          AssertThrow(body->type != BodyType::deformable ||
-                        !body->supports.empty() ||
-                        !body->point_supports.empty() ||
-                        !body->face_motions.empty() || contact.enabled,
+          if (bodies[b].type != BodyType::deformable || supported(bodies[b]))
+            continue;
+          const std::string name = body_name(b);
+          AssertThrow(contact.enabled,
                       base::ExcInput(
                         f + name +
                         "/Supports is empty and the scene has no contact "
@@ -269,17 +371,34 @@ namespace igabde
                         name +
                         " against rigid motion; add Supports, e.g. "
                         "'0: x; 2: y'."));
+          AssertThrow(in_interaction[b],
+                      base::ExcInput(
+                        f + name +
+                        "/Supports is empty and no contact interaction "
+                        "names " +
+                        name +
+                        ": nothing holds it against rigid motion; add "
+                        "Supports or an interaction (Contact/Interaction k "
+                        "with Slave body or Master body = " +
+                        std::to_string(b + 1) + ")."));
+          if (n_bodies == 2 && bodies[1].type == BodyType::deformable)
+            AssertThrow(held[groups.find(b)],
+                        base::ExcInput(
+                          f + "Body 1/Supports and Body 2/Supports are both "
+                              "empty: contact only acts between the two "
+                              "bodies, so nothing holds them against rigid "
+                              "motion; add Supports to Body 2, e.g. '2: x "
+                              "y'."));
+          AssertThrow(held[groups.find(b)],
+                      base::ExcInput(
+                        f + name +
+                        "/Supports is empty and so are those of every body "
+                        "its contact interactions join it to, none of "
+                        "which touches a rigid obstacle: contact only acts "
+                        "between these bodies, so nothing holds them "
+                        "against rigid motion; add Supports to one of "
+                        "them."));
         }
-      AssertThrow(!contact.enabled || body2.type != BodyType::deformable ||
-                    !body1.supports.empty() || !body2.supports.empty() ||
-                    !body1.point_supports.empty() ||
-                    !body2.point_supports.empty() ||
-                    !body1.face_motions.empty() || !body2.face_motions.empty(),
-                  base::ExcInput(
-                    f + "Body 1/Supports and Body 2/Supports are both empty: "
-                        "contact only acts between the two bodies, so "
-                        "nothing holds them against rigid motion; add "
-                        "Supports to Body 2, e.g. '2: x y'."));
       if (checks.rounded_punch_load > 0.)
         {
           AssertThrow(dimension == 2,
@@ -409,11 +528,11 @@ namespace igabde
                                    std::to_string(n_steps) +
                                    " steps; give one factor per step."));
       // Every history a load entry names must exist.
-      for (const auto *body : {&body1, &body2})
+      for (unsigned int b = 0; b < n_bodies; ++b)
         {
-          const std::string where =
-            f + (body == &body1 ? "Body 1" : "Body 2") + ": ";
-          const auto known = [&](const std::string &name) {
+          const BodyParameters *body  = &bodies[b];
+          const std::string     where = f + body_name(b) + ": ";
+          const auto            known = [&](const std::string &name) {
             bool found =
               name.empty() || name == "load" || name == "displacement";
             std::string names = "load, displacement";
@@ -425,7 +544,7 @@ namespace igabde
             AssertThrow(found,
                         base::ExcInput(where + "load history '" + name +
                                        "' is not declared in Load "
-                                       "path/Histories; declared: " +
+                                                  "path/Histories; declared: " +
                                        names + "."));
           };
           for (const auto &s : body->supports)
@@ -447,8 +566,8 @@ namespace igabde
       // at its step, 0 elsewhere, the expression evaluated at that step's
       // factor of the history it names.
       const auto factors = load_path.history_factors();
-      for (auto *body : {&body1, &body2})
-        for (auto &traction : body->tractions)
+      for (BodyParameters &body : bodies)
+        for (auto &traction : body.tractions)
           if (traction.kind == TractionParameters::Kind::function &&
               traction.uses_t)
             {

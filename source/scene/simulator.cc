@@ -142,10 +142,10 @@ namespace igabde
       nlohmann::json per_body = nlohmann::json::array();
       for (unsigned int b = 0; b < bodies.size(); ++b)
         {
-          per_body.push_back(
-            body_record<dim>(b == 0 ? parameters.body1 : parameters.body2,
-                             parameters.discretization.degree,
-                             *bodies[b]));
+          per_body.push_back(body_record<dim>(
+            parameters.bodies[parameters.deformable_bodies()[b]],
+            parameters.discretization.degree,
+            *bodies[b]));
           if (parameters.output.export_geometry && root)
             export_geometry(*bodies[b], output_directory);
         }
@@ -231,7 +231,7 @@ namespace igabde
                               memory_path_reason,
                               contact_log()),
         bodies,
-        create_obstacle<dim>(parameters, scene_file),
+        create_obstacles<dim>(parameters, scene_file),
         contact_log(),
         coupled::coupled_factory<dim>(parameters.contact.full_system_solver,
                                       parameters.contact.krylov_max_iterations,

@@ -188,28 +188,50 @@ namespace igabde
                const unsigned int   refinements)
       {
         const auto &c = parameters.contact;
-        // A body's contact faces (none without contact).
-        const auto contact_faces = [&](const std::vector<unsigned int> &faces) {
-          return c.enabled ? faces : std::vector<unsigned int>();
+        // A body's contact faces in every interaction (none without
+        // contact), and whether it is a slave in one.
+        const auto contact_faces = [&](const unsigned int b) {
+          std::vector<unsigned int> faces;
+          if (c.enabled)
+            for (const InteractionParameters &i : c.interactions)
+              {
+                if (i.slave_body == b + 1)
+                  faces.insert(faces.end(),
+                               i.slave_faces.begin(),
+                               i.slave_faces.end());
+                if (i.master_body == b + 1)
+                  faces.insert(faces.end(),
+                               i.master_faces.begin(),
+                               i.master_faces.end());
+              }
+          return faces;
         };
-        SizeEstimate e;
+        SizeEstimate      e;
+        std::vector<bool> slave;
         e.bytes_process = bytes_per_process;
-        e.bodies.push_back(estimate_body<dim>(parameters.body1,
-                                              "Body 1",
-                                              parameters.discretization,
-                                              refinements,
-                                              contact_faces(c.slave_faces),
-                                              scene_file));
-        if (parameters.body2.type == BodyType::deformable)
-          e.bodies.push_back(estimate_body<dim>(parameters.body2,
-                                                "Body 2",
-                                                parameters.discretization,
-                                                refinements,
-                                                contact_faces(c.master_faces),
-                                                scene_file));
-        const bool direct  = (parameters.discretization.linear_solver !=
+        for (const unsigned int b : parameters.deformable_bodies())
+          {
+            e.bodies.push_back(
+              estimate_body<dim>(parameters.bodies[b],
+                                 "Body " + std::to_string(b + 1),
+                                 parameters.discretization,
+                                 refinements,
+                                 contact_faces(b),
+                                 scene_file));
+            slave.push_back(std::any_of(c.interactions.begin(),
+                                        c.interactions.end(),
+                                        [&](const auto &i) {
+                                          return i.slave_body == b + 1;
+                                        }));
+          }
+        const bool friction = std::any_of(c.interactions.begin(),
+                                          c.interactions.end(),
+                                          [](const auto &i) {
+                                            return i.friction_coefficient > 0.;
+                                          });
+        const bool direct   = (parameters.discretization.linear_solver !=
                              discretization::LinearSolver::cg_amg);
-        double     vectors = 0.;
+        double     vectors  = 0.;
         for (const auto &b : e.bodies)
           {
             e.bytes_matrix += bytes_per_matrix_entry * b.matrix_entries;
@@ -223,12 +245,13 @@ namespace igabde
         e.bytes_matrix += vectors;
         if (c.enabled)
           {
-            // One pair per node of Body 1's contact face.
-            const double pairs =
-              e.bodies[0].face_unknowns / static_cast<double>(dim);
-            e.contact_unknowns =
-              pairs * (c.friction_coefficient > 0. ? dim : 1.);
-            const double n_c = e.contact_unknowns;
+            // One pair per node of a slave's contact faces.
+            double pairs = 0.;
+            for (unsigned int b = 0; b < e.bodies.size(); ++b)
+              if (slave[b])
+                pairs += e.bodies[b].face_unknowns / static_cast<double>(dim);
+            e.contact_unknowns = pairs * (friction ? dim : 1.);
+            const double n_c   = e.contact_unknowns;
             // Schur complement and its product with the point operators per
             // body; flexibility, Newton matrix and its factor.
             for (const auto &b : e.bodies)

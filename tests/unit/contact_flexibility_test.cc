@@ -71,14 +71,14 @@ namespace
       }
 
     contact::ContactSettings cs;
-    cs.friction_coefficient = mu;
-    cs.slave_faces          = {2};
-    cs.master_faces         = {3};
-    cs.schur_condensation   = schur;
-    cs.progress             = false;
+    cs.interactions[0].friction_coefficient = mu;
+    cs.interactions[0].slave_faces          = {2};
+    cs.interactions[0].master_faces         = {3};
+    cs.schur_condensation                   = schur;
+    cs.progress                             = false;
     std::ostringstream log;
     TimerOutput        timer(log, TimerOutput::never, TimerOutput::wall_times);
-    contact::ContactStage<2> stage(cs, bodies, nullptr, log);
+    contact::ContactStage<2> stage(cs, bodies, {}, log);
     stage.setup(timer);
     for (unsigned int b = 0; b < bodies.size(); ++b)
       EXPECT_EQ(bodies[b]->has_schur_complement(), schur);

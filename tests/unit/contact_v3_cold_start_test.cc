@@ -82,13 +82,13 @@ TEST(ContactV3, BNewtonFromZeroForcesGivesTheUniformPressure)
         ASSERT_EQ(bodies[0]->free_rigid_modes().size(), 1u);
 
         contact::ContactSettings cs;
-        cs.friction_coefficient = mu;
-        cs.slave_faces          = {2};
-        cs.master_faces         = {3};
-        cs.progress             = false;
+        cs.interactions[0].friction_coefficient = mu;
+        cs.interactions[0].slave_faces          = {2};
+        cs.interactions[0].master_faces         = {3};
+        cs.progress                             = false;
         std::ostringstream log;
         TimerOutput timer(log, TimerOutput::never, TimerOutput::wall_times);
-        contact::ContactStage<2> stage(cs, bodies, nullptr, log);
+        contact::ContactStage<2> stage(cs, bodies, {}, log);
         stage.setup(timer);
 
         // One load step through the stage sets q and b of the condensed

@@ -114,14 +114,14 @@ namespace
       body->setup_system();
 
     contact::ContactSettings cs;
-    cs.friction_coefficient = mu;
-    cs.slave_faces          = {2 * (dim - 1)};
-    cs.master_faces         = {2 * (dim - 1) + 1};
-    cs.pairing              = pairing;
-    cs.progress             = false;
+    cs.interactions[0].friction_coefficient = mu;
+    cs.interactions[0].slave_faces          = {2 * (dim - 1)};
+    cs.interactions[0].master_faces         = {2 * (dim - 1) + 1};
+    cs.interactions[0].pairing              = pairing;
+    cs.progress                             = false;
     std::ostringstream log;
     TimerOutput        timer(log, TimerOutput::never, TimerOutput::wall_times);
-    contact::ContactStage<dim> stage(cs, bodies, nullptr, log);
+    contact::ContactStage<dim> stage(cs, bodies, {}, log);
     stage.setup(timer);
     std::vector<Vector<double>> u;
     for (const auto &body : bodies)

@@ -65,12 +65,13 @@ namespace coupled_finite_strain
     pair.frame                          = unit_symmetric_tensor<2>();
     pair.area                           = 0.3;
     pair.op1                            = body->point_operator(pair.x1);
+    pair.master_body                    = dealii::numbers::invalid_unsigned_int;
+    pair.obstacle                       = 0;
     std::vector<const Body<2> *> bodies = {body.get()};
     coupled::CoupledSystem<2>    system(bodies,
                                      {pair},
                                      2,
                                      Eigen::MatrixXd(2, 0),
-                                     true,
                                      coupled::Solver::mumps);
     ASSERT_TRUE(system.finite_strain());
 

@@ -105,7 +105,7 @@ namespace igabde
      * @brief The contact problem of the pairs @p keep of @p pairs (the
      * others carry no information), for either path: the kept pairs, their
      * rows of @p modes' columns as G, the modes' bookkeeping, zero q and b,
-     * the friction coefficient @p friction; W is the condensed path's to
+     * each pair's friction coefficient; W is the condensed path's to
      * set. Refused (bad input) when @p keep is empty: every pair is held by
      * supports on both sides.
      */
@@ -115,26 +115,27 @@ namespace igabde
                        const std::vector<unsigned int>     &keep,
                        const RigidModeColumns              &modes,
                        const unsigned int                   n_components,
-                       const double                         friction,
                        const std::string                   &context);
 
     /**
      * @brief Condenses the bodies onto @p pairs: unit force pairs along the
-     * @p n_components local directions that carry unknowns (+T_j[s] on Body
-     * 1 at x1_j, -T_j[s] on Body 2 at x2_j) give F^L = T^T F^G T directly;
-     * each body gives its share through Body::flexibility() (its Schur
-     * complement on the contact face, or one solve per column). Free rigid
-     * modes become the columns of G with the contact equilibrium
-     * G^T p = b. @p bodies holds Body 1 and, when the pairs face a
-     * deformable body, Body 2. @p log gets one line per condensed body
-     * when @p progress is set, and the rigid-mode and pair counts.
+     * @p n_components local directions that carry unknowns (+T_j[s] on the
+     * slave body at x1_j, -T_j[s] on the master body at x2_j) give
+     * F^L = T^T F^G T directly; each body gives its share on the pairs
+     * that touch it through Body::flexibility() (its Schur complement on
+     * its contact faces, or one solve per column), with the sign of its
+     * side, so that a body that is master of one interaction and slave of
+     * another couples the two. Free rigid modes become the columns of G
+     * with the contact equilibrium G^T p = b. @p bodies holds the
+     * deformable bodies the pairs' indices name. @p log gets one line per
+     * condensed body when @p progress is set, and the rigid-mode and pair
+     * counts.
      */
     template <int dim>
     CondensedContact<dim>
     condense(const std::vector<ContactPair<dim>>                  &pairs,
              const std::vector<const discretization::Body<dim> *> &bodies,
              const unsigned int                                    n_components,
-             const double                                          friction,
              const std::string                                    &context,
              std::ostream                                         &log,
              const bool                                            progress);

@@ -25,17 +25,17 @@ namespace igabde
 
     /**
      * @brief Builds the coupled system of the full path from the bodies, the
-     * pairs, the components per pair, the rigid-mode columns G and whether
-     * Body 1 faces an obstacle. The concrete system lives outside the
-     * contact layer (coupled/coupled_system.h, coupled::coupled_factory()).
+     * pairs (whose body indices say which bodies each one couples), the
+     * components per pair and the rigid-mode columns G. The concrete system
+     * lives outside the contact layer (coupled/coupled_system.h,
+     * coupled::coupled_factory()).
      */
     template <int dim>
     using CoupledFactory = std::function<std::unique_ptr<CoupledOperator>(
       const std::vector<const discretization::Body<dim> *> &,
       const std::vector<ContactPair<dim>> &,
       const unsigned int,
-      const Eigen::MatrixXd &,
-      const bool)>;
+      const Eigen::MatrixXd &)>;
 
     /**
      * @brief A contact path between the bodies and the contact solver:
@@ -126,7 +126,6 @@ namespace igabde
       CondensedPath(
         const std::vector<const discretization::Body<dim> *> &bodies,
         const unsigned int                                    n_components,
-        const double                                          friction,
         const bool                                            schur,
         const std::string                                    &context,
         std::ostream                                         &log,
@@ -156,7 +155,6 @@ namespace igabde
     private:
       const std::vector<const discretization::Body<dim> *> bodies;
       const unsigned int                                   m;
-      const double                                         friction;
       const bool                                           schur;
       const std::string                                    context;
       std::ostream                                        &log;
@@ -173,8 +171,6 @@ namespace igabde
     public:
       CoupledPath(const std::vector<const discretization::Body<dim> *> &bodies,
                   const unsigned int         n_components,
-                  const double               friction,
-                  const bool                 obstacle,
                   const CoupledFactory<dim> &factory,
                   const std::string         &context,
                   std::ostream              &log);
@@ -211,8 +207,6 @@ namespace igabde
     private:
       const std::vector<const discretization::Body<dim> *> bodies;
       const unsigned int                                   m;
-      const double                                         friction;
-      const bool                                           obstacle;
       const CoupledFactory<dim>                            factory;
       const std::string                                    context;
       std::ostream                                        &log;

@@ -32,16 +32,42 @@ namespace igabde
     using namespace dealii;
 
     /**
+     * @brief One contact interaction: the patch faces of a slave body
+     * against the faces of a master body or an obstacle, with its pairing
+     * and its friction coefficient.
+     */
+    struct ContactInteraction
+    {
+      /// The slave body: its index in the stage's deformable bodies.
+      unsigned int slave_body = 0;
+      /// The master: a deformable body (its index), or, when master_body
+      /// is numbers::invalid_unsigned_int, the obstacle of that index.
+      unsigned int master_body = 1;
+      unsigned int obstacle    = numbers::invalid_unsigned_int;
+      /// Patch faces of the slave and of the master (a rigid surface's
+      /// faces were chosen when it was built).
+      std::vector<unsigned int> slave_faces = {2}, master_faces = {3};
+      /// Pairing strategy (create_pairing_strategy()).
+      Pairing pairing = Pairing::node_to_surface;
+      /// Coulomb friction coefficient; 0 in every interaction forms no
+      /// tangential unknowns.
+      double friction_coefficient = 0.;
+      /// For messages: where the scene writes it ("Contact",
+      /// "Contact/Interaction 2").
+      std::string name = "Contact";
+    };
+
+    /**
      * @brief What the contact layer needs from the scene.
      */
     struct ContactSettings
     {
-      /// Coulomb friction coefficient; 0 forms no tangential unknowns.
-      double friction_coefficient = 0.;
-      /// Patch faces of Body 1 (slave) and Body 2 (master).
-      std::vector<unsigned int> slave_faces = {2}, master_faces = {3};
-      /// Pairing strategy (create_pairing_strategy()).
-      Pairing pairing = Pairing::node_to_surface;
+      /// The interactions (at least one); their pairs are numbered in this
+      /// order.
+      std::vector<ContactInteraction> interactions = {ContactInteraction()};
+      /// For messages: the scene's name of each deformable body ("Body 3");
+      /// empty: "Body b+1".
+      std::vector<std::string> body_labels;
       /// The condensed path condenses through the bodies' Schur complements
       /// (Contact/Condensation = schur with the direct linear solver); else
       /// one solve per pair direction.
@@ -86,9 +112,10 @@ namespace igabde
       bool        conditions_passed = false;
       std::string first_violation;
       double      condition_check_max_violation = 0.;
-      /// Resultant of the contact forces on Body 1 (Body 2 or the obstacle
-      /// carries the opposite).
-      Tensor<1, dim> contact_force;
+      /// Resultant of the contact forces on the slave bodies (the masters
+      /// carry the opposite); one per interaction in interaction_forces.
+      Tensor<1, dim>              contact_force;
+      std::vector<Tensor<1, dim>> interaction_forces;
       /// Largest penetration max(0, -u_n) (the penalty methods' answer
       /// carries one; length).
       double max_penetration = 0.;
@@ -108,8 +135,10 @@ namespace igabde
     template <int dim>
     struct PairState
     {
-      /// Body 1's point.
+      /// The slave body's point.
       Point<dim> location;
+      /// The interaction of the pair (0: the first).
+      unsigned int interaction = 0;
       /// Body 1's outward unit normal at the point.
       Tensor<1, dim> normal;
       /// Tributary area (share of a uniform pressure).
@@ -141,13 +170,17 @@ namespace igabde
       unsigned int n_unknowns     = 0;
       bool         friction       = false;
       bool         rigid_obstacle = false;
-      /// The obstacle's kind ("rigid plane", ...; empty: none) and whether
-      /// a motion is prescribed for it.
-      std::string  obstacle_kind;
-      bool         obstacle_moves       = false;
-      bool         initial_gaps         = false;
-      unsigned int floating_rigid_modes = 0;
-      unsigned int pairs_left_out       = 0;
+      /// The obstacles' kinds ("rigid plane", ...; empty: none, joined by
+      /// ", " when there are several) and whether a motion is prescribed
+      /// for one.
+      std::string obstacle_kind;
+      bool        obstacle_moves = false;
+      /// Interactions and the pairs of each.
+      unsigned int              n_interactions = 1;
+      std::vector<unsigned int> interaction_pairs;
+      bool                      initial_gaps         = false;
+      unsigned int              floating_rigid_modes = 0;
+      unsigned int              pairs_left_out       = 0;
       /// The slave points the pairing considered and left out at set-up
       /// (PairingExclusions): turned away from the master, beyond its
       /// extent, not projected; whether they are quadrature points.
@@ -191,16 +224,17 @@ namespace igabde
     {
     public:
       /**
-       * @brief Keeps references; @p bodies holds Body 1 and, unless
-       * @p obstacle is given, Body 2. @p coupled_factory builds the coupled
-       * system of the full path (coupled::coupled_factory(); without one
-       * the full path is refused).
+       * @brief Keeps references; @p bodies holds the deformable bodies and
+       * @p obstacles the rigid ones that the settings' interactions name
+       * by index. @p coupled_factory builds the coupled system of the full
+       * path (coupled::coupled_factory(); without one the full path is
+       * refused).
        */
       ContactStage(
         const ContactSettings                                         &settings,
         const std::vector<std::unique_ptr<discretization::Body<dim>>> &bodies,
-        std::unique_ptr<Obstacle<dim>>                                 obstacle,
-        std::ostream                                                  &log,
+        std::vector<std::unique_ptr<Obstacle<dim>>> obstacles,
+        std::ostream                               &log,
         const CoupledFactory<dim> &coupled_factory = CoupledFactory<dim>());
 
       ~ContactStage();
@@ -424,15 +458,25 @@ namespace igabde
       unsigned int
       n_moving_contact_unknowns() const;
 
+      /// The obstacle pair @p i faces (nullptr: a deformable body).
+      const Obstacle<dim> *
+      obstacle_of(const ContactPair<dim> &pair) const;
+
+      /// The scene's name of deformable body @p b ("Body 1").
+      std::string
+      body_label(const unsigned int b) const;
+
       const ContactSettings                                          settings;
       const std::vector<std::unique_ptr<discretization::Body<dim>>> &bodies;
-      const std::unique_ptr<Obstacle<dim>>                           obstacle;
-      const CoupledFactory<dim>                   coupled_factory;
-      std::unique_ptr<ContactSurface<dim>>        master_face;
-      const std::unique_ptr<PairingStrategy<dim>> pairing;
-      std::unique_ptr<ContactSolver>              solver;
-      std::unique_ptr<ContactPath<dim>>           contact_path;
-      std::ostream                               &log;
+      const std::vector<std::unique_ptr<Obstacle<dim>>>              obstacles;
+      const CoupledFactory<dim> coupled_factory;
+      /// Per interaction: the master surface of a deformable master (else
+      /// nullptr) and the pairing strategy.
+      std::vector<std::unique_ptr<ContactSurface<dim>>>  master_faces;
+      std::vector<std::unique_ptr<PairingStrategy<dim>>> pairings;
+      std::unique_ptr<ContactSolver>                     solver;
+      std::unique_ptr<ContactPath<dim>>                  contact_path;
+      std::ostream                                      &log;
 
       unsigned int                  m = 1;
       std::vector<ContactPair<dim>> pair_list;

@@ -5,6 +5,7 @@
 
 #include <igabde/contact/contact_surface.h>
 
+#include <deal.II/base/numbers.h>
 #include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>
 #include <deal.II/base/types.h>
@@ -41,6 +42,29 @@ namespace igabde
       double         area = 0.;
       /// Operators of the two points (op2 empty on an obstacle).
       discretization::PointOperator<dim> op1, op2;
+      /// The indices of the slave body (op1) and of the master body (op2)
+      /// in the contact stage's list of deformable bodies; master_body is
+      /// numbers::invalid_unsigned_int against an obstacle, which
+      /// obstacle then names (its index in the stage's obstacles).
+      unsigned int slave_body = 0, master_body = 1;
+      unsigned int obstacle = numbers::invalid_unsigned_int;
+      /// The contact interaction the pair belongs to (0: the first), and
+      /// its Coulomb friction coefficient.
+      unsigned int interaction          = 0;
+      double       friction_coefficient = 0.;
+
+      /**
+       * @brief The operator by which the pair reads body @p b's unknowns,
+       * or nullptr when it does not touch @p b; @p sign is +1 on the slave
+       * body and -1 on the master (the pair's relative displacement is the
+       * slave point's less the master point's).
+       */
+      const discretization::PointOperator<dim> *
+      operator_on(const unsigned int b, double &sign) const
+      {
+        sign = (b == slave_body ? 1. : -1.);
+        return b == slave_body ? &op1 : b == master_body ? &op2 : nullptr;
+      }
     };
 
     /**

@@ -60,10 +60,10 @@ namespace igabde
     public:
       /**
        * @param bodies The deformable bodies (Body 1 first), set up.
-       * @param pairs The contact pairs (op2 unused on an obstacle).
+       * @param pairs The contact pairs; each couples the bodies its indices
+       * name (op2 unused against an obstacle).
        * @param n_components Components per pair (1 frictionless, else dim).
        * @param G The rigid-mode columns of the contact problem.
-       * @param obstacle Whether Body 1 faces a rigid obstacle.
        * @param solver The linear solver.
        * @param krylov_max_iterations GMRES iteration limit per solve
        * (gmres-amg).
@@ -76,7 +76,6 @@ namespace igabde
         const std::vector<contact::ContactPair<dim>>         &pairs,
         const unsigned int                                    n_components,
         const Eigen::MatrixXd                                &G,
-        const bool                                            obstacle,
         const Solver                                          solver,
         const unsigned int krylov_max_iterations = 1000,
         const MPI_Comm     communicator          = MPI_COMM_SELF);

@@ -43,9 +43,10 @@ namespace igabde
       const std::optional<discretization::ExactSolution<dim>> &exact);
 
     /**
-     * @brief The deformable bodies of the scene: Body 1, and Body 2 when it
-     * is deformable (IgaBody or LagrangeBody after Discretization/Type);
-     * nothing is assembled yet.
+     * @brief The deformable bodies of the scene in its order (IgaBody or
+     * LagrangeBody after Discretization/Type; the b-th is Body
+     * AllParameters::deformable_bodies()[b] + 1); nothing is assembled
+     * yet.
      */
     template <int dim>
     std::vector<std::unique_ptr<discretization::Body<dim>>>
@@ -55,13 +56,15 @@ namespace igabde
       const std::optional<discretization::ExactSolution<dim>> &exact);
 
     /**
-     * @brief The rigid obstacle Body 2 stands for (Body 2/Type = rigid
-     * plane), or null when Body 2 is deformable or absent.
+     * @brief The rigid obstacles of the scene in its order (the k-th is
+     * Body AllParameters::obstacle_bodies()[k] + 1), each with its
+     * prescribed motion; a rigid surface has the master faces of the
+     * interactions that name it.
      */
     template <int dim>
-    std::unique_ptr<contact::Obstacle<dim>>
-    create_obstacle(const AllParameters &parameters,
-                    const std::string   &scene_file);
+    std::vector<std::unique_ptr<contact::Obstacle<dim>>>
+    create_obstacles(const AllParameters &parameters,
+                     const std::string   &scene_file);
   } // namespace scene
 } // namespace igabde
 

@@ -33,17 +33,17 @@ namespace igabde
     {
       /// A meshed elastic body.
       deformable,
-      /// A flat obstacle with no mesh and no unknowns (Body 2 only).
+      /// A flat obstacle with no mesh and no unknowns (not Body 1).
       rigid_plane,
       /// A circle (2D) or circular cylinder (3D) with no mesh and no
-      /// unknowns (Body 2 only).
+      /// unknowns (not Body 1).
       rigid_cylinder,
-      /// A sphere (3D) with no mesh and no unknowns (Body 2 only).
+      /// A sphere (3D) with no mesh and no unknowns (not Body 1).
       rigid_sphere,
       /// Faces of an exact NURBS geometry (a built-in shape or a file),
-      /// rigid: no mesh and no unknowns (Body 2 only).
+      /// rigid: no mesh and no unknowns (not Body 1).
       rigid_surface,
-      /// No such body (Body 2 only).
+      /// No such body (not Body 1).
       none
     };
 
@@ -307,16 +307,46 @@ namespace igabde
       parse_parameters(ParameterHandler &prm);
     };
 
+    /// The most bodies (Body 1 ... Body 8) and contact interactions
+    /// (the first in Contact, Contact/Interaction 2 ... 8) a scene has.
+    inline constexpr unsigned int max_bodies = 8, max_interactions = 8;
+
     /**
-     * @brief Contact between Body 1 (slave, upper) and Body 2.
+     * @brief One contact interaction as the scene writes it: the first in
+     * the Contact subsection itself (Body 1 on Body 2 unless it says
+     * otherwise), the others in Contact/Interaction k.
+     */
+    struct InteractionParameters
+    {
+      /// Where the scene writes it ("Contact", "Contact/Interaction 2").
+      std::string name = "Contact";
+      /// The slave and master bodies (1-based, as the scene numbers them).
+      unsigned int slave_body = 1, master_body = 2;
+      /// The scene's Slave face and Master face as written.
+      std::string slave_face_text = "2", master_face_text = "3";
+      /// Patch faces of the slave and the master ('p.f' of a multi-patch
+      /// body: p * 2 dim + f; several joined by '+'), read from the texts
+      /// once the dimension and the bodies are known (check_scene()).
+      std::vector<unsigned int> slave_faces = {2}, master_faces = {3};
+      /// Coulomb friction coefficient mu (>= 0); 0 forms no tangential
+      /// unknowns. friction_text: as written in Contact/Interaction k
+      /// (empty: Contact's), read by check_scene().
+      double      friction_coefficient = 0.;
+      std::string friction_text;
+      /// Pairing strategy.
+      contact::Pairing pairing = contact::Pairing::node_to_surface;
+    };
+
+    /**
+     * @brief Contact: the solver settings and the interactions.
      */
     struct ContactParameters
     {
       /// Whether the scene has contact at all.
       bool enabled = false;
-      /// Coulomb friction coefficient mu (>= 0); 0 forms no tangential
-      /// unknowns.
-      double friction_coefficient = 0.;
+      /// The interactions (at least the first, Body 1 on Body 2).
+      std::vector<InteractionParameters> interactions = {
+        InteractionParameters()};
       /// Contact/Algorithm: bde, penalty or augmented-lagrange.
       contact::Algorithm algorithm = contact::Algorithm::bde;
       /// Contact/Path: condensed, full or auto.
@@ -332,20 +362,9 @@ namespace igabde
       /// GMRES iteration limit per Newton step (gmres-amg).
       unsigned int          krylov_max_iterations = 1000;
       contact::Condensation condensation = contact::Condensation::schur;
-      /// Patch faces of Body 1 that may touch ('p.f' of a multi-patch body:
-      /// p * 2 dim + f; several joined by '+'), read from slave_face_text
-      /// once the dimension and the bodies are known.
-      std::vector<unsigned int> slave_faces = {2};
-      /// The scene's Slave face and Master face as written.
-      std::string slave_face_text = "2", master_face_text = "3";
-      /// Patch faces of Body 2 that may touch.
-      std::vector<unsigned int> master_faces = {3};
       /// Where pairs sit on a NURBS surface.
       discretization::PairPlacement pair_placement =
         discretization::PairPlacement::greville;
-      /// Pairing strategy: "node-to-surface", "node-to-node",
-      /// "weighted-gap" or "weighted-gap-standard".
-      contact::Pairing pairing = contact::Pairing::node_to_surface;
       /// Natural-map residual tolerance relative to ||q||.
       double tolerance = 1e-10;
       /// B-Newton iteration limit per load step.
@@ -506,10 +525,25 @@ namespace igabde
       OutputParameters output;
       /// Discretisation.
       discretization::DiscretizationSettings discretization;
-      /// Body 1 (Omega^1, slave, upper).
-      BodyParameters body1;
-      /// Body 2 (Omega^2, master, lower).
-      BodyParameters body2;
+      /// Body 1 ... Body 8 (max_bodies; Type = none past the scene's
+      /// last): Body 1 (Omega^1) is the first interaction's slave, Body 2
+      /// (Omega^2) its master.
+      std::vector<BodyParameters> bodies =
+        std::vector<BodyParameters>(max_bodies);
+
+      /// The bodies the scene has (those before the first Type = none).
+      unsigned int
+      n_bodies() const;
+
+      /// The indices in bodies of the deformable bodies, in order (the
+      /// simulator's and the contact stage's body b is Body
+      /// deformable_bodies()[b] + 1).
+      std::vector<unsigned int>
+      deformable_bodies() const;
+
+      /// The indices in bodies of the rigid obstacles, in order.
+      std::vector<unsigned int>
+      obstacle_bodies() const;
       /// Exact solution.
       ExactSolutionParameters exact;
       /// Contact.
