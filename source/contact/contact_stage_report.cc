@@ -89,6 +89,7 @@ namespace igabde
           PairState<dim> s;
           s.location    = pair_list[i].x1;
           s.interaction = pair_list[i].interaction;
+          s.slave_body  = pair_list[i].slave_body;
           s.normal      = pair_list[i].normal1;
           s.area        = pair_list[i].area;
           for (unsigned int k = 0; k < m; ++k)

@@ -102,6 +102,13 @@ namespace igabde
                     continue;
                   for (unsigned int s = 0; s < d; ++s)
                     {
+                      // A frame component of round-off size (a tangent
+                      // along an axis, from a mean of normals) is zero:
+                      // else a direction whose unknowns the supports hold
+                      // keeps a row of rounding and the glued Newton
+                      // matrix of that row is singular.
+                      if (std::abs(pairs[i].frame[s][c]) <= 1e-12)
+                        continue;
                       const double v =
                         sign * op.weights[k] * pairs[i].frame[s][c];
                       if (v != 0.)

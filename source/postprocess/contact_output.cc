@@ -74,7 +74,14 @@ namespace igabde
       std::ofstream      csv = base::open_for_writing(filename);
       const unsigned int m =
         pairs.empty() ? 1 : pairs.front().force_local.size();
+      // The interaction (1-based) only when there are several.
+      const bool interactions =
+        std::any_of(pairs.begin(), pairs.end(), [](const auto &pair) {
+          return pair.interaction > 0;
+        });
       csv << "pair";
+      if (interactions)
+        csv << ",interaction";
       const char *xyz = "xyz";
       for (unsigned int d = 0; d < dim; ++d)
         csv << "," << xyz[d];
@@ -89,6 +96,8 @@ namespace igabde
         {
           const auto &pair = pairs[i];
           csv << i;
+          if (interactions)
+            csv << "," << pair.interaction + 1;
           for (unsigned int d = 0; d < dim; ++d)
             csv << "," << pair.location[d];
           csv << "," << pair.area << "," << pair.displacement_local[0];

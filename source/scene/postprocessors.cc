@@ -387,14 +387,15 @@ namespace igabde
                   const unsigned int      n_bodies,
                   base::BackgroundWriter &writer)
           : write_fields(parameters.output.write_vtu)
-          , contact_faces(
-              parameters.contact.interactions[0].slave_faces.begin(),
-              parameters.contact.interactions[0].slave_faces.end())
           , pvd_records(n_bodies)
           , writer(writer)
           , this_rank(Utilities::MPI::this_mpi_process(MPI_COMM_WORLD))
           , ranks(Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD))
-        {}
+        {
+          for (const InteractionParameters &c : parameters.contact.interactions)
+            slave_faces.emplace_back(c.slave_faces.begin(),
+                                     c.slave_faces.end());
+        }
 
         std::string
         timer_section() const override
@@ -413,10 +414,9 @@ namespace igabde
           const std::string &directory = context.output_directory;
           const unsigned int step      = context.step;
           const bool         write_vtu = write_fields;
-          const std::vector<types::boundary_id> &slave_faces = contact_faces;
-          const unsigned int                     rank        = this_rank;
-          const unsigned int                     n_ranks     = ranks;
-          series_directory                                   = directory;
+          const unsigned int rank      = this_rank;
+          const unsigned int n_ranks   = ranks;
+          series_directory             = directory;
           body_names.clear();
           for (const auto &body : bodies)
             body_names.push_back(body->name());
@@ -431,20 +431,41 @@ namespace igabde
           if (pairs != nullptr && rank == 0)
             {
               const std::string name = "contact-" + number.str();
-              // The recovered pressure reads Body 1's stress field, which the
-              // next step does not change (the displacement is a copy).
+              // The recovered pressure reads each slave body's stress field
+              // on the interaction's slave faces, which the next step does
+              // not change (the displacements are copies).
+              std::vector<const discretization::Body<dim> *> slaves;
+              for (const auto &body : bodies)
+                slaves.push_back(body.get());
               writer.add([directory,
                           name,
                           write_vtu,
-                          body = bodies[0].get(),
-                          u0   = u[0],
-                          slave_faces,
+                          slaves,
+                          u,
+                          faces = slave_faces,
                           pairs = *pairs]() {
-                const std::vector<double> recovered =
-                  postprocess::recovered_pressures<dim>(*body,
-                                                        slave_faces,
-                                                        u0,
-                                                        pairs);
+                std::vector<double> recovered(pairs.size());
+                for (unsigned int k = 0; k < faces.size(); ++k)
+                  {
+                    std::vector<contact::PairState<dim>> of_k;
+                    std::vector<unsigned int>            index;
+                    for (unsigned int i = 0; i < pairs.size(); ++i)
+                      if (pairs[i].interaction == k)
+                        {
+                          of_k.push_back(pairs[i]);
+                          index.push_back(i);
+                        }
+                    if (of_k.empty())
+                      continue;
+                    const unsigned int        b = of_k.front().slave_body;
+                    const std::vector<double> p =
+                      postprocess::recovered_pressures<dim>(*slaves[b],
+                                                            faces[k],
+                                                            u[b],
+                                                            of_k);
+                    for (unsigned int j = 0; j < index.size(); ++j)
+                      recovered[index[j]] = p[j];
+                  }
                 postprocess::write_pair_csv<dim>(pairs,
                                                  recovered,
                                                  directory + "/" + name +
@@ -561,8 +582,9 @@ namespace igabde
 
       private:
         /// Output/Write vtu; Body 1's contact faces (recovered pressures).
-        const bool                            write_fields;
-        const std::vector<types::boundary_id> contact_faces;
+        const bool write_fields;
+        /// Per interaction: its slave faces.
+        std::vector<std::vector<types::boundary_id>> slave_faces;
         /// Per body, then for the pairs: (step, file) of each VTU.
         std::vector<std::vector<std::pair<double, std::string>>> pvd_records;
         base::BackgroundWriter                                  &writer;

@@ -615,3 +615,91 @@ TEST(CliBadInput, RoundedPunchCheckWithoutCornerRadius)
                                "0 (m)",
                                "rigid-punch-on-block.prm");
 }
+
+
+
+// Scenes of more than two bodies (prm/three-block-stack.prm).
+TEST(CliBadInput, InteractionNamesABodyTheSceneDoesNotHave)
+{
+  expect_refused_at_parse_time("interaction-missing-body",
+                               "Contact/Interaction 2/Master body=4",
+                               "Contact/Interaction 2/Master body = 4 names no "
+                               "body",
+                               "three-block-stack.prm");
+}
+
+TEST(CliBadInput, InteractionPairsABodyWithItself)
+{
+  expect_refused_at_parse_time("interaction-with-itself",
+                               "Contact/Interaction 2/Master body=2",
+                               "Master body = Slave body = 2",
+                               "three-block-stack.prm");
+}
+
+TEST(CliBadInput, InteractionWithARigidSlave)
+{
+  expect_refused_at_parse_time("interaction-rigid-slave",
+                               "Body 3/Type=rigid plane",
+                               "Contact/Interaction 3/Slave body = 3",
+                               "three-block-stack.prm",
+                               "--set 'Contact/Interaction 3/Slave body=3' "
+                               "--set 'Contact/Interaction 3/Slave face=3' "
+                               "--set 'Contact/Interaction 3/Master body=1' "
+                               "--set 'Contact/Interaction 3/Master face=3'");
+}
+
+TEST(CliBadInput, InteractionFaceThatDoesNotExist)
+{
+  expect_refused_at_parse_time("interaction-missing-face",
+                               "Contact/Interaction 2/Master face=7",
+                               "Contact/Interaction 2/Master face",
+                               "three-block-stack.prm");
+}
+
+TEST(CliBadInput, InteractionRepeated)
+{
+  expect_refused_at_parse_time("interaction-repeated",
+                               "Contact/Interaction 2/Slave body=1",
+                               "Contact/Interaction 2 repeats Contact",
+                               "three-block-stack.prm",
+                               "--set 'Contact/Interaction 2/Master body=2' "
+                               "--set 'Contact/Interaction 2/Slave face=2' "
+                               "--set 'Contact/Interaction 2/Master face=3'");
+}
+
+TEST(CliBadInput, InteractionNegativeFrictionCoefficient)
+{
+  expect_refused_at_parse_time(
+    "interaction-negative-friction",
+    "Contact/Interaction 2/Friction coefficient=-0.1",
+    "Contact/Interaction 2/Friction coefficient",
+    "three-block-stack.prm");
+}
+
+TEST(CliBadInput, BodyInNoInteractionAndHeldByNothing)
+{
+  expect_refused_at_parse_time("body-in-no-interaction",
+                               "Body 3/Supports=",
+                               "no contact interaction names Body 3",
+                               "three-block-stack.prm",
+                               "--set 'Contact/Interaction 2/Slave body=0' "
+                               "--set 'Contact/Interaction 2/Master body=0'");
+}
+
+TEST(CliBadInput, BodiesJoinedByContactThatNothingHolds)
+{
+  expect_refused_at_parse_time("bodies-nothing-holds",
+                               "Body 1/Supports=",
+                               "none of which touches a rigid obstacle",
+                               "three-block-stack.prm",
+                               "--set 'Body 2/Supports=' "
+                               "--set 'Body 3/Supports='");
+}
+
+TEST(CliBadInput, GapInTheBodyNumbering)
+{
+  expect_refused_at_parse_time("bodies-gap",
+                               "Body 4/Type=rigid plane",
+                               "number the bodies from Body 1 without gaps",
+                               "v3-contact-patch-2d.prm");
+}

@@ -137,8 +137,9 @@ namespace igabde
     {
       /// The slave body's point.
       Point<dim> location;
-      /// The interaction of the pair (0: the first).
-      unsigned int interaction = 0;
+      /// The interaction of the pair (0: the first) and its slave body
+      /// (the index in the stage's deformable bodies).
+      unsigned int interaction = 0, slave_body = 0;
       /// Body 1's outward unit normal at the point.
       Tensor<1, dim> normal;
       /// Tributary area (share of a uniform pressure).

@@ -1,0 +1,137 @@
+// Scenes of more than two bodies (prm/three-block-stack.prm): three blocks
+// stacked on non-matching meshes, two contact interactions, the middle block
+// held vertically by the two contacts alone. The references are closed
+// forms, not earlier runs: the weighted gap transmits a uniform pressure
+// exactly, and the stack is in uniaxial stress sigma_yy = -p (plane strain),
+// so u_y = -(1 - nu^2) p / E (y + 1) and u_x = nu (1 + nu) p / E x at every
+// point. A wrong sign of the middle body's share in the condensed
+// flexibility, in the rigid-mode columns or in the coupled system's rows
+// (it is the master of one interaction and the slave of the other) moves
+// its probe and the lower interface's pressures.
+
+#include <gtest/gtest.h>
+
+#include "cli_helpers.h"
+#include <array>
+#include <cmath>
+#include <string>
+
+namespace
+{
+  constexpr double E = 1000., nu = 0.3, pressure = 1.;
+
+  /// The closed-form displacement of the stack at (x, y).
+  std::vector<double>
+  uniaxial_displacement(const double x, const double y)
+  {
+    return {nu * (1. + nu) * pressure / E * x,
+            -(1. - nu * nu) * pressure / E * (y + 1.)};
+  }
+
+  void
+  expect_exact_stack(const cli::SceneTable &run, const bool friction)
+  {
+    const auto &summary = run.summary;
+    ASSERT_EQ(summary["status"], "ok");
+    ASSERT_EQ(summary["contact_interactions"].size(), 2u);
+    EXPECT_EQ(summary["contact_interactions"][0]["slave_body"], 1);
+    EXPECT_EQ(summary["contact_interactions"][1]["slave_body"], 2);
+    EXPECT_EQ(summary["contact_interactions"][1]["master_body"], 3);
+    // Both interfaces carry pairs, and each pair the uniform pressure: the
+    // upper interface at y = 1, the lower at y = 0.
+    const auto        &table = run.table;
+    const unsigned int n     = table.rows.size();
+    ASSERT_EQ(n, summary["n_contact_pairs"].get<unsigned int>());
+    double on_interface[2] = {0., 0.};
+    for (unsigned int i = 0; i < n; ++i)
+      {
+        const int k = static_cast<int>(table.number(i, "interaction")) - 1;
+        ASSERT_TRUE(k == 0 || k == 1);
+        EXPECT_NEAR(table.number(i, "y"), k == 0 ? 1. : 0., 1e-12);
+        EXPECT_NEAR(table.number(i, "pressure"), pressure, 1e-8)
+          << "pair " << i << " at x = " << table.number(i, "x");
+        if (friction)
+          {
+            EXPECT_NEAR(table.number(i, "p_t1"),
+                        0.,
+                        1e-8 * table.number(i, "p_n"));
+          }
+        on_interface[k] += table.number(i, "p_n");
+      }
+    // Each interface carries the whole load p times the width 1.
+    EXPECT_NEAR(on_interface[0], pressure, 1e-10);
+    EXPECT_NEAR(on_interface[1], pressure, 1e-10);
+    const std::vector<std::pair<std::string, std::array<double, 2>>> probes = {
+      {"top", {{0.5, 2.}}},
+      {"middle", {{0.5, 0.5}}},
+      {"bottom", {{0.5, -0.5}}}};
+    for (const auto &[name, x] : probes)
+      {
+        const std::vector<double> exact = uniaxial_displacement(x[0], x[1]);
+        for (unsigned int c = 0; c < 2; ++c)
+          EXPECT_NEAR(summary["points"][name][c].get<double>(),
+                      exact[c],
+                      1e-10 * std::abs(exact[1]))
+            << name << " component " << c;
+      }
+  }
+} // namespace
+
+
+
+TEST(NBodies, ThreeBlockStackTransmitsTheUniformPressureThroughBothInterfaces)
+{
+  for (const std::string type : {"nurbs", "lagrange"})
+    for (const std::string path : {"condensed", "full"})
+      {
+        SCOPED_TRACE(type + ", " + path);
+        const cli::SceneTable run =
+          cli::run_prm_scene_table("stack-" + type + "-" + path,
+                                   "n-bodies",
+                                   "three-block-stack.prm",
+                                   "--set 'Discretization/Type=" + type +
+                                     "' --set 'Contact/Path=" + path + "'");
+        EXPECT_EQ(run.summary["contact_path"], path);
+        expect_exact_stack(run, false);
+      }
+}
+
+
+
+// With friction the blocks, of one material, expand alike under the
+// pressure: nothing slips and no tangential force arises, on either path
+// (the full path's glued start needs the rows of the corner pairs, whose
+// unknowns the supports hold along the tangent, to be held rows).
+TEST(NBodies, ThreeBlockStackWithFrictionSticksWithoutTangentialForce)
+{
+  for (const std::string path : {"condensed", "full"})
+    {
+      SCOPED_TRACE(path);
+      const cli::SceneTable run = cli::run_prm_scene_table(
+        "stack-friction-" + path,
+        "n-bodies",
+        "three-block-stack.prm",
+        "--set 'Contact/Friction coefficient=0.3' --set 'Contact/Path=" + path +
+          "'");
+      expect_exact_stack(run, true);
+    }
+}
+
+
+
+// A frictionless upper interface and a frictional lower one: each
+// interaction takes its own coefficient (the summary lists them).
+TEST(NBodies, EachInteractionHasItsOwnFrictionCoefficient)
+{
+  const cli::SceneTable run = cli::run_prm_scene_table(
+    "stack-mixed-friction",
+    "n-bodies",
+    "three-block-stack.prm",
+    "--set 'Contact/Interaction 2/Friction coefficient=0.4'");
+  const auto &list = run.summary["contact_interactions"];
+  ASSERT_EQ(list.size(), 2u);
+  EXPECT_EQ(list[0]["friction_coefficient"].get<double>(), 0.);
+  EXPECT_EQ(list[1]["friction_coefficient"].get<double>(), 0.4);
+  EXPECT_EQ(run.summary["effects"]["tangential_unknowns"], true);
+  expect_exact_stack(run, true);
+}
