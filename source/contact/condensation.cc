@@ -23,6 +23,7 @@ namespace igabde
       void
       hold_unresisted_modes(
         RigidModeColumns                                     &modes,
+        const Eigen::VectorXd                                &motion,
         const std::vector<const discretization::Body<dim> *> &bodies,
         const std::string                                    &context,
         std::vector<bool>                                    &held)
@@ -30,12 +31,18 @@ namespace igabde
         const Eigen::Index n = modes.G.cols();
         if (n == 0 || modes.G.rows() == 0)
           return;
-        // Columns scaled to unit length, so that the rank test does not
-        // depend on the units of the modes.
+        // Columns scaled by the size of each mode's motion at the pairs'
+        // points (@p motion: all components, not only those along the
+        // pairs' directions), so that the rank test does not depend on
+        // the units of the modes and a column is the share of its mode's
+        // motion that moves pairs along their directions: a mode that
+        // moves the pairs only along frame components of round-off (a
+        // slide along a flat face whose normals carry 1e-17 across) has a
+        // share of round-off, not a unit column.
         Eigen::VectorXd scale(n);
         for (Eigen::Index a = 0; a < n; ++a)
           {
-            const double norm = modes.G.col(a).norm();
+            const double norm = motion(a);
             scale(a)          = norm > 0. ? 1. / norm : 1.;
           }
         const Eigen::JacobiSVD<Eigen::MatrixXd> svd(modes.G *
@@ -103,6 +110,8 @@ namespace igabde
       for (const auto *body : bodies)
         n_h = std::max(n_h, body->n_histories());
       result.history_loads = Eigen::MatrixXd::Zero(alpha_modes.size(), n_h);
+      // The size of each mode's motion at the pairs' points.
+      Eigen::VectorXd motion = Eigen::VectorXd::Zero(alpha_modes.size());
       for (unsigned int a = 0; a < alpha_modes.size(); ++a)
         {
           const auto [b, k] = alpha_modes[a];
@@ -121,14 +130,16 @@ namespace igabde
                   continue;
                 }
               const Tensor<1, dim> r = op->displacement(mode);
+              motion(a) += r.norm_square();
               for (unsigned int s = 0; s < m; ++s)
                 result.G(m * i + s, a) = sign * (pair_list[i].frame[s] * r);
             }
+          motion(a) = std::sqrt(motion(a));
         }
       result.basis =
         Eigen::MatrixXd::Identity(alpha_modes.size(), alpha_modes.size());
       std::vector<bool> held(alpha_modes.size(), false);
-      hold_unresisted_modes(result, bodies, context, held);
+      hold_unresisted_modes(result, motion, bodies, context, held);
       // One line per mode, once its fate is known.
       for (unsigned int a = 0; a < alpha_modes.size(); ++a)
         {

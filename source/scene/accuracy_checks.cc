@@ -185,16 +185,38 @@ namespace igabde
               {"Checks: the contact checks' references are for a pressing load, "
                "and the last step's factors are negative, so they are not "
                "evaluated"});
-          if (pairs != nullptr && references_apply && lambda > 0.)
-            {
+          // The contact checks of one group of pairs: every pair with one
+          // interaction, or each interaction's own (E* from its two bodies,
+          // the depth of its slave's elements), into @p out.
+          const auto contact_checks_of =
+            [&](const std::vector<contact::PairState<dim>> &group,
+                const InteractionParameters                &interaction,
+                const std::string                          &label,
+                nlohmann::json                             &out) {
+              const std::vector<unsigned int> deformable =
+                parameters.deformable_bodies();
+              const auto position = [&](const unsigned int scene_body) {
+                const auto i = std::find(deformable.begin(),
+                                         deformable.end(),
+                                         scene_body - 1);
+                return i == deformable.end() ?
+                         numbers::invalid_unsigned_int :
+                         static_cast<unsigned int>(i - deformable.begin());
+              };
+              const discretization::Body<dim> &slave =
+                *bodies[position(interaction.slave_body)];
+              const unsigned int m = position(interaction.master_body);
+              const elasticity::IsotropicMaterial<dim> *master =
+                m < bodies.size() ? &bodies[m]->material() : nullptr;
               if (parameters.checks.uniform_pressure > 0.)
                 {
                   const double worst = postprocess::pressure_uniformity<dim>(
-                    *pairs,
+                    group,
                     lambda * parameters.checks.uniform_pressure);
-                  checks["pressure_uniformity"] = worst;
+                  out["pressure_uniformity"] = worst;
                   // Below 1e-10 the figure is round-off: said, not printed.
-                  pcout << "  pressure uniformity max |p_i/p - 1| "
+                  pcout << "  " << label
+                        << "pressure uniformity max |p_i/p - 1| "
                         << std::setprecision(3) << std::scientific;
                   if (worst < 1e-10)
                     pcout << "< 1e-10";
@@ -207,10 +229,7 @@ namespace igabde
               // second rigid when there is none) and the axis.
               const auto set_modulus_and_axis = [&](auto &hertz) {
                 hertz.effective_modulus =
-                  postprocess::effective_modulus<dim>(bodies[0]->material(),
-                                                      bodies.size() > 1 ?
-                                                        &bodies[1]->material() :
-                                                        nullptr);
+                  postprocess::effective_modulus<dim>(slave.material(), master);
                 std::tie(hertz.axis_point, hertz.axis_direction) =
                   hertz_axis<dim>(parameters.checks);
               };
@@ -219,20 +238,22 @@ namespace igabde
               const auto set_hertz_inputs = [&](auto &hertz) {
                 // Default: the curved body's radius, the rigid
                 // obstacle's when Body 2 is a cylinder or sphere.
-                const BodyType other = parameters.bodies[1].type;
-                hertz.radius         = parameters.checks.hertz_radius > 0. ?
-                                         parameters.checks.hertz_radius :
-                                         (other == BodyType::rigid_cylinder ||
-                                      other == BodyType::rigid_sphere ?
-                                            parameters.bodies[1].radius :
-                                            parameters.bodies[0].radius);
+                const BodyParameters &other =
+                  parameters.bodies[interaction.master_body - 1];
+                hertz.radius =
+                  parameters.checks.hertz_radius > 0. ?
+                    parameters.checks.hertz_radius :
+                    (other.type == BodyType::rigid_cylinder ||
+                         other.type == BodyType::rigid_sphere ?
+                       other.radius :
+                       parameters.bodies[interaction.slave_body - 1].radius);
                 set_modulus_and_axis(hertz);
                 hertz.element_depth = element_depth_under_contact(
-                  bodies[0]->geometry_patch(discretization::patch_of_face<dim>(
-                    parameters.contact.interactions[0].slave_faces.front())),
+                  slave.geometry_patch(discretization::patch_of_face<dim>(
+                    interaction.slave_faces.front())),
                   discretization::local_face<dim>(
-                    parameters.contact.interactions[0].slave_faces.front()),
-                  *pairs);
+                    interaction.slave_faces.front()),
+                  group);
               };
               // Hertz's and Johnson's solutions are frictionless. Friction
               // leaves them exact only between similar bodies (Dundurs beta =
@@ -243,19 +264,15 @@ namespace igabde
               const auto friction_note = [&](const std::string &reference) {
                 std::vector<std::string> note;
                 const double             beta =
-                  postprocess::dundurs_beta<dim>(bodies[0]->material(),
-                                                 bodies.size() > 1 ?
-                                                   &bodies[1]->material() :
-                                                   nullptr);
-                if (parameters.contact.interactions[0].friction_coefficient >
-                      0. &&
+                  postprocess::dundurs_beta<dim>(slave.material(), master);
+                if (interaction.friction_coefficient > 0. &&
                     std::abs(beta) >= 1e-3)
                   {
                     std::ostringstream w;
                     w << "Checks: " << reference
                       << " solution is frictionless; "
                          "with Contact/Friction coefficient = "
-                      << parameters.contact.interactions[0].friction_coefficient
+                      << interaction.friction_coefficient
                       << " between dissimilar bodies (Dundurs beta = "
                       << std::setprecision(3) << beta
                       << ") friction changes the contact (Spence's problem), "
@@ -273,29 +290,29 @@ namespace igabde
                       hertz.line_load =
                         lambda * parameters.checks.hertz_line_load;
                       set_hertz_inputs(hertz);
-                      const auto r                     = hertz.evaluate(*pairs);
-                      checks["hertz_half_width"]       = r.half_width;
-                      checks["hertz_half_width_exact"] = r.half_width_exact;
-                      checks["hertz_half_width_error"] =
+                      const auto r                  = hertz.evaluate(group);
+                      out["hertz_half_width"]       = r.half_width;
+                      out["hertz_half_width_exact"] = r.half_width_exact;
+                      out["hertz_half_width_error"] =
                         std::abs(r.half_width / r.half_width_exact - 1.);
-                      checks["hertz_peak_pressure"] = r.peak_pressure;
-                      checks["hertz_peak_pressure_exact"] =
-                        r.peak_pressure_exact;
-                      checks["pressure_l2_rel_error"]   = r.profile_l2_error;
-                      checks["hertz_loaded_pairs"]      = r.n_loaded;
-                      checks["hertz_edge_pair_spacing"] = r.edge_pair_spacing;
-                      checks["hertz_half_width_moment"] = r.half_width_moment;
-                      checks["hertz_half_width_moment_error"] =
+                      out["hertz_peak_pressure"]       = r.peak_pressure;
+                      out["hertz_peak_pressure_exact"] = r.peak_pressure_exact;
+                      out["pressure_l2_rel_error"]     = r.profile_l2_error;
+                      out["hertz_loaded_pairs"]        = r.n_loaded;
+                      out["hertz_edge_pair_spacing"]   = r.edge_pair_spacing;
+                      out["hertz_half_width_moment"]   = r.half_width_moment;
+                      out["hertz_half_width_moment_error"] =
                         std::abs(r.half_width_moment / r.half_width_exact - 1.);
-                      checks["hertz_max_pair_deviation"] = r.max_pair_deviation;
-                      checks["hertz_inner_pairs"]        = r.n_inner_pairs;
-                      pcout << "  Hertz: half-width " << std::setprecision(5)
-                            << r.half_width << " (Johnson "
-                            << r.half_width_exact << "), peak pressure "
-                            << r.peak_pressure << " (Johnson "
-                            << r.peak_pressure_exact << "), profile L2 error "
-                            << std::setprecision(3) << r.profile_l2_error
-                            << std::setprecision(6) << std::endl;
+                      out["hertz_max_pair_deviation"] = r.max_pair_deviation;
+                      out["hertz_inner_pairs"]        = r.n_inner_pairs;
+                      pcout << "  " << label << "Hertz: half-width "
+                            << std::setprecision(5) << r.half_width
+                            << " (Johnson " << r.half_width_exact
+                            << "), peak pressure " << r.peak_pressure
+                            << " (Johnson " << r.peak_pressure_exact
+                            << "), profile L2 error " << std::setprecision(3)
+                            << r.profile_l2_error << std::setprecision(6)
+                            << std::endl;
                       report_warnings(r.warnings);
                       report_warnings(friction_note("Johnson's"));
                     }
@@ -312,18 +329,16 @@ namespace igabde
                       punch.corner_radius =
                         parameters.checks.rounded_punch_corner_radius;
                       set_modulus_and_axis(punch);
-                      const auto r                     = punch.evaluate(*pairs);
-                      checks["punch_half_width_exact"] = r.half_width_exact;
-                      checks["punch_peak_pressure"]    = r.peak_pressure;
-                      checks["punch_peak_pressure_exact"] =
-                        r.peak_pressure_exact;
-                      checks["punch_peak_location_exact"] =
-                        r.peak_location_exact;
-                      checks["punch_max_pair_deviation"] = r.max_pair_deviation;
-                      checks["punch_loaded_pairs"]       = r.n_loaded;
-                      checks["punch_inner_pairs"]        = r.n_inner_pairs;
+                      const auto r                     = punch.evaluate(group);
+                      out["punch_half_width_exact"]    = r.half_width_exact;
+                      out["punch_peak_pressure"]       = r.peak_pressure;
+                      out["punch_peak_pressure_exact"] = r.peak_pressure_exact;
+                      out["punch_peak_location_exact"] = r.peak_location_exact;
+                      out["punch_max_pair_deviation"]  = r.max_pair_deviation;
+                      out["punch_loaded_pairs"]        = r.n_loaded;
+                      out["punch_inner_pairs"]         = r.n_inner_pairs;
                       pcout
-                        << "  rounded punch: peak pressure "
+                        << "  " << label << "rounded punch: peak pressure "
                         << std::setprecision(5) << r.peak_pressure
                         << " (closed form " << r.peak_pressure_exact
                         << " at |x| = " << r.peak_location_exact
@@ -351,23 +366,23 @@ namespace igabde
                       set_modulus_and_axis(hertz);
                       hertz.principal_direction =
                         Tensor<1, 3>({t[0], t[1], t[2]});
-                      const auto  r                    = hertz.evaluate(*pairs);
-                      const auto &x                    = r.exact;
-                      checks["hertz_semi_axes_exact"]  = {x.semi_axis_x,
-                                                          x.semi_axis_y};
-                      checks["hertz_eccentricity"]     = x.eccentricity;
-                      checks["hertz_semi_axes_moment"] = {r.semi_axis_x_moment,
-                                                          r.semi_axis_y_moment};
-                      checks["hertz_semi_axes_moment_error"] = std::max(
+                      const auto  r                 = hertz.evaluate(group);
+                      const auto &x                 = r.exact;
+                      out["hertz_semi_axes_exact"]  = {x.semi_axis_x,
+                                                       x.semi_axis_y};
+                      out["hertz_eccentricity"]     = x.eccentricity;
+                      out["hertz_semi_axes_moment"] = {r.semi_axis_x_moment,
+                                                       r.semi_axis_y_moment};
+                      out["hertz_semi_axes_moment_error"] = std::max(
                         std::abs(r.semi_axis_x_moment / x.semi_axis_x - 1.),
                         std::abs(r.semi_axis_y_moment / x.semi_axis_y - 1.));
-                      checks["hertz_peak_pressure"]       = r.peak_pressure;
-                      checks["hertz_peak_pressure_exact"] = x.peak_pressure;
-                      checks["hertz_peak_pressure_error"] =
+                      out["hertz_peak_pressure"]       = r.peak_pressure;
+                      out["hertz_peak_pressure_exact"] = x.peak_pressure;
+                      out["hertz_peak_pressure_error"] =
                         std::abs(r.peak_pressure / x.peak_pressure - 1.);
-                      checks["pressure_l2_rel_error"] = r.profile_l2_error;
-                      checks["hertz_loaded_pairs"]    = r.n_loaded;
-                      pcout << "  Hertz (elliptical): semi-axes "
+                      out["pressure_l2_rel_error"] = r.profile_l2_error;
+                      out["hertz_loaded_pairs"]    = r.n_loaded;
+                      pcout << "  " << label << "Hertz (elliptical): semi-axes "
                             << std::setprecision(5) << r.semi_axis_x_moment
                             << ", " << r.semi_axis_y_moment << " (Hertz "
                             << x.semi_axis_x << ", " << x.semi_axis_y
@@ -387,27 +402,26 @@ namespace igabde
                       postprocess::HertzPointCheck hertz;
                       hertz.load = lambda * parameters.checks.hertz_point_load;
                       set_hertz_inputs(hertz);
-                      const auto r                   = hertz.evaluate(*pairs);
-                      checks["hertz_contact_radius"] = r.contact_radius;
-                      checks["hertz_contact_radius_exact"] =
+                      const auto r                = hertz.evaluate(group);
+                      out["hertz_contact_radius"] = r.contact_radius;
+                      out["hertz_contact_radius_exact"] =
                         r.contact_radius_exact;
-                      checks["hertz_contact_radius_error"] = std::abs(
+                      out["hertz_contact_radius_error"] = std::abs(
                         r.contact_radius / r.contact_radius_exact - 1.);
-                      checks["hertz_contact_radius_moment"] =
+                      out["hertz_contact_radius_moment"] =
                         r.contact_radius_moment;
-                      checks["hertz_contact_radius_moment_error"] = std::abs(
+                      out["hertz_contact_radius_moment_error"] = std::abs(
                         r.contact_radius_moment / r.contact_radius_exact - 1.);
-                      checks["hertz_peak_pressure"] = r.peak_pressure;
-                      checks["hertz_peak_pressure_exact"] =
-                        r.peak_pressure_exact;
-                      checks["hertz_peak_pressure_error"] =
+                      out["hertz_peak_pressure"]       = r.peak_pressure;
+                      out["hertz_peak_pressure_exact"] = r.peak_pressure_exact;
+                      out["hertz_peak_pressure_error"] =
                         std::abs(r.peak_pressure / r.peak_pressure_exact - 1.);
-                      checks["pressure_l2_rel_error"]    = r.profile_l2_error;
-                      checks["hertz_max_pair_deviation"] = r.max_pair_deviation;
-                      checks["hertz_inner_pairs"]        = r.n_inner_pairs;
-                      checks["hertz_loaded_pairs"]       = r.n_loaded;
-                      checks["hertz_fitted_pairs"]       = r.n_fitted;
-                      pcout << "  Hertz: contact radius "
+                      out["pressure_l2_rel_error"]    = r.profile_l2_error;
+                      out["hertz_max_pair_deviation"] = r.max_pair_deviation;
+                      out["hertz_inner_pairs"]        = r.n_inner_pairs;
+                      out["hertz_loaded_pairs"]       = r.n_loaded;
+                      out["hertz_fitted_pairs"]       = r.n_fitted;
+                      pcout << "  " << label << "Hertz: contact radius "
                             << std::setprecision(5) << r.contact_radius
                             << " (Hertz " << r.contact_radius_exact
                             << "), peak pressure " << r.peak_pressure
@@ -418,6 +432,43 @@ namespace igabde
                       report_warnings(r.warnings);
                       report_warnings(friction_note("Hertz's"));
                     }
+                }
+            };
+          if (pairs != nullptr && references_apply && lambda > 0.)
+            {
+              const auto &interactions = parameters.contact.interactions;
+              if (interactions.size() == 1)
+                contact_checks_of(*pairs, interactions[0], "", checks);
+              else
+                {
+                  // Each interaction on its own pairs; the top-level keys
+                  // are the first's, but the pressure uniformity is the
+                  // worst of all.
+                  nlohmann::json list  = nlohmann::json::array();
+                  double         worst = 0.;
+                  for (unsigned int k = 0; k < interactions.size(); ++k)
+                    {
+                      std::vector<contact::PairState<dim>> group;
+                      for (const auto &pair : *pairs)
+                        if (pair.interaction == k)
+                          group.push_back(pair);
+                      nlohmann::json out = nlohmann::json::object();
+                      contact_checks_of(group,
+                                        interactions[k],
+                                        interactions[k].name + ": ",
+                                        out);
+                      if (out.contains("pressure_uniformity"))
+                        worst =
+                          std::max(worst,
+                                   out["pressure_uniformity"].get<double>());
+                      if (k == 0)
+                        checks.update(out);
+                      out["name"] = interactions[k].name;
+                      list.push_back(out);
+                    }
+                  if (checks.contains("pressure_uniformity"))
+                    checks["pressure_uniformity"] = worst;
+                  checks["interactions"] = list;
                 }
             }
           summary.checks = checks;

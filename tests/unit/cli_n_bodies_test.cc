@@ -135,3 +135,70 @@ TEST(NBodies, EachInteractionHasItsOwnFrictionCoefficient)
   EXPECT_EQ(run.summary["effects"]["tangential_unknowns"], true);
   expect_exact_stack(run, true);
 }
+
+
+
+// prm/roller-between-plates.prm: a roller (R = 8) held by nothing but its
+// two contacts with an elastic plate below and one above, P = 60 per unit
+// thickness through both. Each contact is Hertz's with E* of the roller
+// and that plate (Johnson, Contact Mechanics, 4.3): a = sqrt(4 P R /
+// (pi E*)), p0 = 2 P / (pi a), recomputed here from the closed form. The
+// half-width comes from the second moment of each contact's pair forces
+// (int p x^2 = P a^2 / 4 for Hertz's profile), the peak from the largest
+// pair pressure; the 1 % on both, and on every pair inside 0.9 a.
+// The plates are 8 deep against a = 1.05: the half-space's error is
+// smaller than that.
+TEST(NBodies, RollerBetweenTwoPlatesMeetsHertzAtBothContacts)
+{
+  const cli::SceneTable run =
+    cli::run_prm_scene_table("roller",
+                             "n-bodies",
+                             "roller-between-plates.prm",
+                             "");
+  ASSERT_EQ(run.summary["status"], "ok");
+  const double P = 60., R = 8.;
+  const double E_star = 1. / (2. * (1. - nu * nu) / E);
+  const double a      = std::sqrt(4. * P * R / (M_PI * E_star));
+  const double p0     = 2. * P / (M_PI * a);
+  const auto  &table  = run.table;
+  for (const int k : {1, 2})
+    {
+      SCOPED_TRACE("interaction " + std::to_string(k));
+      double       force = 0., moment = 0., peak = 0., worst = 0.;
+      unsigned int inner = 0;
+      for (std::size_t i = 0; i < table.rows.size(); ++i)
+        {
+          if (static_cast<int>(table.number(i, "interaction")) != k)
+            continue;
+          const double x = table.number(i, "x"), f = table.number(i, "p_n"),
+                       p = table.number(i, "pressure");
+          // The lower contact at y = 0, the upper one at y = 16.
+          if (f > 0.)
+            {
+              EXPECT_NEAR(table.number(i, "y"), k == 1 ? 0. : 16., 0.1);
+            }
+          force += f;
+          moment += f * x * x;
+          peak = std::max(peak, p);
+          if (std::abs(x) < 0.9 * a)
+            {
+              worst =
+                std::max(worst,
+                         std::abs(p - p0 * std::sqrt(1. - x * x / (a * a))) /
+                           p0);
+              ++inner;
+            }
+        }
+      EXPECT_NEAR(force, P, 1e-8 * P);
+      EXPECT_NEAR(2. * std::sqrt(moment / force) / a, 1., 0.01);
+      EXPECT_NEAR(peak / p0, 1., 0.01);
+      EXPECT_GE(inner, 10u);
+      EXPECT_LT(worst, 0.01);
+      // The scene's own check of this interaction says the same.
+      const auto &checks = run.summary["checks"]["interactions"][k - 1];
+      EXPECT_NEAR(checks["hertz_half_width_exact"].get<double>(), a, 1e-12 * a);
+      EXPECT_NEAR(checks["hertz_half_width_moment"].get<double>(),
+                  2. * std::sqrt(moment / force),
+                  1e-8 * a);
+    }
+}
