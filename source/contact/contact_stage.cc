@@ -44,6 +44,7 @@ namespace igabde
                                      "master that is another deformable body "
                                      "or a rigid obstacle."));
           pairings.push_back(create_pairing_strategy<dim>(c.pairing));
+          pairings.back()->set_search_distance(c.search_distance);
         }
       finite_u.resize(bodies.size());
     }
@@ -168,6 +169,7 @@ namespace igabde
       // The pairs of every interaction, in order.
       pair_list.clear();
       master_faces.clear();
+      std::vector<std::string> repairs;
       for (unsigned int k = 0; k < settings.interactions.size(); ++k)
         {
           const ContactInteraction &c          = settings.interactions[k];
@@ -180,13 +182,35 @@ namespace igabde
             deformable ?
               *master_faces.back() :
               static_cast<const ContactSurface<dim> &>(*obstacles[c.obstacle]);
-          std::vector<ContactPair<dim>> pairs =
-            pairings[k]->make_pairs(*bodies[c.slave_body],
-                                    c.slave_faces,
-                                    master,
-                                    settings.interactions.size() == 1 ?
-                                      settings.context :
-                                      settings.context + " (" + c.name + ")");
+          const std::string context = settings.interactions.size() == 1 ?
+                                        settings.context :
+                                        settings.context + " (" + c.name + ")";
+          std::vector<ContactPair<dim>> pairs;
+          try
+            {
+              pairs = pairings[k]->make_pairs(*bodies[c.slave_body],
+                                              c.slave_faces,
+                                              master,
+                                              context);
+            }
+          catch (const ExcNonPositiveTributaryArea &e)
+            {
+              // The stated repair: point pairs cannot carry a pressure
+              // where the collocation gives a point no area; the weighted
+              // gap integrates over the face (areas int N_j dGamma >= 0)
+              // and transmits a uniform pressure exactly.
+              const std::string note =
+                c.name + "/Pairing = " + to_string(c.pairing) + ": " +
+                e.what() +
+                "; this interaction is paired by the weighted gap instead";
+              repairs.push_back(note);
+              pairings[k] = create_pairing_strategy<dim>(Pairing::weighted_gap);
+              pairings[k]->set_search_distance(c.search_distance);
+              pairs = pairings[k]->make_pairs(*bodies[c.slave_body],
+                                              c.slave_faces,
+                                              master,
+                                              context);
+            }
           for (ContactPair<dim> &pair : pairs)
             {
               pair.slave_body = c.slave_body;
@@ -199,7 +223,8 @@ namespace igabde
               pair_list.push_back(std::move(pair));
             }
         }
-      cost_inputs = compute_path_cost_inputs();
+      cost_inputs    = compute_path_cost_inputs();
+      setup_warnings = repairs;
       // More contact unknowns than the face unknowns the pairs move: the
       // flexibility's rank is at most the latter, so the contact rows are
       // redundant and the pair forces not unique (their resultant is). A
@@ -211,7 +236,6 @@ namespace igabde
                         cost_inputs.face_unknowns.end(),
                         0.);
       const unsigned int moving = n_moving_contact_unknowns();
-      setup_warnings.clear();
       if (moving > face_unknowns + 0.5)
         setup_warnings.push_back(
           std::to_string(moving) + " contact unknowns on " +
@@ -538,6 +562,19 @@ namespace igabde
             {
               log << separator << e.outside << " lie beyond its extent"
                   << where(e.first_outside);
+              separator = ", ";
+            }
+          if (e.beyond > 0)
+            {
+              log << separator << e.beyond << " lie beyond the search distance "
+                  << e.search_distance << where(e.first_beyond);
+              separator = ", ";
+            }
+          if (e.degenerate > 0)
+            {
+              log << separator << e.degenerate
+                  << " have a degenerate normal (a collapsed edge)"
+                  << where(e.first_degenerate);
               separator = ", ";
             }
           if (e.unprojected > 0)

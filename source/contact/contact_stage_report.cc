@@ -138,6 +138,8 @@ namespace igabde
           s.left_out_not_facing += e.not_facing;
           s.left_out_outside += e.outside;
           s.left_out_unprojected += e.unprojected;
+          s.left_out_degenerate += e.degenerate;
+          s.left_out_beyond += e.beyond;
           s.left_out_of_quadrature =
             s.left_out_of_quadrature || e.quadrature_points;
         }

@@ -170,6 +170,20 @@ namespace igabde
                                  const double          size)
     {
       ++candidates;
+      // Normals are unit vectors, or zero where a face's measure vanishes
+      // (a collapsed edge): no direction to push along.
+      if (!(n_s.norm() > 0.5 && n_m.norm() > 0.5))
+        {
+          if (degenerate++ == 0)
+            first_degenerate = s;
+          return false;
+        }
+      if (search_distance > 0. && s.distance(m) > search_distance)
+        {
+          if (beyond++ == 0)
+            first_beyond = s;
+          return false;
+        }
       if (!(n_s * n_m < 0.))
         {
           if (not_facing++ == 0)
@@ -213,6 +227,24 @@ namespace igabde
       {
         if (exclusions.not_facing > 0)
           return not_facing(context, exclusions.first_not_facing, master);
+        if (exclusions.beyond > 0)
+          return context +
+                 ": no contact point of the slave face lies "
+                 "within the search distance " +
+                 base::number_text(exclusions.search_distance) + " of " +
+                 master.description() + " (the first at (" +
+                 base::to_string(exclusions.first_beyond) +
+                 ")): raise Contact/Search distance, or check the faces "
+                 "and the bodies' placement.";
+        if (exclusions.degenerate > 0 && exclusions.outside == 0 &&
+            exclusions.unprojected == 0)
+          return context +
+                 ": every contact point of the slave face has a "
+                 "degenerate normal (the first at (" +
+                 base::to_string(exclusions.first_degenerate) +
+                 ")): the face collapses to a point or a line (a collapsed "
+                 "edge of the geometry); name another face in "
+                 "Contact/Slave face.";
         if (exclusions.outside == 0)
           return context + ": the closest-point projection on " +
                  master.description() +
@@ -311,28 +343,8 @@ namespace igabde
                                  " has no contact points."));
       std::vector<ContactPair<dim>> pairs;
       const auto                    index = index_samples(samples);
-      // A point's pressure is its force over its tributary area: a point
-      // whose collocated area is not positive (the Greville collocation of
-      // a face whose parametrisation nearly stops there, next to a repeated
-      // control point) cannot carry one, and its pair would give a wrong
-      // pressure without a sign of it.
-      for (const auto &s : slave)
-        AssertThrow(
-          s.tributary_area > 0.,
-          base::ExcInput(
-            context + ": the contact point (" + base::to_string(s.location) +
-            ") of Body 1's contact face gets the tributary area " +
-            [&] {
-              std::ostringstream o;
-              o << s.tributary_area;
-              return o.str();
-            }() +
-            ", not positive: the face's parametrisation nearly stops there "
-            "(a repeated or nearly repeated control point), and a "
-            "point-wise pair there cannot carry a pressure. Use "
-            "Contact/Pairing = weighted-gap (pairs that integrate the gap "
-            "over the face), or spread the face's control points."));
-      this->left_out = PairingExclusions<dim>();
+      this->left_out                      = PairingExclusions<dim>();
+      this->left_out.search_distance      = this->search_distance;
       for (const auto &s : slave)
         {
           const discretization::SurfacePoint<dim> m =
@@ -350,6 +362,22 @@ namespace igabde
       AssertThrow(!pairs.empty(),
                   base::ExcInput(
                     internal::nothing_faces(context, this->left_out, master)));
+      // A point's pressure is its force over its tributary area: a kept
+      // point whose collocated area is not positive (the Greville
+      // collocation of a face whose parametrisation nearly stops there,
+      // next to a repeated control point) cannot carry one, and its pair
+      // would give a wrong pressure without a sign of it.
+      for (const auto &pair : pairs)
+        if (!(pair.area > 0.))
+          {
+            std::ostringstream o;
+            o << "the contact point (" << base::to_string(pair.x1)
+              << ") gets the tributary area " << pair.area
+              << ", not positive: the face's parametrisation nearly stops "
+                 "there (a repeated or nearly repeated control point), and "
+                 "a point-wise pair there cannot carry a pressure";
+            throw ExcNonPositiveTributaryArea(o.str());
+          }
       return pairs;
     }
 

@@ -374,7 +374,18 @@ namespace igabde
                 {
                   const auto  &mb  = projector.grid.breaks[c];
                   const double tol = 1e-12 * (mb.back() - mb.front());
-                  for (unsigned int i = 1; i + 1 < mb.size(); ++i)
+                  // The inner breaks strictly between the two ends' master
+                  // coordinates (beyond round-off), found by bisection of
+                  // the sorted breaks: the rest are not crossed, and a
+                  // sweep over all of them made the search grow as the
+                  // number of slave elements times the master's breaks.
+                  const double low   = std::min(at_a[c], at_b[c]) + tol;
+                  const double high  = std::max(at_a[c], at_b[c]) - tol;
+                  const auto   first = std::max<std::size_t>(
+                    std::upper_bound(mb.begin(), mb.end(), low) - mb.begin(),
+                    1);
+                  for (std::size_t i = first; i + 1 < mb.size() && mb[i] < high;
+                       ++i)
                     {
                       // The crossing t of master_eta(t)[c] = mb[i],
                       // by TOMS 748 (Alefeld, Potra and Shi) on the
@@ -598,6 +609,7 @@ namespace igabde
       const MasterSide<dim>  master_side(master, context);
       this->left_out                   = PairingExclusions<dim>();
       this->left_out.quadrature_points = true;
+      this->left_out.search_distance   = this->search_distance;
       // The scale of round-off: the slave faces' extent, from their
       // element corners along each face direction (a closed face, whose
       // ends coincide, included).

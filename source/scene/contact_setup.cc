@@ -38,6 +38,7 @@ namespace igabde
           ci.master_faces         = p.master_faces;
           ci.pairing              = p.pairing;
           ci.friction_coefficient = p.friction_coefficient;
+          ci.search_distance      = p.search_distance;
           cs.interactions.push_back(ci);
         }
       for (const unsigned int b : deformable)
@@ -95,13 +96,16 @@ namespace igabde
       effects["floating_rigid_modes"]     = s.floating_rigid_modes;
       effects["pairs_left_out_supported"] = s.pairs_left_out;
       summary["effects"]                  = effects;
-      if (s.left_out_not_facing + s.left_out_outside + s.left_out_unprojected >
+      if (s.left_out_not_facing + s.left_out_outside + s.left_out_unprojected +
+            s.left_out_degenerate + s.left_out_beyond >
           0)
         summary["contact_points_left_out"] = {
           {"candidates", s.slave_candidates},
           {"not_facing", s.left_out_not_facing},
           {"outside_master", s.left_out_outside},
           {"unprojected", s.left_out_unprojected},
+          {"degenerate_normal", s.left_out_degenerate},
+          {"beyond_search_distance", s.left_out_beyond},
           {"points",
            s.left_out_of_quadrature ? "quadrature points" : "slave points"}};
       if (s.n_interactions > 1)

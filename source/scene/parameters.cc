@@ -290,6 +290,14 @@ namespace igabde
                           "Patch face of the master body that may touch the "
                           "slave: f or p.f, several joined by '+' (also the "
                           "faces of a rigid surface).");
+        prm.declare_entry("Search distance",
+                          "0",
+                          Patterns::Double(0.),
+                          "Slave points farther than this (m) from their "
+                          "closest point of the master are left out and "
+                          "counted (summary.json contact_points_left_out): "
+                          "the contact surface cut to the part within this "
+                          "distance of the other one. 0: no limit.");
         prm.declare_entry("Pair placement",
                           "greville",
                           Patterns::Selection(base::selection_of(
@@ -377,6 +385,11 @@ namespace igabde
                               Patterns::Anything(),
                               "Coulomb mu >= 0 of this interaction; empty: "
                               "Contact/Friction coefficient.");
+            prm.declare_entry("Search distance",
+                              "",
+                              Patterns::Anything(),
+                              "As Contact/Search distance, for this "
+                              "interaction; empty: Contact's.");
             prm.declare_entry(
               "Pairing",
               "as Contact",
@@ -403,6 +416,7 @@ namespace igabde
         first.slave_body             = prm.get_integer("Slave body");
         first.master_body            = prm.get_integer("Master body");
         first.friction_coefficient   = prm.get_double("Friction coefficient");
+        first.search_distance        = prm.get_double("Search distance");
         algorithm =
           base::value_of(contact::algorithm_names, prm.get("Algorithm"));
         penalty_factor            = prm.get_double("Penalty factor");
@@ -441,7 +455,9 @@ namespace igabde
                 // An empty friction coefficient is Contact's; check_scene()
                 // reads the text, naming the file.
                 c.friction_text = base::trim(prm.get("Friction coefficient"));
-                c.friction_coefficient         = first.friction_coefficient;
+                c.friction_coefficient = first.friction_coefficient;
+                c.search_text          = base::trim(prm.get("Search distance"));
+                c.search_distance      = first.search_distance;
                 const std::string pairing_text = prm.get("Pairing");
                 c.pairing =
                   pairing_text == "as Contact" ?

@@ -8,6 +8,7 @@
 #include <boost/serialization/utility.hpp>
 #include <boost/serialization/vector.hpp>
 #include <cmath>
+#include <numeric>
 
 namespace igabde
 {
@@ -43,19 +44,72 @@ namespace igabde
             factorised_here.push_back(body->name());
           return factorised_here;
         }
-      // Two bodies: ranks in proportion to the estimated factor sizes, at
-      // least one each; the first ranks factorise Body 1.
-      std::vector<unsigned int> first(bodies.size() + 1, n_ranks);
-      first[0] = 0;
-      if (bodies.size() == 2)
+      const unsigned int n_bodies = bodies.size();
+      if (n_bodies > n_ranks)
         {
-          const double w0 = std::max(factor_entries[0], 1.);
-          const double w1 = std::max(factor_entries[1], 1.);
-          first[1] =
-            std::clamp<unsigned int>(std::lround(n_ranks * w0 / (w0 + w1)),
+          // Fewer ranks than bodies: each body on one rank (round robin),
+          // factorised there alone; a rank may take several in turn.
+          for (unsigned int b = 0; b < n_bodies; ++b)
+            {
+              const unsigned int             owner = b % n_ranks;
+              discretization::ParallelLayout layout;
+              layout.world = MPI_COMM_WORLD;
+              layout.group = (rank == owner ? MPI_COMM_SELF : MPI_COMM_NULL);
+              layout.root  = owner;
+              layout.matrix_everywhere = false;
+              bodies[b]->set_parallel_layout(layout);
+              if (rank == owner)
+                factorised_here.push_back(bodies[b]->name());
+              pcout << "  " << bodies[b]->name()
+                    << " assembled and factorised on rank " << owner << " of "
+                    << n_ranks << std::endl;
+            }
+          return factorised_here;
+        }
+      // Ranks in proportion to the estimated factor sizes, at least one
+      // each, consecutive ranks per body in the bodies' order (two bodies:
+      // the rounded share of Body 1; more: one each and the rest by the
+      // largest remainders).
+      std::vector<unsigned int> count(n_bodies, 1);
+      std::vector<double>       weight(n_bodies);
+      for (unsigned int b = 0; b < n_bodies; ++b)
+        weight[b] = std::max(factor_entries[b], 1.);
+      const double total = std::accumulate(weight.begin(), weight.end(), 0.);
+      if (n_bodies == 1)
+        count[0] = n_ranks;
+      else if (n_bodies == 2)
+        {
+          count[0] =
+            std::clamp<unsigned int>(std::lround(n_ranks * weight[0] / total),
                                      1,
                                      n_ranks - 1);
+          count[1] = n_ranks - count[0];
         }
+      else
+        {
+          const unsigned int  rest = n_ranks - n_bodies;
+          std::vector<double> remainder(n_bodies);
+          unsigned int        given = 0;
+          for (unsigned int b = 0; b < n_bodies; ++b)
+            {
+              const double share = rest * weight[b] / total;
+              count[b] += static_cast<unsigned int>(std::floor(share));
+              given += static_cast<unsigned int>(std::floor(share));
+              remainder[b] = share - std::floor(share);
+            }
+          std::vector<unsigned int> order(n_bodies);
+          std::iota(order.begin(), order.end(), 0u);
+          std::stable_sort(order.begin(),
+                           order.end(),
+                           [&](const unsigned int a, const unsigned int b) {
+                             return remainder[a] > remainder[b];
+                           });
+          for (unsigned int k = 0; given < rest; ++k, ++given)
+            ++count[order[k % n_bodies]];
+        }
+      std::vector<unsigned int> first(n_bodies + 1, 0);
+      for (unsigned int b = 0; b < n_bodies; ++b)
+        first[b + 1] = first[b] + count[b];
       unsigned int color = 0;
       while (rank >= first[color + 1])
         ++color;

@@ -164,6 +164,20 @@ namespace igabde
                                        "or leave it empty for Contact's."));
             c.friction_coefficient = mu[0];
           }
+      for (InteractionParameters &c : interactions)
+        if (!c.search_text.empty())
+          {
+            const std::vector<double> d =
+              base::parse_doubles(c.search_text,
+                                  f + c.name + "/Search distance");
+            AssertThrow(d.size() == 1 && d[0] >= 0.,
+                        base::ExcInput(f + c.name +
+                                       "/Search distance = " + c.search_text +
+                                       " is not one length >= 0; give the "
+                                       "distance (m), 0 for no limit, or "
+                                       "leave it empty for Contact's."));
+            c.search_distance = d[0];
+          }
       for (const InteractionParameters &c : interactions)
         AssertThrow(c.friction_coefficient >= 0.,
                     base::ExcInput(

@@ -285,8 +285,9 @@ namespace igabde
                 base::ExcInput(
                   scene_file + ": there is no section '" + name + "'" + where +
                   (name.rfind("Body ", 0) == 0 ?
-                     ": igabde models one or two bodies, 'Body 1' and "
-                     "'Body 2'." :
+                     ": igabde models up to " + std::to_string(max_bodies) +
+                       " bodies, 'Body 1' ... 'Body " +
+                       std::to_string(max_bodies) + "'." :
                      "; igabde --print-parameters lists the sections.")));
             }
           catch (const ExceptionBase &)

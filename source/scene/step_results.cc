@@ -132,8 +132,8 @@ namespace igabde
                         bodies.size(),
                       base::ExcInput(
                         scene_file + ": Probe points: '" + item.str() +
-                        "' lies in no body; give a point of Body 1" +
-                        (bodies.size() > 1 ? " or Body 2." : ".")));
+                        "' lies in no body; give a point inside one of "
+                        "the deformable bodies."));
         }
     }
 

@@ -419,20 +419,20 @@ TEST(CliBadInput, ProbeOutsideEveryBodyRefusedBeforeTheSolve)
 
 
 
-TEST(CliBadInput, ThirdBodySaysHowManyBodiesThereAre)
+TEST(CliBadInput, NinthBodySaysHowManyBodiesThereAre)
 {
   // deal.II's own text was "Line <n> of file <f>: There is no such
-  // subsection to be entered: Body 3".
-  const cli::ScratchFolder folder("bad-input-body-3");
-  const std::string        scene = cli::join(folder.path, "three.prm");
+  // subsection to be entered: Body 9".
+  const cli::ScratchFolder folder("bad-input-body-9");
+  const std::string        scene = cli::join(folder.path, "nine.prm");
   {
     std::ofstream out(scene);
-    out << "set Dimension = 2\nsubsection Body 3\n  set Radius = 1\nend\n";
+    out << "set Dimension = 2\nsubsection Body 9\n  set Radius = 1\nend\n";
   }
   const auto result = cli::run_igabde("'" + scene + "'", folder);
   EXPECT_EQ(result.status, 2) << result.output;
-  EXPECT_NE(result.output.find("there is no section 'Body 3' (line 2): "
-                               "igabde models one or two bodies"),
+  EXPECT_NE(result.output.find("there is no section 'Body 9' (line 2): "
+                               "igabde models up to 8 bodies"),
             std::string::npos)
     << result.output;
   EXPECT_EQ(result.output.find("There is no such subsection"),

@@ -338,4 +338,43 @@ namespace contact_search_test
     for (const double w : widths)
       EXPECT_NEAR(w / a, 1., 0.05);
   }
+
+
+
+  // Contact/Search distance cuts the slave surface to the part within that
+  // distance of the master: tutorial 1's half disc on the plane, cut at
+  // 0.5. The points kept are exactly those of the uncut run whose
+  // reference gap (their height over the plane y = 0, from its pair table)
+  // is at most 0.5; the others are counted as beyond the search distance, and
+  // the contact (closed pairs and their pressures) is the same: the far points
+  // carry nothing.
+  TEST(ContactSearch, SearchDistanceCutsTheSlaveSurface)
+  {
+    const SearchRun whole =
+      run_scene("search-whole", "tutorial-1-disc-on-plane.prm", "");
+    const SearchRun cut = run_scene("search-cut",
+                                    "tutorial-1-disc-on-plane.prm",
+                                    "--set 'Contact/Search distance=0.5'");
+    ASSERT_EQ(whole.summary.at("status"), "ok");
+    ASSERT_EQ(cut.summary.at("status"), "ok");
+    unsigned int near = 0;
+    for (std::size_t r = 0; r < whole.pairs.rows.size(); ++r)
+      near += whole.pairs.number(r, "y") <= 0.5;
+    ASSERT_GT(near, 0u);
+    ASSERT_LT(near, whole.pairs.rows.size());
+    EXPECT_EQ(cut.pairs.rows.size(), near);
+    const auto &left_out = cut.summary.at("contact_points_left_out");
+    EXPECT_EQ(left_out.at("beyond_search_distance").get<std::size_t>(),
+              whole.pairs.rows.size() - near);
+    const auto closed_whole = closed_pairs(whole);
+    const auto closed_cut   = closed_pairs(cut);
+    ASSERT_EQ(closed_whole.size(), closed_cut.size());
+    for (std::size_t i = 0; i < closed_cut.size(); ++i)
+      {
+        EXPECT_NEAR(closed_cut[i].first, closed_whole[i].first, 1e-12);
+        EXPECT_NEAR(closed_cut[i].second,
+                    closed_whole[i].second,
+                    1e-8 * closed_whole[i].second);
+      }
+  }
 } // namespace contact_search_test

@@ -687,16 +687,17 @@ TEST(NoSilentWrongAnswer, ProjectionsOntoACurvedMasterFromAfarConverge)
 
 
 
-TEST(NoSilentWrongAnswer, NonPositiveTributaryAreasAreRefused)
+TEST(NoSilentWrongAnswer, NonPositiveTributaryAreasArePairedByTheWeightedGap)
 {
   // A block [0, 1]^2 (B-spline, degree 2 x 1, four spans) whose bottom
   // face has its first two control points 1e-4 apart: the parametrisation
   // nearly stops at the corner, and the Greville collocation gives the
   // corner point the tributary area -0.019. Pressed by 1 onto a rigid
   // plane, its node-to-surface pairs ended "ok" with a pressure
-  // uniformity error of 1.0 and no warning; they are now refused with one
-  // line. The weighted-gap pairs of the same face carry the uniform
-  // pressure exactly (to 1e-8).
+  // uniformity error of 1.0 and no warning. The stated rule now: such an
+  // interaction is paired by the weighted gap (areas int N_j >= 0), which
+  // carries the uniform pressure exactly (to 1e-8, the closed form), and
+  // the log and summary.json's warnings say so and why.
   const Scratch      s("tributary");
   std::ostringstream coefs;
   for (const double y : {0., 1.})
@@ -724,19 +725,82 @@ TEST(NoSilentWrongAnswer, NonPositiveTributaryAreasAreRefused)
        "  set Slave face = 0.2\nend\n"
        "subsection Checks\n  set Uniform pressure = 1\nend\n"
        "subsection Output\n  set Write vtu = false\nend\n";
-  const auto refused =
-    run_igabde("block.prm --quiet --set 'Output/Directory=points'", s.path);
-  EXPECT_EQ(refused.status, 2) << refused.output;
-  EXPECT_TRUE(contains(refused.output, "gets the tributary area -0.019"))
-    << refused.output;
-  EXPECT_TRUE(contains(refused.output, "Contact/Pairing = weighted-gap"))
-    << refused.output;
-  const auto weighted = run_igabde("block.prm --quiet"
-                                   " --set 'Contact/Pairing=weighted-gap'"
-                                   " --set 'Output/Directory=weighted'",
-                                   s.path);
-  ASSERT_EQ(weighted.status, 0) << weighted.output;
-  const nlohmann::json summary = nlohmann::json::parse(
-    read_file(cli::join(s.path, "weighted/summary.json")));
+  const auto repaired =
+    run_igabde("block.prm --set 'Output/Directory=points'", s.path);
+  ASSERT_EQ(repaired.status, 0) << repaired.output;
+  EXPECT_TRUE(contains(repaired.output, "gets the tributary area -0.019"))
+    << repaired.output;
+  EXPECT_TRUE(contains(repaired.output, "paired by the weighted gap instead"))
+    << repaired.output;
+  const nlohmann::json summary =
+    nlohmann::json::parse(read_file(cli::join(s.path, "points/summary.json")));
   EXPECT_LE(summary.at("checks").at("pressure_uniformity").get<double>(), 1e-8);
+  ASSERT_TRUE(summary.contains("warnings"));
+  EXPECT_TRUE(contains(summary.at("warnings").dump(), "weighted gap instead"));
+}
+
+
+
+TEST(NoSilentWrongAnswer, CollapsedEdgeOfTheContactFace)
+{
+  // A solid whose bottom face (z = 0) is a triangle: a quad with its edge
+  // eta = 1 collapsed to the point (0, 1, 0) (a repeated control point in
+  // the geometry file); its top (z = 1) is the unit square, so no face
+  // collapses as a whole (which the reader refuses: a pole). Pressed by 1
+  // onto a rigid plane. The bottom face's contact points on the collapsed
+  // edge (its Greville points there: one per control point along xi, 4
+  // spans of degree 2, so 6) have no normal, since the face's measure
+  // vanishes there: they are left out and counted as degenerate, and the
+  // rest of the face carries the load the top pressure puts on it.
+  const Scratch      s("collapsed");
+  std::ostringstream coefs;
+  for (const double z : {0., 1.})
+    for (const double y : {0., 1.})
+      for (const double x : {0., 1.})
+        coefs << (z == 0. && y == 1. ? 0. : x) << ' ' << y << ' ' << z
+              << '\n';
+  const std::string knots = "0 0 1 1";
+  std::ofstream(cli::join(s.path, "wedge.xml"))
+    << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<xml>\n"
+       "<Geometry type=\"TensorBSpline3\" id=\"0\">\n"
+       "<Basis type=\"TensorBSplineBasis3\">\n"
+       "<Basis type=\"BSplineBasis\" index=\"0\"><KnotVector degree=\"1\">"
+    << knots
+    << "</KnotVector></Basis>\n"
+       "<Basis type=\"BSplineBasis\" index=\"1\"><KnotVector degree=\"1\">"
+    << knots
+    << "</KnotVector></Basis>\n"
+       "<Basis type=\"BSplineBasis\" index=\"2\"><KnotVector degree=\"1\">"
+    << knots
+    << "</KnotVector></Basis>\n</Basis>\n<coefs geoDim=\"3\">\n"
+    << coefs.str() << "</coefs>\n</Geometry>\n</xml>\n";
+  std::ofstream(cli::join(s.path, "wedge.prm"))
+    << "set Dimension = 3\n"
+       "subsection Discretization\n  set Type = nurbs\n  set Degree = 2\nend\n"
+       "subsection Body 1\n  set Geometry = file\n"
+       "  set Geometry file = wedge.xml\n  set Subdivisions = 4, 4, 1\n"
+       "  set Young's modulus = 1000\n"
+       "  set Poisson's ratio = 0.3\n  set Supports = 0.0: x; 0.2: y\n"
+       "  set Tractions = 0.5: pressure 1\nend\n"
+       "subsection Body 2\n  set Type = rigid plane\n"
+       "  set Plane point = 0, 0, 0\n  set Plane normal = 0, 0, 1\nend\n"
+       "subsection Contact\n  set Enabled = true\n"
+       "  set Slave face = 0.4\nend\n"
+       "subsection Output\n  set Write vtu = false\nend\n";
+  const auto run = run_igabde("wedge.prm --set 'Output/Directory=out'", s.path);
+  ASSERT_EQ(run.status, 0) << run.output;
+  const nlohmann::json summary =
+    nlohmann::json::parse(read_file(cli::join(s.path, "out/summary.json")));
+  ASSERT_TRUE(summary.contains("contact_points_left_out")) << run.output;
+  EXPECT_EQ(summary.at("contact_points_left_out")
+              .at("degenerate_normal")
+              .get<unsigned int>(),
+            6u)
+    << run.output;
+  EXPECT_TRUE(contains(run.output, "have a degenerate normal"))
+    << run.output;
+  // The top pressure's resultant, 1 over the unit square, reaches the
+  // plane (the solid is held vertically by the contact alone).
+  EXPECT_NEAR(summary.at("total_contact_force")[2].get<double>(), 1., 1e-8)
+    << run.output;
 }

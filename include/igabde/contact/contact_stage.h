@@ -52,6 +52,9 @@ namespace igabde
       /// Coulomb friction coefficient; 0 in every interaction forms no
       /// tangential unknowns.
       double friction_coefficient = 0.;
+      /// Slave points farther from the master than this are left out (0:
+      /// no limit).
+      double search_distance = 0.;
       /// For messages: where the scene writes it ("Contact",
       /// "Contact/Interaction 2").
       std::string name = "Contact";
@@ -189,6 +192,8 @@ namespace igabde
       unsigned int left_out_not_facing    = 0;
       unsigned int left_out_outside       = 0;
       unsigned int left_out_unprojected   = 0;
+      unsigned int left_out_degenerate    = 0;
+      unsigned int left_out_beyond        = 0;
       bool         left_out_of_quadrature = false;
       /// Contact/Algorithm.
       Algorithm algorithm = Algorithm::bde;

@@ -11,6 +11,7 @@
 #include <deal.II/base/types.h>
 
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -90,8 +91,17 @@ namespace igabde
       /// Left out: the closest-point projection did not settle (a face
       /// folding back on itself far from the slave point).
       unsigned int unprojected = 0;
+      /// Left out: the slave's or the master's normal there is degenerate
+      /// (zero: a point of a collapsed edge, where the face's measure
+      /// vanishes).
+      unsigned int degenerate = 0;
+      /// Left out: farther from its closest master point than the search
+      /// distance (0: no such limit).
+      unsigned int beyond          = 0;
+      double       search_distance = 0.;
       /// The first point of each kind (valid when its count is positive).
-      Point<dim> first_not_facing, first_outside, first_unprojected;
+      Point<dim> first_not_facing, first_outside, first_unprojected,
+        first_degenerate, first_beyond;
       /// Whether the points are quadrature points (weighted gap).
       bool quadrature_points = false;
 
@@ -114,8 +124,20 @@ namespace igabde
       unsigned int
       n_left_out() const
       {
-        return not_facing + outside + unprojected;
+        return not_facing + outside + unprojected + degenerate + beyond;
       }
+    };
+
+    /**
+     * @brief Thrown by a point pairing when a slave point it keeps has a
+     * non-positive tributary area (a repeated control point on the slave
+     * face); the message says where. The contact stage pairs that
+     * interaction by the weighted gap instead.
+     */
+    class ExcNonPositiveTributaryArea : public std::runtime_error
+    {
+    public:
+      using std::runtime_error::runtime_error;
     };
 
     /**
@@ -157,9 +179,18 @@ namespace igabde
         return left_out;
       }
 
+      /// Slave points farther than @p distance from their closest master
+      /// point are left out (0, the default: no limit).
+      void
+      set_search_distance(const double distance)
+      {
+        search_distance = distance;
+      }
+
     protected:
       /// Filled by make_pairs().
       mutable PairingExclusions<dim> left_out;
+      double                         search_distance = 0.;
     };
 
 

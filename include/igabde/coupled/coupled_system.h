@@ -35,7 +35,7 @@ namespace igabde
     using namespace dealii;
 
     /**
-     * @brief The uncondensed contact system of one or two bodies (the
+     * @brief The uncondensed contact system of the deformable bodies (the
      * CoupledOperator of the full-system contact path): both bodies'
      * stiffness, the pair operator C from each pair's PointOperators and
      * local frame, and the rigid-mode columns G, in one Trilinos sparse

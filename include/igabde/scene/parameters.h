@@ -333,6 +333,11 @@ namespace igabde
       /// (empty: Contact's), read by check_scene().
       double      friction_coefficient = 0.;
       std::string friction_text;
+      /// Slave points farther from the master than this are left out (m;
+      /// 0: no limit). search_text: as written in Contact/Interaction k
+      /// (empty: Contact's).
+      double      search_distance = 0.;
+      std::string search_text;
       /// Pairing strategy.
       contact::Pairing pairing = contact::Pairing::node_to_surface;
     };

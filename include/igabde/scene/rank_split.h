@@ -30,9 +30,10 @@ namespace igabde
 
     /**
      * @brief Under mpirun with the direct solver: splits MPI_COMM_WORLD
-     * among the @p bodies (two bodies: ranks in proportion to
-     * @p factor_entries, their estimated factor sizes, at least one each;
-     * one body: every rank), gives each body its ParallelLayout, keeps the
+     * among the @p bodies (ranks in proportion to @p factor_entries, their
+     * estimated factor sizes, at least one each; one body: every rank;
+     * more bodies than ranks: each body on one rank, round robin), gives
+     * each body its ParallelLayout, keeps the
      * group communicator in @p groups and says the split on @p pcout.
      * Returns the names of the bodies this rank factorises (every body
      * with one process or another solver).
