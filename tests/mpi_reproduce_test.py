@@ -71,6 +71,10 @@ QUICK = [
     ("b2-curved-beams", "lagrange", "gmres-amg"),
     # A geometry file read by every rank (relative to the scene's folder).
     ("v7-sphere-on-block", "nurbs", "condensed"),
+    # Three bodies: fewer ranks than bodies (one rank each, round robin)
+    # and more; a body held between two contacts.
+    ("three-block-stack", "nurbs", "full"),
+    ("roller-between-plates", "nurbs", "condensed"),
 ]
 
 
