@@ -144,6 +144,17 @@ namespace igabde
                 for (unsigned int k = 0; k < n; ++k)
                   step[k] =
                     held[k] ? 0. : g[k] / (H[k][k] > 0. ? H[k][k] : gn[k][k]);
+              // A step below what counts as a move (1e-14 of the face's
+              // extent) is the minimum within round-off: done, without
+              // the line search's halvings, each a face evaluation, that
+              // would only confirm it.
+              bool negligible = true;
+              for (unsigned int k = 0; k < n; ++k)
+                negligible = negligible && std::abs(step[k]) <=
+                                             1e-14 * (grid.breaks[k].back() -
+                                                      grid.breaks[k].front());
+              if (negligible)
+                return eta;
               // Shortened until f falls by a tenth of a thousandth of the
               // linear model's decrease; none does at the minimum (within
               // round-off), which ends the search.
@@ -402,8 +413,15 @@ namespace igabde
                         b,
                         fa,
                         fb,
+                        // To 1e-10 of the element: far below what the
+                        // quadrature's pieces need, and above the noise
+                        // of the projections (1e-14 of the master face's
+                        // extent, which on a fine mesh is more than 1e-14
+                        // of one element: a tighter bracket then never
+                        // closes and the solve ran to its iteration limit,
+                        // so the cost per pair grew with the mesh).
                         [&](const double x, const double y) {
-                          return std::abs(y - x) <= 1e-14 * (hi[k] - lo[k]);
+                          return std::abs(y - x) <= 1e-10 * (hi[k] - lo[k]);
                         },
                         max_iterations);
                       cuts[k].push_back(0.5 * (bracket.first + bracket.second));

@@ -757,8 +757,7 @@ TEST(NoSilentWrongAnswer, CollapsedEdgeOfTheContactFace)
   for (const double z : {0., 1.})
     for (const double y : {0., 1.})
       for (const double x : {0., 1.})
-        coefs << (z == 0. && y == 1. ? 0. : x) << ' ' << y << ' ' << z
-              << '\n';
+        coefs << (z == 0. && y == 1. ? 0. : x) << ' ' << y << ' ' << z << '\n';
   const std::string knots = "0 0 1 1";
   std::ofstream(cli::join(s.path, "wedge.xml"))
     << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<xml>\n"
@@ -771,8 +770,7 @@ TEST(NoSilentWrongAnswer, CollapsedEdgeOfTheContactFace)
     << knots
     << "</KnotVector></Basis>\n"
        "<Basis type=\"BSplineBasis\" index=\"2\"><KnotVector degree=\"1\">"
-    << knots
-    << "</KnotVector></Basis>\n</Basis>\n<coefs geoDim=\"3\">\n"
+    << knots << "</KnotVector></Basis>\n</Basis>\n<coefs geoDim=\"3\">\n"
     << coefs.str() << "</coefs>\n</Geometry>\n</xml>\n";
   std::ofstream(cli::join(s.path, "wedge.prm"))
     << "set Dimension = 3\n"
@@ -797,8 +795,7 @@ TEST(NoSilentWrongAnswer, CollapsedEdgeOfTheContactFace)
               .get<unsigned int>(),
             6u)
     << run.output;
-  EXPECT_TRUE(contains(run.output, "have a degenerate normal"))
-    << run.output;
+  EXPECT_TRUE(contains(run.output, "have a degenerate normal")) << run.output;
   // The top pressure's resultant, 1 over the unit square, reaches the
   // plane (the solid is held vertically by the contact alone).
   EXPECT_NEAR(summary.at("total_contact_force")[2].get<double>(), 1., 1e-8)
