@@ -257,3 +257,42 @@ TEST(CliFclib, ExportWithoutAnFclibProblemIsRefusedWhenRead)
   EXPECT_NE(run.output.find("Output/FCLIB export"), std::string::npos)
     << run.output;
 }
+
+
+
+TEST(CliFclib, ExportedThreeBodyProblemSolvesToTheScenesAnswer)
+{
+  // The three-block stack with friction (mu = 0.3), its top pressed down
+  // by a prescribed displacement and its middle block held in y on its
+  // right side, so that no body floats (FCLIB's local problems have no
+  // rigid-mode rows): the condensed W of two interactions over three
+  // bodies, the middle one in both. The file must hold the problem the
+  // run solved (its answer meets FCLIB's measure on it), and solving the
+  // file from zero must find the same forces.
+  const cli::ScratchFolder scratch("fclib-export-three");
+  const auto               scene =
+    cli::run_prm_scene(scratch.path,
+                       "three-block-stack.prm",
+                       "--set 'Contact/Friction coefficient=0.3' "
+                       "--set 'Body 1/Supports=0: x; 3: y=-0.003' "
+                       "--set 'Body 1/Tractions=' "
+                       "--set 'Body 2/Supports=0: x; 1: y' "
+                       "--set 'Checks/Uniform pressure=0' "
+                       "--set 'Output/FCLIB export=true'");
+  ASSERT_EQ(scene.status, 0) << scene.output;
+  ASSERT_EQ(scene.summary.at("contact_interactions").size(), 2u);
+  const std::string file = cli::join(scratch.path, "out/fclib-0001.hdf5");
+  ASSERT_TRUE(std::filesystem::exists(file)) << scene.output;
+
+  const cli::ScratchFolder again("fclib-export-three-solve");
+  const auto               run =
+    cli::run_igabde("--fclib '" + file + "' --quiet --set Output/Directory=out",
+                    again);
+  ASSERT_EQ(run.status, 0) << run.output;
+  const nlohmann::json summary = read_summary(again.path);
+  const auto          &checks  = summary.at("checks");
+  EXPECT_LE(checks.at("fclib_error").get<double>(), 1e-8);
+  ASSERT_TRUE(checks.contains("reference_fclib_error")) << checks.dump();
+  EXPECT_LE(checks.at("reference_fclib_error").get<double>(), 1e-8);
+  EXPECT_LE(checks.at("reference_relative_difference").get<double>(), 1e-6);
+}
