@@ -129,6 +129,13 @@ namespace igabde
       if (friction)
         for (unsigned int d = 0; d < dim; ++d)
           names.emplace_back("slip");
+      // The interaction (1-based) only when there are several, last.
+      const bool interactions =
+        std::any_of(pairs.begin(), pairs.end(), [](const auto &pair) {
+          return pair.interaction > 0;
+        });
+      if (interactions)
+        names.emplace_back("interaction");
       std::vector<
         std::tuple<unsigned int,
                    unsigned int,
@@ -165,6 +172,8 @@ namespace igabde
           if (friction)
             for (unsigned int d = 0; d < dim; ++d)
               patch.data(row++, 0) = pair.slip[d];
+          if (interactions)
+            patch.data(row++, 0) = pair.interaction + 1;
         }
       std::ofstream out = base::open_for_writing(filename);
       DataOutBase::write_vtu(patches,

@@ -282,6 +282,9 @@ namespace igabde
         r.diagnosis = j.value("diagnosis", "");
       if (j.contains("total_contact_force"))
         r.total_contact_force = numbers(j.at("total_contact_force"));
+      if (j.contains("interaction_forces"))
+        for (const auto &f : j.at("interaction_forces"))
+          r.interaction_forces.push_back(numbers(f));
       if (j.contains("largest_strain"))
         r.largest_strain = j.at("largest_strain").get<double>();
       if (j.contains("largest_sliding"))

@@ -237,12 +237,14 @@ namespace igabde
       prm.enter_subsection("Contact");
       {
         enabled = prm.get_bool("Enabled");
-        interactions.assign(1, InteractionParameters());
-        InteractionParameters &first = interactions[0];
-        first.slave_body             = prm.get_integer("Slave body");
-        first.master_body            = prm.get_integer("Master body");
-        first.friction_coefficient   = prm.get_double("Friction coefficient");
-        first.search_distance        = prm.get_double("Search distance");
+        // The first interaction is filled here and copied into the list
+        // once complete (a reference into the list would dangle as the
+        // list grows).
+        InteractionParameters first;
+        first.slave_body           = prm.get_integer("Slave body");
+        first.master_body          = prm.get_integer("Master body");
+        first.friction_coefficient = prm.get_double("Friction coefficient");
+        first.search_distance      = prm.get_double("Search distance");
         algorithm =
           base::value_of(contact::algorithm_names, prm.get("Algorithm"));
         penalty_factor            = prm.get_double("Penalty factor");
@@ -265,6 +267,7 @@ namespace igabde
         r_scale        = prm.get_double("r scale");
         verbose        = prm.get_bool("Verbose");
         max_step_cuts  = prm.get_integer("Max step cuts");
+        interactions.assign(1, first);
         for (unsigned int k = 2; k <= max_interactions; ++k)
           {
             const std::string name = "Interaction " + std::to_string(k);

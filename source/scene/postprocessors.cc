@@ -329,6 +329,20 @@ namespace igabde
                     reaction);
                 }
             }
+          // Each interaction's resultant on its slave body, when there are
+          // several (the roller: its two contacts' forces, which the
+          // resultant on the roller balances to round-off).
+          const unsigned int n_interactions =
+            context.parameters.contact.interactions.size();
+          if (stage != nullptr && context.pairs != nullptr &&
+              n_interactions > 1)
+            {
+              std::vector<Tensor<1, dim>> sums(n_interactions);
+              for (const auto &pair : *context.pairs)
+                sums[pair.interaction] += pair.force;
+              for (const Tensor<1, dim> &f : sums)
+                record.interaction_forces.push_back(to_vector(f));
+            }
           if (stage != nullptr)
             {
               record.total_contact_force = to_vector(on_body1);

@@ -64,6 +64,8 @@ namespace igabde
         }
       if (r.total_contact_force)
         j["total_contact_force"] = *r.total_contact_force;
+      if (!r.interaction_forces.empty())
+        j["interaction_forces"] = r.interaction_forces;
       if (r.largest_strain)
         j["largest_strain"] = *r.largest_strain;
       if (r.largest_sliding)

@@ -161,6 +161,14 @@ TEST(NBodies, RollerBetweenTwoPlatesMeetsHertzAtBothContacts)
   const double a      = std::sqrt(4. * P * R / (M_PI * E_star));
   const double p0     = 2. * P / (M_PI * a);
   const auto  &table  = run.table;
+  // Each contact's resultant on the roller: the lower plate pushes it up
+  // by P, the upper one down by P (the upper plate's load), per unit
+  // thickness.
+  const auto &forces = run.summary["load_steps"][0]["interaction_forces"];
+  ASSERT_EQ(forces.size(), 2u);
+  EXPECT_NEAR(forces[0][1].get<double>(), P, 1e-8 * P);
+  EXPECT_NEAR(forces[1][1].get<double>(), -P, 1e-8 * P);
+  EXPECT_NEAR(forces[0][0].get<double>(), 0., 1e-8 * P);
   for (const int k : {1, 2})
     {
       SCOPED_TRACE("interaction " + std::to_string(k));

@@ -108,6 +108,9 @@ namespace igabde
       std::vector<BodyForceRecord> bodies;
       /// Contact force on Body 1 (contact scenes, finished steps).
       std::optional<std::vector<double>> total_contact_force;
+      /// With several contact interactions: the resultant of each one's
+      /// pair forces on its slave body (finished steps; else empty).
+      std::vector<std::vector<double>> interaction_forces;
       /// The largest principal strain of the bodies (finished steps).
       std::optional<double> largest_strain;
       /// ContactStage::largest_sliding() (contact scenes, finished steps).
