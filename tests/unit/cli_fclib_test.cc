@@ -65,6 +65,24 @@ namespace
       }
     return rows;
   }
+  /// Solves the exported FCLIB problem @p file from zero with igabde --fclib
+  /// in @p folder: its answer must meet FCLIB's measure, the stored
+  /// solution (the scene's answer) too, and the two must agree.
+  void
+  expect_solves_to_its_reference(const std::string        &file,
+                                 const cli::ScratchFolder &folder)
+  {
+    const auto run = cli::run_igabde("--fclib '" + file +
+                                       "' --quiet --set Output/Directory=out",
+                                     folder);
+    ASSERT_EQ(run.status, 0) << run.output;
+    const nlohmann::json summary = read_summary(folder.path);
+    const auto          &checks  = summary.at("checks");
+    EXPECT_LE(checks.at("fclib_error").get<double>(), 1e-8);
+    ASSERT_TRUE(checks.contains("reference_fclib_error")) << checks.dump();
+    EXPECT_LE(checks.at("reference_fclib_error").get<double>(), 1e-8);
+    EXPECT_LE(checks.at("reference_relative_difference").get<double>(), 1e-6);
+  }
 } // namespace
 
 
@@ -232,16 +250,7 @@ TEST(CliFclib, ExportedSceneProblemSolvesToTheScenesAnswer)
   ASSERT_TRUE(std::filesystem::exists(file));
 
   const cli::ScratchFolder again("fclib-export-solve");
-  const auto               run =
-    cli::run_igabde("--fclib '" + file + "' --quiet --set Output/Directory=out",
-                    again);
-  ASSERT_EQ(run.status, 0) << run.output;
-  const nlohmann::json summary = read_summary(again.path);
-  const auto          &checks  = summary.at("checks");
-  EXPECT_LE(checks.at("fclib_error").get<double>(), 1e-8);
-  ASSERT_TRUE(checks.contains("reference_fclib_error")) << checks.dump();
-  EXPECT_LE(checks.at("reference_fclib_error").get<double>(), 1e-8);
-  EXPECT_LE(checks.at("reference_relative_difference").get<double>(), 1e-6);
+  expect_solves_to_its_reference(file, again);
 }
 
 
@@ -285,14 +294,5 @@ TEST(CliFclib, ExportedThreeBodyProblemSolvesToTheScenesAnswer)
   ASSERT_TRUE(std::filesystem::exists(file)) << scene.output;
 
   const cli::ScratchFolder again("fclib-export-three-solve");
-  const auto               run =
-    cli::run_igabde("--fclib '" + file + "' --quiet --set Output/Directory=out",
-                    again);
-  ASSERT_EQ(run.status, 0) << run.output;
-  const nlohmann::json summary = read_summary(again.path);
-  const auto          &checks  = summary.at("checks");
-  EXPECT_LE(checks.at("fclib_error").get<double>(), 1e-8);
-  ASSERT_TRUE(checks.contains("reference_fclib_error")) << checks.dump();
-  EXPECT_LE(checks.at("reference_fclib_error").get<double>(), 1e-8);
-  EXPECT_LE(checks.at("reference_relative_difference").get<double>(), 1e-6);
+  expect_solves_to_its_reference(file, again);
 }
