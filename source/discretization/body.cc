@@ -624,11 +624,47 @@ namespace igabde
 
 
     template <int dim>
+    void
+    Body<dim>::move_surfaces(const Vector<double> &u) const
+    {
+      AssertDimension(u.size(), n_dofs());
+      move_surface_geometry(&u);
+      moved_surfaces = true;
+    }
+
+
+
+    template <int dim>
+    void
+    Body<dim>::reset_surfaces() const
+    {
+      if (moved_surfaces)
+        move_surface_geometry(nullptr);
+      moved_surfaces = false;
+    }
+
+
+
+    template <int dim>
+    bool
+    Body<dim>::surfaces_moved() const
+    {
+      return moved_surfaces;
+    }
+
+
+
+    template <int dim>
     SurfacePoint<dim>
     Body<dim>::closest_surface_point(const types::boundary_id,
                                      const Point<dim>        &location,
                                      const SurfacePoint<dim> &nearest) const
     {
+      // The point location below searches the reference mesh.
+      Assert(!moved_surfaces,
+             ExcMessage("closest_surface_point() of " + name() +
+                        " on a moved configuration: pair it by the weighted "
+                        "gap, which projects through face_point()"));
       SurfacePoint<dim> result = nearest;
       result.tributary_area    = 0.;
       const Point<dim> projected =

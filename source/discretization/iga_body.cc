@@ -696,7 +696,7 @@ namespace igabde
                                  const PairPlacement      placement) const
     {
       const auto [space, face]    = patch_face(body_face);
-      const auto        &geometry = space->geometry;
+      const auto        &geometry = surface_geometry(*space);
       const unsigned int patch    = patch_of_face<dim>(body_face);
       const unsigned int d        = face / 2;
       const double fixed = (face % 2 == 0 ? geometry.knot_vector(d).front() :
@@ -819,7 +819,7 @@ namespace igabde
       const std::vector<unsigned int> &face_cps,
       const Eigen::VectorXd           &integrals) const
     {
-      const auto &geometry = space.geometry;
+      const auto &geometry = surface_geometry(space);
       // sum_i R_A(xi_i) A_i = int R_A dGamma over the face's control points
       // A and Greville points xi_i, both tensor grids of the face's
       // directions. With R_A = w_A N_A / W, N_A = prod_e N_e,a_e and W the
@@ -952,9 +952,10 @@ namespace igabde
         xi[e] = (e == d ? (face % 2 == 0 ? space->breaks[d].front() :
                                            space->breaks[d].back()) :
                           eta[k++]);
-      const Tensor<2, dim> J = space->geometry.jacobian(xi);
+      const auto          &geometry = surface_geometry(*space);
+      const Tensor<2, dim> J        = geometry.jacobian(xi);
       FacePoint<dim>       result;
-      result.location = space->geometry.value(xi);
+      result.location = geometry.value(xi);
       std::tie(result.measure, result.normal) =
         face_measure_and_normal(face, J, space->orientation);
       for (unsigned int e = 0, k = 0; e < dim; ++e)
@@ -979,16 +980,54 @@ namespace igabde
       // The nearest surface point (a pair point of this face) starts the
       // search among its spans.
       const auto [space, local] = patch_face(face);
+      const auto      &geometry = surface_geometry(*space);
       const Point<dim> xi =
-        space->geometry.closest_point_on_face(local,
-                                              location,
-                                              &nearest.parametric);
+        geometry.closest_point_on_face(local, location, &nearest.parametric);
       SurfacePoint<dim> point;
       point.parametric = xi;
-      point.location   = space->geometry.value(xi);
-      point.normal     = space->geometry.outward_normal(local, xi);
+      point.location   = geometry.value(xi);
+      point.normal     = geometry.outward_normal(local, xi);
       point.op = parametric_point_operator(xi, patch_of_face<dim>(face));
       return point;
+    }
+
+
+
+    template <int dim>
+    void
+    IgaBody<dim>::move_surface_geometry(const Vector<double> *u) const
+    {
+      moved_geometry.clear();
+      if (u == nullptr)
+        return;
+      for (const PatchSpace &space : spaces)
+        {
+          const nurbs::NurbsPatch<dim>      &patch = space.geometry;
+          std::array<nurbs::KnotVector, dim> knots;
+          for (unsigned int d = 0; d < dim; ++d)
+            knots[d] = patch.knot_vector(d);
+          std::vector<Point<dim>> points(patch.n_control_points());
+          std::vector<double>     weights(patch.n_control_points());
+          for (unsigned int a = 0; a < points.size(); ++a)
+            {
+              points[a]  = patch.control_point(a);
+              weights[a] = patch.weight(a);
+              for (unsigned int c = 0; c < dim; ++c)
+                points[a][c] += (*u)[dim * space.numbers[a] + c];
+            }
+          moved_geometry.emplace_back(knots, points, weights);
+        }
+    }
+
+
+
+    template <int dim>
+    const nurbs::NurbsPatch<dim> &
+    IgaBody<dim>::surface_geometry(const PatchSpace &space) const
+    {
+      if (moved_geometry.empty())
+        return space.geometry;
+      return moved_geometry[&space - spaces.data()];
     }
 
 

@@ -871,12 +871,12 @@ namespace igabde
       const auto &base        = fe.base_element(0);
       const auto &unit_points = base.get_unit_face_support_points(0);
       const Quadrature<dim - 1>            node_quadrature(unit_points);
-      FEFaceValues<dim>                    node_values(*mapping,
+      FEFaceValues<dim>                    node_values(surface_mapping(),
                                     fe,
                                     node_quadrature,
                                     update_quadrature_points |
                                       update_normal_vectors);
-      FEFaceValues<dim>                    area_values(*mapping,
+      FEFaceValues<dim>                    area_values(surface_mapping(),
                                     fe,
                                     QGauss<dim - 1>(fe.degree + 2),
                                     update_values | update_JxW_values);
@@ -921,6 +921,24 @@ namespace igabde
           result.push_back(point);
         }
       return result;
+    }
+
+
+
+    template <int dim>
+    void
+    LagrangeBody<dim>::move_surface_geometry(const Vector<double> *u) const
+    {
+      moved_mapping.reset();
+      moved_euler_vector.reinit(0);
+      if (u == nullptr)
+        return;
+      // The unknowns and the support points share the DoF handler.
+      moved_euler_vector = euler_vector;
+      moved_euler_vector += *u;
+      moved_mapping =
+        std::make_unique<MappingFEField<dim, dim>>(dof_handler,
+                                                   moved_euler_vector);
     }
 
 

@@ -465,8 +465,9 @@ namespace igabde
 
       std::vector<types::global_dof_index> local(fe.n_dofs_per_cell());
       cell->get_dof_indices(local);
-      const auto    &base = fe.base_element(0);
-      FacePoint<dim> result;
+      const auto           &base = fe.base_element(0);
+      const Vector<double> &x    = surface_geometry();
+      FacePoint<dim>        result;
       result.op.weights.resize(base.n_dofs_per_cell());
       result.op.dofs.resize(base.n_dofs_per_cell());
       Tensor<2, dim> J; // dx/dxi (patch coordinates)
@@ -479,10 +480,9 @@ namespace igabde
             {
               const auto i = local[fe.component_to_system_index(comp, k)];
               result.op.dofs[k][comp] = i;
-              result.location[comp] += value * euler_vector[i];
+              result.location[comp] += value * x[i];
               for (unsigned int e = 0; e < dim; ++e)
-                J[comp][c.direction[e]] +=
-                  euler_vector[i] * grad[e] / c.length[e];
+                J[comp][c.direction[e]] += x[i] * grad[e] / c.length[e];
             }
         }
       // Outward normal along +-grad xi_d = J^-T e_d; dGamma = |det J|

@@ -539,6 +539,31 @@ namespace igabde
                  const Point<dim - 1>    &eta) const = 0;
 
       /**
+       * @brief The surface queries on the configuration x = X + @p u (the
+       * body's displacement @p u, all unknowns) instead of the reference
+       * one, until reset_surfaces(): surface_points(), face_point() and
+       * closest_surface_point() then give the current locations, outward
+       * normals, tangents, surface measures and tributary areas, for the
+       * same material points (the operators do not change; face_grid()
+       * neither, it is in face coordinates). NURBS: the patch with its
+       * control points moved by @p u, exact as the reference one
+       * (isoparametric: x = sum R_A (X_A + u_A)); Lagrange: the elements
+       * with their nodes moved. What contact pairing at finite sliding
+       * (Contact/Sliding = finite) forms its pairs on. Not thread-safe
+       * against concurrent surface queries.
+       */
+      void
+      move_surfaces(const Vector<double> &u) const;
+
+      /// The surface queries on the reference configuration again.
+      void
+      reset_surfaces() const;
+
+      /// Whether move_surfaces() is in effect.
+      bool
+      surfaces_moved() const;
+
+      /**
        * @brief Solves K u = f for every column, with homogeneous supports
        * (and the pins that remove free rigid modes); one factorisation serves
        * all. On return each vector holds its solution. Under a
@@ -796,6 +821,11 @@ namespace igabde
       }
 
     protected:
+      /// move_surfaces() (@p u) and reset_surfaces() (nullptr) in the
+      /// discretisation's surface geometry.
+      virtual void
+      move_surface_geometry(const Vector<double> *u) const = 0;
+
       /**
        * @brief Builds the discrete space: fills n_unknowns,
        * dof_locations, sparsity and the support constraints (homogeneous,
@@ -950,6 +980,8 @@ namespace igabde
       std::ostream *progress_stream = nullptr;
       /// Whether K and the load vectors were assembled on this rank.
       bool assembled = false;
+      /// Whether move_surfaces() is in effect.
+      mutable bool moved_surfaces = false;
       /// Whether every rank of the layout's world holds K whole
       /// (ParallelLayout::matrix_everywhere, or ensure_assembled(), which
       /// every rank calls): memory_record()'s K is then replicated.

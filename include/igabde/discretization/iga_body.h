@@ -266,6 +266,11 @@ namespace igabde
                                  const unsigned int    p = 0) const;
 
     protected:
+      /// @brief Per patch, a copy of its geometry with the control points
+      /// moved by the displacement (nullptr: none).
+      void
+      move_surface_geometry(const Vector<double> *u) const override;
+
       /// @brief Unknowns, control-point locations, supports and sparsity.
       void
       setup_space() override;
@@ -292,6 +297,15 @@ namespace igabde
         /// direction (a tensor grid, direction 0 fastest).
         std::array<std::vector<double>, dim> sample_coordinates;
       };
+
+      /// The surface queries' geometry of @p space: the patch itself, or
+      /// its moved copy after Body::move_surfaces().
+      const nurbs::NurbsPatch<dim> &
+      surface_geometry(const PatchSpace &space) const;
+
+      /// Per patch, the geometry with moved control points
+      /// (move_surface_geometry(); empty on the reference configuration).
+      mutable std::vector<nurbs::NurbsPatch<dim>> moved_geometry;
 
       /// Surface measure factor |cof(J) e_d| and outward unit normal of the
       /// patch face @p face (0..2 dim - 1) of a patch of orientation

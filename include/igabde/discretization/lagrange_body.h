@@ -139,6 +139,11 @@ namespace igabde
       min_jacobian_ratio(const std::vector<Point<dim>> &unit_points) const;
 
     protected:
+      /// A second mapping on the support points moved by the displacement
+      /// (nullptr: none).
+      void
+      move_surface_geometry(const Vector<double> *u) const override;
+
       void
       setup_space() override;
 
@@ -190,6 +195,21 @@ namespace igabde
       /// Physical position of every support point (the MappingFEField data).
       Vector<double>                            euler_vector;
       std::unique_ptr<MappingFEField<dim, dim>> mapping;
+      /// The support points moved by Body::move_surfaces() and their
+      /// mapping (empty on the reference configuration); what the surface
+      /// queries use, surface_geometry() and surface_mapping().
+      mutable Vector<double>                            moved_euler_vector;
+      mutable std::unique_ptr<MappingFEField<dim, dim>> moved_mapping;
+      const Vector<double> &
+      surface_geometry() const
+      {
+        return moved_mapping ? moved_euler_vector : euler_vector;
+      }
+      const Mapping<dim> &
+      surface_mapping() const
+      {
+        return moved_mapping ? *moved_mapping : *mapping;
+      }
       /// Point location (GridTools::Cache on the mapping), built on first
       /// use by find_cell().
       mutable std::unique_ptr<GridTools::Cache<dim>> cache;
