@@ -165,7 +165,20 @@ namespace igabde
             keep.push_back(i);
         }
       contact = kept_pairs_contact(pair_list, keep, modes, m, context);
-      coupled = factory(bodies, contact.pairs, m, contact.problem.G);
+      FiniteSliding<dim> sliding;
+      if (pairs_at)
+        {
+          // The path's pairs are the kept ones: pairs_at() gives all.
+          AssertThrow(keep.size() == pair_list.size(),
+                      ExcMessage(context +
+                                 ": Contact/Sliding = finite "
+                                 "with pairs whose points move with held "
+                                 "unknowns only; hold fewer unknowns on the "
+                                 "contact faces"));
+          sliding.pairs_at = pairs_at;
+          sliding.q        = &contact.problem.q;
+        }
+      coupled = factory(bodies, contact.pairs, m, contact.problem.G, sliding);
       static_cast<const ContactData &>(contact.problem).check_consistency();
     }
 
@@ -228,6 +241,17 @@ namespace igabde
           offset += bodies[b]->n_dofs();
         }
       coupled->set_reference(whole, factors);
+    }
+
+
+
+    template <int dim>
+    void
+    CoupledPath<dim>::set_finite_sliding(
+      const std::function<
+        std::vector<ContactPair<dim>>(const Eigen::VectorXd &)> &pairs_at)
+    {
+      this->pairs_at = pairs_at;
     }
 
 

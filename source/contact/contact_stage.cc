@@ -89,7 +89,14 @@ namespace igabde
     typename ContactStage<dim>::State
     ContactStage<dim>::save_state() const
     {
-      return {x, u_rel, previous_external, status, has_previous, finite_u};
+      return {x,
+              u_rel,
+              previous_external,
+              status,
+              has_previous,
+              finite_u,
+              sliding_u,
+              x_keys};
     }
 
 
@@ -105,6 +112,8 @@ namespace igabde
       has_previous      = state.has_previous;
       finite_u          = state.finite_u;
       finite_u.resize(bodies.size());
+      sliding_u = state.sliding_u;
+      x_keys    = state.keys;
     }
 
 
@@ -241,7 +250,10 @@ namespace igabde
       // natural map alone is zero for p = 0 with every pair open).
       const unsigned int na    = problem.n_alpha();
       const auto         error = [&](const ContactIterate &y) {
+        op.update_geometry(y);
         Eigen::VectorXd u = op.displacement(y.p, y.w) + problem.q;
+        if (const Eigen::VectorXd *offset = op.displacement_offset())
+          u += *offset;
         if (na > 0)
           u += problem.G * y.alpha;
         double e = relative_natural_map_error(problem, y.p, u);
@@ -291,6 +303,10 @@ namespace igabde
                                   std::vector<Vector<double>> &u,
                                   TimerOutput                 &timer)
     {
+      // Finite sliding: the step's pairs on the last step's configuration
+      // (the operator built on them again).
+      if (settings.finite_sliding)
+        form_step_pairs(timer);
       ContactProblem  &problem = contact.problem;
       ContactOperator &op      = contact_path->op();
       // Bodies at finite strain: the step starts from the predictor, one
@@ -332,7 +348,7 @@ namespace igabde
               }
             else
               moved[b] = u[b];
-          U = relative_displacement(moved, factors);
+          U = relative_displacement(from_paired_configuration(moved), factors);
           // The size of the pairs' displacements from the reference
           // configuration (q holds those from the predictor only).
           double sum = 0.;
@@ -354,7 +370,7 @@ namespace igabde
           problem.displacement_scale = std::sqrt(sum);
         }
       else
-        U = relative_displacement(u, factors);
+        U = relative_displacement(from_paired_configuration(u), factors);
       // What the previous step's contact forces contribute to the pair
       // displacements (subtracted from the tangential increments).
       Eigen::VectorXd carry = op.displacement(x.p, x.w);
@@ -409,6 +425,12 @@ namespace igabde
             "and of Load path/Load factors"));
       }
 
+      // What the solve's corrections w add to (finite sliding's pairs_at()).
+      if (settings.finite_sliding)
+        {
+          sliding_base = u;
+          op.forget_geometry();
+        }
       ContactSolverResult solution;
       {
         TimerOutput::Scope t(timer, "contact: " + solver_section);
@@ -511,6 +533,13 @@ namespace igabde
       status            = solution.status;
       previous_external = U;
       has_previous      = true;
+      // Finite sliding: the pairs at the solution's configuration, on
+      // which its forces act.
+      if (settings.finite_sliding)
+        {
+          x_keys    = pair_keys();
+          pair_list = pairs_at(x.w);
+        }
 
       // Contact forces back to the fields.
       {
@@ -538,10 +567,13 @@ namespace igabde
             const auto [b, k] = contact.alpha_modes[a];
             u[b].add(amplitudes(a), bodies[b]->free_rigid_modes()[k]);
           }
-        // The next step at finite strain starts here.
+        // The next step at finite strain starts here; with finite sliding
+        // its pairs are formed on this configuration.
         for (unsigned int b = 0; b < bodies.size(); ++b)
           if (bodies[b]->finite_strain())
             finite_u[b] = u[b];
+        if (settings.finite_sliding)
+          sliding_u = u;
       }
       return result;
     }

@@ -14,6 +14,9 @@ namespace igabde
     ContactStage<dim>::largest_sliding(const std::vector<Vector<double>> &u,
                                        const std::vector<double> &factors) const
     {
+      // Finite sliding forms the pairs on the current configuration.
+      if (settings.finite_sliding)
+        return std::nullopt;
       if (std::none_of(pair_list.begin(), pair_list.end(), [&](const auto &p) {
             return obstacle_of(p) == nullptr;
           }))
@@ -29,6 +32,8 @@ namespace igabde
       const std::vector<Vector<double>> &u,
       const std::vector<double>         &factors) const
     {
+      if (settings.finite_sliding)
+        return std::nullopt;
       if (std::none_of(pair_list.begin(), pair_list.end(), [&](const auto &p) {
             const Obstacle<dim> *obstacle = obstacle_of(p);
             return obstacle != nullptr && !obstacle->flat();

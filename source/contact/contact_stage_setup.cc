@@ -69,17 +69,7 @@ namespace igabde
                                               master,
                                               context);
             }
-          for (ContactPair<dim> &pair : pairs)
-            {
-              pair.slave_body = c.slave_body;
-              pair.master_body =
-                deformable ? c.master_body : numbers::invalid_unsigned_int;
-              pair.obstacle =
-                deformable ? numbers::invalid_unsigned_int : c.obstacle;
-              pair.interaction          = k;
-              pair.friction_coefficient = c.friction_coefficient;
-              pair_list.push_back(std::move(pair));
-            }
+          append_pairs(std::move(pairs), k, pair_list);
         }
       cost_inputs    = compute_path_cost_inputs();
       setup_warnings = repairs;
@@ -123,6 +113,13 @@ namespace igabde
           path     = Path::condensed;
           path_why = "a body holds a rotation (Hold rotation), which only "
                      "the condensed path models";
+        }
+      else if (path == Path::automatic && settings.finite_sliding)
+        {
+          path     = Path::full;
+          path_why = "finite sliding (Contact/Sliding = finite) forms the "
+                     "pairs at every Newton iterate, which only the full "
+                     "path follows";
         }
       else if (path == Path::automatic && finite_strain())
         {
@@ -175,6 +172,10 @@ namespace igabde
                                                settings.context,
                                                log,
                                                settings.progress);
+      if (settings.finite_sliding)
+        contact_path->set_finite_sliding([this](const Eigen::VectorXd &w) {
+          return pairs_at(w);
+        });
       // The full path's merit adds the displacement equations, which the
       // first Newton step satisfies to rounding: its line search is
       // monotone (the non-monotone rule lets |H| grow for steps that the
@@ -187,6 +188,29 @@ namespace igabde
         log << "  contact: " << solver->name() << " on the "
             << to_string(resolved_path) << " path (" << path_why << ")"
             << std::endl;
+    }
+
+
+
+    template <int dim>
+    void
+    ContactStage<dim>::append_pairs(std::vector<ContactPair<dim>> &&pairs,
+                                    const unsigned int              k,
+                                    std::vector<ContactPair<dim>>  &list) const
+    {
+      const ContactInteraction &c          = settings.interactions[k];
+      const bool                deformable = c.master_body < bodies.size();
+      for (ContactPair<dim> &pair : pairs)
+        {
+          pair.slave_body = c.slave_body;
+          pair.master_body =
+            deformable ? c.master_body : numbers::invalid_unsigned_int;
+          pair.obstacle =
+            deformable ? numbers::invalid_unsigned_int : c.obstacle;
+          pair.interaction          = k;
+          pair.friction_coefficient = c.friction_coefficient;
+          list.push_back(std::move(pair));
+        }
     }
 
 
@@ -460,6 +484,14 @@ namespace igabde
 
     template void
     ContactStage<2>::build_pairs(TimerOutput &);
+    template void
+    ContactStage<2>::append_pairs(std::vector<ContactPair<2>> &&,
+                                  const unsigned int,
+                                  std::vector<ContactPair<2>> &) const;
+    template void
+    ContactStage<3>::append_pairs(std::vector<ContactPair<3>> &&,
+                                  const unsigned int,
+                                  std::vector<ContactPair<3>> &) const;
     template PathCostInputs
     ContactStage<2>::compute_path_cost_inputs() const;
     template unsigned int

@@ -192,6 +192,15 @@ namespace igabde
       std::vector<Eigen::Matrix3d> A(data.n_contacts, Eigen::Matrix3d::Zero()),
         B(data.n_contacts, Eigen::Matrix3d::Zero());
       Vec r_p = Vec::Zero(data.n_rows());
+      // With finite sliding the pairs at w = 0, where this start is
+      // linearised, and their gaps.
+      ContactIterate zero;
+      zero.p = Vec::Zero(data.n_rows());
+      zero.w = Vec::Zero(n_dofs());
+      update_geometry(zero);
+      const Vec q = displacement_offset() != nullptr ?
+                      Vec(data.q + *displacement_offset()) :
+                      data.q;
       // Directions held by supports on both sides carry no force, as in the
       // solver: a glued one would be a zero row.
       std::vector<bool> held;
@@ -201,7 +210,7 @@ namespace igabde
           if (closed[i] && !held[m * i + s])
             {
               A[i](s, s)     = k[i];
-              r_p[m * i + s] = -k[i] * data.q[m * i + s];
+              r_p[m * i + s] = -k[i] * q[m * i + s];
             }
           else
             B[i](s, s) = 1.;

@@ -402,7 +402,10 @@ namespace igabde
                            ContactIterate       &F,
                            NewtonBlocks         *pieces) const
     {
+      op.update_geometry(x);
       u = op.displacement(x.p, x.w) + data.q;
+      if (const Vec *offset = op.displacement_offset())
+        u += *offset;
       if (data.n_alpha() > 0)
         u += data.G * x.alpha;
       F.w = op.equilibrium_residual(x.p, x.w);
@@ -553,9 +556,14 @@ namespace igabde
 
       // u_raw: u before the held directions are zeroed (the line search
       // updates it linearly).
-      Vec        u_raw;
+      Vec u_raw;
+      // With finite sliding the pairs are formed again at x first (the
+      // line search below moves on their linearisation at x).
       const auto raw_displacement = [&]() {
+        op.update_geometry(x);
         u_raw = op.displacement(x.p, x.w) + data.q;
+        if (const Vec *offset = op.displacement_offset())
+          u_raw += *offset;
         if (na > 0)
           u_raw += data.G * x.alpha;
         F.w = op.equilibrium_residual(x.p, x.w);

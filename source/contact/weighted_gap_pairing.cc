@@ -851,14 +851,15 @@ namespace igabde
               continue;
             }
           ContactPair<dim> pair;
-          pair.area    = in.area;
-          pair.x1      = Point<dim>(in.x1 / in.area);
-          pair.x2      = Point<dim>(in.x2 / in.area);
-          pair.frame   = local_frame<dim>(in.normal / in.normal.norm());
-          pair.normal1 = -pair.frame[0];
-          pair.gap     = in.gap / in.area;
-          pair.op1     = make_operator<dim>(in.op1, in.area, dofs1);
-          pair.op2     = make_operator<dim>(in.op2, in.area, dofs2);
+          pair.area      = in.area;
+          pair.x1        = Point<dim>(in.x1 / in.area);
+          pair.x2        = Point<dim>(in.x2 / in.area);
+          pair.frame     = local_frame<dim>(in.normal / in.normal.norm());
+          pair.normal1   = -pair.frame[0];
+          pair.gap       = in.gap / in.area;
+          pair.op1       = make_operator<dim>(in.op1, in.area, dofs1);
+          pair.op2       = make_operator<dim>(in.op2, in.area, dofs2);
+          pair.slave_key = key;
           pairs.push_back(pair);
         }
       AssertThrow(this->left_out.candidates > this->left_out.n_left_out(),

@@ -84,38 +84,7 @@ namespace igabde
           held[offsets[b] + i] = bodies[b]->is_held(i);
       AssertDimension(G.rows(), d * n_pairs);
 
-      // C: per pair row, the unknowns of the two points in the local frame
-      // (the master body's with the opposite sign).
-      C_rows.resize(d * n_pairs);
-      for (unsigned int i = 0; i < n_pairs; ++i)
-        for (const unsigned int b : {pairs[i].slave_body, pairs[i].master_body})
-          {
-            if (b >= bodies.size())
-              continue;
-            double      sign = 0.;
-            const auto &op   = *pairs[i].operator_on(b, sign);
-            for (unsigned int k = 0; k < op.weights.size(); ++k)
-              for (unsigned int c = 0; c < dim; ++c)
-                {
-                  const unsigned int g = offsets[b] + op.dofs[k][c];
-                  if (held[g])
-                    continue;
-                  for (unsigned int s = 0; s < d; ++s)
-                    {
-                      // A frame component of round-off size (a tangent
-                      // along an axis, from a mean of normals) is zero:
-                      // else a direction whose unknowns the supports hold
-                      // keeps a row of rounding and the glued Newton
-                      // matrix of that row is singular.
-                      if (std::abs(pairs[i].frame[s][c]) <= 1e-12)
-                        continue;
-                      const double v =
-                        sign * op.weights[k] * pairs[i].frame[s][c];
-                      if (v != 0.)
-                        C_rows[d * i + s].emplace_back(g, v);
-                    }
-                }
-          }
+      set_C_rows(pairs);
 
       // Pair stiffness E A / h from the elements of the pair's bodies (E
       // of the two in series, the larger element size).
@@ -123,6 +92,12 @@ namespace igabde
       for (const auto &pair : pairs)
         mean_area += pair.area / std::max<double>(n_pairs, 1);
       stiffness.resize(n_pairs);
+      // Each body's mean element size once: measure() integrates over the
+      // body.
+      std::vector<double> element_size;
+      for (const auto *body : bodies)
+        element_size.push_back(
+          std::pow(body->measure() / body->n_elements(), 1. / dim));
       for (unsigned int i = 0; i < n_pairs; ++i)
         {
           double h = 0., inverse_modulus = 0.;
@@ -130,10 +105,7 @@ namespace igabde
                {pairs[i].slave_body, pairs[i].master_body})
             if (b < bodies.size())
               {
-                h = std::max(h,
-                             std::pow(bodies[b]->measure() /
-                                        bodies[b]->n_elements(),
-                                      1. / dim));
+                h = std::max(h, element_size[b]);
                 inverse_modulus += 1. / bodies[b]->material().youngs_modulus;
               }
           const double area = pairs[i].area > 0. ? pairs[i].area :
@@ -163,6 +135,155 @@ namespace igabde
         owned.compress();
       }
 
+      // Column scale of the force unknowns: p = scale p~ with scale the
+      // mean stiffness diagonal, so that every block of the Newton matrix
+      // has entries of one magnitude (K ~ scale, C^T scale ~ scale); the
+      // held rows get the same diagonal.
+      double       sum = 0.;
+      unsigned int n   = 0;
+      for (unsigned int b = 0; b < bodies.size(); ++b)
+        for (types::global_dof_index i = 0; i < bodies[b]->n_dofs(); ++i)
+          if (!held[offsets[b] + i])
+            {
+              sum += std::abs(bodies[b]->stiffness_matrix().diag_element(i));
+              ++n;
+            }
+      scale = (n > 0 && sum > 0.) ? sum / n : 1.;
+
+      build_pattern();
+      if (krylov)
+        setup_krylov();
+    }
+
+
+
+    template <int dim>
+    void
+    CoupledSystem<dim>::set_C_rows(
+      const std::vector<contact::ContactPair<dim>> &pairs)
+    {
+      // C: per pair row, the unknowns of the two points in the local frame
+      // (the master body's with the opposite sign).
+      C_rows.assign(d * n_pairs, {});
+      for (unsigned int i = 0; i < n_pairs; ++i)
+        for (const unsigned int b : {pairs[i].slave_body, pairs[i].master_body})
+          {
+            if (b >= bodies.size())
+              continue;
+            double      sign = 0.;
+            const auto &op   = *pairs[i].operator_on(b, sign);
+            for (unsigned int k = 0; k < op.weights.size(); ++k)
+              for (unsigned int c = 0; c < dim; ++c)
+                {
+                  const unsigned int g = offsets[b] + op.dofs[k][c];
+                  if (held[g])
+                    continue;
+                  for (unsigned int s = 0; s < d; ++s)
+                    {
+                      // A frame component of round-off size (a tangent
+                      // along an axis, from a mean of normals) is zero:
+                      // else a direction whose unknowns the supports hold
+                      // keeps a row of rounding and the glued Newton
+                      // matrix of that row is singular.
+                      if (std::abs(pairs[i].frame[s][c]) <= 1e-12)
+                        continue;
+                      const double v =
+                        sign * op.weights[k] * pairs[i].frame[s][c];
+                      if (v != 0.)
+                        C_rows[d * i + s].emplace_back(g, v);
+                    }
+                }
+          }
+    }
+
+
+
+    template <int dim>
+    void
+    CoupledSystem<dim>::set_finite_sliding(
+      const contact::FiniteSliding<dim> &sliding)
+    {
+      // The scene reader refuses the Krylov solver with finite sliding.
+      AssertThrow(!krylov,
+                  ExcMessage("Contact/Sliding = finite factorises the Newton "
+                             "matrix (Contact/Full system solver = mumps or "
+                             "klu)"));
+      // The rigid-mode columns G would follow the pairs too.
+      AssertThrow(n_alpha == 0,
+                  base::ExcInput(
+                    "Contact/Sliding = finite with a body that only its "
+                    "contacts hold (a free rigid mode): hold every body by "
+                    "Supports, Point supports or Face motions"));
+      Assert(sliding.q != nullptr, ExcInternalError());
+      this->sliding = sliding;
+      geometry_at.resize(0);
+    }
+
+
+
+    template <int dim>
+    void
+    CoupledSystem<dim>::update_geometry(const contact::ContactIterate &x)
+    {
+      if (!sliding.pairs_at)
+        return;
+      if (geometry_at.size() == x.w.size() && geometry_at == x.w)
+        return;
+      const std::vector<contact::ContactPair<dim>> pairs =
+        sliding.pairs_at(x.w);
+      AssertDimension(pairs.size(), n_pairs);
+      const auto old_rows = C_rows;
+      set_C_rows(pairs);
+      // The Newton matrix's pattern follows the master points into other
+      // elements; MUMPS' analysis then starts afresh.
+      bool same_pattern = true;
+      for (unsigned int r = 0; r < C_rows.size() && same_pattern; ++r)
+        {
+          same_pattern = C_rows[r].size() == old_rows[r].size();
+          for (unsigned int k = 0; k < C_rows[r].size() && same_pattern; ++k)
+            same_pattern = C_rows[r][k].first == old_rows[r][k].first;
+        }
+      if (!same_pattern)
+        {
+          direct.reset();
+          direct_problem.reset();
+          build_pattern();
+        }
+      // u = C w + q + offset is the pairs' displacement at w: the gap at
+      // its configuration in the normal rows (the tangential ones are the
+      // step's increments, which the pairs' linearisation keeps).
+      const Eigen::VectorXd  Cw = apply_C(x.w);
+      const Eigen::VectorXd &q  = *sliding.q;
+      offset                    = Eigen::VectorXd::Zero(d * n_pairs);
+      for (unsigned int i = 0; i < n_pairs; ++i)
+        offset[d * i] = pairs[i].gap - Cw[d * i] - q[d * i];
+      geometry_at = x.w;
+    }
+
+
+
+    template <int dim>
+    void
+    CoupledSystem<dim>::forget_geometry()
+    {
+      geometry_at.resize(0);
+    }
+
+
+
+    template <int dim>
+    const Eigen::VectorXd *
+    CoupledSystem<dim>::displacement_offset() const
+    {
+      return sliding.pairs_at ? &offset : nullptr;
+    }
+
+
+
+    template <int dim>
+    void
+    CoupledSystem<dim>::build_pattern()
+    {
       // Sparsity of the Newton matrix.
       DynamicSparsityPattern dsp(n_total, n_total, owned);
       for (unsigned int b = 0; b < bodies.size(); ++b)
@@ -204,24 +325,7 @@ namespace igabde
           }
       for (unsigned int a = 0; a < n_alpha; ++a)
         dsp.add(n_u + d * n_pairs + a, n_u + d * n_pairs + a);
-      // Column scale of the force unknowns: p = scale p~ with scale the
-      // mean stiffness diagonal, so that every block of the Newton matrix
-      // has entries of one magnitude (K ~ scale, C^T scale ~ scale); the
-      // held rows get the same diagonal.
-      double       sum = 0.;
-      unsigned int n   = 0;
-      for (unsigned int b = 0; b < bodies.size(); ++b)
-        for (types::global_dof_index i = 0; i < bodies[b]->n_dofs(); ++i)
-          if (!held[offsets[b] + i])
-            {
-              sum += std::abs(bodies[b]->stiffness_matrix().diag_element(i));
-              ++n;
-            }
-      scale = (n > 0 && sum > 0.) ? sum / n : 1.;
-
       matrix.reinit(owned, owned, dsp, this->communicator);
-      if (krylov)
-        setup_krylov();
     }
 
 
@@ -844,8 +948,9 @@ namespace igabde
       return [solver, krylov_max_iterations, progress, communicator](
                const std::vector<const discretization::Body<dim> *> &bodies,
                const std::vector<contact::ContactPair<dim>>         &pairs,
-               const unsigned int     n_components,
-               const Eigen::MatrixXd &G) {
+               const unsigned int                 n_components,
+               const Eigen::MatrixXd             &G,
+               const contact::FiniteSliding<dim> &sliding) {
         auto system =
           std::make_unique<CoupledSystem<dim>>(bodies,
                                                pairs,
@@ -855,6 +960,8 @@ namespace igabde
                                                krylov_max_iterations,
                                                communicator);
         system->report_progress_to(progress);
+        if (sliding.pairs_at)
+          system->set_finite_sliding(sliding);
         return system;
       };
     }

@@ -94,6 +94,18 @@ namespace igabde
                           "unknowns, face unknowns, estimated sparse factor "
                           "size; penalty and augmented-lagrange always "
                           "solve the full system).");
+        prm.declare_entry("Sliding",
+                          "small",
+                          Patterns::Selection("small|finite"),
+                          "small: the pairs are formed once, on the "
+                          "reference configuration (sliding well below the "
+                          "pair spacing). finite: formed again on the "
+                          "current configuration, which slave parts face a "
+                          "master at the start of every load step and their "
+                          "master points, normals and gaps at every Newton "
+                          "iterate (the full path, frictionless contact "
+                          "paired by the weighted gap, masters that are "
+                          "bodies or fixed obstacles).");
         prm.declare_entry("Condensation",
                           "schur",
                           Patterns::Selection(
@@ -253,7 +265,8 @@ namespace igabde
           base::value_of(coupled::solver_names, prm.get("Full system solver"));
         krylov_max_iterations = prm.get_integer("Krylov max iterations");
         penalty_line_search   = prm.get_bool("Penalty line search");
-        path = base::value_of(contact::path_names, prm.get("Path"));
+        path           = base::value_of(contact::path_names, prm.get("Path"));
+        finite_sliding = prm.get("Sliding") == "finite";
         condensation =
           base::value_of(contact::condensation_names, prm.get("Condensation"));
         first.slave_face_text  = base::trim(prm.get("Slave face"));

@@ -45,6 +45,7 @@ namespace igabde
         cs.body_labels.push_back("Body " + std::to_string(b + 1));
       cs.solver.algorithm   = c.algorithm;
       cs.solver.path        = c.path;
+      cs.finite_sliding     = c.finite_sliding;
       cs.schur_condensation = c.condensation == contact::Condensation::schur &&
                               parameters.discretization.linear_solver ==
                                 discretization::LinearSolver::direct;
@@ -92,6 +93,7 @@ namespace igabde
           effects["obstacle_motion"] = s.obstacle_moves;
           summary["obstacle"]        = s.obstacle_kind;
         }
+      effects["finite_sliding"]           = c.finite_sliding;
       effects["initial_gaps"]             = s.initial_gaps;
       effects["floating_rigid_modes"]     = s.floating_rigid_modes;
       effects["pairs_left_out_supported"] = s.pairs_left_out;

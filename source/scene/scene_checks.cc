@@ -114,8 +114,68 @@ namespace igabde
                           "solves are threaded, not distributed); run it "
                           "without mpirun."));
       }
-    } // namespace
 
+
+
+      /**
+       * Contact/Sliding = finite with what it cannot follow yet: refused with
+       * the fix.
+       */
+      void
+      check_finite_sliding(const AllParameters &parameters,
+                           const std::string   &f)
+      {
+        const ContactParameters &contact = parameters.contact;
+        const std::string        what    = f + "Contact/Sliding = finite ";
+        AssertThrow(contact.path != contact::Path::condensed,
+                    base::ExcInput(what +
+                                   "forms the pairs at every Newton iterate, "
+                                   "which only the full path follows; set "
+                                   "Contact/Path = full or auto."));
+        AssertThrow(contact.algorithm == contact::Algorithm::bde,
+                    base::ExcInput(what + "is solved by the B-Newton; set "
+                                          "Contact/Algorithm = bde."));
+        AssertThrow(contact.full_system_solver != coupled::Solver::gmres_amg,
+                    base::ExcInput(what +
+                                   "factorises its Newton matrix; set Contact/"
+                                   "Full system solver = mumps or klu."));
+        for (const InteractionParameters &c : contact.interactions)
+          {
+            AssertThrow(c.friction_coefficient == 0.,
+                        base::ExcInput(
+                          what +
+                          "is frictionless in this version, "
+                          "but " +
+                          c.name + "/Friction coefficient = " +
+                          base::number_text(c.friction_coefficient) +
+                          "; set it to 0, or Sliding = small."));
+            AssertThrow(c.pairing == contact::Pairing::weighted_gap ||
+                          c.pairing == contact::Pairing::weighted_gap_standard,
+                        base::ExcInput(
+                          what + "pairs by the weighted gap, but " + c.name +
+                          "/Pairing = " + contact::to_string(c.pairing) +
+                          "; set it to weighted-gap."));
+            const BodyParameters &master = parameters.bodies[c.master_body - 1];
+            AssertThrow(master.type == BodyType::deformable ||
+                          master.motion.empty(),
+                        base::ExcInput(what +
+                                       "against a moving obstacle is not "
+                                       "modelled yet, but Body " +
+                                       std::to_string(c.master_body) +
+                                       "/Motion is set; remove it, or use "
+                                       "Sliding = small."));
+          }
+        for (unsigned int b = 0; b < parameters.bodies.size(); ++b)
+          AssertThrow(parameters.bodies[b].type != BodyType::deformable ||
+                        parameters.bodies[b].hold_rotation_face < 0,
+                      base::ExcInput(what +
+                                     "runs on the full path, which has "
+                                     "no rows for Body " +
+                                     std::to_string(b + 1) +
+                                     "/Hold rotation; hold the body by "
+                                     "Supports or Face motions."));
+      }
+    } // namespace
 
 
     void
@@ -280,6 +340,8 @@ namespace igabde
                           "; use Contact/Algorithm = bde with Path = "
                           "condensed or auto."));
           }
+      if (contact.enabled && contact.finite_sliding)
+        check_finite_sliding(parameters, f);
       // What the contact solver would refuse only when it is built.
       AssertThrow(contact.tolerance > 0.,
                   base::ExcInput(f + "Contact/Tolerance = " +

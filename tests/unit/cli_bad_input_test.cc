@@ -703,3 +703,67 @@ TEST(CliBadInput, GapInTheBodyNumbering)
                                "number the bodies from Body 1 without gaps",
                                "v3-contact-patch-2d.prm");
 }
+
+TEST(CliBadInput, FiniteSlidingOnTheCondensedPath)
+{
+  expect_refused_at_parse_time("sliding-condensed",
+                               "Contact/Path=condensed",
+                               "only the full path follows",
+                               "hertz-cylinder-sliding.prm");
+}
+
+TEST(CliBadInput, FiniteSlidingWithFriction)
+{
+  expect_refused_at_parse_time("sliding-friction",
+                               "Contact/Friction coefficient=0.3",
+                               "Contact/Friction coefficient = 0.3",
+                               "hertz-cylinder-sliding.prm");
+}
+
+TEST(CliBadInput, FiniteSlidingWithPointPairs)
+{
+  expect_refused_at_parse_time("sliding-point-pairs",
+                               "Contact/Pairing=node-to-surface",
+                               "Contact/Pairing = node-to-surface",
+                               "hertz-cylinder-sliding.prm");
+}
+
+TEST(CliBadInput, FiniteSlidingWithGmres)
+{
+  expect_refused_at_parse_time("sliding-gmres",
+                               "Contact/Full system solver=gmres-amg",
+                               "Full system solver = mumps or klu",
+                               "hertz-cylinder-sliding.prm");
+}
+
+TEST(CliBadInput, FiniteSlidingAgainstAMovingObstacle)
+{
+  expect_refused_at_parse_time("sliding-moving-obstacle",
+                               "Contact/Sliding=finite",
+                               "Body 2/Motion",
+                               "rigid-cylinder-sliding.prm",
+                               "--set 'Contact/Friction coefficient=0' "
+                               "--set 'Contact/Pairing=weighted-gap'");
+}
+
+TEST(CliBadInput, FiniteSlidingWithABodyHeldByContactAlone)
+{
+  // The upper block of V3 is held vertically by the contact only: its
+  // rigid-mode columns would follow the pairs too. Refused when the
+  // contact problem is formed, before any step.
+  const cli::ScratchFolder folder("bad-input-sliding-free-mode");
+  const std::string        scene =
+    cli::join(cli::join(std::string(IGABDE_SOURCE_DIR), "prm"),
+              "v3-contact-patch-2d.prm");
+  const auto result = cli::run_igabde(
+    "'" + scene +
+      "' --quiet --set 'Contact/Sliding=finite' --set "
+      "'Contact/Pairing=weighted-gap' --set 'Contact/Friction coefficient=0' "
+      "--set 'Output/Directory=out'",
+    folder);
+  EXPECT_EQ(result.status, 2) << result.output;
+  EXPECT_NE(result.output.find("only its contacts hold"), std::string::npos)
+    << result.output;
+  EXPECT_FALSE(
+    std::filesystem::exists(cli::join(folder.path, "out/contact-0001.csv")));
+}

@@ -18,14 +18,16 @@
 
 namespace
 {
-  constexpr double E = 1000., nu = 0.3, pressure = 1.;
+  // The stack's material and load (names of their own: the unity batches
+  // join test files).
+  constexpr double stack_E = 1000., stack_nu = 0.3, stack_pressure = 1.;
 
   /// The closed-form displacement of the stack at (x, y).
   std::vector<double>
   uniaxial_displacement(const double x, const double y)
   {
-    return {nu * (1. + nu) * pressure / E * x,
-            -(1. - nu * nu) * pressure / E * (y + 1.)};
+    return {stack_nu * (1. + stack_nu) * stack_pressure / stack_E * x,
+            -(1. - stack_nu * stack_nu) * stack_pressure / stack_E * (y + 1.)};
   }
 
   void
@@ -48,7 +50,7 @@ namespace
         const int k = static_cast<int>(table.number(i, "interaction")) - 1;
         ASSERT_TRUE(k == 0 || k == 1);
         EXPECT_NEAR(table.number(i, "y"), k == 0 ? 1. : 0., 1e-12);
-        EXPECT_NEAR(table.number(i, "pressure"), pressure, 1e-8)
+        EXPECT_NEAR(table.number(i, "pressure"), stack_pressure, 1e-8)
           << "pair " << i << " at x = " << table.number(i, "x");
         if (friction)
           {
@@ -59,8 +61,8 @@ namespace
         on_interface[k] += table.number(i, "p_n");
       }
     // Each interface carries the whole load p times the width 1.
-    EXPECT_NEAR(on_interface[0], pressure, 1e-10);
-    EXPECT_NEAR(on_interface[1], pressure, 1e-10);
+    EXPECT_NEAR(on_interface[0], stack_pressure, 1e-10);
+    EXPECT_NEAR(on_interface[1], stack_pressure, 1e-10);
     const std::vector<std::pair<std::string, std::array<double, 2>>> probes = {
       {"top", {{0.5, 2.}}},
       {"middle", {{0.5, 0.5}}},
@@ -157,7 +159,7 @@ TEST(NBodies, RollerBetweenTwoPlatesMeetsHertzAtBothContacts)
                              "");
   ASSERT_EQ(run.summary["status"], "ok");
   const double P = 60., R = 8.;
-  const double E_star = 1. / (2. * (1. - nu * nu) / E);
+  const double E_star = 1. / (2. * (1. - stack_nu * stack_nu) / stack_E);
   const double a      = std::sqrt(4. * P * R / (M_PI * E_star));
   const double p0     = 2. * P / (M_PI * a);
   const auto  &table  = run.table;

@@ -94,6 +94,42 @@ namespace igabde
                    const Eigen::VectorXd &w) const = 0;
 
       /**
+       * @brief Finite sliding (Contact/Sliding = finite): re-forms the
+       * pairs on the configuration the iterate @p x reaches (their
+       * operators, frames and gaps there) before its residual is
+       * evaluated, so that displacement() is the pairs' linearisation at
+       * @p x and displacement_offset() the change of the gaps that the
+       * data's q does not hold: the pair displacements at @p x are then
+       * displacement(x) + q + displacement_offset(), exact at @p x.
+       * Nothing by default (pairs formed once, small sliding).
+       */
+      virtual void
+      update_geometry(const ContactIterate &x)
+      {
+        (void)x;
+      }
+
+      /**
+       * @brief The configuration that update_geometry()'s iterates are
+       * corrections from has changed (a new step): the next update forms
+       * the pairs whatever the iterate.
+       */
+      virtual void
+      forget_geometry()
+      {}
+
+      /**
+       * @brief After update_geometry(): the pair displacements' offset
+       * from displacement() + q at the configuration of the last update;
+       * nullptr without finite sliding.
+       */
+      virtual const Eigen::VectorXd *
+      displacement_offset() const
+      {
+        return nullptr;
+      }
+
+      /**
        * @brief The adjoint of displacement(): M_p^T y into @p y_p
        * (n_rows()) and M_w^T y into @p y_w (n_dofs()).
        */

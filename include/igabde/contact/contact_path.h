@@ -31,11 +31,34 @@ namespace igabde
      * coupled::coupled_factory()).
      */
     template <int dim>
+    struct FiniteSliding;
+
+    template <int dim>
     using CoupledFactory = std::function<std::unique_ptr<CoupledOperator>(
       const std::vector<const discretization::Body<dim> *> &,
       const std::vector<ContactPair<dim>> &,
       const unsigned int,
-      const Eigen::MatrixXd &)>;
+      const Eigen::MatrixXd &,
+      const FiniteSliding<dim> &)>;
+
+    /**
+     * @brief Finite sliding on the full path (Contact/Sliding = finite): how
+     * the coupled system forms its pairs again at every iterate
+     * (ContactOperator::update_geometry()).
+     */
+    template <int dim>
+    struct FiniteSliding
+    {
+      /// The pairs, in the contact path's order, on the configuration that
+      /// the displacement correction w (every body's unknowns, in the
+      /// system's order) reaches: operators, frames and gaps there. Empty:
+      /// small sliding, the pairs of prepare() throughout.
+      std::function<std::vector<ContactPair<dim>>(const Eigen::VectorXd &)>
+        pairs_at;
+      /// The law's q of the solve, whose normal rows the gaps of pairs_at()
+      /// replace (through ContactOperator::displacement_offset()).
+      const Eigen::VectorXd *q = nullptr;
+    };
 
     /**
      * @brief A contact path between the bodies and the contact solver:
@@ -108,6 +131,21 @@ namespace igabde
       n_nonzeros() const
       {
         return 0.;
+      }
+
+      /**
+       * @brief Finite sliding: the operator of the next prepare() forms its
+       * pairs at every iterate by @p pairs_at (FiniteSliding::pairs_at).
+       * The full path only.
+       */
+      virtual void
+      set_finite_sliding(const std::function<std::vector<ContactPair<dim>>(
+                           const Eigen::VectorXd &)> &pairs_at)
+      {
+        (void)pairs_at;
+        AssertThrow(false,
+                    ExcMessage("finite sliding is modelled on the full path "
+                               "(Contact/Path = full)"));
       }
     };
 
@@ -203,7 +241,10 @@ namespace igabde
       double
       n_nonzeros() const override;
 
-      /** @brief False: the coupled system is factorised on its own. */
+      void
+      set_finite_sliding(const std::function<std::vector<ContactPair<dim>>(
+                           const Eigen::VectorXd &)> &pairs_at) override;
+
     private:
       const std::vector<const discretization::Body<dim> *> bodies;
       const unsigned int                                   m;
@@ -211,6 +252,9 @@ namespace igabde
       const std::string                                    context;
       std::ostream                                        &log;
       std::unique_ptr<CoupledOperator>                     coupled;
+      /// set_finite_sliding() (empty: small sliding).
+      std::function<std::vector<ContactPair<dim>>(const Eigen::VectorXd &)>
+        pairs_at;
     };
   } // namespace contact
 } // namespace igabde

@@ -94,6 +94,11 @@ namespace igabde
       /// reason (the condensed path's dense blocks would not fit in
       /// memory; scene::SizeEstimate::choose_path_for_memory()).
       std::string memory_path_reason;
+      /// Contact/Sliding = finite: the pairs are formed again on the
+      /// current configuration at the start of every load step (the set of
+      /// slave points) and at every Newton iterate of the solve (their
+      /// master points, frames and gaps); the full path only.
+      bool finite_sliding = false;
     };
 
     /**
@@ -318,6 +323,11 @@ namespace igabde
         /// The displacement of each body at finite strain at the end of
         /// the last step (empty for the others).
         std::vector<Vector<double>> finite_u;
+        /// Finite sliding: every body's displacement at the end of the last
+        /// step (the configuration the next step's pairs are formed on),
+        /// and the pairs x's forces belong to, by (interaction, slave key).
+        std::vector<Vector<double>>                                   sliding_u;
+        std::vector<std::pair<unsigned int, types::global_dof_index>> keys;
       };
 
       State
@@ -407,6 +417,48 @@ namespace igabde
       /// The pairs and frames; chooses the path.
       void
       build_pairs(TimerOutput &timer);
+
+      /// Appends @p pairs of interaction @p k to @p list, with the
+      /// interaction's bodies or obstacle and friction coefficient.
+      void
+      append_pairs(std::vector<ContactPair<dim>> &&pairs,
+                   const unsigned int              k,
+                   std::vector<ContactPair<dim>>  &list) const;
+
+      /**
+       * @brief Finite sliding: the pairs of every interaction on the
+       * configuration X + @p u of the bodies (Body::move_surfaces()), as
+       * the pairings form them there.
+       */
+      std::vector<ContactPair<dim>>
+      pairs_on(const std::vector<Vector<double>> &u) const;
+
+      /**
+       * @brief Finite sliding, at the start of a step after the first: the
+       * pairs formed on the last step's configuration, the operator on
+       * them, the last forces and states carried over by slave key.
+       */
+      void
+      form_step_pairs(TimerOutput &timer);
+
+      /**
+       * @brief Finite sliding: the pairs of the step's set on the
+       * configuration the correction @p w reaches from sliding_base (the
+       * operator's FiniteSliding::pairs_at): each as pairs_on() forms it
+       * there, or, one whose slave part no longer faces the master, the
+       * step's own, with its gap carried linearly.
+       */
+      std::vector<ContactPair<dim>>
+      pairs_at(const Eigen::VectorXd &w) const;
+
+      /// The (interaction, slave key) of every pair of the list.
+      std::vector<std::pair<unsigned int, types::global_dof_index>>
+      pair_keys() const;
+
+      /// @p v less paired_at, body by body (finite sliding; @p v itself
+      /// when the pairs are the reference ones).
+      std::vector<Vector<double>>
+      from_paired_configuration(const std::vector<Vector<double>> &v) const;
 
       /// Forms the contact problem on the chosen path (the bodies
       /// factorised) and reports what was formed.
@@ -508,6 +560,14 @@ namespace igabde
       /// step (State::finite_u).
       std::vector<Vector<double>> finite_u;
       bool                        has_previous = false;
+
+      /// Finite sliding (ContactSettings::finite_sliding): every body's
+      /// displacement at the end of the last step; the configuration the
+      /// pairs of pair_list were formed on (empty: the reference one); the
+      /// displacement the correction w of the solve adds to; the keys of
+      /// the pairs x's forces belong to.
+      std::vector<Vector<double>> sliding_u, paired_at, sliding_base;
+      std::vector<std::pair<unsigned int, types::global_dof_index>> x_keys;
     };
   } // namespace contact
 } // namespace igabde

@@ -53,6 +53,11 @@ namespace igabde
       /// its Coulomb friction coefficient.
       unsigned int interaction          = 0;
       double       friction_coefficient = 0.;
+      /// What the pair is on the slave side, the same in every pairing of
+      /// the interaction whatever the configuration (finite sliding matches
+      /// pairs by it): the weighted gap's slave basis function (its first
+      /// unknown); invalid where a pairing does not say.
+      types::global_dof_index slave_key = numbers::invalid_dof_index;
 
       /**
        * @brief The operator by which the pair reads body @p b's unknowns,

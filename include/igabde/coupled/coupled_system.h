@@ -181,7 +181,45 @@ namespace igabde
       void
       report_progress_to(std::ostream *stream);
 
+      /**
+       * @brief Finite sliding: the pairs are formed again at every iterate
+       * by @p sliding (update_geometry()); the number of pairs and their
+       * order stay. Direct solvers only, every body held.
+       */
+      void
+      set_finite_sliding(const contact::FiniteSliding<dim> &sliding);
+
+      /**
+       * @brief The pairs at the iterate @p x (set_finite_sliding()): C's
+       * rows from their operators and frames, the Newton matrix's pattern
+       * again where they moved into other elements, and the offset that
+       * makes the normal rows of C w + q + offset their gaps at @p x.
+       * Nothing without finite sliding or at the last iterate.
+       */
+      void
+      update_geometry(const contact::ContactIterate &x) override;
+
+      const Eigen::VectorXd *
+      displacement_offset() const override;
+
+      void
+      forget_geometry() override;
+
     private:
+      /// C's rows from the pairs' operators and frames.
+      void
+      set_C_rows(const std::vector<contact::ContactPair<dim>> &pairs);
+
+      /// The Newton matrix's sparsity from the bodies' K and C's rows, and
+      /// the matrix on it.
+      void
+      build_pattern();
+
+      /// set_finite_sliding(); the iterate of the last update_geometry()
+      /// and its offset.
+      contact::FiniteSliding<dim> sliding;
+      Eigen::VectorXd             geometry_at, offset;
+
       /// Freed pages stay with the process while the system lives: every
       /// Newton iteration's factorisation frees MUMPS' workspace and takes
       /// it again (first member: made before, released after the rest).

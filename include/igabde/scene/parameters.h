@@ -356,6 +356,9 @@ namespace igabde
       contact::Algorithm algorithm = contact::Algorithm::bde;
       /// Contact/Path: condensed, full or auto.
       contact::Path path = contact::Path::automatic;
+      /// Contact/Sliding = finite: pairs on the current configuration
+      /// (ContactSettings::finite_sliding); small: formed once.
+      bool finite_sliding = false;
       /// FKN: normal penalty stiffness factor (penalty methods).
       double penalty_factor = 1.;
       /// FKT: stick stiffness factor, k_t = FKT k_n.

@@ -1,0 +1,219 @@
+// Finite sliding (Contact/Sliding = finite): the contact stage's pairs on
+// the current configuration. At the start of every load step after the
+// first, the pairs are formed on the last step's configuration (which slave
+// points or basis functions face a master there); during the step's solve,
+// the operator forms the same pairs again at every Newton iterate (their
+// master points, frames and gaps) through pairs_at().
+
+#include <igabde/contact/contact_stage.h>
+
+#include <map>
+
+namespace igabde
+{
+  namespace contact
+  {
+    namespace
+    {
+      /// Body::reset_surfaces() on every body when it leaves scope (an
+      /// input error in a pairing included).
+      template <int dim>
+      class MovedSurfaces
+      {
+      public:
+        MovedSurfaces(
+          const std::vector<std::unique_ptr<discretization::Body<dim>>> &bodies,
+          const std::vector<Vector<double>>                             &u)
+          : bodies(bodies)
+        {
+          for (unsigned int b = 0; b < bodies.size(); ++b)
+            bodies[b]->move_surfaces(u[b]);
+        }
+
+        ~MovedSurfaces()
+        {
+          for (const auto &body : bodies)
+            body->reset_surfaces();
+        }
+
+      private:
+        const std::vector<std::unique_ptr<discretization::Body<dim>>> &bodies;
+      };
+    } // namespace
+
+
+
+    template <int dim>
+    std::vector<ContactPair<dim>>
+    ContactStage<dim>::pairs_on(const std::vector<Vector<double>> &u) const
+    {
+      AssertDimension(u.size(), bodies.size());
+      const MovedSurfaces<dim>      moved(bodies, u);
+      std::vector<ContactPair<dim>> result;
+      for (unsigned int k = 0; k < settings.interactions.size(); ++k)
+        {
+          const ContactInteraction &c          = settings.interactions[k];
+          const bool                deformable = c.master_body < bodies.size();
+          // The master's samples on its moved surface.
+          std::unique_ptr<BodyFace<dim>> face;
+          if (deformable)
+            face = std::make_unique<BodyFace<dim>>(*bodies[c.master_body],
+                                                   c.master_faces);
+          const ContactSurface<dim> &master =
+            deformable ?
+              static_cast<const ContactSurface<dim> &>(*face) :
+              static_cast<const ContactSurface<dim> &>(*obstacles[c.obstacle]);
+          const std::string context = settings.interactions.size() == 1 ?
+                                        settings.context :
+                                        settings.context + " (" + c.name + ")";
+          append_pairs(pairings[k]->make_pairs(*bodies[c.slave_body],
+                                               c.slave_faces,
+                                               master,
+                                               context),
+                       k,
+                       result);
+        }
+      return result;
+    }
+
+
+
+    template <int dim>
+    std::vector<std::pair<unsigned int, types::global_dof_index>>
+    ContactStage<dim>::pair_keys() const
+    {
+      std::vector<std::pair<unsigned int, types::global_dof_index>> keys;
+      for (const ContactPair<dim> &pair : pair_list)
+        keys.emplace_back(pair.interaction, pair.slave_key);
+      return keys;
+    }
+
+
+
+    template <int dim>
+    std::vector<Vector<double>>
+    ContactStage<dim>::from_paired_configuration(
+      const std::vector<Vector<double>> &v) const
+    {
+      std::vector<Vector<double>> result = v;
+      if (paired_at.size() == v.size())
+        for (unsigned int b = 0; b < v.size(); ++b)
+          result[b] -= paired_at[b];
+      return result;
+    }
+
+
+
+    template <int dim>
+    void
+    ContactStage<dim>::form_step_pairs(TimerOutput &timer)
+    {
+      if (!has_previous)
+        return;
+      std::map<std::pair<unsigned int, types::global_dof_index>, unsigned int>
+        before;
+      for (unsigned int i = 0; i < x_keys.size(); ++i)
+        before[x_keys[i]] = i;
+      const Eigen::VectorXd            p_before      = x.p;
+      const std::vector<ContactStatus> status_before = status;
+      {
+        TimerOutput::Scope t(timer, "contact: pairs");
+        pair_list = pairs_on(sliding_u);
+      }
+      paired_at = sliding_u;
+      {
+        TimerOutput::Scope t(timer, prepare_section);
+        contact_path->prepare(pair_list, contact);
+      }
+      pair_list = contact.pairs;
+      // The last step's forces and states where the same slave part is
+      // paired again; the pairs new to the set start open.
+      const unsigned int n = pair_list.size();
+      x.p                  = Eigen::VectorXd::Zero(m * n);
+      status.assign(n, ContactStatus::open);
+      const auto keys = pair_keys();
+      for (unsigned int i = 0; i < n; ++i)
+        if (const auto it = before.find(keys[i]); it != before.end())
+          {
+            const unsigned int j = it->second;
+            if (m * (j + 1) <= p_before.size())
+              x.p.segment(m * i, m) = p_before.segment(m * j, m);
+            if (j < status_before.size())
+              status[i] = status_before[j];
+          }
+      x_keys            = keys;
+      x.alpha           = Eigen::VectorXd::Zero(contact.problem.n_alpha());
+      previous_external = Eigen::VectorXd::Zero(m * n);
+    }
+
+
+
+    template <int dim>
+    std::vector<ContactPair<dim>>
+    ContactStage<dim>::pairs_at(const Eigen::VectorXd &w) const
+    {
+      std::vector<Vector<double>> config = sliding_base;
+      unsigned int                offset = 0;
+      for (unsigned int b = 0; b < bodies.size(); ++b)
+        {
+          if (config[b].size() != bodies[b]->n_dofs())
+            config[b].reinit(bodies[b]->n_dofs());
+          for (unsigned int i = 0; i < bodies[b]->n_dofs(); ++i)
+            config[b][i] += w[offset + i];
+          offset += bodies[b]->n_dofs();
+        }
+      std::map<std::pair<unsigned int, types::global_dof_index>, unsigned int>
+                                    formed_index;
+      std::vector<ContactPair<dim>> formed = pairs_on(config);
+      for (unsigned int j = 0; j < formed.size(); ++j)
+        formed_index[{formed[j].interaction, formed[j].slave_key}] = j;
+      const std::vector<Vector<double>> relative =
+        from_paired_configuration(config);
+      std::vector<ContactPair<dim>> result;
+      result.reserve(pair_list.size());
+      for (const ContactPair<dim> &pair : pair_list)
+        {
+          const auto it = formed_index.find({pair.interaction, pair.slave_key});
+          if (it != formed_index.end())
+            {
+              result.push_back(formed[it->second]);
+              continue;
+            }
+          // No longer facing the master there: the step's pair, its gap
+          // at the configuration along its own linearisation.
+          ContactPair<dim> kept = pair;
+          Tensor<1, dim> du = pair.op1.displacement(relative[pair.slave_body]);
+          if (pair.master_body < bodies.size())
+            du -= pair.op2.displacement(relative[pair.master_body]);
+          kept.gap += pair.frame[0] * du;
+          result.push_back(std::move(kept));
+        }
+      return result;
+    }
+
+
+
+    template std::vector<ContactPair<2>>
+    ContactStage<2>::pairs_on(const std::vector<Vector<double>> &) const;
+    template std::vector<ContactPair<3>>
+    ContactStage<3>::pairs_on(const std::vector<Vector<double>> &) const;
+    template std::vector<std::pair<unsigned int, types::global_dof_index>>
+    ContactStage<2>::pair_keys() const;
+    template std::vector<std::pair<unsigned int, types::global_dof_index>>
+    ContactStage<3>::pair_keys() const;
+    template std::vector<Vector<double>>
+    ContactStage<2>::from_paired_configuration(
+      const std::vector<Vector<double>> &) const;
+    template std::vector<Vector<double>>
+    ContactStage<3>::from_paired_configuration(
+      const std::vector<Vector<double>> &) const;
+    template void
+    ContactStage<2>::form_step_pairs(TimerOutput &);
+    template void
+    ContactStage<3>::form_step_pairs(TimerOutput &);
+    template std::vector<ContactPair<2>>
+    ContactStage<2>::pairs_at(const Eigen::VectorXd &) const;
+    template std::vector<ContactPair<3>>
+    ContactStage<3>::pairs_at(const Eigen::VectorXd &) const;
+  } // namespace contact
+} // namespace igabde
