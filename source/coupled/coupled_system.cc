@@ -217,6 +217,16 @@ namespace igabde
       Assert(sliding.q != nullptr, ExcInternalError());
       this->sliding = sliding;
       geometry_at.resize(0);
+      // The pairs are formed again once the bodies have moved by more than
+      // 1e-8 of the smallest mean element size: a pairing is exact to
+      // about 1e-10 of an element (the weighted gap's element cuts), so
+      // that below this the new pairs would differ from the last ones by
+      // their own round-off, and the Newton iteration would stall on it.
+      double h = std::numeric_limits<double>::max();
+      for (const auto *body : bodies)
+        h =
+          std::min(h, std::pow(body->measure() / body->n_elements(), 1. / dim));
+      geometry_tolerance = 1e-8 * h;
     }
 
 
@@ -227,7 +237,8 @@ namespace igabde
     {
       if (!sliding.pairs_at)
         return;
-      if (geometry_at.size() == x.w.size() && geometry_at == x.w)
+      if (geometry_at.size() == x.w.size() &&
+          (x.w - geometry_at).lpNorm<Eigen::Infinity>() <= geometry_tolerance)
         return;
       const std::vector<contact::ContactPair<dim>> pairs =
         sliding.pairs_at(x.w);

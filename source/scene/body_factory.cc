@@ -108,14 +108,18 @@ namespace igabde
           d.dirichlet.push_back(bc);
         }
       // A face motion is a support whose components are the linear field
-      // u = d + r x (x - c) about the face's centroid c.
+      // u = d + r x (x - c) about the face's centroid c, or the point the
+      // entry names ('about').
       for (const FaceMotionParameters &motion : body.face_motions)
         {
           discretization::DirichletCondition<dim> bc;
           bc.boundary_id = static_cast<types::boundary_id>(motion.face);
-          const Point<dim> centre =
+          Point<dim> centre =
             d.patch(discretization::patch_of_face<dim>(motion.face))
               .face_centroid(discretization::local_face<dim>(motion.face));
+          if (!motion.centre.empty())
+            for (unsigned int c = 0; c < dim; ++c)
+              centre[c] = motion.centre[c];
           Tensor<1, dim> displacement;
           for (unsigned int c = 0; c < dim; ++c)
             displacement[c] = motion.motion[c];

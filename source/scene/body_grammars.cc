@@ -596,8 +596,21 @@ namespace igabde
                                          "'face: ux, uy, uz, rx, ry, rz'";
           const auto [key, rest]     = base::split_entry(item, where, form);
           FaceMotionParameters motion;
-          motion.face   = read_face(key, faces, where, item);
-          motion.motion = base::parse_doubles(rest, where);
+          motion.face = read_face(key, faces, where, item);
+          // 'face: ... about cx, cy[, cz]': the motion's reference point.
+          std::string values = rest;
+          if (const auto at = rest.find("about"); at != std::string::npos)
+            {
+              values        = rest.substr(0, at);
+              motion.centre = base::parse_doubles(rest.substr(at + 5), where);
+              AssertThrow(motion.centre.size() == dimension,
+                          base::ExcInput(where + ": '" + base::trim(item) +
+                                         "' must give " +
+                                         std::to_string(dimension) +
+                                         " coordinates after 'about' (the "
+                                         "point the face turns about)."));
+            }
+          motion.motion = base::parse_doubles(values, where);
           AssertThrow(motion.motion.size() == (dimension == 2 ? 3u : 6u),
                       base::ExcInput(
                         where + ": '" + base::trim(item) + "' must give " +

@@ -767,3 +767,11 @@ TEST(CliBadInput, FiniteSlidingWithABodyHeldByContactAlone)
   EXPECT_FALSE(
     std::filesystem::exists(cli::join(folder.path, "out/contact-0001.csv")));
 }
+
+TEST(CliBadInput, FaceMotionAboutTooFewCoordinates)
+{
+  expect_refused_at_parse_time("face-motion-about",
+                               "Body 1/Face motions=1: 0, 0, 0.01 about 1",
+                               "after 'about'",
+                               "v3-contact-patch-2d.prm");
+}

@@ -219,6 +219,9 @@ namespace igabde
       /// and its offset.
       contact::FiniteSliding<dim> sliding;
       Eigen::VectorXd             geometry_at, offset;
+      /// How far (m, any unknown) the bodies move before the pairs are
+      /// formed again.
+      double geometry_tolerance = 0.;
 
       /// Freed pages stay with the process while the system lives: every
       /// Newton iteration's factorisation frees MUMPS' workspace and takes

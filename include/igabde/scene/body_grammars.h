@@ -151,6 +151,10 @@ namespace igabde
       /// Load history scaling the motion ('@ name'; empty: Displacement
       /// factors).
       std::string history;
+      /// The point the face turns about and whose displacement the motion
+      /// gives ('about cx, cy[, cz]'), dimension values; empty: the face's
+      /// centroid.
+      std::vector<double> centre;
     };
 
     /**
