@@ -92,7 +92,18 @@ namespace igabde
       for (unsigned int i = 0; i < pair_list.size(); ++i)
         {
           PairState<dim> s;
-          s.location    = pair_list[i].x1;
+          s.location          = pair_list[i].x1;
+          s.material_location = s.location;
+          if (settings.finite_sliding)
+            {
+              const auto &body    = *bodies[pair_list[i].slave_body];
+              const auto &op      = pair_list[i].op1;
+              s.material_location = Point<dim>();
+              for (unsigned int k = 0; k < op.weights.size(); ++k)
+                for (unsigned int c = 0; c < dim; ++c)
+                  s.material_location[c] +=
+                    op.weights[k] * body.dof_location(op.dofs[k][c])[c];
+            }
           s.interaction = pair_list[i].interaction;
           s.slave_body  = pair_list[i].slave_body;
           s.normal      = pair_list[i].normal1;

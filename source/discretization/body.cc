@@ -628,8 +628,11 @@ namespace igabde
     Body<dim>::move_surfaces(const Vector<double> &u) const
     {
       AssertDimension(u.size(), n_dofs());
+      Assert(surfaces_mover.load() == std::thread::id() || surfaces_moved(),
+             ExcMessage("move_surfaces() from two threads"));
+      // The moved geometry first; then this thread's queries use it.
       move_surface_geometry(&u);
-      moved_surfaces = true;
+      surfaces_mover.store(std::this_thread::get_id());
     }
 
 
@@ -638,9 +641,10 @@ namespace igabde
     void
     Body<dim>::reset_surfaces() const
     {
-      if (moved_surfaces)
-        move_surface_geometry(nullptr);
-      moved_surfaces = false;
+      if (!surfaces_moved())
+        return;
+      surfaces_mover.store(std::thread::id());
+      move_surface_geometry(nullptr);
     }
 
 
@@ -649,7 +653,7 @@ namespace igabde
     bool
     Body<dim>::surfaces_moved() const
     {
-      return moved_surfaces;
+      return surfaces_mover.load() == std::this_thread::get_id();
     }
 
 
@@ -661,7 +665,7 @@ namespace igabde
                                      const SurfacePoint<dim> &nearest) const
     {
       // The point location below searches the reference mesh.
-      Assert(!moved_surfaces,
+      Assert(!surfaces_moved(),
              ExcMessage("closest_surface_point() of " + name() +
                         " on a moved configuration: pair it by the weighted "
                         "gap, which projects through face_point()"));

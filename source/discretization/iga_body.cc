@@ -1025,7 +1025,8 @@ namespace igabde
     const nurbs::NurbsPatch<dim> &
     IgaBody<dim>::surface_geometry(const PatchSpace &space) const
     {
-      if (moved_geometry.empty())
+      // Another thread than the one that moved them sees the reference.
+      if (!this->surfaces_moved() || moved_geometry.empty())
         return space.geometry;
       return moved_geometry[&space - spaces.data()];
     }

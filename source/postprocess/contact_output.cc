@@ -41,7 +41,10 @@ namespace igabde
       const base::NearestPoints<dim> index(std::move(locations));
       for (unsigned int i = 0; i < pairs.size(); ++i)
         {
-          const auto &nearest = samples[index.nearest(pairs[i].location)];
+          // The pair's point where the body's stress is (its reference
+          // position: the pair's own location unless it slides finitely).
+          const Point<dim> &at      = pairs[i].material_location;
+          const auto       &nearest = samples[index.nearest(at)];
           // The closest point of the contact face; its nearest sample
           // point (on the face too) if the stress cannot be evaluated
           // there (a Lagrange face's projection just past its side). The
@@ -49,8 +52,7 @@ namespace igabde
           // pair's: a weighted-gap pair's frame is the master's, and on
           // a curved face away from the contact -n.sigma.n with the
           // master's normal reads the hoop stress, not the (zero) traction.
-          const auto closest =
-            surface.closest_point(pairs[i].location, &nearest);
+          const auto closest = surface.closest_point(at, &nearest);
           for (const auto *x : {&closest, &nearest})
             try
               {

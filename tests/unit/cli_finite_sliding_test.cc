@@ -9,7 +9,10 @@
 //    disc's lowest point, which the test knows from the slide (within
 //    0.06, about 2.5 pair spacings of the graded disc there). With Sliding =
 //    small the pairs formed at the start stay there and the peak does not move:
-//    the location check then fails, which the test shows too.
+//    the location check then fails, which the test shows too. The
+//    recovered pressure (the disc's stress at the pair's reference point)
+//    stays the first step's with finite sliding (it was read at the pair's
+//    current location, 0 once the disc had moved).
 //  - Two blocks in contact translated together (both supports moved by
 //    the same history) leave the pairs' pressures of the first step in the
 //    moving frame, to 1e-8 of the mean pressure (the weighted gap brackets
@@ -25,10 +28,11 @@
 
 namespace
 {
-  /// The step's contact force, peak pair pressure and its x.
+  /// The step's contact force, peak pair pressure, its x and the
+  /// recovered pressure (the slave's stress) at that pair.
   struct Peak
   {
-    double force = 0., pressure = 0., x = 0.;
+    double force = 0., pressure = 0., x = 0., recovered = 0.;
   };
 
   Peak
@@ -40,8 +44,9 @@ namespace
         result.force += pairs.number(r, "p_n");
         if (pairs.number(r, "pressure") > result.pressure)
           {
-            result.pressure = pairs.number(r, "pressure");
-            result.x        = pairs.number(r, "x");
+            result.pressure  = pairs.number(r, "pressure");
+            result.x         = pairs.number(r, "x");
+            result.recovered = pairs.number(r, "recovered_pressure");
           }
       }
     return result;
@@ -73,13 +78,24 @@ TEST(FiniteSliding, HertzCylinderKeepsHertzPeakOverElevenContactWidths)
                            "hertz-cylinder-sliding.prm",
                            "--set 'Contact/Sliding=" + sliding + "'");
       ASSERT_EQ(run.status, 0) << run.output;
-      unsigned int located = 0;
+      unsigned int located         = 0;
+      double       recovered_first = 0.;
       for (unsigned int step = 1; step <= 11; ++step)
         {
           const Peak peak =
             peak_of(cli::read_table(step_table(scratch.path, step)));
           const double a  = std::sqrt(4. * peak.force * R / (M_PI * E_star));
           const double p0 = 2. * peak.force / (M_PI * a);
+          // The recovered pressure reads the disc's stress at the pair's
+          // material point: over Hertz's p0 for the step's force, the same
+          // in the disc's frame at every step, up to the block's mesh offset
+          // (which moves the pair pressures' ratio by 1e-4), with finite
+          // sliding.
+          if (step == 1)
+            recovered_first = peak.recovered / p0;
+          if (sliding == "finite")
+            EXPECT_NEAR(peak.recovered / p0 / recovered_first, 1., 1e-3)
+              << "step " << step;
           // The disc's lowest point: -1.6 + 3.2 (step - 1) / 10. Pairs on
           // the disc sit 0.023 apart there.
           const double centre = -1.6 + 0.32 * (step - 1);

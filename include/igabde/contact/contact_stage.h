@@ -145,6 +145,11 @@ namespace igabde
     {
       /// The slave body's point.
       Point<dim> location;
+      /// The same point in the reference configuration, where its stress
+      /// is read (the recovered pressure): location itself with small
+      /// sliding; with finite sliding the mean of the slave's control
+      /// points or nodes by the pair's operator.
+      Point<dim> material_location;
       /// The interaction of the pair (0: the first) and its slave body
       /// (the index in the stage's deformable bodies).
       unsigned int interaction = 0, slave_body = 0;

@@ -24,6 +24,7 @@
 #include <deal.II/lac/vector.h>
 
 #include <array>
+#include <atomic>
 #include <cstdint>
 #include <functional>
 #include <iosfwd>
@@ -32,6 +33,7 @@
 #include <memory>
 #include <mpi.h>
 #include <string>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -456,8 +458,10 @@ namespace igabde
        * control points moved by @p u, exact as the reference one
        * (isoparametric: x = sum R_A (X_A + u_A)); Lagrange: the elements
        * with their nodes moved. What contact pairing at finite sliding
-       * (Contact/Sliding = finite) forms its pairs on. Not thread-safe
-       * against concurrent surface queries.
+       * (Contact/Sliding = finite) forms its pairs on. The moved
+       * configuration is the calling thread's: other threads (the
+       * background writer's recovered pressures) keep querying the
+       * reference one meanwhile, and never read the moved geometry.
        */
       void
       move_surfaces(const Vector<double> &u) const;
@@ -466,7 +470,7 @@ namespace igabde
       void
       reset_surfaces() const;
 
-      /// Whether move_surfaces() is in effect.
+      /// Whether move_surfaces() is in effect for the calling thread.
       bool
       surfaces_moved() const;
 
@@ -887,8 +891,9 @@ namespace igabde
       std::ostream *progress_stream = nullptr;
       /// Whether K and the load vectors were assembled on this rank.
       bool assembled = false;
-      /// Whether move_surfaces() is in effect.
-      mutable bool moved_surfaces = false;
+      /// The thread move_surfaces() moved the surfaces for (none: the
+      /// reference configuration).
+      mutable std::atomic<std::thread::id> surfaces_mover{};
       /// Whether every rank of the layout's world holds K whole
       /// (ParallelLayout::matrix_everywhere, or ensure_assembled(), which
       /// every rank calls): memory_record()'s K is then replicated.

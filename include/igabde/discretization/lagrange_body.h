@@ -203,12 +203,14 @@ namespace igabde
       const Vector<double> &
       surface_geometry() const
       {
-        return moved_mapping ? moved_euler_vector : euler_vector;
+        return this->surfaces_moved() && moved_mapping ? moved_euler_vector :
+                                                         euler_vector;
       }
       const Mapping<dim> &
       surface_mapping() const
       {
-        return moved_mapping ? *moved_mapping : *mapping;
+        return this->surfaces_moved() && moved_mapping ? *moved_mapping :
+                                                         *mapping;
       }
       /// Point location (GridTools::Cache on the mapping), built on first
       /// use by find_cell().
