@@ -94,7 +94,6 @@ namespace igabde
       stiffness.resize(n_pairs);
       // Each body's mean element size once: measure() integrates over the
       // body.
-      std::vector<double> element_size;
       for (const auto *body : bodies)
         element_size.push_back(
           std::pow(body->measure() / body->n_elements(), 1. / dim));
@@ -222,10 +221,8 @@ namespace igabde
       // about 1e-10 of an element (the weighted gap's element cuts), so
       // that below this the new pairs would differ from the last ones by
       // their own round-off, and the Newton iteration would stall on it.
-      double h = std::numeric_limits<double>::max();
-      for (const auto *body : bodies)
-        h =
-          std::min(h, std::pow(body->measure() / body->n_elements(), 1. / dim));
+      const double h =
+        *std::min_element(element_size.begin(), element_size.end());
       geometry_tolerance = 1e-8 * h;
     }
 

@@ -222,6 +222,8 @@ namespace igabde
       /// How far (m, any unknown) the bodies move before the pairs are
       /// formed again.
       double geometry_tolerance = 0.;
+      /// Each body's mean element size (measure / elements)^(1/dim).
+      std::vector<double> element_size;
 
       /// Freed pages stay with the process while the system lives: every
       /// Newton iteration's factorisation frees MUMPS' workspace and takes
