@@ -116,10 +116,21 @@ namespace igabde
         before[x_keys[i]] = i;
       const Eigen::VectorXd            p_before      = x.p;
       const std::vector<ContactStatus> status_before = status;
+      std::map<std::pair<unsigned int, types::global_dof_index>, Tensor<2, dim>>
+        frame_before;
+      for (const ContactPair<dim> &pair : pair_list)
+        frame_before[{pair.interaction, pair.slave_key}] = pair.frame;
       {
         TimerOutput::Scope t(timer, "contact: pairs");
         pair_list = pairs_on(sliding_u);
       }
+      // The tangents of the pairs formed again follow the last step's, so
+      // that the carried friction forces keep their directions.
+      for (ContactPair<dim> &pair : pair_list)
+        if (const auto it =
+              frame_before.find({pair.interaction, pair.slave_key});
+            it != frame_before.end())
+          pair.frame = local_frame(pair.frame[0], it->second);
       paired_at = sliding_u;
       {
         TimerOutput::Scope t(timer, prepare_section);
@@ -173,19 +184,27 @@ namespace igabde
       result.reserve(pair_list.size());
       for (const ContactPair<dim> &pair : pair_list)
         {
+          // The step's slip: the slave point's displacement over the step
+          // against the master material point of the step's pair, whose
+          // slave point faced it at the step's start (the convected
+          // coordinate held over the step).
+          Tensor<1, dim> du = pair.op1.displacement(relative[pair.slave_body]);
+          if (pair.master_body < bodies.size())
+            du -= pair.op2.displacement(relative[pair.master_body]);
           const auto it = formed_index.find({pair.interaction, pair.slave_key});
           if (it != formed_index.end())
             {
               result.push_back(formed[it->second]);
+              result.back().frame =
+                local_frame(result.back().frame[0], pair.frame);
+              result.back().step_slip = du;
               continue;
             }
           // No longer facing the master there: the step's pair, its gap
           // at the configuration along its own linearisation.
           ContactPair<dim> kept = pair;
-          Tensor<1, dim> du = pair.op1.displacement(relative[pair.slave_body]);
-          if (pair.master_body < bodies.size())
-            du -= pair.op2.displacement(relative[pair.master_body]);
           kept.gap += pair.frame[0] * du;
+          kept.step_slip = du;
           result.push_back(std::move(kept));
         }
       return result;

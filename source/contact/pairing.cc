@@ -42,6 +42,28 @@ namespace igabde
 
 
 
+    template <int dim>
+    Tensor<2, dim>
+    local_frame(const Tensor<1, dim> &n, const Tensor<2, dim> &near)
+    {
+      if constexpr (dim == 3)
+        {
+          Tensor<1, dim> a = near[1] - (near[1] * n) * n;
+          if (a.norm() > 0.5)
+            {
+              Tensor<2, dim> T;
+              T[0] = n;
+              T[1] = a / a.norm();
+              T[2] = cross_product_3d(n, T[1]);
+              return T;
+            }
+        }
+      (void)near;
+      return local_frame<dim>(n);
+    }
+
+
+
     namespace
     {
       /// Size of the slave point cloud: the scale of the tolerances below.
@@ -455,6 +477,10 @@ namespace igabde
     local_frame<2>(const Tensor<1, 2> &);
     template Tensor<2, 3>
     local_frame<3>(const Tensor<1, 3> &);
+    template Tensor<2, 2>
+    local_frame<2>(const Tensor<1, 2> &, const Tensor<2, 2> &);
+    template Tensor<2, 3>
+    local_frame<3>(const Tensor<1, 3> &, const Tensor<2, 3> &);
     template class PointPairing<2>;
     template class PointPairing<3>;
     template class NodeToNodePairing<2>;

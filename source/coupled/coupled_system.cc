@@ -258,13 +258,21 @@ namespace igabde
           build_pattern();
         }
       // u = C w + q + offset is the pairs' displacement at w: the gap at
-      // its configuration in the normal rows (the tangential ones are the
-      // step's increments, which the pairs' linearisation keeps).
+      // its configuration in the normal rows, and in the tangential rows
+      // the step's slip on the current tangents. The Newton matrix keeps
+      // C at the current master points (where the forces act): the slip's
+      // derivative by the master's unknowns is the step's master point's,
+      // which differs by the master's strain over the step's slip.
       const Eigen::VectorXd  Cw = apply_C(x.w);
       const Eigen::VectorXd &q  = *sliding.q;
       offset                    = Eigen::VectorXd::Zero(d * n_pairs);
       for (unsigned int i = 0; i < n_pairs; ++i)
-        offset[d * i] = pairs[i].gap - Cw[d * i] - q[d * i];
+        {
+          offset[d * i] = pairs[i].gap - Cw[d * i] - q[d * i];
+          for (unsigned int s = 1; s < d; ++s)
+            offset[d * i + s] = pairs[i].frame[s] * pairs[i].step_slip -
+                                Cw[d * i + s] - q[d * i + s];
+        }
       geometry_at = x.w;
     }
 

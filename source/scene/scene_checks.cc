@@ -141,14 +141,6 @@ namespace igabde
                                    "Full system solver = mumps or klu."));
         for (const InteractionParameters &c : contact.interactions)
           {
-            AssertThrow(c.friction_coefficient == 0.,
-                        base::ExcInput(
-                          what +
-                          "is frictionless in this version, "
-                          "but " +
-                          c.name + "/Friction coefficient = " +
-                          base::number_text(c.friction_coefficient) +
-                          "; set it to 0, or Sliding = small."));
             AssertThrow(c.pairing == contact::Pairing::weighted_gap ||
                           c.pairing == contact::Pairing::weighted_gap_standard,
                         base::ExcInput(

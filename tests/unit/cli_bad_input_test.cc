@@ -712,14 +712,6 @@ TEST(CliBadInput, FiniteSlidingOnTheCondensedPath)
                                "hertz-cylinder-sliding.prm");
 }
 
-TEST(CliBadInput, FiniteSlidingWithFriction)
-{
-  expect_refused_at_parse_time("sliding-friction",
-                               "Contact/Friction coefficient=0.3",
-                               "Contact/Friction coefficient = 0.3",
-                               "hertz-cylinder-sliding.prm");
-}
-
 TEST(CliBadInput, FiniteSlidingWithPointPairs)
 {
   expect_refused_at_parse_time("sliding-point-pairs",

@@ -199,6 +199,122 @@ TEST(FiniteSliding, TranslatedTogetherTheBlocksKeepTheirPressures)
 
 
 
+namespace
+{
+  /// A block pressed onto a base 1000 times stiffer and slid along
+  /// (1, slide_y) by five steps of 0.1, with friction 0.3: in 2D 0.5
+  /// along x (2.5 base elements, 3 block elements), in 3D along (1, 0.5).
+  std::string
+  frictional_block(const unsigned int dim, const std::string &type)
+  {
+    const bool two = dim == 2;
+    return "set Dimension = " + std::to_string(dim) + R"(
+subsection Discretization
+  set Type   = )" +
+           type + R"(
+  set Degree = 2
+end
+subsection Body 1
+  set Geometry        = box
+  set Lower corner    = )" +
+           (two ? "-0.5, 0" : "-0.5, -0.5, 0") + R"(
+  set Upper corner    = )" +
+           (two ? "0.5, 0.5" : "0.5, 0.5, 0.5") + R"(
+  set Subdivisions    = )" +
+           (two ? "6, 3" : "4, 4, 2") + R"(
+  set Young's modulus = 1000
+  set Poisson's ratio = 0.3
+  set Supports        = )" +
+           (two ? "3: y=-0.002 @ press; 3: x=1 @ slide" :
+                  "5: z=-0.002 @ press; 5: x=1 @ slide; 5: y=0.5 @ slide") +
+           R"(
+end
+subsection Body 2
+  set Type            = deformable
+  set Geometry        = box
+  set Lower corner    = )" +
+           (two ? "-1, -1" : "-1, -1, -1") + R"(
+  set Upper corner    = )" +
+           (two ? "1, 0" : "1, 1, 0") + R"(
+  set Subdivisions    = )" +
+           (two ? "10, 5" : "5, 5, 2") + R"(
+  set Young's modulus = 1e6
+  set Poisson's ratio = 0.3
+  set Supports        = )" +
+           (two ? "2: y; 2: x" : "4: z; 4: x; 4: y") + R"(
+end
+subsection Contact
+  set Enabled              = true
+  set Friction coefficient = 0.3
+  set Pairing              = weighted-gap
+  set Slave face           = )" +
+           (two ? "2" : "4") + R"(
+  set Master face          = )" +
+           (two ? "3" : "5") + R"(
+  set Sliding              = finite
+end
+subsection Load path
+  set Number of steps = )" +
+           (two ? "6" : "4") + R"(
+  set Histories       = )" +
+           (two ? "press: 1, 1, 1, 1, 1, 1; slide: 0, 0.1, 0.2, 0.3, 0.4, 0.5" :
+                  "press: 1, 1, 1, 1; slide: 0, 0.15, 0.3, 0.45") +
+           R"(
+end
+)";
+  }
+} // namespace
+
+
+
+// Friction at finite sliding: a block pressed onto a stiff base and slid
+// by several pair spacings and base elements slips at every pair after
+// the first step, and the base's support reaction (from its stiffness,
+// not from the contact law) is the Coulomb force: tangential over normal
+// = mu, against the slide, along the slide's direction in 3D. The base's
+// surface tilts by about its strain p / E_base (5e-6), which moves the
+// ratio by (1 + mu^2) / mu of that (2e-5): the bound 1e-3 leaves 50 times
+// that. Were the slip measured against the master's current point instead
+// of the step's (a closest point never slips), every pair would stick and
+// the ratio would be about 0.
+TEST(FiniteSliding, FrictionalBlockSlipsAtTheCoulombRatio)
+{
+  const double mu = 0.3;
+  for (const auto &[dim, type] :
+       std::vector<std::pair<unsigned int, std::string>>{{2, "nurbs"},
+                                                         {2, "lagrange"},
+                                                         {3, "nurbs"}})
+    {
+      SCOPED_TRACE(std::to_string(dim) + "D " + type);
+      const cli::ScratchFolder scratch("frictional-" + std::to_string(dim) +
+                                         "d-" + type,
+                                       "finite-sliding");
+      const auto               summary =
+        cli::run_scene_text(scratch.path, frictional_block(dim, type));
+      ASSERT_FALSE(summary.is_null());
+      const auto &steps = summary["load_steps"];
+      ASSERT_EQ(steps.size(), dim == 2 ? 6u : 4u);
+      for (std::size_t k = 1; k < steps.size(); ++k)
+        {
+          SCOPED_TRACE("step " + std::to_string(k + 1));
+          const auto &step = steps[k];
+          EXPECT_EQ(step["n_stick"].get<int>(), 0);
+          EXPECT_EQ(step["n_open"].get<int>(), 0);
+          const std::vector<double> r =
+            step["bodies"][1]["support_reaction"].get<std::vector<double>>();
+          const double normal = r[dim - 1];
+          ASSERT_GT(normal, 0.);
+          const double tangential = dim == 2 ? -r[0] : std::hypot(r[0], r[1]);
+          EXPECT_NEAR(tangential / normal / mu, 1., 1e-3);
+          EXPECT_LT(r[0], 0.);
+          if (dim == 3)
+            EXPECT_NEAR(r[1] / r[0], 0.5, 1e-3);
+        }
+    }
+}
+
+
+
 // prm/ring-turned-on-cylinder.prm: a ring turned through 90 degrees about a
 // concentric annulus pressed against it, frictionless, at finite strain.
 // Every step's answer is the unturned one, Lame's pair of cylinders with

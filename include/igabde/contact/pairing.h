@@ -58,6 +58,12 @@ namespace igabde
       /// pairs by it): the weighted gap's slave basis function (its first
       /// unknown); invalid where a pairing does not say.
       types::global_dof_index slave_key = numbers::invalid_dof_index;
+      /// Finite sliding with friction (ContactStage::pairs_at()): the slave
+      /// point's displacement over the load step relative to the master's
+      /// material point it faced at the step's start (the step's pair's
+      /// operators applied to the step's displacement); its components on
+      /// the current tangents are the step's slip. Zero elsewhere.
+      Tensor<1, dim> step_slip;
 
       /**
        * @brief The operator by which the pair reads body @p b's unknowns,
@@ -371,6 +377,17 @@ namespace igabde
     template <int dim>
     Tensor<2, dim>
     local_frame(const Tensor<1, dim> &n);
+
+    /**
+     * @brief The frame with the unit normal @p n whose tangents follow
+     * those of @p near (a frame at a nearby normal): in 3D near's first
+     * tangent made orthogonal to n (local_frame(n) if it is about parallel
+     * to n); in 2D local_frame(n). Finite sliding keeps a pair's tangents
+     * continuous so, where local_frame() would switch its axis.
+     */
+    template <int dim>
+    Tensor<2, dim>
+    local_frame(const Tensor<1, dim> &n, const Tensor<2, dim> &near);
 
     namespace internal
     {
