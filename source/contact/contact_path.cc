@@ -175,8 +175,9 @@ namespace igabde
                                  "with pairs whose points move with held "
                                  "unknowns only; hold fewer unknowns on the "
                                  "contact faces"));
-          sliding.pairs_at = pairs_at;
-          sliding.q        = &contact.problem.q;
+          sliding.pairs_at     = pairs_at;
+          sliding.q            = &contact.problem.q;
+          sliding.full_tangent = full_tangent;
         }
       coupled = factory(bodies, contact.pairs, m, contact.problem.G, sliding);
       static_cast<const ContactData &>(contact.problem).check_consistency();
@@ -249,9 +250,11 @@ namespace igabde
     void
     CoupledPath<dim>::set_finite_sliding(
       const std::function<
-        std::vector<ContactPair<dim>>(const Eigen::VectorXd &)> &pairs_at)
+        std::vector<ContactPair<dim>>(const Eigen::VectorXd &)> &pairs_at,
+      const bool                                                 full_tangent)
     {
-      this->pairs_at = pairs_at;
+      this->pairs_at     = pairs_at;
+      this->full_tangent = full_tangent;
     }
 
 

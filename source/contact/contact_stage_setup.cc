@@ -173,9 +173,11 @@ namespace igabde
                                                log,
                                                settings.progress);
       if (settings.finite_sliding)
-        contact_path->set_finite_sliding([this](const Eigen::VectorXd &w) {
-          return pairs_at(w);
-        });
+        contact_path->set_finite_sliding(
+          [this](const Eigen::VectorXd &w) {
+            return pairs_at(w);
+          },
+          settings.full_sliding_tangent);
       // The full path's merit adds the displacement equations, which the
       // first Newton step satisfies to rounding: its line search is
       // monotone (the non-monotone rule lets |H| grow for steps that the

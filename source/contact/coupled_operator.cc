@@ -74,6 +74,19 @@ namespace igabde
     CoupledOperator::linearize(const ContactIterate &x)
     {
       linearize_bodies(x.w);
+      linearize_geometry(x);
+    }
+
+
+
+    Vec
+    CoupledOperator::displacement_derivative(const Vec &v_p,
+                                             const Vec &v_w) const
+    {
+      Vec u = apply_C_derivative(v_w);
+      if (eps > 0.)
+        u += eps * v_p;
+      return u;
     }
 
 

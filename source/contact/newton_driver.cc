@@ -737,7 +737,7 @@ namespace igabde
           // G, the displacement equations).
           const auto apply_J = [&](const ContactIterate &v, Vec &dv_u) {
             ContactIterate Jv;
-            dv_u = op.displacement(v.p, v.w);
+            dv_u = op.displacement_derivative(v.p, v.w);
             if (na > 0)
               dv_u += data.G * v.alpha;
             Jv.p.resize(m);

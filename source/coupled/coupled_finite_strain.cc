@@ -127,7 +127,11 @@ namespace igabde
                                           const Eigen::VectorXd &v_p) const
     {
       if (!any_finite)
-        return displacement_equations(v_w, v_p);
+        {
+          Eigen::VectorXd r = frozen_equations(v_w, v_p);
+          add_geometric_term(v_w, r);
+          return r;
+        }
       Assert(linearized, ExcMessage("linearize_bodies() first"));
       AssertDimension(v_w.size(), n_u);
       AssertDimension(v_p.size(), d * n_pairs);
@@ -149,6 +153,7 @@ namespace igabde
       for (unsigned int row = 0; row < d * n_pairs; ++row)
         for (const auto &[g, v] : C_rows[row])
           r[g] -= v * v_p[row];
+      add_geometric_term(v_w, r);
       for (unsigned int g = 0; g < n_u; ++g)
         if (held[g])
           r[g] = v_w[g];
@@ -162,7 +167,7 @@ namespace igabde
     CoupledSystem<dim>::tangent_transpose(const Eigen::VectorXd &h) const
     {
       if (!any_finite)
-        return displacement_equations(h, Eigen::VectorXd::Zero(d * n_pairs));
+        return frozen_equations(h, Eigen::VectorXd::Zero(d * n_pairs));
       Assert(linearized, ExcMessage("linearize_bodies() first"));
       AssertDimension(h.size(), n_u);
       Eigen::VectorXd r(n_u);

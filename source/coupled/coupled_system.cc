@@ -199,105 +199,6 @@ namespace igabde
 
     template <int dim>
     void
-    CoupledSystem<dim>::set_finite_sliding(
-      const contact::FiniteSliding<dim> &sliding)
-    {
-      // The scene reader refuses the Krylov solver with finite sliding.
-      AssertThrow(!krylov,
-                  ExcMessage("Contact/Sliding = finite factorises the Newton "
-                             "matrix (Contact/Full system solver = mumps or "
-                             "klu)"));
-      // The rigid-mode columns G would follow the pairs too.
-      AssertThrow(n_alpha == 0,
-                  base::ExcInput(
-                    "Contact/Sliding = finite with a body that only its "
-                    "contacts hold (a free rigid mode): hold every body by "
-                    "Supports, Point supports or Face motions"));
-      Assert(sliding.q != nullptr, ExcInternalError());
-      this->sliding = sliding;
-      geometry_at.resize(0);
-      // The pairs are formed again once the bodies have moved by more than
-      // 1e-8 of the smallest mean element size: a pairing is exact to
-      // about 1e-10 of an element (the weighted gap's element cuts), so
-      // that below this the new pairs would differ from the last ones by
-      // their own round-off, and the Newton iteration would stall on it.
-      const double h =
-        *std::min_element(element_size.begin(), element_size.end());
-      geometry_tolerance = 1e-8 * h;
-    }
-
-
-
-    template <int dim>
-    void
-    CoupledSystem<dim>::update_geometry(const contact::ContactIterate &x)
-    {
-      if (!sliding.pairs_at)
-        return;
-      if (geometry_at.size() == x.w.size() &&
-          (x.w - geometry_at).lpNorm<Eigen::Infinity>() <= geometry_tolerance)
-        return;
-      const std::vector<contact::ContactPair<dim>> pairs =
-        sliding.pairs_at(x.w);
-      AssertDimension(pairs.size(), n_pairs);
-      const auto old_rows = C_rows;
-      set_C_rows(pairs);
-      // The Newton matrix's pattern follows the master points into other
-      // elements; MUMPS' analysis then starts afresh.
-      bool same_pattern = true;
-      for (unsigned int r = 0; r < C_rows.size() && same_pattern; ++r)
-        {
-          same_pattern = C_rows[r].size() == old_rows[r].size();
-          for (unsigned int k = 0; k < C_rows[r].size() && same_pattern; ++k)
-            same_pattern = C_rows[r][k].first == old_rows[r][k].first;
-        }
-      if (!same_pattern)
-        {
-          direct.reset();
-          direct_problem.reset();
-          build_pattern();
-        }
-      // u = C w + q + offset is the pairs' displacement at w: the gap at
-      // its configuration in the normal rows, and in the tangential rows
-      // the step's slip on the current tangents. The Newton matrix keeps
-      // C at the current master points (where the forces act): the slip's
-      // derivative by the master's unknowns is the step's master point's,
-      // which differs by the master's strain over the step's slip.
-      const Eigen::VectorXd  Cw = apply_C(x.w);
-      const Eigen::VectorXd &q  = *sliding.q;
-      offset                    = Eigen::VectorXd::Zero(d * n_pairs);
-      for (unsigned int i = 0; i < n_pairs; ++i)
-        {
-          offset[d * i] = pairs[i].gap - Cw[d * i] - q[d * i];
-          for (unsigned int s = 1; s < d; ++s)
-            offset[d * i + s] = pairs[i].frame[s] * pairs[i].step_slip -
-                                Cw[d * i + s] - q[d * i + s];
-        }
-      geometry_at = x.w;
-    }
-
-
-
-    template <int dim>
-    void
-    CoupledSystem<dim>::forget_geometry()
-    {
-      geometry_at.resize(0);
-    }
-
-
-
-    template <int dim>
-    const Eigen::VectorXd *
-    CoupledSystem<dim>::displacement_offset() const
-    {
-      return sliding.pairs_at ? &offset : nullptr;
-    }
-
-
-
-    template <int dim>
-    void
     CoupledSystem<dim>::build_pattern()
     {
       // Sparsity of the Newton matrix.
@@ -341,6 +242,10 @@ namespace igabde
           }
       for (unsigned int a = 0; a < n_alpha; ++a)
         dsp.add(n_u + d * n_pairs + a, n_u + d * n_pairs + a);
+      // Finite sliding's geometric tangent (linearize_geometry()).
+      for (const auto &[row, column] : extra_pattern)
+        if (owned.is_element(row))
+          dsp.add(row, column);
       matrix.reinit(owned, owned, dsp, this->communicator);
     }
 
@@ -414,6 +319,21 @@ namespace igabde
     Eigen::VectorXd
     CoupledSystem<dim>::displacement_equations(const Eigen::VectorXd &w,
                                                const Eigen::VectorXd &p) const
+    {
+      Eigen::VectorXd r = frozen_equations(w, p);
+      // With the geometric tangent of linearize_geometry(): the pairs'
+      // change from its iterate to w, to first order (zero there).
+      if (geometric_valid)
+        add_geometric_term(w - geometric_at, r);
+      return r;
+    }
+
+
+
+    template <int dim>
+    Eigen::VectorXd
+    CoupledSystem<dim>::frozen_equations(const Eigen::VectorXd &w,
+                                         const Eigen::VectorXd &p) const
     {
       AssertDimension(w.size(), n_u);
       AssertDimension(p.size(), d * n_pairs);
@@ -557,6 +477,14 @@ namespace igabde
               matrix.add(gi, columns, values);
             }
         }
+      // The law's rows differentiate u: C, or with the geometric tangent
+      // the pairs' derivatives, whose forces' derivative the displacement
+      // rows add.
+      const auto &law_rows = geometric_valid ? J_rows : C_rows;
+      if (geometric_valid)
+        for (const auto &[row, column, value] : geometric_entries)
+          if (!held[row])
+            add(row, column, value);
       const unsigned int alpha0 = n_u + d * n_pairs;
       for (unsigned int i = 0; i < n_pairs; ++i)
         for (unsigned int s = 0; s < d; ++s)
@@ -569,7 +497,7 @@ namespace igabde
                 if (B[i](s, t) != 0.)
                   add(r, n_u + d * i + t, B[i](s, t) * scale);
                 if (A[i](s, t) != 0.)
-                  for (const auto &[g, v] : C_rows[d * i + t])
+                  for (const auto &[g, v] : law_rows[d * i + t])
                     add(r, g, A[i](s, t) * v);
               }
             for (unsigned int a = 0; a < n_alpha; ++a)

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <iostream>
 #include <regex>
 #include <sstream>
@@ -779,10 +780,65 @@ namespace igabde
                         base::ExcInput(where + ": '" + name +
                                        "' is declared twice."));
           histories.emplace_back(name,
-                                 base::parse_doubles(values,
-                                                     where + "/" + name));
+                                 read_history_factors(values,
+                                                      where + "/" + name));
         }
       return histories;
+    }
+
+
+
+    std::vector<double>
+    read_history_factors(const std::string &text, const std::string &where)
+    {
+      std::vector<double> factors;
+      for (const std::string &raw : base::split(text, ','))
+        {
+          const std::string        item = base::trim(raw);
+          std::istringstream       in(item);
+          std::string              word;
+          std::vector<std::string> words;
+          while (in >> word)
+            words.push_back(word);
+          if (words.empty() || (words[0] != "ramp" && words[0] != "hold"))
+            {
+              const auto v = base::parse_doubles(item, where);
+              factors.insert(factors.end(), v.begin(), v.end());
+              continue;
+            }
+          const bool        ramp  = words[0] == "ramp";
+          const std::string usage = ramp ? "'ramp a b n' (n factors from a "
+                                           "to b, b the last)" :
+                                           "'hold f n' (n factors f)";
+          AssertThrow(words.size() == (ramp ? 4u : 3u),
+                      base::ExcInput(where + ": '" + item + "' must read " +
+                                     usage + "."));
+          std::vector<double> v;
+          for (unsigned int k = 1; k + 1 < words.size(); ++k)
+            {
+              char        *stop  = nullptr;
+              const double value = std::strtod(words[k].c_str(), &stop);
+              AssertThrow(*stop == '\0' && std::isfinite(value),
+                          base::ExcInput(where + ": '" + item + "' must read " +
+                                         usage + ", but '" + words[k] +
+                                         "' is not a number."));
+              v.push_back(value);
+            }
+          char               *end = nullptr;
+          const unsigned long n = std::strtoul(words.back().c_str(), &end, 10);
+          AssertThrow(*end == '\0' && n >= 1 && n <= 100000 &&
+                        words.back().find('-') == std::string::npos,
+                      base::ExcInput(where + ": '" + item + "' must read " +
+                                     usage +
+                                     " with n a whole number from 1 "
+                                     "to 100000."));
+          for (unsigned long k = 1; k <= n; ++k)
+            factors.push_back(
+              ramp ?
+                k == n ? v[1] : v[0] + (v[1] - v[0]) * double(k) / double(n) :
+                v[0]);
+        }
+      return factors;
     }
 
 

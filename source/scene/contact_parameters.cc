@@ -103,9 +103,25 @@ namespace igabde
                           "current configuration, which slave parts face a "
                           "master at the start of every load step and their "
                           "master points, normals and gaps at every Newton "
-                          "iterate (the full path, frictionless contact "
-                          "paired by the weighted gap, masters that are "
-                          "bodies or fixed obstacles).");
+                          "iterate (the full path, contact paired by the "
+                          "weighted gap, masters that are bodies or fixed "
+                          "obstacles; with friction the slip of a step is "
+                          "measured against the master point the slave "
+                          "faced at the step's start).");
+        prm.declare_entry(
+          "Sliding tangent",
+          "frozen",
+          Patterns::Selection("full|frozen"),
+          "Sliding = finite: the Newton matrix's contact rows. full: the "
+          "derivatives of the pairs' gaps, slips and force directions by "
+          "the configuration (finite differences of the pairing, one "
+          "pairing per group of unknowns that no pair reads together: "
+          "about 20 to 60 pairings per Newton iteration); the Newton "
+          "iteration then converges fast where contact pressures are "
+          "large against the stiffness on curved surfaces. frozen: the "
+          "pairs' operators at the iterate (one pairing per iteration; "
+          "linear convergence, slow where the pressure is a sizeable part "
+          "of the modulus; the default).");
         prm.declare_entry("Condensation",
                           "schur",
                           Patterns::Selection(
@@ -267,6 +283,7 @@ namespace igabde
         penalty_line_search   = prm.get_bool("Penalty line search");
         path           = base::value_of(contact::path_names, prm.get("Path"));
         finite_sliding = prm.get("Sliding") == "finite";
+        full_sliding_tangent = prm.get("Sliding tangent") == "full";
         condensation =
           base::value_of(contact::condensation_names, prm.get("Condensation"));
         first.slave_face_text  = base::trim(prm.get("Slave face"));

@@ -331,7 +331,10 @@ namespace igabde
           "",
           Patterns::Anything(),
           "Named load histories, 'name: f1, f2, ...; name2: ...', one factor "
-          "per step each (as many as the steps). A traction, point load or "
+          "per step each (as many as the steps); 'ramp a b n' stands for n "
+          "factors rising linearly from a (exclusive) to b, 'hold f n' for n "
+          "factors f (e.g. 'press: ramp 0 1 10, hold 1 100'). A traction, "
+          "point load or "
           "support entry follows one by ending in '@ name', e.g. Tractions "
           "= '3: pressure 10 @ normal; 1: vector -2, 0 @ shear'; entries "
           "without it follow Load factors (loads) or Displacement factors "

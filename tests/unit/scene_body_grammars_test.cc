@@ -434,3 +434,34 @@ TEST(BodyGrammars, HistoriesAreNamedFactorLists)
     "f: H",
     "has no name");
 }
+
+
+
+// 'ramp a b n' and 'hold f n' in a history: the factors written out by
+// hand, a ramp's last factor b exactly.
+TEST(BodyGrammars, HistoriesRampAndHold)
+{
+  const auto h =
+    read_histories("press: ramp 0 1 4, hold 1 2; slide: hold 0 4, ramp 0 0.3 "
+                   "2, 0.5",
+                   "f: H");
+  ASSERT_EQ(h.size(), 2u);
+  EXPECT_EQ(h[0].second, std::vector<double>({0.25, 0.5, 0.75, 1, 1, 1}));
+  ASSERT_EQ(h[1].second.size(), 7u);
+  for (unsigned int k = 0; k < 4; ++k)
+    EXPECT_EQ(h[1].second[k], 0.);
+  EXPECT_DOUBLE_EQ(h[1].second[4], 0.15);
+  EXPECT_EQ(h[1].second[5], 0.3);
+  EXPECT_EQ(h[1].second[6], 0.5);
+  for (const std::string bad : {"a: ramp 0 1",
+                                "a: ramp 0 1 0",
+                                "a: hold 1 2.5",
+                                "a: hold 1 -3",
+                                "a: ramp 0 x 3"})
+    expect_refused(
+      [&] {
+        read_histories(bad, "f: H");
+      },
+      "f: H",
+      "must read");
+}

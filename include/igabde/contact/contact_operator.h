@@ -94,6 +94,19 @@ namespace igabde
                    const Eigen::VectorXd &w) const = 0;
 
       /**
+       * @brief The derivative of M along the direction (@p v_p, @p v_w):
+       * M(v_p, v_w) where M is linear (the default); with finite sliding
+       * and the full sliding tangent, the derivative of the pairs' gaps
+       * and slips by the configuration at the last linearize().
+       */
+      virtual Eigen::VectorXd
+      displacement_derivative(const Eigen::VectorXd &v_p,
+                              const Eigen::VectorXd &v_w) const
+      {
+        return displacement(v_p, v_w);
+      }
+
+      /**
        * @brief Finite sliding (Contact/Sliding = finite): re-forms the
        * pairs on the configuration the iterate @p x reaches (their
        * operators, frames and gaps there) before its residual is

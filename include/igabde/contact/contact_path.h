@@ -58,6 +58,10 @@ namespace igabde
       /// The law's q of the solve, whose normal rows the gaps of pairs_at()
       /// replace (through ContactOperator::displacement_offset()).
       const Eigen::VectorXd *q = nullptr;
+      /// Whether the Newton matrix takes the pairs' derivatives by the
+      /// configuration (Contact/Sliding tangent = full) or the pairs'
+      /// operators at the iterate (frozen).
+      bool full_tangent = false;
     };
 
     /**
@@ -135,14 +139,17 @@ namespace igabde
 
       /**
        * @brief Finite sliding: the operator of the next prepare() forms its
-       * pairs at every iterate by @p pairs_at (FiniteSliding::pairs_at).
-       * The full path only.
+       * pairs at every iterate by @p pairs_at (FiniteSliding::pairs_at),
+       * and with @p full_tangent differentiates them in its Newton matrix
+       * (FiniteSliding::full_tangent). The full path only.
        */
       virtual void
       set_finite_sliding(const std::function<std::vector<ContactPair<dim>>(
-                           const Eigen::VectorXd &)> &pairs_at)
+                           const Eigen::VectorXd &)> &pairs_at,
+                         const bool                   full_tangent)
       {
         (void)pairs_at;
+        (void)full_tangent;
         AssertThrow(false,
                     ExcMessage("finite sliding is modelled on the full path "
                                "(Contact/Path = full)"));
@@ -243,7 +250,8 @@ namespace igabde
 
       void
       set_finite_sliding(const std::function<std::vector<ContactPair<dim>>(
-                           const Eigen::VectorXd &)> &pairs_at) override;
+                           const Eigen::VectorXd &)> &pairs_at,
+                         const bool                   full_tangent) override;
 
     private:
       const std::vector<const discretization::Body<dim> *> bodies;
@@ -254,7 +262,8 @@ namespace igabde
       std::unique_ptr<CoupledOperator>                     coupled;
       /// set_finite_sliding() (empty: small sliding).
       std::function<std::vector<ContactPair<dim>>(const Eigen::VectorXd &)>
-        pairs_at;
+           pairs_at;
+      bool full_tangent = false;
     };
   } // namespace contact
 } // namespace igabde

@@ -98,9 +98,14 @@ namespace igabde
       bool
       equilibrium_is_linear() const override;
 
-      /** @brief linearize_bodies() at x.w. */
+      /** @brief linearize_bodies() at x.w, then linearize_geometry(x). */
       void
       linearize(const ContactIterate &x) override;
+
+      /** @brief apply_C_derivative(v_w) + eps v_p. */
+      Eigen::VectorXd
+      displacement_derivative(const Eigen::VectorXd &v_p,
+                              const Eigen::VectorXd &v_w) const override;
 
       /** @brief tangent_equations(v_w, v_p). */
       Eigen::VectorXd
@@ -196,6 +201,29 @@ namespace igabde
       linearize_bodies(const Eigen::VectorXd &w)
       {
         (void)w;
+      }
+
+      /**
+       * @brief Finite sliding: the derivatives of the pairs' gaps, slips
+       * and force directions by the configuration at the iterate @p x
+       * (its forces x.p), which the next factorize(), apply_C_derivative()
+       * and tangent_equations() take until the pairs are formed again.
+       * Nothing by default (C does not depend on w).
+       */
+      virtual void
+      linearize_geometry(const ContactIterate &x)
+      {
+        (void)x;
+      }
+
+      /**
+       * @brief The derivative of C w by w along @p v: C v unless
+       * linearize_geometry() holds the pairs' derivatives.
+       */
+      virtual Eigen::VectorXd
+      apply_C_derivative(const Eigen::VectorXd &v) const
+      {
+        return apply_C(v);
       }
 
       /**

@@ -25,6 +25,7 @@
 #include <Epetra_LinearProblem.h>
 #include <memory>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -205,7 +206,36 @@ namespace igabde
       void
       forget_geometry() override;
 
+      /**
+       * @brief With the full sliding tangent (FiniteSliding::full_tangent):
+       * the derivatives of every pair's gap, slip (the law's rows of u) and
+       * force -C^T p (at x.p) by the unknowns it reads, by forward
+       * differences of the pairing at @p x, one pairing per colour of
+       * unknowns no pair reads together. The law's rows of the Newton
+       * matrix then take them in place of C's rows, and the displacement
+       * rows add the forces' derivative (the geometric stiffness of the
+       * contact: the force directions turning with the master's normal,
+       * the master points moving over its elements). Kept until the pairs
+       * are formed again (update_geometry()).
+       */
+      void
+      linearize_geometry(const contact::ContactIterate &x) override;
+
+      Eigen::VectorXd
+      apply_C_derivative(const Eigen::VectorXd &v) const override;
+
     private:
+      /// r += (d(-C^T p)/dw) v with the derivative of linearize_geometry()
+      /// (nothing without it).
+      void
+      add_geometric_term(const Eigen::VectorXd &v, Eigen::VectorXd &r) const;
+
+      /// K w - C^T p with the held rows (displacement_equations() at the
+      /// pairs of the last update, without the geometric model).
+      Eigen::VectorXd
+      frozen_equations(const Eigen::VectorXd &w,
+                       const Eigen::VectorXd &p) const;
+
       /// C's rows from the pairs' operators and frames.
       void
       set_C_rows(const std::vector<contact::ContactPair<dim>> &pairs);
@@ -224,6 +254,18 @@ namespace igabde
       double geometry_tolerance = 0.;
       /// Each body's mean element size (measure / elements)^(1/dim).
       std::vector<double> element_size;
+      /// The pairs of the last update_geometry().
+      std::vector<contact::ContactPair<dim>> pairs_now;
+      /// linearize_geometry(): whether its derivatives hold (until the
+      /// next update_geometry()), the law rows' derivative by w, the
+      /// forces' derivative as (row, column, value), the iterate's w, and
+      /// the entries beyond K's and C's pattern that the pattern holds.
+      bool geometric_valid = false;
+      std::vector<std::vector<std::pair<unsigned int, double>>> J_rows;
+      std::vector<std::tuple<unsigned int, unsigned int, double>>
+                                                         geometric_entries;
+      Eigen::VectorXd                                    geometric_at;
+      std::vector<std::pair<unsigned int, unsigned int>> extra_pattern;
 
       /// Freed pages stay with the process while the system lives: every
       /// Newton iteration's factorisation frees MUMPS' workspace and takes

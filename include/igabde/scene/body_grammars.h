@@ -359,6 +359,14 @@ namespace igabde
     read_histories(const std::string &text, const std::string &where);
 
     /**
+     * @brief One history's factors, one per step: a comma list of numbers,
+     * 'ramp a b n' (n factors rising linearly from a, exclusive, to b) and
+     * 'hold f n' (n factors f), e.g. 'ramp 0 1 10, hold 1 100'.
+     */
+    std::vector<double>
+    read_history_factors(const std::string &text, const std::string &where);
+
+    /**
      * @brief Refuses, naming @p where, 'function' expressions that are not
      * one per component or that deal.II's FunctionParser cannot evaluate;
      * returns whether one of them uses the variable t.

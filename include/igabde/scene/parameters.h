@@ -359,6 +359,9 @@ namespace igabde
       /// Contact/Sliding = finite: pairs on the current configuration
       /// (ContactSettings::finite_sliding); small: formed once.
       bool finite_sliding = false;
+      /// Contact/Sliding tangent = full (ContactSettings::
+      /// full_sliding_tangent); frozen: false.
+      bool full_sliding_tangent = false;
       /// FKN: normal penalty stiffness factor (penalty methods).
       double penalty_factor = 1.;
       /// FKT: stick stiffness factor, k_t = FKT k_n.
