@@ -341,6 +341,62 @@ namespace igabde
 
 
 
+    void
+    KnotVector::basis_and_first_derivatives(const double       x,
+                                            const unsigned int span,
+                                            double            *values,
+                                            double *derivatives) const
+    {
+      // P&T A2.3 for one derivative, on the stack: the table ndu of
+      // basis_function_derivatives(), then its a-table recursion for k = 1
+      // written out (a[0] = 1 / ndu[p][r-1], a[1] = -1 / ndu[p][r]).
+      constexpr unsigned int m = max_fast_degree + 1;
+      AssertThrow(p <= max_fast_degree,
+                  ExcMessage("KnotVector: degree " + std::to_string(p) +
+                             " is above the fast basis' " +
+                             std::to_string(max_fast_degree)));
+      double ndu[m][m], left[m], right[m];
+      ndu[0][0] = 1.;
+      for (unsigned int j = 1; j <= p; ++j)
+        {
+          left[j]      = x - u[span + 1 - j];
+          right[j]     = u[span + j] - x;
+          double saved = 0.;
+          for (unsigned int r = 0; r < j; ++r)
+            {
+              ndu[j][r]         = right[r + 1] + left[j - r];
+              const double temp = ndu[r][j - 1] / ndu[j][r];
+              ndu[r][j]         = saved + right[r + 1] * temp;
+              saved             = left[j - r] * temp;
+            }
+          ndu[j][j] = saved;
+        }
+      for (unsigned int j = 0; j <= p; ++j)
+        values[j] = ndu[j][p];
+      if (p == 0)
+        {
+          derivatives[0] = 0.;
+          return;
+        }
+      for (unsigned int r = 0; r <= p; ++r)
+        {
+          double d = 0.;
+          if (r >= 1)
+            {
+              const double a0 = 1. / ndu[p][r - 1];
+              d               = a0 * ndu[r - 1][p - 1];
+            }
+          if (r + 1 <= p)
+            {
+              const double a1 = -1. / ndu[p][r];
+              d += a1 * ndu[r][p - 1];
+            }
+          derivatives[r] = d * static_cast<double>(p);
+        }
+    }
+
+
+
     std::vector<FullMatrix<double>>
     KnotVector::bezier_extraction_operators() const
     {

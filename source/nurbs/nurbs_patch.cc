@@ -217,24 +217,42 @@ namespace igabde
                            std::vector<double>         &values,
                            std::vector<Tensor<1, dim>> *gradients) const
     {
-      std::array<unsigned int, dim>                     span;
-      std::array<std::vector<std::vector<double>>, dim> ders;
-      unsigned int                                      n_local = 1;
+      // Per direction the p+1 basis values ders[d][0] and derivatives
+      // ders[d][1], on the stack (this runs at every surface and
+      // quadrature point of the contact search).
+      constexpr unsigned int        m = KnotVector::max_fast_degree + 1;
+      std::array<unsigned int, dim> span;
+      std::array<std::array<std::array<double, m>, 2>, dim> ders;
+      unsigned int                                          n_local = 1;
       for (unsigned int d = 0; d < dim; ++d)
         {
           AssertThrow(!knots[d].knots().empty(),
                       ExcMessage("NurbsPatch: evaluating an empty patch."));
           const double x = std::clamp(xi[d], knots[d].front(), knots[d].back());
           span[d]        = knots[d].find_span(x);
-          knots[d].basis_function_derivatives(x, span[d], 1, ders[d]);
+          if (knots[d].degree() <= KnotVector::max_fast_degree)
+            knots[d].basis_and_first_derivatives(x,
+                                                 span[d],
+                                                 ders[d][0].data(),
+                                                 ders[d][1].data());
+          else
+            AssertThrow(false,
+                        ExcMessage(
+                          "NurbsPatch: degree " +
+                          std::to_string(knots[d].degree()) + " in direction " +
+                          std::to_string(d) +
+                          " is above the largest supported, " +
+                          std::to_string(KnotVector::max_fast_degree)));
           n_local *= knots[d].degree() + 1;
         }
 
       indices.resize(n_local);
       values.resize(n_local);
-      std::vector<Tensor<1, dim>> dN(n_local);
-      double                      W = 0.;
-      Tensor<1, dim>              dW;
+      // The weighted derivatives, kept between calls on each thread.
+      thread_local std::vector<Tensor<1, dim>> dN;
+      dN.resize(n_local);
+      double         W = 0.;
+      Tensor<1, dim> dW;
       for (unsigned int l = 0; l < n_local; ++l)
         {
           std::array<unsigned int, dim> local, global;
@@ -278,8 +296,8 @@ namespace igabde
     Point<dim>
     NurbsPatch<dim>::value(const Point<dim> &xi) const
     {
-      std::vector<unsigned int> indices;
-      std::vector<double>       R;
+      thread_local std::vector<unsigned int> indices;
+      thread_local std::vector<double>       R;
       basis(xi, indices, R);
       Point<dim> x;
       for (unsigned int l = 0; l < indices.size(); ++l)
@@ -354,9 +372,9 @@ namespace igabde
     Tensor<2, dim>
     NurbsPatch<dim>::jacobian(const Point<dim> &xi) const
     {
-      std::vector<unsigned int>   indices;
-      std::vector<double>         R;
-      std::vector<Tensor<1, dim>> dR;
+      thread_local std::vector<unsigned int>   indices;
+      thread_local std::vector<double>         R;
+      thread_local std::vector<Tensor<1, dim>> dR;
       basis(xi, indices, R, &dR);
       Tensor<2, dim> J;
       for (unsigned int l = 0; l < indices.size(); ++l)

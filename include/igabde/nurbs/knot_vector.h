@@ -141,6 +141,21 @@ namespace igabde
                                  const unsigned int n_derivatives,
                                  std::vector<std::vector<double>> &ders) const;
 
+      /// The largest degree basis_and_first_derivatives() takes.
+      static constexpr unsigned int max_fast_degree = 10;
+
+      /**
+       * @brief basis_function_derivatives() with one derivative, without
+       * allocating (the same operations, so the same numbers): @p values
+       * and @p derivatives get the p+1 entries; degree at most
+       * max_fast_degree.
+       */
+      void
+      basis_and_first_derivatives(const double       u,
+                                  const unsigned int span,
+                                  double            *values,
+                                  double            *derivatives) const;
+
       /**
        * @brief The Bézier extraction operator of every non-empty span (Borden,
        * Scott, Evans, Hughes, IJNME 87 (2011) 15-47, Algorithm 1).
