@@ -302,12 +302,23 @@ namespace igabde
     CoupledSystem<dim>::apply_C(const Eigen::VectorXd &w) const
     {
       AssertDimension(w.size(), n_u);
-      Eigen::VectorXd u(d * n_pairs);
-      for (unsigned int r = 0; r < d * n_pairs; ++r)
+      return apply_rows(C_rows, w);
+    }
+
+
+
+    template <int dim>
+    Eigen::VectorXd
+    CoupledSystem<dim>::apply_rows(
+      const std::vector<std::vector<std::pair<unsigned int, double>>> &rows,
+      const Eigen::VectorXd                                           &v)
+    {
+      Eigen::VectorXd u(rows.size());
+      for (unsigned int r = 0; r < rows.size(); ++r)
         {
           double sum = 0.;
-          for (const auto &[g, v] : C_rows[r])
-            sum += v * w[g];
+          for (const auto &[g, value] : rows[r])
+            sum += value * v[g];
           u[r] = sum;
         }
       return u;

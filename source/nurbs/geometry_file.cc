@@ -156,6 +156,13 @@ namespace igabde
                         base::ExcInput(direction +
                                        "the degree attribute must be a whole "
                                        "number >= 1."));
+            AssertThrow(degree[0] <= KnotVector::max_fast_degree,
+                        base::ExcInput(
+                          direction + "degree " +
+                          std::to_string(static_cast<int>(degree[0])) +
+                          " is above the largest supported, " +
+                          std::to_string(KnotVector::max_fast_degree) +
+                          "; lower it (or refine by knots instead)."));
             try
               {
                 knots[d] = KnotVector(static_cast<unsigned int>(degree[0]),

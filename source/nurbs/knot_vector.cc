@@ -21,6 +21,45 @@ namespace igabde
         s << "]";
         return s.str();
       }
+
+
+
+      /**
+       * The table ndu of P&T A2.3 at @p x in @p span: the basis functions
+       * of degree 0..p in its upper triangle (ndu[r][j]), the knot
+       * differences in its lower one. @p Table is anything indexed as
+       * ndu[i][j] with at least p+1 rows and columns, @p Buffer likewise
+       * as left[j] (the heap tables of basis_function_derivatives() and the
+       * stack ones of basis_and_first_derivatives() give the same numbers).
+       */
+      template <typename Table, typename Buffer>
+      void
+      fill_ndu_table(const std::vector<double> &u,
+                     const unsigned int         p,
+                     const double               x,
+                     const unsigned int         span,
+                     Table                     &ndu,
+                     Buffer                    &left,
+                     Buffer                    &right)
+      {
+        ndu[0][0] = 1.;
+        for (unsigned int j = 1; j <= p; ++j)
+          {
+            left[j]      = x - u[span + 1 - j];
+            right[j]     = u[span + j] - x;
+            double saved = 0.;
+            for (unsigned int r = 0; r < j; ++r)
+              {
+                // Lower triangle: knot differences.
+                ndu[j][r]         = right[r + 1] + left[j - r];
+                const double temp = ndu[r][j - 1] / ndu[j][r];
+                // Upper triangle: basis functions.
+                ndu[r][j] = saved + right[r + 1] * temp;
+                saved     = left[j - r] * temp;
+              }
+            ndu[j][j] = saved;
+          }
+      }
     } // namespace
 
 
@@ -279,23 +318,7 @@ namespace igabde
 
       std::vector<std::vector<double>> ndu(p + 1, std::vector<double>(p + 1));
       std::vector<double>              left(p + 1), right(p + 1);
-      ndu[0][0] = 1.;
-      for (unsigned int j = 1; j <= p; ++j)
-        {
-          left[j]      = x - u[span + 1 - j];
-          right[j]     = u[span + j] - x;
-          double saved = 0.;
-          for (unsigned int r = 0; r < j; ++r)
-            {
-              // Lower triangle: knot differences.
-              ndu[j][r]         = right[r + 1] + left[j - r];
-              const double temp = ndu[r][j - 1] / ndu[j][r];
-              // Upper triangle: basis functions.
-              ndu[r][j] = saved + right[r + 1] * temp;
-              saved     = left[j - r] * temp;
-            }
-          ndu[j][j] = saved;
-        }
+      fill_ndu_table(u, p, x, span, ndu, left, right);
       for (unsigned int j = 0; j <= p; ++j)
         ders[0][j] = ndu[j][p];
 
@@ -356,21 +379,7 @@ namespace igabde
                              " is above the fast basis' " +
                              std::to_string(max_fast_degree)));
       double ndu[m][m], left[m], right[m];
-      ndu[0][0] = 1.;
-      for (unsigned int j = 1; j <= p; ++j)
-        {
-          left[j]      = x - u[span + 1 - j];
-          right[j]     = u[span + j] - x;
-          double saved = 0.;
-          for (unsigned int r = 0; r < j; ++r)
-            {
-              ndu[j][r]         = right[r + 1] + left[j - r];
-              const double temp = ndu[r][j - 1] / ndu[j][r];
-              ndu[r][j]         = saved + right[r + 1] * temp;
-              saved             = left[j - r] * temp;
-            }
-          ndu[j][j] = saved;
-        }
+      fill_ndu_table(u, p, x, span, ndu, left, right);
       for (unsigned int j = 0; j <= p; ++j)
         values[j] = ndu[j][p];
       if (p == 0)

@@ -2,6 +2,7 @@
 
 #include <igabde/contact/contact_solver.h>
 #include <igabde/contact/pairing.h>
+#include <igabde/contact/sliding.h>
 
 #include <igabde/scene/parameters.h>
 
@@ -96,7 +97,8 @@ namespace igabde
                           "solve the full system).");
         prm.declare_entry("Sliding",
                           "small",
-                          Patterns::Selection("small|finite"),
+                          Patterns::Selection(
+                            base::selection_of(contact::sliding_names)),
                           "small: the pairs are formed once, on the "
                           "reference configuration (sliding well below the "
                           "pair spacing). finite: formed again on the "
@@ -111,7 +113,8 @@ namespace igabde
         prm.declare_entry(
           "Sliding tangent",
           "frozen",
-          Patterns::Selection("full|frozen"),
+          Patterns::Selection(
+            base::selection_of(contact::sliding_tangent_names)),
           "Sliding = finite: the Newton matrix's contact rows. full: the "
           "derivatives of the pairs' gaps, slips and force directions by "
           "the configuration (finite differences of the pairing, one "
@@ -281,9 +284,13 @@ namespace igabde
           base::value_of(coupled::solver_names, prm.get("Full system solver"));
         krylov_max_iterations = prm.get_integer("Krylov max iterations");
         penalty_line_search   = prm.get_bool("Penalty line search");
-        path           = base::value_of(contact::path_names, prm.get("Path"));
-        finite_sliding = prm.get("Sliding") == "finite";
-        full_sliding_tangent = prm.get("Sliding tangent") == "full";
+        path = base::value_of(contact::path_names, prm.get("Path"));
+        finite_sliding =
+          base::value_of(contact::sliding_names, prm.get("Sliding")) ==
+          contact::Sliding::finite;
+        full_sliding_tangent = base::value_of(contact::sliding_tangent_names,
+                                              prm.get("Sliding tangent")) ==
+                               contact::SlidingTangent::full;
         condensation =
           base::value_of(contact::condensation_names, prm.get("Condensation"));
         first.slave_face_text  = base::trim(prm.get("Slave face"));

@@ -414,6 +414,20 @@ TEST(GeometryFile, BadFilesAreRefusedNamingTheFile)
                  xml(
                    patch_2d("0", "0 0 1 1", "0 0 1 1", "0 0\n1 0\n0 x\n1 1\n")),
                  "'x' is not a number");
+  // Degree 11 along direction 0 (12 knots at each end, 12 control points
+  // in that direction): above the largest degree the bases evaluate.
+  {
+    std::string knots, coefs;
+    for (unsigned int k = 0; k < 24; ++k)
+      knots += (k < 12 ? "0 " : "1 ");
+    for (unsigned int j = 0; j < 2; ++j)
+      for (unsigned int i = 0; i < 12; ++i)
+        coefs += std::to_string(i / 11.) + " " + std::to_string(j) + "\n";
+    expect_refused(folder,
+                   "degree.xml",
+                   xml(patch_2d("0", knots, "0 0 1 1", coefs, "", "11", "1")),
+                   "degree 11 is above the largest supported, 10");
+  }
   // A bilinear patch whose upper corners are crossed: the map folds.
   expect_refused(folder,
                  "folded.xml",

@@ -284,6 +284,12 @@ namespace igabde
       std::vector<bool> held;
       /// Rows of C: (unknown, coefficient) lists, held unknowns left out.
       std::vector<std::vector<std::pair<unsigned int, double>>> C_rows;
+      /// The rows @p rows ((unknown, coefficient) lists, as C_rows and
+      /// J_rows) applied to @p v.
+      static Eigen::VectorXd
+      apply_rows(
+        const std::vector<std::vector<std::pair<unsigned int, double>>> &rows,
+        const Eigen::VectorXd                                           &v);
       /// The rigid-mode columns.
       Eigen::MatrixXd G;
       /// Column scale of the force unknowns (mean stiffness diagonal).
