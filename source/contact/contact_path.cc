@@ -166,7 +166,7 @@ namespace igabde
         }
       contact = kept_pairs_contact(pair_list, keep, modes, m, context);
       FiniteSliding<dim> sliding;
-      if (pairs_at)
+      if (this->sliding.pairs_at)
         {
           // The path's pairs are the kept ones: pairs_at() gives all.
           AssertThrow(keep.size() == pair_list.size(),
@@ -175,9 +175,8 @@ namespace igabde
                                  "with pairs whose points move with held "
                                  "unknowns only; hold fewer unknowns on the "
                                  "contact faces"));
-          sliding.pairs_at     = pairs_at;
-          sliding.q            = &contact.problem.q;
-          sliding.full_tangent = full_tangent;
+          sliding   = this->sliding;
+          sliding.q = &contact.problem.q;
         }
       coupled = factory(bodies, contact.pairs, m, contact.problem.G, sliding);
       static_cast<const ContactData &>(contact.problem).check_consistency();
@@ -248,13 +247,9 @@ namespace igabde
 
     template <int dim>
     void
-    CoupledPath<dim>::set_finite_sliding(
-      const std::function<
-        std::vector<ContactPair<dim>>(const Eigen::VectorXd &)> &pairs_at,
-      const bool                                                 full_tangent)
+    CoupledPath<dim>::set_finite_sliding(const FiniteSliding<dim> &sliding)
     {
-      this->pairs_at     = pairs_at;
-      this->full_tangent = full_tangent;
+      this->sliding = sliding;
     }
 
 

@@ -96,7 +96,8 @@ namespace igabde
               has_previous,
               finite_u,
               sliding_u,
-              x_keys};
+              x_keys,
+              sliding_factors};
     }
 
 
@@ -112,8 +113,9 @@ namespace igabde
       has_previous      = state.has_previous;
       finite_u          = state.finite_u;
       finite_u.resize(bodies.size());
-      sliding_u = state.sliding_u;
-      x_keys    = state.keys;
+      sliding_u       = state.sliding_u;
+      x_keys          = state.keys;
+      sliding_factors = state.sliding_factors;
     }
 
 
@@ -428,7 +430,8 @@ namespace igabde
       // What the solve's corrections w add to (finite sliding's pairs_at()).
       if (settings.finite_sliding)
         {
-          sliding_base = u;
+          sliding_base  = u;
+          solve_factors = factors;
           op.forget_geometry();
         }
       ContactSolverResult solution;
@@ -573,7 +576,10 @@ namespace igabde
           if (bodies[b]->finite_strain())
             finite_u[b] = u[b];
         if (settings.finite_sliding)
-          sliding_u = u;
+          {
+            sliding_u       = u;
+            sliding_factors = factors;
+          }
       }
       return result;
     }

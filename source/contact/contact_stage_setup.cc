@@ -173,11 +173,18 @@ namespace igabde
                                                log,
                                                settings.progress);
       if (settings.finite_sliding)
-        contact_path->set_finite_sliding(
-          [this](const Eigen::VectorXd &w) {
+        {
+          FiniteSliding<dim> sliding;
+          sliding.pairs_at = [this](const Eigen::VectorXd &w) {
             return pairs_at(w);
-          },
-          settings.full_sliding_tangent);
+          };
+          sliding.pairs_of = [this](const Eigen::VectorXd           &w,
+                                    const std::vector<unsigned int> &indices) {
+            return pairs_of(w, indices);
+          };
+          sliding.full_tangent = settings.full_sliding_tangent;
+          contact_path->set_finite_sliding(sliding);
+        }
       // The full path's merit adds the displacement equations, which the
       // first Newton step satisfies to rounding: its line search is
       // monotone (the non-monotone rule lets |H| grow for steps that the

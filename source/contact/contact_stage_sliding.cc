@@ -7,6 +7,7 @@
 
 #include <igabde/contact/contact_stage.h>
 
+#include <algorithm>
 #include <map>
 
 namespace igabde
@@ -45,31 +46,51 @@ namespace igabde
 
     template <int dim>
     std::vector<ContactPair<dim>>
-    ContactStage<dim>::pairs_on(const std::vector<Vector<double>> &u) const
+    ContactStage<dim>::pairs_on(
+      const std::vector<Vector<double>>                       &u,
+      const std::vector<double>                               &factors,
+      const std::vector<std::vector<types::global_dof_index>> &keys) const
     {
       AssertDimension(u.size(), bodies.size());
+      const bool restricted = !keys.empty();
+      Assert(!restricted || keys.size() == settings.interactions.size(),
+             ExcInternalError());
       const MovedSurfaces<dim>      moved(bodies, u);
       std::vector<ContactPair<dim>> result;
       for (unsigned int k = 0; k < settings.interactions.size(); ++k)
         {
+          if (restricted && keys[k].empty())
+            continue;
           const ContactInteraction &c          = settings.interactions[k];
           const bool                deformable = c.master_body < bodies.size();
-          // The master's samples on its moved surface.
-          std::unique_ptr<BodyFace<dim>> face;
+          // The master's samples on its moved surface, or the obstacle
+          // where its motion puts it.
+          std::unique_ptr<ContactSurface<dim>> moved_master;
           if (deformable)
-            face = std::make_unique<BodyFace<dim>>(*bodies[c.master_body],
-                                                   c.master_faces);
+            moved_master =
+              std::make_unique<BodyFace<dim>>(*bodies[c.master_body],
+                                              c.master_faces);
+          else if (obstacles[c.obstacle]->moves())
+            moved_master =
+              std::make_unique<PlacedObstacle<dim>>(*obstacles[c.obstacle],
+                                                    factors);
           const ContactSurface<dim> &master =
-            deformable ?
-              static_cast<const ContactSurface<dim> &>(*face) :
+            moved_master ?
+              *moved_master :
               static_cast<const ContactSurface<dim> &>(*obstacles[c.obstacle]);
           const std::string context = settings.interactions.size() == 1 ?
                                         settings.context :
                                         settings.context + " (" + c.name + ")";
-          append_pairs(pairings[k]->make_pairs(*bodies[c.slave_body],
-                                               c.slave_faces,
-                                               master,
-                                               context),
+          append_pairs(restricted ?
+                         pairings[k]->make_pairs_of(*bodies[c.slave_body],
+                                                    c.slave_faces,
+                                                    master,
+                                                    context,
+                                                    keys[k]) :
+                         pairings[k]->make_pairs(*bodies[c.slave_body],
+                                                 c.slave_faces,
+                                                 master,
+                                                 context),
                        k,
                        result);
         }
@@ -122,7 +143,7 @@ namespace igabde
         frame_before[{pair.interaction, pair.slave_key}] = pair.frame;
       {
         TimerOutput::Scope t(timer, "contact: pairs");
-        pair_list = pairs_on(sliding_u);
+        pair_list = pairs_on(sliding_u, sliding_factors);
       }
       // The tangents of the pairs formed again follow the last step's, so
       // that the carried friction forces keep their directions.
@@ -131,7 +152,8 @@ namespace igabde
               frame_before.find({pair.interaction, pair.slave_key});
             it != frame_before.end())
           pair.frame = local_frame(pair.frame[0], it->second);
-      paired_at = sliding_u;
+      paired_at      = sliding_u;
+      paired_factors = sliding_factors;
       {
         TimerOutput::Scope t(timer, prepare_section);
         contact_path->prepare(pair_list, contact);
@@ -163,6 +185,26 @@ namespace igabde
     std::vector<ContactPair<dim>>
     ContactStage<dim>::pairs_at(const Eigen::VectorXd &w) const
     {
+      return pairs_at(w, nullptr);
+    }
+
+
+
+    template <int dim>
+    std::vector<ContactPair<dim>>
+    ContactStage<dim>::pairs_of(const Eigen::VectorXd           &w,
+                                const std::vector<unsigned int> &indices) const
+    {
+      return pairs_at(w, &indices);
+    }
+
+
+
+    template <int dim>
+    std::vector<ContactPair<dim>>
+    ContactStage<dim>::pairs_at(const Eigen::VectorXd           &w,
+                                const std::vector<unsigned int> *indices) const
+    {
       std::vector<Vector<double>> config = sliding_base;
       unsigned int                offset = 0;
       for (unsigned int b = 0; b < bodies.size(); ++b)
@@ -173,17 +215,31 @@ namespace igabde
             config[b][i] += w[offset + i];
           offset += bodies[b]->n_dofs();
         }
+      std::vector<std::vector<types::global_dof_index>> keys;
+      if (indices != nullptr)
+        {
+          keys.resize(settings.interactions.size());
+          for (const unsigned int i : *indices)
+            keys[pair_list[i].interaction].push_back(pair_list[i].slave_key);
+          for (auto &list : keys)
+            std::sort(list.begin(), list.end());
+        }
       std::map<std::pair<unsigned int, types::global_dof_index>, unsigned int>
                                     formed_index;
-      std::vector<ContactPair<dim>> formed = pairs_on(config);
+      std::vector<ContactPair<dim>> formed =
+        pairs_on(config, solve_factors, keys);
       for (unsigned int j = 0; j < formed.size(); ++j)
         formed_index[{formed[j].interaction, formed[j].slave_key}] = j;
       const std::vector<Vector<double>> relative =
         from_paired_configuration(config);
       std::vector<ContactPair<dim>> result;
-      result.reserve(pair_list.size());
-      for (const ContactPair<dim> &pair : pair_list)
+      const unsigned int            n =
+        indices != nullptr ? indices->size() : pair_list.size();
+      result.reserve(n);
+      for (unsigned int j = 0; j < n; ++j)
         {
+          const ContactPair<dim> &pair =
+            pair_list[indices != nullptr ? (*indices)[j] : j];
           // The step's slip: the slave point's displacement over the step
           // against the master material point of the step's pair, whose
           // slave point faced it at the step's start (the convected
@@ -191,6 +247,18 @@ namespace igabde
           Tensor<1, dim> du = pair.op1.displacement(relative[pair.slave_body]);
           if (pair.master_body < bodies.size())
             du -= pair.op2.displacement(relative[pair.master_body]);
+          else if (const Obstacle<dim> *obstacle = obstacle_of(pair);
+                   obstacle != nullptr && obstacle->moves())
+            {
+              // The obstacle's material point the pair faced (at rest:
+              // its point moved back from where the step's pairs put it)
+              // carried to where the solve's factors put it.
+              const Point<dim> c = obstacle->pivot();
+              const Point<dim> at_rest =
+                c + transpose(obstacle->rotation(paired_factors)) *
+                      (pair.x2 - c - obstacle->translation(paired_factors));
+              du -= obstacle->placed(at_rest, solve_factors) - pair.x2;
+            }
           const auto it = formed_index.find({pair.interaction, pair.slave_key});
           if (it != formed_index.end())
             {
@@ -212,10 +280,6 @@ namespace igabde
 
 
 
-    template std::vector<ContactPair<2>>
-    ContactStage<2>::pairs_on(const std::vector<Vector<double>> &) const;
-    template std::vector<ContactPair<3>>
-    ContactStage<3>::pairs_on(const std::vector<Vector<double>> &) const;
     template std::vector<std::pair<unsigned int, types::global_dof_index>>
     ContactStage<2>::pair_keys() const;
     template std::vector<std::pair<unsigned int, types::global_dof_index>>
@@ -234,5 +298,27 @@ namespace igabde
     ContactStage<2>::pairs_at(const Eigen::VectorXd &) const;
     template std::vector<ContactPair<3>>
     ContactStage<3>::pairs_at(const Eigen::VectorXd &) const;
+    template std::vector<ContactPair<2>>
+    ContactStage<2>::pairs_of(const Eigen::VectorXd &,
+                              const std::vector<unsigned int> &) const;
+    template std::vector<ContactPair<3>>
+    ContactStage<3>::pairs_of(const Eigen::VectorXd &,
+                              const std::vector<unsigned int> &) const;
+    template std::vector<ContactPair<2>>
+    ContactStage<2>::pairs_at(const Eigen::VectorXd &,
+                              const std::vector<unsigned int> *) const;
+    template std::vector<ContactPair<3>>
+    ContactStage<3>::pairs_at(const Eigen::VectorXd &,
+                              const std::vector<unsigned int> *) const;
+    template std::vector<ContactPair<2>>
+    ContactStage<2>::pairs_on(
+      const std::vector<Vector<double>> &,
+      const std::vector<double> &,
+      const std::vector<std::vector<types::global_dof_index>> &) const;
+    template std::vector<ContactPair<3>>
+    ContactStage<3>::pairs_on(
+      const std::vector<Vector<double>> &,
+      const std::vector<double> &,
+      const std::vector<std::vector<types::global_dof_index>> &) const;
   } // namespace contact
 } // namespace igabde

@@ -90,6 +90,131 @@ namespace igabde
 
 
     template <int dim>
+    Tensor<1, dim>
+    Obstacle<dim>::translation(const std::vector<double> &factors) const
+    {
+      Tensor<1, dim> d;
+      for (const RigidMotion<dim> &term : motion)
+        if (term.history < factors.size())
+          d += factors[term.history] * term.translation;
+      return d;
+    }
+
+
+
+    template <int dim>
+    Tensor<2, dim>
+    Obstacle<dim>::rotation(const std::vector<double> &factors) const
+    {
+      Tensor<1, 3> theta;
+      for (const RigidMotion<dim> &term : motion)
+        if (term.history < factors.size())
+          theta += factors[term.history] * term.rotation;
+      Tensor<2, dim> R;
+      if constexpr (dim == 2)
+        {
+          const double c = std::cos(theta[2]), s = std::sin(theta[2]);
+          R[0][0] = c;
+          R[0][1] = -s;
+          R[1][0] = s;
+          R[1][1] = c;
+        }
+      else
+        {
+          // Rodrigues: R = I + sin(a) K + (1 - cos(a)) K^2, K the cross
+          // product with the unit axis, a the angle.
+          const double a = theta.norm();
+          Tensor<2, 3> K;
+          if (a > 0.)
+            {
+              const Tensor<1, 3> k = theta / a;
+              K[0][1]              = -k[2];
+              K[0][2]              = k[1];
+              K[1][0]              = k[2];
+              K[1][2]              = -k[0];
+              K[2][0]              = -k[1];
+              K[2][1]              = k[0];
+            }
+          Tensor<2, 3> R3 = std::sin(a) * K + (1. - std::cos(a)) * (K * K);
+          for (unsigned int i = 0; i < 3; ++i)
+            R3[i][i] += 1.;
+          for (unsigned int i = 0; i < dim; ++i)
+            for (unsigned int j = 0; j < dim; ++j)
+              R[i][j] = R3[i][j];
+        }
+      return R;
+    }
+
+
+
+    template <int dim>
+    Point<dim>
+    Obstacle<dim>::placed(const Point<dim>          &x,
+                          const std::vector<double> &factors) const
+    {
+      const Point<dim> c = pivot();
+      return c + translation(factors) + rotation(factors) * (x - c);
+    }
+
+
+
+    template <int dim>
+    PlacedObstacle<dim>::PlacedObstacle(const Obstacle<dim>       &obstacle,
+                                        const std::vector<double> &factors)
+      : obstacle(obstacle)
+      , pivot(obstacle.pivot())
+      , R(obstacle.rotation(factors))
+      , d(obstacle.translation(factors))
+    {}
+
+
+
+    template <int dim>
+    bool
+    PlacedObstacle<dim>::deformable() const
+    {
+      return false;
+    }
+
+
+
+    template <int dim>
+    std::string
+    PlacedObstacle<dim>::description() const
+    {
+      return obstacle.description();
+    }
+
+
+
+    template <int dim>
+    const std::vector<discretization::SurfacePoint<dim>> &
+    PlacedObstacle<dim>::sample_points() const
+    {
+      return obstacle.sample_points();
+    }
+
+
+
+    template <int dim>
+    discretization::SurfacePoint<dim>
+    PlacedObstacle<dim>::closest_point(
+      const Point<dim>                        &location,
+      const discretization::SurfacePoint<dim> *nearest) const
+    {
+      (void)nearest;
+      // R is orthogonal: R^T moves back.
+      const Point<dim> back = pivot + transpose(R) * (location - pivot - d);
+      discretization::SurfacePoint<dim> point =
+        obstacle.closest_point(back, nullptr);
+      point.location = pivot + d + R * (point.location - pivot);
+      point.normal   = R * point.normal;
+      return point;
+    }
+
+
+
+    template <int dim>
     RigidPlane<dim>::RigidPlane(const Point<dim>     &point,
                                 const Tensor<1, dim> &normal_in)
       : point(point)
@@ -372,6 +497,8 @@ namespace igabde
 
     template class Obstacle<2>;
     template class Obstacle<3>;
+    template class PlacedObstacle<2>;
+    template class PlacedObstacle<3>;
     template class RigidPlane<2>;
     template class RigidPlane<3>;
     template class RigidCylinder<2>;

@@ -481,6 +481,27 @@ namespace igabde
     local_frame<2>(const Tensor<1, 2> &, const Tensor<2, 2> &);
     template Tensor<2, 3>
     local_frame<3>(const Tensor<1, 3> &, const Tensor<2, 3> &);
+    template <int dim>
+    std::vector<ContactPair<dim>>
+    PairingStrategy<dim>::make_pairs_of(
+      const discretization::Body<dim>            &slave_body,
+      const std::vector<types::boundary_id>      &slave_faces,
+      const ContactSurface<dim>                  &master,
+      const std::string                          &context,
+      const std::vector<types::global_dof_index> &keys) const
+    {
+      std::vector<ContactPair<dim>> kept;
+      for (ContactPair<dim> &pair :
+           make_pairs(slave_body, slave_faces, master, context))
+        if (std::binary_search(keys.begin(), keys.end(), pair.slave_key))
+          kept.push_back(std::move(pair));
+      return kept;
+    }
+
+
+
+    template class PairingStrategy<2>;
+    template class PairingStrategy<3>;
     template class PointPairing<2>;
     template class PointPairing<3>;
     template class NodeToNodePairing<2>;

@@ -604,6 +604,87 @@ namespace igabde
               integrals.erase(j);
             }
       }
+
+
+
+      /**
+       * A point of the slave element [@p lo, @p hi] at which none of the
+       * element's basis functions vanishes: the B-splines are positive
+       * inside their support, and FE_Q's Lagrange functions vanish only at
+       * the other nodes, none of which sits at 1 - 1/sqrt(2) of the
+       * element in every direction.
+       */
+      template <int dim>
+      Point<dim - 1>
+      generic_point(const Point<dim - 1> &lo, const Point<dim - 1> &hi)
+      {
+        Point<dim - 1> eta;
+        for (unsigned int k = 0; k + 1 < dim; ++k)
+          eta[k] = lo[k] + (1. - 1. / std::sqrt(2.)) * (hi[k] - lo[k]);
+        return eta;
+      }
+
+
+
+      /// Whether one of the basis functions @p keys (sorted: their first
+      /// unknowns) lives on the slave element [@p lo, @p hi].
+      template <int dim>
+      bool
+      lives_on_element(const discretization::Body<dim>            &slave_body,
+                       const types::boundary_id                    slave_face,
+                       const Point<dim - 1>                       &lo,
+                       const Point<dim - 1>                       &hi,
+                       const std::vector<types::global_dof_index> &keys)
+      {
+        const auto s =
+          slave_body.face_point(slave_face, generic_point<dim>(lo, hi));
+        for (unsigned int a = 0; a < s.op.weights.size(); ++a)
+          if (s.op.weights[a] != 0. &&
+              std::binary_search(keys.begin(), keys.end(), s.op.dofs[a][0]))
+            return true;
+        return false;
+      }
+
+
+
+      /// Whether supports hold some basis function of the slave faces in
+      /// every component (merge_held_functions()).
+      template <int dim>
+      bool
+      holds_a_face_function(const discretization::Body<dim>       &slave_body,
+                            const std::vector<types::boundary_id> &slave_faces)
+      {
+        for (const types::boundary_id slave_face : slave_faces)
+          {
+            const auto   grid = slave_body.face_grid(slave_face);
+            unsigned int n    = 1;
+            for (unsigned int k = 0; k + 1 < dim; ++k)
+              n *= grid.breaks[k].size() - 1;
+            for (unsigned int element = 0; element < n; ++element)
+              {
+                Point<dim - 1> lo, hi;
+                unsigned int   rest = element;
+                for (unsigned int k = 0; k + 1 < dim; ++k)
+                  {
+                    const unsigned int e = rest % (grid.breaks[k].size() - 1);
+                    rest /= grid.breaks[k].size() - 1;
+                    lo[k] = grid.breaks[k][e];
+                    hi[k] = grid.breaks[k][e + 1];
+                  }
+                const auto s =
+                  slave_body.face_point(slave_face, generic_point<dim>(lo, hi));
+                for (unsigned int a = 0; a < s.op.weights.size(); ++a)
+                  {
+                    bool held = true;
+                    for (unsigned int c = 0; c < dim; ++c)
+                      held = held && slave_body.is_supported(s.op.dofs[a][c]);
+                    if (held)
+                      return true;
+                  }
+              }
+          }
+        return false;
+      }
     } // namespace
 
 
@@ -622,6 +703,38 @@ namespace igabde
       const std::vector<types::boundary_id> &slave_faces,
       const ContactSurface<dim>             &master,
       const std::string                     &context) const
+    {
+      return form_pairs(slave_body, slave_faces, master, context, nullptr);
+    }
+
+
+
+    template <int dim>
+    std::vector<ContactPair<dim>>
+    WeightedGapPairing<dim>::make_pairs_of(
+      const discretization::Body<dim>            &slave_body,
+      const std::vector<types::boundary_id>      &slave_faces,
+      const ContactSurface<dim>                  &master,
+      const std::string                          &context,
+      const std::vector<types::global_dof_index> &keys) const
+    {
+      const PairingExclusions<dim>  kept = this->left_out;
+      std::vector<ContactPair<dim>> pairs =
+        form_pairs(slave_body, slave_faces, master, context, &keys);
+      this->left_out = kept;
+      return pairs;
+    }
+
+
+
+    template <int dim>
+    std::vector<ContactPair<dim>>
+    WeightedGapPairing<dim>::form_pairs(
+      const discretization::Body<dim>            &slave_body,
+      const std::vector<types::boundary_id>      &slave_faces,
+      const ContactSurface<dim>                  &master,
+      const std::string                          &context,
+      const std::vector<types::global_dof_index> *keys) const
     {
       constexpr unsigned int fd = dim - 1;
       const MasterSide<dim>  master_side(master, context);
@@ -652,6 +765,12 @@ namespace igabde
         for (const auto &c : corners)
           size = std::max(size, c.distance(corners.front()));
       }
+
+      // Only the elements of the functions asked for, unless supports hold
+      // one of the faces' functions (merge_held_functions() would need the
+      // integrals of its neighbours).
+      const bool restricted =
+        keys != nullptr && !holds_a_face_function(slave_body, slave_faces);
 
       std::map<types::global_dof_index, WeightedIntegrals<dim>> integrals;
       const bool dual_basis = dual;
@@ -692,6 +811,9 @@ namespace igabde
                   lo[k] = sgrid.breaks[k][e];
                   hi[k] = sgrid.breaks[k][e + 1];
                 }
+              if (restricted &&
+                  !lives_on_element(slave_body, slave_face, lo, hi, *keys))
+                continue;
               // An element whose centre lines do not all project is
               // integrated uncut: its points are projected one by one
               // below, and those that do not settle are left out.
@@ -838,6 +960,14 @@ namespace igabde
       for (const auto &entry : integrals)
         total += entry.second.area;
       merge_held_functions<dim>(slave_body, total, integrals, dofs1);
+      if (keys != nullptr)
+        {
+          // The functions asked for: the others' integrals may be partial.
+          for (auto it = integrals.begin(); it != integrals.end();)
+            it = std::binary_search(keys->begin(), keys->end(), it->first) ?
+                   std::next(it) :
+                   integrals.erase(it);
+        }
 
       std::vector<ContactPair<dim>> pairs;
       for (const auto &[key, in] : integrals)
@@ -863,6 +993,8 @@ namespace igabde
           pair.slave_key = key;
           pairs.push_back(pair);
         }
+      if (keys != nullptr)
+        return pairs;
       AssertThrow(this->left_out.candidates > this->left_out.n_left_out(),
                   base::ExcInput(
                     internal::nothing_faces(context, this->left_out, master)));

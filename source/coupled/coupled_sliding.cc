@@ -126,11 +126,27 @@ namespace igabde
       const std::vector<contact::ContactPair<dim>> &pairs = pairs_now;
       AssertDimension(x.p.size(), d * n_pairs);
 
+      // The pairs whose derivatives the Newton matrix takes: those that
+      // carry a force or nearly touch. The law's rows of the others hold
+      // their forces at zero whatever their gaps, and they add no force to
+      // the displacement rows; their rows keep C.
+      const double h_min =
+        *std::min_element(element_size.begin(), element_size.end());
+      std::vector<unsigned int> active;
+      std::vector<bool>         is_active(n_pairs, false);
+      for (unsigned int i = 0; i < n_pairs; ++i)
+        if (x.p.segment(d * i, d).squaredNorm() > 0. ||
+            pairs[i].gap < 0.1 * h_min)
+          {
+            active.push_back(i);
+            is_active[i] = true;
+          }
+
       // The free unknowns each pair reads: its gap, slip and frame depend
       // on those of its two operators (the slave's basis functions over
       // the pair's support, the master's at its points).
       std::vector<std::vector<unsigned int>> reads(n_pairs);
-      for (unsigned int i = 0; i < n_pairs; ++i)
+      for (const unsigned int i : active)
         {
           for (const unsigned int b :
                {pairs[i].slave_body, pairs[i].master_body})
@@ -157,7 +173,7 @@ namespace igabde
       // its unknowns (Curtis, Powell and Reid's grouping of a sparse
       // Jacobian's columns).
       std::map<unsigned int, std::vector<unsigned int>> pairs_of;
-      for (unsigned int i = 0; i < n_pairs; ++i)
+      for (const unsigned int i : active)
         for (const unsigned int g : reads[i])
           pairs_of[g].push_back(i);
       std::map<unsigned int, unsigned int> colour;
@@ -210,12 +226,15 @@ namespace igabde
 
       // A step of 1e-6 of the smallest element: the pairing's own
       // round-off (1e-10 of an element) is then 1e-4 of the derivative.
-      const double h =
-        1e-6 * *std::min_element(element_size.begin(), element_size.end());
+      const double h = 1e-6 * h_min;
       J_rows.assign(d * n_pairs, {});
+      for (unsigned int i = 0; i < n_pairs; ++i)
+        if (!is_active[i])
+          for (unsigned int s = 0; s < d; ++s)
+            J_rows[d * i + s] = C_rows[d * i + s];
       std::map<std::pair<unsigned int, unsigned int>, double> K;
       std::vector<std::map<unsigned int, double>>             base(n_pairs);
-      for (unsigned int i = 0; i < n_pairs; ++i)
+      for (const unsigned int i : active)
         base[i] = forces(pairs[i], i);
       for (unsigned int c = 0; c < n_colours; ++c)
         {
@@ -223,26 +242,39 @@ namespace igabde
           for (const auto &[g, colour_g] : colour)
             if (colour_g == c)
               w[g] += h;
-          const std::vector<contact::ContactPair<dim>> moved =
-            sliding.pairs_at(w);
-          AssertDimension(moved.size(), n_pairs);
-          for (unsigned int i = 0; i < n_pairs; ++i)
+          // The pairs that read an unknown of this colour, and the one
+          // they read.
+          std::vector<unsigned int> touched, unknown;
+          for (const unsigned int i : active)
+            for (const unsigned int r : reads[i])
+              if (colour[r] == c)
+                {
+                  touched.push_back(i);
+                  unknown.push_back(r);
+                }
+          std::vector<contact::ContactPair<dim>> moved;
+          if (sliding.pairs_of)
+            moved = sliding.pairs_of(w, touched);
+          else
             {
-              // The pair's one unknown of this colour.
-              unsigned int g = numbers::invalid_unsigned_int;
-              for (const unsigned int r : reads[i])
-                if (colour[r] == c)
-                  g = r;
-              if (g == numbers::invalid_unsigned_int)
-                continue;
+              const std::vector<contact::ContactPair<dim>> all =
+                sliding.pairs_at(w);
+              AssertDimension(all.size(), n_pairs);
+              for (const unsigned int i : touched)
+                moved.push_back(all[i]);
+            }
+          AssertDimension(moved.size(), touched.size());
+          for (unsigned int j = 0; j < touched.size(); ++j)
+            {
+              const unsigned int i = touched[j], g = unknown[j];
               for (unsigned int s = 0; s < d; ++s)
                 {
                   const double v =
-                    (values(moved[i], s) - values(pairs[i], s)) / h;
+                    (values(moved[j], s) - values(pairs[i], s)) / h;
                   if (v != 0.)
                     J_rows[d * i + s].emplace_back(g, v);
                 }
-              std::map<unsigned int, double> f = forces(moved[i], i);
+              std::map<unsigned int, double> f = forces(moved[j], i);
               for (const auto &[r, v] : base[i])
                 f[r] -= v;
               for (const auto &[r, v] : f)
@@ -294,15 +326,7 @@ namespace igabde
       if (!geometric_valid)
         return apply_C(v);
       AssertDimension(v.size(), n_u);
-      Eigen::VectorXd u(d * n_pairs);
-      for (unsigned int r = 0; r < d * n_pairs; ++r)
-        {
-          double sum = 0.;
-          for (const auto &[g, value] : J_rows[r])
-            sum += value * v[g];
-          u[r] = sum;
-        }
-      return u;
+      return apply_rows(J_rows, v);
     }
 
 

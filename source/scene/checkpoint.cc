@@ -192,8 +192,20 @@ namespace igabde
       nlohmann::json finite_u = nlohmann::json::array();
       for (const Vector<double> &u : state.finite_u)
         finite_u.push_back(std::vector<double>(u.begin(), u.end()));
+      // Finite sliding: the configuration the next step pairs on, the
+      // factors that place the moving obstacles there, and which pairs the
+      // forces belong to.
+      nlohmann::json sliding_u = nlohmann::json::array();
+      for (const Vector<double> &u : state.sliding_u)
+        sliding_u.push_back(std::vector<double>(u.begin(), u.end()));
+      nlohmann::json keys = nlohmann::json::array();
+      for (const auto &[interaction, key] : state.keys)
+        keys.push_back({interaction, key});
       return {{"p", to_vector(state.x.p)},
               {"finite_u", finite_u},
+              {"sliding_u", sliding_u},
+              {"sliding_keys", keys},
+              {"sliding_factors", state.sliding_factors},
               {"alpha", to_vector(state.x.alpha)},
               {"w", to_vector(state.x.w)},
               {"u_rel", to_vector(state.u_rel)},
@@ -222,6 +234,19 @@ namespace igabde
         {
           const std::vector<double> v = u.get<std::vector<double>>();
           state.finite_u.emplace_back(v.begin(), v.end());
+        }
+      if (j.contains("sliding_u"))
+        {
+          for (const auto &u : j.at("sliding_u"))
+            {
+              const std::vector<double> v = u.get<std::vector<double>>();
+              state.sliding_u.emplace_back(v.begin(), v.end());
+            }
+          for (const auto &k : j.at("sliding_keys"))
+            state.keys.emplace_back(k.at(0).get<unsigned int>(),
+                                    k.at(1).get<types::global_dof_index>());
+          state.sliding_factors =
+            j.at("sliding_factors").get<std::vector<double>>();
         }
       stage.restore_state(state);
     }

@@ -112,19 +112,21 @@ namespace igabde
                           "faced at the step's start).");
         prm.declare_entry(
           "Sliding tangent",
-          "frozen",
+          "full",
           Patterns::Selection(
             base::selection_of(contact::sliding_tangent_names)),
-          "Sliding = finite: the Newton matrix's contact rows. full: the "
-          "derivatives of the pairs' gaps, slips and force directions by "
-          "the configuration (finite differences of the pairing, one "
-          "pairing per group of unknowns that no pair reads together: "
-          "about 20 to 60 pairings per Newton iteration); the Newton "
-          "iteration then converges fast where contact pressures are "
-          "large against the stiffness on curved surfaces. frozen: the "
-          "pairs' operators at the iterate (one pairing per iteration; "
-          "linear convergence, slow where the pressure is a sizeable part "
-          "of the modulus; the default).");
+          "Sliding = finite: the Newton matrix's contact rows. full (the "
+          "default): the derivatives of the pairs' gaps, slips and force "
+          "directions by the configuration, for the pairs that carry a "
+          "force or nearly touch (finite differences of the pairing: those "
+          "pairs formed again once per group of unknowns that no pair reads "
+          "together, from the slave elements they live on); the Newton "
+          "iteration converges fast where contact pressures are large "
+          "against the stiffness on curved surfaces. frozen: the pairs' "
+          "operators at the iterate (one pairing per iteration, linear "
+          "convergence, slow where the pressure is a sizeable part of the "
+          "modulus; cheaper per iteration where most pairs are in "
+          "contact).");
         prm.declare_entry("Condensation",
                           "schur",
                           Patterns::Selection(

@@ -147,15 +147,6 @@ namespace igabde
                           what + "pairs by the weighted gap, but " + c.name +
                           "/Pairing = " + contact::to_string(c.pairing) +
                           "; set it to weighted-gap."));
-            const BodyParameters &master = parameters.bodies[c.master_body - 1];
-            AssertThrow(master.type == BodyType::deformable ||
-                          master.motion.empty(),
-                        base::ExcInput(what +
-                                       "against a moving obstacle is not "
-                                       "modelled yet, but Body " +
-                                       std::to_string(c.master_body) +
-                                       "/Motion is set; remove it, or use "
-                                       "Sliding = small."));
           }
         for (unsigned int b = 0; b < parameters.bodies.size(); ++b)
           AssertThrow(parameters.bodies[b].type != BodyType::deformable ||

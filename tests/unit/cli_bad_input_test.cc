@@ -728,16 +728,6 @@ TEST(CliBadInput, FiniteSlidingWithGmres)
                                "hertz-cylinder-sliding.prm");
 }
 
-TEST(CliBadInput, FiniteSlidingAgainstAMovingObstacle)
-{
-  expect_refused_at_parse_time("sliding-moving-obstacle",
-                               "Contact/Sliding=finite",
-                               "Body 2/Motion",
-                               "rigid-cylinder-sliding.prm",
-                               "--set 'Contact/Friction coefficient=0' "
-                               "--set 'Contact/Pairing=weighted-gap'");
-}
-
 TEST(CliBadInput, FiniteSlidingWithABodyHeldByContactAlone)
 {
   // The upper block of V3 is held vertically by the contact only: its

@@ -94,8 +94,10 @@ TEST(FiniteSliding, HertzCylinderKeepsHertzPeakOverElevenContactWidths)
           if (step == 1)
             recovered_first = peak.recovered / p0;
           if (sliding == "finite")
-            EXPECT_NEAR(peak.recovered / p0 / recovered_first, 1., 1e-3)
-              << "step " << step;
+            {
+              EXPECT_NEAR(peak.recovered / p0 / recovered_first, 1., 1e-3)
+                << "step " << step;
+            }
           // The disc's lowest point: -1.6 + 3.2 (step - 1) / 10. Pairs on
           // the disc sit 0.023 apart there.
           const double centre = -1.6 + 0.32 * (step - 1);
@@ -193,6 +195,93 @@ TEST(FiniteSliding, TranslatedTogetherTheBlocksKeepTheirPressures)
                           1e-8 * mean)
                 << "step " << step << ", pair " << r;
             }
+        }
+    }
+}
+
+
+
+namespace
+{
+  /// A block pressed onto a rigid circle (a moving obstacle) and moved
+  /// along x by 1 (5 element lengths) over five steps together with it.
+  std::string
+  block_on_moving_circle()
+  {
+    return R"(set Dimension = 2
+subsection Discretization
+  set Type   = nurbs
+  set Degree = 2
+end
+subsection Body 1
+  set Geometry        = box
+  set Lower corner    = -1, 0
+  set Upper corner    = 1, 0.5
+  set Subdivisions    = 10, 3
+  set Young's modulus = 1000
+  set Poisson's ratio = 0.3
+  set Supports        = 3: y=-0.004 @ press; 3: x=1 @ slide
+end
+subsection Body 2
+  set Type   = rigid cylinder
+  set Centre = 0, -4
+  set Radius = 4
+  set Motion = 1, 0 @ slide
+end
+subsection Contact
+  set Enabled              = true
+  set Friction coefficient = 0
+  set Pairing              = weighted-gap
+  set Slave face           = 2
+  set Sliding              = finite
+end
+subsection Load path
+  set Number of steps = 6
+  set Histories       = press: 1, 1, 1, 1, 1, 1; slide: 0, 0.2, 0.4, 0.6, 0.8, 1
+end
+subsection Output
+  set Directory = out
+  set Write vtu = false
+end
+)";
+  }
+} // namespace
+
+
+
+// A block pressed onto a rigid circle and moved along it by five element
+// lengths together with the circle (Body 2/Motion): in the frame that moves
+// with both every step is the first, so the pairs' pressures stay the
+// first step's to 1e-8 of their mean (the weighted gap's element cuts are
+// exact to 1e-10 of an element) and their positions move with the slide.
+// Finite sliding places the obstacle where its motion puts it; had the
+// pairing kept the circle at rest, the block would slide off its top and
+// the pressures would follow.
+TEST(FiniteSliding, BlockMovedWithAMovingObstacleKeepsItsPressures)
+{
+  const cli::ScratchFolder scratch("moving-obstacle", "finite-sliding");
+  const auto               summary =
+    cli::run_scene_text(scratch.path, block_on_moving_circle());
+  ASSERT_FALSE(summary.is_null());
+  const cli::CsvTable first = cli::read_table(step_table(scratch.path, 1));
+  double              mean  = 0.;
+  for (std::size_t r = 0; r < first.rows.size(); ++r)
+    mean += first.number(r, "pressure") / first.rows.size();
+  ASSERT_GT(mean, 0.);
+  for (unsigned int step = 2; step <= 6; ++step)
+    {
+      const cli::CsvTable table =
+        cli::read_table(step_table(scratch.path, step));
+      ASSERT_EQ(table.rows.size(), first.rows.size()) << "step " << step;
+      const double shift = 0.2 * (step - 1);
+      for (std::size_t r = 0; r < table.rows.size(); ++r)
+        {
+          EXPECT_NEAR(table.number(r, "x"), first.number(r, "x") + shift, 1e-8)
+            << "step " << step << ", pair " << r;
+          EXPECT_NEAR(table.number(r, "pressure"),
+                      first.number(r, "pressure"),
+                      1e-8 * mean)
+            << "step " << step << ", pair " << r;
         }
     }
 }
@@ -308,7 +397,9 @@ TEST(FiniteSliding, FrictionalBlockSlipsAtTheCoulombRatio)
           EXPECT_NEAR(tangential / normal / mu, 1., 1e-3);
           EXPECT_LT(r[0], 0.);
           if (dim == 3)
-            EXPECT_NEAR(r[1] / r[0], 0.5, 1e-3);
+            {
+              EXPECT_NEAR(r[1] / r[0], 0.5, 1e-3);
+            }
         }
     }
 }

@@ -127,6 +127,16 @@ TEST(CliRestart, FrictionalContactContinuesAtFiniteStrain)
                             3);
 }
 
+TEST(CliRestart, FiniteSlidingContinuesFromItsLastConfiguration)
+{
+  // The ring turned on its cylinder: the pairs of the next step are formed
+  // on the configuration the last one ended in, with the forces carried
+  // over by slave key (the frozen tangent keeps it fast).
+  expect_restart_reproduces("ring-turned-on-cylinder.prm",
+                            "--set 'Contact/Sliding tangent=frozen'",
+                            4);
+}
+
 TEST(CliRestart, AnotherSceneOrNoCheckpointIsRefused)
 {
   const cli::ScratchFolder scratch("restart-refused");

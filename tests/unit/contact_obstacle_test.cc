@@ -147,6 +147,52 @@ namespace obstacle_test
   }
 
 
+  TEST(RigidObstacle, FiniteMotionIsExactAndLinearisesToTheDisplacement)
+  {
+    // 2D: the circle about c = (1, 2) turned by a quarter turn and moved
+    // by (0.3, 0): x = (4, 6), x - c = (3, 4), goes to c + (0.3, 0) +
+    // (-4, 3) = (-2.7, 5).
+    contact::RigidCylinder<2> circle(Point<2>(1., 2.), 1., Tensor<1, 2>());
+    std::vector<contact::RigidMotion<2>> motion(1);
+    motion[0].history     = 1;
+    motion[0].translation = Tensor<1, 2>({0.3, 0.});
+    motion[0].rotation[2] = M_PI / 2.;
+    circle.set_motion(motion);
+    expect_tensor(circle.placed(Point<2>(4., 6.), {0., 1.}) - Point<2>(),
+                  Tensor<1, 2>({-2.7, 5.}));
+    // 3D: a sphere about c = (0, 0, 1) turned by 120 degrees about
+    // (1, 1, 1) / sqrt(3), which cycles the axes: x - c = (1, 2, 0) goes to
+    // (0, 1, 2).
+    contact::RigidSphere<3>              sphere(Point<3>(0., 0., 1.), 1.);
+    std::vector<contact::RigidMotion<3>> turn(1);
+    turn[0].rotation =
+      (2. * M_PI / 3. / std::sqrt(3.)) * Tensor<1, 3>({1., 1., 1.});
+    sphere.set_motion(turn);
+    expect_tensor(sphere.placed(Point<3>(1., 2., 1.), {0., 1.}) - Point<3>(),
+                  Tensor<1, 3>({0., 1., 3.}));
+    // Small factors: placed() - x is displacement() to second order; the
+    // second-order term of a turn by the angle a is a / 2 of the first.
+    const std::vector<double> small = {0., 1e-4};
+    const Tensor<1, 3>        exact =
+      sphere.placed(Point<3>(1., 2., 1.), small) - Point<3>(1., 2., 1.);
+    const Tensor<1, 3> linear =
+      sphere.displacement(Point<3>(1., 2., 1.), small);
+    const double angle = 1e-4 * turn[0].rotation.norm();
+    EXPECT_LT((exact - linear).norm(), angle * linear.norm());
+    EXPECT_GT((exact - linear).norm(), 0.25 * angle * linear.norm());
+
+    // The plane y = 0 (normal +y) turned by a quarter turn about (0, 0)
+    // and moved by (0.3, 0) is the plane x = 0.3 with normal (-1, 0): the
+    // closest point to (3, 5) is (0.3, 5).
+    contact::RigidPlane<2> plane(Point<2>(0., 0.), Tensor<1, 2>({0., 1.}));
+    plane.set_motion(motion);
+    const contact::PlacedObstacle<2> placed(plane, {0., 1.});
+    const auto point = placed.closest_point(Point<2>(3., 5.), nullptr);
+    expect_tensor(point.location - Point<2>(), Tensor<1, 2>({0.3, 5.}));
+    expect_tensor(point.normal, Tensor<1, 2>({-1., 0.}));
+  }
+
+
   TEST(RigidObstacle, NurbsSurfaceIsItsExactCircle)
   {
     // The quarter annulus 1 <= r <= 2 as a rigid surface of its outer arc

@@ -15,7 +15,10 @@
 // terms of relative size |p| / (E R) (forces 0.2, E = 1, R = 1.45, spread
 // over the elements' stiffness): it must miss by more than 1e-3, a hundred
 // times the bound, so that the test tells the two apart.
-// Both discretisations.
+// Both discretisations, and the derivatives formed through
+// FiniteSliding::pairs_of (the pairs of each group of unknowns alone, as
+// the contact stage forms them) as well as through pairs_at (all pairs at
+// every group).
 
 #include <igabde/nurbs/geometry_builders.h>
 
@@ -40,9 +43,10 @@ namespace coupled_sliding_tangent
 
   /// The largest deviation, relative to the derivative's size, of the
   /// system's derivatives from central differences of its residual, at a
-  /// random state and direction; @p full: the full sliding tangent.
+  /// random state and direction; @p full: the full sliding tangent;
+  /// @p subsets: FiniteSliding::pairs_of given.
   std::pair<double, double>
-  tangent_errors(const Type type, const bool full)
+  tangent_errors(const Type type, const bool full, const bool subsets = false)
   {
     BodyDescription<2> d;
     d.geometry = nurbs::make_box<2>(Point<2>(0., 0.), Point<2>(1., 1.));
@@ -111,6 +115,15 @@ namespace coupled_sliding_tangent
     sliding.pairs_at     = pairs_at;
     sliding.q            = &q;
     sliding.full_tangent = full;
+    if (subsets)
+      sliding.pairs_of = [&](const Eigen::VectorXd           &w,
+                             const std::vector<unsigned int> &indices) {
+        const auto                           all = pairs_at(w);
+        std::vector<contact::ContactPair<2>> some;
+        for (const unsigned int i : indices)
+          some.push_back(all.at(i));
+        return some;
+      };
     system.set_finite_sliding(sliding);
 
     // A random state (held unknowns at zero) and direction, and forces.
@@ -162,6 +175,10 @@ TEST(CoupledSlidingTangent, FullTangentIsTheDerivativeOfThePairs)
         coupled_sliding_tangent::tangent_errors(type, true);
       EXPECT_LT(gaps, 1e-5);
       EXPECT_LT(forces, 1e-5);
+      const auto [subset_gaps, subset_forces] =
+        coupled_sliding_tangent::tangent_errors(type, true, true);
+      EXPECT_LT(subset_gaps, 1e-5);
+      EXPECT_LT(subset_forces, 1e-5);
       // The frozen tangent is not: the test can tell them apart.
       const auto [frozen_gaps, frozen_forces] =
         coupled_sliding_tangent::tangent_errors(type, false);

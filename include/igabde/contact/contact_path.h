@@ -55,6 +55,14 @@ namespace igabde
       /// small sliding, the pairs of prepare() throughout.
       std::function<std::vector<ContactPair<dim>>(const Eigen::VectorXd &)>
         pairs_at;
+      /// The pairs of pairs_at() with the given indices, in that order, as
+      /// pairs_at() forms them, at less cost than all of them (the full
+      /// tangent's differences form the pairs in contact again at every
+      /// group of unknowns). Empty: pairs_at() and a pick.
+      std::function<
+        std::vector<ContactPair<dim>>(const Eigen::VectorXd &,
+                                      const std::vector<unsigned int> &)>
+        pairs_of;
       /// The law's q of the solve, whose normal rows the gaps of pairs_at()
       /// replace (through ContactOperator::displacement_offset()).
       const Eigen::VectorXd *q = nullptr;
@@ -139,17 +147,14 @@ namespace igabde
 
       /**
        * @brief Finite sliding: the operator of the next prepare() forms its
-       * pairs at every iterate by @p pairs_at (FiniteSliding::pairs_at),
-       * and with @p full_tangent differentiates them in its Newton matrix
-       * (FiniteSliding::full_tangent). The full path only.
+       * pairs at every iterate by @p sliding's pairs_at() and pairs_of(),
+       * and with its full_tangent differentiates them in its Newton matrix
+       * (FiniteSliding; the path sets its q). The full path only.
        */
       virtual void
-      set_finite_sliding(const std::function<std::vector<ContactPair<dim>>(
-                           const Eigen::VectorXd &)> &pairs_at,
-                         const bool                   full_tangent)
+      set_finite_sliding(const FiniteSliding<dim> &sliding)
       {
-        (void)pairs_at;
-        (void)full_tangent;
+        (void)sliding;
         AssertThrow(false,
                     ExcMessage("finite sliding is modelled on the full path "
                                "(Contact/Path = full)"));
@@ -249,9 +254,7 @@ namespace igabde
       n_nonzeros() const override;
 
       void
-      set_finite_sliding(const std::function<std::vector<ContactPair<dim>>(
-                           const Eigen::VectorXd &)> &pairs_at,
-                         const bool                   full_tangent) override;
+      set_finite_sliding(const FiniteSliding<dim> &sliding) override;
 
     private:
       const std::vector<const discretization::Body<dim> *> bodies;
@@ -260,10 +263,8 @@ namespace igabde
       const std::string                                    context;
       std::ostream                                        &log;
       std::unique_ptr<CoupledOperator>                     coupled;
-      /// set_finite_sliding() (empty: small sliding).
-      std::function<std::vector<ContactPair<dim>>(const Eigen::VectorXd &)>
-           pairs_at;
-      bool full_tangent = false;
+      /// set_finite_sliding() (pairs_at empty: small sliding).
+      FiniteSliding<dim> sliding;
     };
   } // namespace contact
 } // namespace igabde

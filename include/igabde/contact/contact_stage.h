@@ -337,6 +337,9 @@ namespace igabde
         /// and the pairs x's forces belong to, by (interaction, slave key).
         std::vector<Vector<double>>                                   sliding_u;
         std::vector<std::pair<unsigned int, types::global_dof_index>> keys;
+        /// The history factors of the last step (where the moving
+        /// obstacles were for sliding_u).
+        std::vector<double> sliding_factors;
       };
 
       State
@@ -436,11 +439,17 @@ namespace igabde
 
       /**
        * @brief Finite sliding: the pairs of every interaction on the
-       * configuration X + @p u of the bodies (Body::move_surfaces()), as
-       * the pairings form them there.
+       * configuration X + @p u of the bodies (Body::move_surfaces()), the
+       * moving obstacles placed at the history factors @p factors
+       * (PlacedObstacle), as the pairings form them there; with @p keys
+       * (one sorted list per interaction) only the pairs whose slave keys
+       * those name (PairingStrategy::make_pairs_of()).
        */
       std::vector<ContactPair<dim>>
-      pairs_on(const std::vector<Vector<double>> &u) const;
+      pairs_on(const std::vector<Vector<double>>                       &u,
+               const std::vector<double>                               &factors,
+               const std::vector<std::vector<types::global_dof_index>> &keys =
+                 {}) const;
 
       /**
        * @brief Finite sliding, at the start of a step after the first: the
@@ -459,6 +468,18 @@ namespace igabde
        */
       std::vector<ContactPair<dim>>
       pairs_at(const Eigen::VectorXd &w) const;
+
+      /// The pairs of pairs_at() numbered @p indices in the step's set, in
+      /// that order, as pairs_at() forms them (FiniteSliding::pairs_of).
+      std::vector<ContactPair<dim>>
+      pairs_of(const Eigen::VectorXd           &w,
+               const std::vector<unsigned int> &indices) const;
+
+      /// pairs_at() for the pairs @p indices of the step's set (nullptr:
+      /// all, formed by one make_pairs() per interaction).
+      std::vector<ContactPair<dim>>
+      pairs_at(const Eigen::VectorXd           &w,
+               const std::vector<unsigned int> *indices) const;
 
       /// The (interaction, slave key) of every pair of the list.
       std::vector<std::pair<unsigned int, types::global_dof_index>>
@@ -576,6 +597,9 @@ namespace igabde
       /// displacement the correction w of the solve adds to; the keys of
       /// the pairs x's forces belong to.
       std::vector<Vector<double>> sliding_u, paired_at, sliding_base;
+      /// The history factors of sliding_u (State::sliding_factors), of
+      /// paired_at and of the solve (where the moving obstacles are).
+      std::vector<double> sliding_factors, paired_factors, solve_factors;
       std::vector<std::pair<unsigned int, types::global_dof_index>> x_keys;
     };
   } // namespace contact

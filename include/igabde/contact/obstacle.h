@@ -92,9 +92,65 @@ namespace igabde
       displacement(const Point<dim>          &x,
                    const std::vector<double> &factors) const;
 
+      /**
+       * @brief The motion at @p factors as a finite rigid motion, of which
+       * displacement() is the linearisation: the point @p x goes to
+       * c + d + R (x - c), c the pivot, d the summed translation and R the
+       * rotation by the summed rotation vector (about z in 2D, Rodrigues'
+       * formula in 3D). Finite sliding places the obstacle by it.
+       */
+      Point<dim>
+      placed(const Point<dim> &x, const std::vector<double> &factors) const;
+
+      /// The rotation R of placed().
+      Tensor<2, dim>
+      rotation(const std::vector<double> &factors) const;
+
+      /// The translation d of placed().
+      Tensor<1, dim>
+      translation(const std::vector<double> &factors) const;
+
     private:
       const std::vector<discretization::SurfacePoint<dim>> no_samples{};
       std::vector<RigidMotion<dim>>                        motion;
+    };
+
+
+
+    /**
+     * @brief An obstacle where its finite rigid motion puts it at given
+     * history factors (Obstacle::placed()): closest points are those of
+     * the obstacle at rest to the point moved back, moved forward again
+     * with their normals turned. What finite sliding pairs a moving
+     * obstacle as.
+     */
+    template <int dim>
+    class PlacedObstacle : public ContactSurface<dim>
+    {
+    public:
+      /// @p obstacle (kept by reference) at @p factors.
+      PlacedObstacle(const Obstacle<dim>       &obstacle,
+                     const std::vector<double> &factors);
+
+      bool
+      deformable() const override;
+
+      std::string
+      description() const override;
+
+      const std::vector<discretization::SurfacePoint<dim>> &
+      sample_points() const override;
+
+      discretization::SurfacePoint<dim>
+      closest_point(
+        const Point<dim>                        &location,
+        const discretization::SurfacePoint<dim> *nearest) const override;
+
+    private:
+      const Obstacle<dim> &obstacle;
+      const Point<dim>     pivot;
+      const Tensor<2, dim> R;
+      const Tensor<1, dim> d;
     };
 
 

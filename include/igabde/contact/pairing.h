@@ -182,6 +182,22 @@ namespace igabde
                  const ContactSurface<dim>             &master,
                  const std::string                     &context) const = 0;
 
+      /**
+       * @brief The pairs of make_pairs() whose slave_key is in @p keys
+       * (sorted), each as make_pairs() forms it, in its order; for finite
+       * sliding's derivatives, which form a few pairs again at many
+       * configurations. Neither refuses a configuration in which nothing
+       * faces the master nor fills exclusions(). This one forms every pair
+       * and keeps those asked for; WeightedGapPairing integrates only the
+       * slave elements that the asked functions live on.
+       */
+      virtual std::vector<ContactPair<dim>>
+      make_pairs_of(const discretization::Body<dim>            &slave_body,
+                    const std::vector<types::boundary_id>      &slave_faces,
+                    const ContactSurface<dim>                  &master,
+                    const std::string                          &context,
+                    const std::vector<types::global_dof_index> &keys) const;
+
       /// What the last make_pairs() left out (PairingExclusions); when it
       /// would leave out every point it throws the input error instead.
       const PairingExclusions<dim> &
@@ -330,7 +346,30 @@ namespace igabde
                  const ContactSurface<dim>             &master,
                  const std::string                     &context) const override;
 
+      /// Integrates the slave elements on which one of the basis
+      /// functions @p keys lives, and forms their pairs from those
+      /// integrals (the same numbers as make_pairs(): a function's
+      /// integrals are the sums over its elements, in the same order).
+      /// Where some basis function of the slave faces is held by supports
+      /// (merged into its neighbour by make_pairs()), it forms every pair.
+      std::vector<ContactPair<dim>>
+      make_pairs_of(
+        const discretization::Body<dim>            &slave_body,
+        const std::vector<types::boundary_id>      &slave_faces,
+        const ContactSurface<dim>                  &master,
+        const std::string                          &context,
+        const std::vector<types::global_dof_index> &keys) const override;
+
     private:
+      /// make_pairs() and make_pairs_of(): all pairs when @p keys is
+      /// nullptr.
+      std::vector<ContactPair<dim>>
+      form_pairs(const discretization::Body<dim>            &slave_body,
+                 const std::vector<types::boundary_id>      &slave_faces,
+                 const ContactSurface<dim>                  &master,
+                 const std::string                          &context,
+                 const std::vector<types::global_dof_index> *keys) const;
+
       /// Weights psi_j (dual basis) instead of N_j.
       const bool dual;
     };

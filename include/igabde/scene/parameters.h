@@ -359,9 +359,9 @@ namespace igabde
       /// Contact/Sliding = finite: pairs on the current configuration
       /// (ContactSettings::finite_sliding); small: formed once.
       bool finite_sliding = false;
-      /// Contact/Sliding tangent = full (ContactSettings::
+      /// Contact/Sliding tangent = full, the default (ContactSettings::
       /// full_sliding_tangent); frozen: false.
-      bool full_sliding_tangent = false;
+      bool full_sliding_tangent = true;
       /// FKN: normal penalty stiffness factor (penalty methods).
       double penalty_factor = 1.;
       /// FKT: stick stiffness factor, k_t = FKT k_n.
