@@ -22,6 +22,7 @@
 
 #include <deal.II/dofs/dof_tools.h>
 
+#include <deal.II/fe/fe_poly.h>
 #include <deal.II/fe/fe_q.h>
 #include <deal.II/fe/fe_values.h>
 #include <deal.II/fe/mapping_cartesian.h>
@@ -470,12 +471,34 @@ namespace igabde
       FacePoint<dim>        result;
       result.op.weights.resize(base.n_dofs_per_cell());
       result.op.dofs.resize(base.n_dofs_per_cell());
+      // Every shape function's value and gradient at once, from the
+      // element's polynomial space (the same numbers as shape_value() and
+      // shape_grad() one by one, each of which evaluates the 1D
+      // polynomials again).
+      const unsigned int                       n_shape = base.n_dofs_per_cell();
+      thread_local std::vector<double>         values;
+      thread_local std::vector<Tensor<1, dim>> grads;
+      thread_local std::vector<Tensor<2, dim>> no_second;
+      thread_local std::vector<Tensor<3, dim>> no_third;
+      thread_local std::vector<Tensor<4, dim>> no_fourth;
+      values.resize(n_shape);
+      grads.resize(n_shape);
+      const auto *poly = dynamic_cast<const FE_Poly<dim> *>(&base);
+      if (poly != nullptr)
+        poly->get_poly_space()
+          .evaluate(unit, values, grads, no_second, no_third, no_fourth);
+      else
+        for (unsigned int k = 0; k < n_shape; ++k)
+          {
+            values[k] = base.shape_value(k, unit);
+            grads[k]  = base.shape_grad(k, unit);
+          }
       Tensor<2, dim> J; // dx/dxi (patch coordinates)
-      for (unsigned int k = 0; k < base.n_dofs_per_cell(); ++k)
+      for (unsigned int k = 0; k < n_shape; ++k)
         {
-          const double         value = base.shape_value(k, unit);
-          const Tensor<1, dim> grad  = base.shape_grad(k, unit);
-          result.op.weights[k]       = value;
+          const double          value = values[k];
+          const Tensor<1, dim> &grad  = grads[k];
+          result.op.weights[k]        = value;
           for (unsigned int comp = 0; comp < dim; ++comp)
             {
               const auto i = local[fe.component_to_system_index(comp, k)];
