@@ -78,6 +78,8 @@ def forces(row, slide_length, slide_from):
     converged step from the part @p slide_from of the slide on."""
     history = []
     for step in row.get("_steps", []):
+        if step.get("status") == "failed":
+            continue
         factors = step.get("history_factors") or {}
         slide = factors.get("slide", 0.)
         bodies = step.get("bodies") or []
@@ -139,11 +141,13 @@ def sliding(args, runner):
                 row["slide_from"] = slide_from * slide_length
                 row.update(oscillation(forces(row, slide_length,
                                               slide_from)))
-                its = [s.get("newton_iterations", 0) for s in row["_steps"]]
+                done = [s for s in row["_steps"]
+                        if s.get("status") != "failed"]
+                its = [s.get("newton_iterations", 0) for s in done]
                 row["iterations_mean"] = sum(its) / len(its) if its else \
                     float("nan")
                 row["iterations_max"] = max(its) if its else 0
-                row["steps_done"] = len(row["_steps"])
+                row["steps_done"] = len(done)
                 rows.append(row)
     write(args, rows)
 
@@ -168,6 +172,8 @@ COLUMNS = ["scene", "config", "block", "status", "n_dofs", "steps_done",
 def write(args, rows):
     common.write_csv(os.path.join(args.out, "sliding.csv"), rows, COLUMNS)
     table = [[r["scene"], r["config"], r["block"], r.get("n_dofs", "–"),
+              "%d%s" % (r.get("steps_done", 0),
+                        "" if r["status"] == "ok" else " (%s)" % r["status"]),
               g(r.get("mean_fx")), g(r.get("mean_fy")),
               "%s / %s" % (g(r.get("fx_jitter_rms"), 3),
                            g(r.get("fx_jitter_max"), 3)),
@@ -181,7 +187,7 @@ def write(args, rows):
     common.write_markdown(
         os.path.join(args.out, "sliding.md"),
         ["scene", "discretisation", "block unknowns per direction",
-         "unknowns", "mean F_x", "mean F_y", "F_x jitter rms / max (%)",
+         "unknowns", "steps done", "mean F_x", "mean F_y", "F_x jitter rms / max (%)",
          "F_y jitter rms / max (%)", "F_y about a quartic, max (%)",
          "Newton it. per step, mean / max", "step cuts", "seconds"],
         table,
@@ -203,7 +209,8 @@ def plot(args, rows):
         for r in rows:
             if r["scene"] != scene_label:
                 continue
-            history = forces(r, slide_length, 0.)
+            # The slide (the press steps sit at slide 0).
+            history = forces(r, slide_length, 1e-9)
             if not history:
                 continue
             xs = [h[0] for h in history]
