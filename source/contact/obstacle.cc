@@ -1,3 +1,4 @@
+#include <igabde/base/rotation.h>
 #include <igabde/base/utilities.h>
 
 #include <igabde/contact/obstacle.h>
@@ -110,39 +111,7 @@ namespace igabde
       for (const RigidMotion<dim> &term : motion)
         if (term.history < factors.size())
           theta += factors[term.history] * term.rotation;
-      Tensor<2, dim> R;
-      if constexpr (dim == 2)
-        {
-          const double c = std::cos(theta[2]), s = std::sin(theta[2]);
-          R[0][0] = c;
-          R[0][1] = -s;
-          R[1][0] = s;
-          R[1][1] = c;
-        }
-      else
-        {
-          // Rodrigues: R = I + sin(a) K + (1 - cos(a)) K^2, K the cross
-          // product with the unit axis, a the angle.
-          const double a = theta.norm();
-          Tensor<2, 3> K;
-          if (a > 0.)
-            {
-              const Tensor<1, 3> k = theta / a;
-              K[0][1]              = -k[2];
-              K[0][2]              = k[1];
-              K[1][0]              = k[2];
-              K[1][2]              = -k[0];
-              K[2][0]              = -k[1];
-              K[2][1]              = k[0];
-            }
-          Tensor<2, 3> R3 = std::sin(a) * K + (1. - std::cos(a)) * (K * K);
-          for (unsigned int i = 0; i < 3; ++i)
-            R3[i][i] += 1.;
-          for (unsigned int i = 0; i < dim; ++i)
-            for (unsigned int j = 0; j < dim; ++j)
-              R[i][j] = R3[i][j];
-        }
-      return R;
+      return base::exact_rotation<dim>(theta);
     }
 
 

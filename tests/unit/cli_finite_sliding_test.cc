@@ -59,6 +59,36 @@ namespace
     number.insert(0, 4 - number.size(), '0');
     return cli::join(folder, "out/contact-" + number + ".csv");
   }
+
+  /// The pairs of steps 2 to 6 of the run in @p folder are step 1's moved
+  /// by 0.2 along x per step: positions to 1e-8, pressures to 1e-8 of the
+  /// mean (pairs are listed by the slave's basis functions, in one order).
+  void
+  expect_pairs_moved_along(const std::string &folder)
+  {
+    const cli::CsvTable first = cli::read_table(step_table(folder, 1));
+    double              mean  = 0.;
+    for (std::size_t r = 0; r < first.rows.size(); ++r)
+      mean += first.number(r, "pressure") / first.rows.size();
+    ASSERT_GT(mean, 0.);
+    for (unsigned int step = 2; step <= 6; ++step)
+      {
+        const cli::CsvTable table = cli::read_table(step_table(folder, step));
+        ASSERT_EQ(table.rows.size(), first.rows.size()) << "step " << step;
+        const double shift = 0.2 * (step - 1);
+        for (std::size_t r = 0; r < table.rows.size(); ++r)
+          {
+            EXPECT_NEAR(table.number(r, "x"),
+                        first.number(r, "x") + shift,
+                        1e-8)
+              << "step " << step << ", pair " << r;
+            EXPECT_NEAR(table.number(r, "pressure"),
+                        first.number(r, "pressure"),
+                        1e-8 * mean)
+              << "step " << step << ", pair " << r;
+          }
+      }
+  }
 } // namespace
 
 
@@ -172,30 +202,7 @@ TEST(FiniteSliding, TranslatedTogetherTheBlocksKeepTheirPressures)
       const auto               summary =
         cli::run_scene_text(scratch.path, translated_blocks(type));
       ASSERT_FALSE(summary.is_null());
-      const cli::CsvTable first = cli::read_table(step_table(scratch.path, 1));
-      double              mean  = 0.;
-      for (std::size_t r = 0; r < first.rows.size(); ++r)
-        mean += first.number(r, "pressure") / first.rows.size();
-      ASSERT_GT(mean, 0.);
-      for (unsigned int step = 2; step <= 6; ++step)
-        {
-          const cli::CsvTable table =
-            cli::read_table(step_table(scratch.path, step));
-          ASSERT_EQ(table.rows.size(), first.rows.size()) << "step " << step;
-          const double shift = 0.2 * (step - 1);
-          // Pairs are listed by the slave's basis functions, in one order.
-          for (std::size_t r = 0; r < table.rows.size(); ++r)
-            {
-              EXPECT_NEAR(table.number(r, "x"),
-                          first.number(r, "x") + shift,
-                          1e-8)
-                << "step " << step << ", pair " << r;
-              EXPECT_NEAR(table.number(r, "pressure"),
-                          first.number(r, "pressure"),
-                          1e-8 * mean)
-                << "step " << step << ", pair " << r;
-            }
-        }
+      expect_pairs_moved_along(scratch.path);
     }
 }
 
@@ -263,27 +270,7 @@ TEST(FiniteSliding, BlockMovedWithAMovingObstacleKeepsItsPressures)
   const auto               summary =
     cli::run_scene_text(scratch.path, block_on_moving_circle());
   ASSERT_FALSE(summary.is_null());
-  const cli::CsvTable first = cli::read_table(step_table(scratch.path, 1));
-  double              mean  = 0.;
-  for (std::size_t r = 0; r < first.rows.size(); ++r)
-    mean += first.number(r, "pressure") / first.rows.size();
-  ASSERT_GT(mean, 0.);
-  for (unsigned int step = 2; step <= 6; ++step)
-    {
-      const cli::CsvTable table =
-        cli::read_table(step_table(scratch.path, step));
-      ASSERT_EQ(table.rows.size(), first.rows.size()) << "step " << step;
-      const double shift = 0.2 * (step - 1);
-      for (std::size_t r = 0; r < table.rows.size(); ++r)
-        {
-          EXPECT_NEAR(table.number(r, "x"), first.number(r, "x") + shift, 1e-8)
-            << "step " << step << ", pair " << r;
-          EXPECT_NEAR(table.number(r, "pressure"),
-                      first.number(r, "pressure"),
-                      1e-8 * mean)
-            << "step " << step << ", pair " << r;
-        }
-    }
+  expect_pairs_moved_along(scratch.path);
 }
 
 

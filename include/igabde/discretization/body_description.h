@@ -1,6 +1,8 @@
 #ifndef igabde_discretization_body_description_h
 #define igabde_discretization_body_description_h
 
+#include <igabde/base/rotation.h>
+
 #include <igabde/nurbs/geometry_file.h>
 #include <igabde/nurbs/nurbs_patch.h>
 
@@ -180,37 +182,13 @@ namespace igabde
       Tensor<2, dim>
       exact_rotation(const double f) const
       {
-        Tensor<2, dim> R;
+        Tensor<1, 3> theta;
         if constexpr (dim == 2)
-          {
-            const double angle = f * rotation.at(0);
-            R[0][0]            = std::cos(angle);
-            R[0][1]            = -std::sin(angle);
-            R[1][0]            = std::sin(angle);
-            R[1][1]            = std::cos(angle);
-          }
+          theta[2] = f * rotation.at(0);
         else
-          {
-            Tensor<1, 3> axis;
-            for (unsigned int d = 0; d < 3; ++d)
-              axis[d] = f * rotation.at(d);
-            const double angle = axis.norm();
-            for (unsigned int d = 0; d < 3; ++d)
-              R[d][d] = 1.;
-            if (angle > 0.)
-              {
-                axis /= angle;
-                Tensor<2, 3> K;
-                K[0][1] = -axis[2];
-                K[0][2] = axis[1];
-                K[1][0] = axis[2];
-                K[1][2] = -axis[0];
-                K[2][0] = -axis[1];
-                K[2][1] = axis[0];
-                R += std::sin(angle) * K + (1. - std::cos(angle)) * K * K;
-              }
-          }
-        return R;
+          for (unsigned int d = 0; d < 3; ++d)
+            theta[d] = f * rotation.at(d);
+        return base::exact_rotation<dim>(theta);
       }
     };
 
