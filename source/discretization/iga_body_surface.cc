@@ -302,10 +302,22 @@ namespace igabde
         xi[e] = (e == d ? (face % 2 == 0 ? space->breaks[d].front() :
                                            space->breaks[d].back()) :
                           eta[k++]);
-      const auto          &geometry = surface_geometry(*space);
-      const Tensor<2, dim> J        = geometry.jacobian(xi);
-      FacePoint<dim>       result;
-      result.location = geometry.value(xi);
+      // One basis evaluation gives the point, its Jacobian and its
+      // operator (the moved geometry has the reference one's knots and
+      // weights, so the same basis functions): this runs at every step of
+      // every closest-point projection.
+      const auto &geometry = surface_geometry(*space);
+      thread_local std::vector<unsigned int>   indices;
+      thread_local std::vector<Tensor<1, dim>> dR;
+      FacePoint<dim>                           result;
+      geometry.basis(xi, indices, result.op.weights, &dR);
+      Tensor<2, dim> J;
+      for (unsigned int l = 0; l < indices.size(); ++l)
+        {
+          const Point<dim> &x = geometry.control_point(indices[l]);
+          result.location += result.op.weights[l] * x;
+          J += outer_product(static_cast<const Tensor<1, dim> &>(x), dR[l]);
+        }
       std::tie(result.measure, result.normal) =
         face_measure_and_normal(face, J, space->orientation);
       for (unsigned int e = 0, k = 0; e < dim; ++e)
@@ -315,7 +327,11 @@ namespace igabde
               result.tangents[k][c] = J[c][e];
             ++k;
           }
-      result.op = parametric_point_operator(xi, patch_of_face<dim>(body_face));
+      const PatchSpace &numbered = spaces.at(patch_of_face<dim>(body_face));
+      result.op.dofs.resize(indices.size());
+      for (unsigned int k = 0; k < indices.size(); ++k)
+        for (unsigned int c = 0; c < dim; ++c)
+          result.op.dofs[k][c] = dim * numbered.numbers[indices[k]] + c;
       return result;
     }
 

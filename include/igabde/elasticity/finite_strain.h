@@ -55,19 +55,6 @@ namespace igabde
     }
 
     /**
-     * @brief Scratch space of add_cell_internal_force(), kept per thread by
-     * an assembly loop so that a cell allocates nothing.
-     */
-    template <int dim>
-    struct FiniteStrainScratch
-    {
-      /// Per local unknown (l, c): dE = sym(F^T (e_c x grad N_l)) and
-      /// D : dE at the current point.
-      std::vector<SymmetricTensor<2, dim>> dE;
-      std::vector<SymmetricTensor<2, dim>> D_dE;
-    };
-
-    /**
      * @brief The cell's internal force r_i = int P : grad(N_i) dX
      * (P = F S, the first Piola-Kirchhoff stress) at the displacement
      * @p local_u, added to @p residual, and with @p tangent (not nullptr)
@@ -84,17 +71,10 @@ namespace igabde
                             const std::vector<double>       &local_u,
                             const HyperelasticMaterial<dim> &material,
                             Vector<double>                  &residual,
-                            FullMatrix<double>              *tangent,
-                            FiniteStrainScratch<dim>        &scratch)
+                            FullMatrix<double>              *tangent)
     {
       const unsigned int n_basis = values.n_basis();
-      const unsigned int n_dofs  = values.dofs_per_cell();
       double             min_J   = std::numeric_limits<double>::max();
-      if (tangent != nullptr)
-        {
-          scratch.dE.resize(n_dofs);
-          scratch.D_dE.resize(n_dofs);
-        }
       for (unsigned int q = 0; q < values.n_quadrature_points(); ++q)
         {
           const Tensor<2, dim> F = deformation_gradient<dim>(
@@ -116,10 +96,16 @@ namespace igabde
             }
           if (tangent == nullptr)
             continue;
+          // K(lc, md) = dE_lc : D : dE_md + delta_cd grad N_l . S grad N_m
+          // with dE_md = sym(F^T (e_d x grad N_m)): for symmetric
+          // S_lc = D : dE_lc, S_lc : dE_md = (F S_lc grad N_m)_d, so one
+          // 3 x 3 product A_lc = F S_lc per local unknown gives its row
+          // for every m at dim^2 multiply-adds per basis function.
           const SymmetricTensor<4, dim> D = material.tangent(C);
           for (unsigned int l = 0; l < n_basis; ++l)
             {
-              const Tensor<1, dim> &g = values.shape_grad(l, q);
+              const Tensor<1, dim> &g  = values.shape_grad(l, q);
+              const Tensor<1, dim>  Sg = S * g;
               for (unsigned int c = 0; c < dim; ++c)
                 {
                   // (F^T (e_c x g))_IJ = F_cI g_J, symmetrised.
@@ -127,27 +113,15 @@ namespace igabde
                   for (unsigned int I = 0; I < dim; ++I)
                     for (unsigned int K = I; K < dim; ++K)
                       dE[I][K] = 0.5 * (F[c][I] * g[K] + F[c][K] * g[I]);
-                  const unsigned int i = values.local_dof(l, c);
-                  scratch.dE[i]        = dE;
-                  scratch.D_dE[i]      = D * dE;
-                }
-            }
-          for (unsigned int l = 0; l < n_basis; ++l)
-            {
-              const Tensor<1, dim> Sg = S * values.shape_grad(l, q);
-              for (unsigned int m = 0; m < n_basis; ++m)
-                {
-                  const double geometric = (Sg * values.shape_grad(m, q)) * JxW;
-                  for (unsigned int c = 0; c < dim; ++c)
+                  const Tensor<2, dim> A = F * Tensor<2, dim>(D * dE) * JxW;
+                  const unsigned int   i = values.local_dof(l, c);
+                  for (unsigned int m = 0; m < n_basis; ++m)
                     {
-                      const unsigned int i = values.local_dof(l, c);
+                      const Tensor<1, dim> &gm = values.shape_grad(m, q);
+                      const Tensor<1, dim>  Ag = A * gm;
                       for (unsigned int d = 0; d < dim; ++d)
-                        {
-                          const unsigned int j = values.local_dof(m, d);
-                          (*tangent)(i, j) +=
-                            (scratch.dE[i] * scratch.D_dE[j]) * JxW +
-                            (c == d ? geometric : 0.);
-                        }
+                        (*tangent)(i, values.local_dof(m, d)) +=
+                          Ag[d] + (c == d ? (Sg * gm) * JxW : 0.);
                     }
                 }
             }
@@ -258,9 +232,8 @@ namespace igabde
     {
       struct Scratch
       {
-        CellValues               cell;
-        FiniteStrainScratch<dim> strain;
-        std::vector<double>      local_u;
+        CellValues          cell;
+        std::vector<double> local_u;
       };
       struct Copy
       {
@@ -285,7 +258,7 @@ namespace igabde
             [&](const std::size_t from, const std::size_t to) {
               std::unique_ptr<Scratch> &mine = scratch.get();
               if (!mine)
-                mine = std::make_unique<Scratch>(Scratch{cell_values, {}, {}});
+                mine = std::make_unique<Scratch>(Scratch{cell_values, {}});
               for (std::size_t c = from; c < to; ++c)
                 {
                   Copy &copy = copies[c - first];
@@ -303,8 +276,7 @@ namespace igabde
                                                             copy.force,
                                                             tangent != nullptr ?
                                                               &copy.matrix :
-                                                              nullptr,
-                                                            mine->strain);
+                                                              nullptr);
                 }
             },
             8);
