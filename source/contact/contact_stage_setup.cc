@@ -182,7 +182,7 @@ namespace igabde
                                     const std::vector<unsigned int> &indices) {
             return pairs_of(w, indices);
           };
-          sliding.full_tangent = settings.full_sliding_tangent;
+          sliding.tangent = settings.sliding_tangent;
           contact_path->set_finite_sliding(sliding);
         }
       // The full path's merit adds the displacement equations, which the

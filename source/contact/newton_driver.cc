@@ -536,6 +536,11 @@ namespace igabde
       unsigned int       local_it        = 0;
       unsigned int       singular_streak = 0;
       double             last_theta = 0., first_norm = 0.;
+      // The adaptive sliding tangent's rule: the previous iteration's |H|
+      // and how many of the ratios after the first exceeded 1/20.
+      double       previous_norm     = 0.;
+      unsigned int slow_contractions = 0;
+      op.want_exact_tangent(false);
 
       // The active set of every iteration of this phase, and how a failure
       // is reported: the iteration, and the pairs involved.
@@ -689,6 +694,17 @@ namespace igabde
           const double F_norm = std::sqrt(2. * theta);
           if (local_it == 1)
             first_norm = F_norm;
+          // A tangent that converges fast cuts |H| by far more than 20x
+          // per iteration; one that cuts it by less twice after the first
+          // iteration (whose ratio the change of the active set dominates)
+          // asks for the exact one for the rest of the phase
+          // (Contact/Sliding tangent = auto; the measured ratios are in
+          // doc/user-guide.md).
+          if (local_it >= 3 && F_norm > 0.05 * previous_norm)
+            ++slow_contractions;
+          previous_norm = F_norm;
+          if (slow_contractions >= 2)
+            op.want_exact_tangent(true);
           ContactIterate              dx;
           ContactOperator::StepReport report;
           // At finite strain the tangent of the current iterate.

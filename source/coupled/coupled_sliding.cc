@@ -120,7 +120,10 @@ namespace igabde
     void
     CoupledSystem<dim>::linearize_geometry(const contact::ContactIterate &x)
     {
-      if (!sliding.pairs_at || !sliding.full_tangent)
+      const bool full = sliding.tangent == contact::SlidingTangent::full ||
+                        (sliding.tangent == contact::SlidingTangent::adaptive &&
+                         exact_tangent_wanted);
+      if (!sliding.pairs_at || !full)
         return;
       update_geometry(x);
       const std::vector<contact::ContactPair<dim>> &pairs = pairs_now;

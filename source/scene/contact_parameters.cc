@@ -126,7 +126,9 @@ namespace igabde
           "operators at the iterate (one pairing per iteration, linear "
           "convergence, slow where the pressure is a sizeable part of the "
           "modulus; cheaper per iteration where most pairs are in "
-          "contact).");
+          "contact). auto: frozen until the residual contracts slowly (two "
+          "iterations after the first each cut it by less than 20x), full "
+          "from there to the end of the Newton solve.");
         prm.declare_entry("Condensation",
                           "schur",
                           Patterns::Selection(
@@ -290,9 +292,8 @@ namespace igabde
         finite_sliding =
           base::value_of(contact::sliding_names, prm.get("Sliding")) ==
           contact::Sliding::finite;
-        full_sliding_tangent = base::value_of(contact::sliding_tangent_names,
-                                              prm.get("Sliding tangent")) ==
-                               contact::SlidingTangent::full;
+        sliding_tangent = base::value_of(contact::sliding_tangent_names,
+                                         prm.get("Sliding tangent"));
         condensation =
           base::value_of(contact::condensation_names, prm.get("Condensation"));
         first.slave_face_text  = base::trim(prm.get("Slave face"));

@@ -43,10 +43,10 @@ namespace igabde
         }
       for (const unsigned int b : deformable)
         cs.body_labels.push_back("Body " + std::to_string(b + 1));
-      cs.solver.algorithm     = c.algorithm;
-      cs.solver.path          = c.path;
-      cs.finite_sliding       = c.finite_sliding;
-      cs.full_sliding_tangent = c.full_sliding_tangent;
+      cs.solver.algorithm   = c.algorithm;
+      cs.solver.path        = c.path;
+      cs.finite_sliding     = c.finite_sliding;
+      cs.sliding_tangent    = c.sliding_tangent;
       cs.schur_condensation = c.condensation == contact::Condensation::schur &&
                               parameters.discretization.linear_solver ==
                                 discretization::LinearSolver::direct;

@@ -24,6 +24,7 @@
 #include "cli_helpers.h"
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <string>
 
 namespace
@@ -447,4 +448,89 @@ TEST(FiniteSliding, RingTurnedOnACylinderKeepsLamesMeanPressure)
       EXPECT_NEAR(mean / q, 1., 1e-2) << "step " << step;
       EXPECT_NEAR(mean / first, 1., 1e-4) << "step " << step;
     }
+}
+
+
+
+// Contact/Sliding tangent = auto keeps the frozen tangent where it
+// converges fast and takes the full one where it does not, by the
+// quantity the rule is for: the iterations. On the ring turned in its
+// cylinder the frozen tangent cuts the residual by far more than 20x per
+// iteration, so auto must run exactly the frozen iterations (the same
+// iterates: the same forces to round-off); on the ironing die pressed into
+// the soft block it does not, so auto must need fewer iterations than
+// frozen, and reach the full tangent's answer (both converged: the forces
+// to 1e-7). A rule that never switched fails the second; one that always
+// did, the first (the full tangent takes other iterates on the ring).
+TEST(FiniteSliding, AutoTangentIsFrozenWhereThatContractsFastAndFullWhereNot)
+{
+  const auto iterations = [](const nlohmann::json &summary) {
+    std::vector<int> its;
+    for (const auto &step : summary["load_steps"])
+      its.push_back(step["newton_iterations"].get<int>());
+    return its;
+  };
+  const auto reactions = [](const nlohmann::json &summary) {
+    std::vector<double> r;
+    for (const auto &step : summary["load_steps"])
+      for (const double f :
+           step["bodies"][1]["support_reaction"].get<std::vector<double>>())
+        r.push_back(f);
+    return r;
+  };
+  const auto run = [](const std::string &scene,
+                      const std::string &tangent,
+                      const std::string &sets) {
+    const cli::ScratchFolder scratch("tangent-" + scene + "-" + tangent,
+                                     "finite-sliding");
+    const cli::SceneRun      result =
+      cli::run_prm_scene(scratch.path,
+                         scene + ".prm",
+                         "--set 'Contact/Sliding tangent=" + tangent + "' " +
+                           sets);
+    EXPECT_EQ(result.status, 0) << result.output;
+    return result.summary;
+  };
+
+  {
+    SCOPED_TRACE("ring turned on a cylinder");
+    const std::string sets =
+      "--set 'Load path/Number of steps=3' "
+      "--set 'Load path/Histories=press: 1, 1, 1; turn: 0, 0.1, 0.2'";
+    const auto frozen   = run("ring-turned-on-cylinder", "frozen", sets);
+    const auto adaptive = run("ring-turned-on-cylinder", "auto", sets);
+    ASSERT_FALSE(frozen.is_null());
+    ASSERT_FALSE(adaptive.is_null());
+    EXPECT_EQ(iterations(adaptive), iterations(frozen));
+    const auto r_frozen = reactions(frozen), r_auto = reactions(adaptive);
+    ASSERT_EQ(r_auto.size(), r_frozen.size());
+    double scale = 0.;
+    for (const double f : r_frozen)
+      scale = std::max(scale, std::abs(f));
+    for (std::size_t i = 0; i < r_auto.size(); ++i)
+      EXPECT_NEAR(r_auto[i], r_frozen[i], 1e-12 * scale);
+  }
+  {
+    SCOPED_TRACE("ironing die pressed into a soft block");
+    const std::string sets =
+      "--set 'Load path/Number of steps=4' "
+      "--set 'Load path/Histories=press: ramp 0 0.4 4; slide: hold 0 4'";
+    const auto frozen   = run("ironing-2d", "frozen", sets);
+    const auto full     = run("ironing-2d", "full", sets);
+    const auto adaptive = run("ironing-2d", "auto", sets);
+    ASSERT_FALSE(frozen.is_null());
+    ASSERT_FALSE(full.is_null());
+    ASSERT_FALSE(adaptive.is_null());
+    const auto sum = [](const std::vector<int> &v) {
+      return std::accumulate(v.begin(), v.end(), 0);
+    };
+    EXPECT_LT(sum(iterations(adaptive)), sum(iterations(frozen)));
+    const auto r_full = reactions(full), r_auto = reactions(adaptive);
+    ASSERT_EQ(r_auto.size(), r_full.size());
+    double scale = 0.;
+    for (const double f : r_full)
+      scale = std::max(scale, std::abs(f));
+    for (std::size_t i = 0; i < r_auto.size(); ++i)
+      EXPECT_NEAR(r_auto[i], r_full[i], 1e-7 * scale);
+  }
 }

@@ -112,9 +112,10 @@ namespace coupled_sliding_tangent
                                      coupled::Solver::mumps);
     const Eigen::VectorXd        q = Eigen::VectorXd::Zero(6);
     contact::FiniteSliding<2>    sliding;
-    sliding.pairs_at     = pairs_at;
-    sliding.q            = &q;
-    sliding.full_tangent = full;
+    sliding.pairs_at = pairs_at;
+    sliding.q        = &q;
+    sliding.tangent =
+      full ? contact::SlidingTangent::full : contact::SlidingTangent::frozen;
     if (subsets)
       sliding.pairs_of = [&](const Eigen::VectorXd           &w,
                              const std::vector<unsigned int> &indices) {

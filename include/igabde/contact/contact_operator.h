@@ -204,6 +204,19 @@ namespace igabde
       }
 
       /**
+       * @brief Whether the Newton iteration asks the next linearize() for
+       * the most exact tangent the operator can give, where a cheaper one
+       * is its choice otherwise (Contact/Sliding tangent = auto: the
+       * sliding derivatives once the residual contracts slowly). Nothing
+       * by default.
+       */
+      virtual void
+      want_exact_tangent(const bool wanted)
+      {
+        (void)wanted;
+      }
+
+      /**
        * @brief The derivative of equilibrium_residual() at the point of the
        * last linearize() along (@p v_p, @p v_w); where E is linear, E itself
        * at (v_p, v_w).

@@ -8,6 +8,7 @@
 #include <igabde/contact/contact_operator.h>
 #include <igabde/contact/coupled_operator.h>
 #include <igabde/contact/pairing.h>
+#include <igabde/contact/sliding.h>
 
 #include <deal.II/lac/vector.h>
 
@@ -67,9 +68,11 @@ namespace igabde
       /// replace (through ContactOperator::displacement_offset()).
       const Eigen::VectorXd *q = nullptr;
       /// Whether the Newton matrix takes the pairs' derivatives by the
-      /// configuration (Contact/Sliding tangent = full) or the pairs'
-      /// operators at the iterate (frozen).
-      bool full_tangent = false;
+      /// configuration (Contact/Sliding tangent = full), the pairs'
+      /// operators at the iterate (frozen), or the first once the Newton
+      /// iteration asks for it (auto; ContactOperator::
+      /// want_exact_tangent()).
+      SlidingTangent tangent = SlidingTangent::frozen;
     };
 
     /**

@@ -99,10 +99,10 @@ namespace igabde
       /// slave points) and at every Newton iterate of the solve (their
       /// master points, frames and gaps); the full path only.
       bool finite_sliding = false;
-      /// Contact/Sliding tangent: with finite sliding the Newton matrix
-      /// takes the pairs' derivatives by the configuration
-      /// (FiniteSliding::full_tangent).
-      bool full_sliding_tangent = false;
+      /// Contact/Sliding tangent: with finite sliding whether the Newton
+      /// matrix takes the pairs' derivatives by the configuration
+      /// (FiniteSliding::tangent).
+      SlidingTangent sliding_tangent = SlidingTangent::frozen;
     };
 
     /**

@@ -24,20 +24,24 @@ namespace igabde
 
     /**
      * @brief Contact/Sliding tangent: with finite sliding, whether the
-     * Newton matrix holds the pairs' operators at the iterate (frozen) or
+     * Newton matrix holds the pairs' operators at the iterate (frozen),
      * also their derivatives by the configuration (full;
-     * FiniteSliding::full_tangent).
+     * FiniteSliding::tangent), or the frozen one until the residual
+     * contracts slowly and the full one from there to the end of the
+     * Newton phase (adaptive, "auto").
      */
     enum class SlidingTangent
     {
       frozen,
-      full
+      full,
+      adaptive
     };
 
     /** @brief The names of SlidingTangent as the scene writes them. */
-    inline constexpr base::ChoiceNames<SlidingTangent, 2>
-      sliding_tangent_names = {
-        {{SlidingTangent::frozen, "frozen"}, {SlidingTangent::full, "full"}}};
+    inline constexpr base::ChoiceNames<SlidingTangent, 3>
+      sliding_tangent_names = {{{SlidingTangent::frozen, "frozen"},
+                                {SlidingTangent::full, "full"},
+                                {SlidingTangent::adaptive, "auto"}}};
   } // namespace contact
 } // namespace igabde
 

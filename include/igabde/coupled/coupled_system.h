@@ -221,6 +221,17 @@ namespace igabde
       void
       linearize_geometry(const contact::ContactIterate &x) override;
 
+      /**
+       * @brief Contact/Sliding tangent = auto: whether the next
+       * linearize_geometry() takes the pairs' derivatives (the Newton
+       * iteration asks once the frozen tangent contracts slowly).
+       */
+      void
+      want_exact_tangent(const bool wanted) override
+      {
+        exact_tangent_wanted = wanted;
+      }
+
       Eigen::VectorXd
       apply_C_derivative(const Eigen::VectorXd &v) const override;
 
@@ -261,6 +272,8 @@ namespace igabde
       /// forces' derivative as (row, column, value), the iterate's w, and
       /// the entries beyond K's and C's pattern that the pattern holds.
       bool geometric_valid = false;
+      /// want_exact_tangent(): the adaptive tangent's choice.
+      bool exact_tangent_wanted = false;
       std::vector<std::vector<std::pair<unsigned int, double>>> J_rows;
       std::vector<std::tuple<unsigned int, unsigned int, double>>
                                                          geometric_entries;

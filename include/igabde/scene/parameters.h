@@ -11,6 +11,7 @@
 #include <igabde/contact/condensation.h>
 #include <igabde/contact/contact_solver.h>
 #include <igabde/contact/pairing.h>
+#include <igabde/contact/sliding.h>
 
 #include <igabde/coupled/solver.h>
 #include <igabde/scene/body_grammars.h>
@@ -359,9 +360,9 @@ namespace igabde
       /// Contact/Sliding = finite: pairs on the current configuration
       /// (ContactSettings::finite_sliding); small: formed once.
       bool finite_sliding = false;
-      /// Contact/Sliding tangent = full, the default (ContactSettings::
-      /// full_sliding_tangent); frozen: false.
-      bool full_sliding_tangent = true;
+      /// Contact/Sliding tangent (ContactSettings::sliding_tangent); full
+      /// is the default.
+      contact::SlidingTangent sliding_tangent = contact::SlidingTangent::full;
       /// FKN: normal penalty stiffness factor (penalty methods).
       double penalty_factor = 1.;
       /// FKT: stick stiffness factor, k_t = FKT k_n.
