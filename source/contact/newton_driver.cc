@@ -698,8 +698,8 @@ namespace igabde
           // per iteration; one that cuts it by less twice after the first
           // iteration (whose ratio the change of the active set dominates)
           // asks for the exact one for the rest of the phase
-          // (Contact/Sliding tangent = auto; the measured ratios are in
-          // doc/user-guide.md).
+          // (Contact/Sliding tangent = auto; doc/studies.md, "the two
+          // Newton tangents", has the measured contraction factors).
           if (local_it >= 3 && F_norm > 0.05 * previous_norm)
             ++slow_contractions;
           previous_norm = F_norm;

@@ -660,11 +660,23 @@ namespace igabde
       std::vector<unsigned int> indices;
       PointOperator<dim>        op;
       spaces.at(p).geometry.basis(xi, indices, op.weights);
+      number_operator(indices, p, op);
+      return op;
+    }
+
+
+
+    template <int dim>
+    void
+    IgaBody<dim>::number_operator(const std::vector<unsigned int> &indices,
+                                  const unsigned int               p,
+                                  PointOperator<dim>              &op) const
+    {
+      const std::vector<unsigned int> &numbers = spaces.at(p).numbers;
       op.dofs.resize(indices.size());
       for (unsigned int k = 0; k < indices.size(); ++k)
         for (unsigned int c = 0; c < dim; ++c)
-          op.dofs[k][c] = dim * spaces[p].numbers[indices[k]] + c;
-      return op;
+          op.dofs[k][c] = dim * numbers[indices[k]] + c;
     }
 
 

@@ -327,11 +327,7 @@ namespace igabde
               result.tangents[k][c] = J[c][e];
             ++k;
           }
-      const PatchSpace &numbered = spaces.at(patch_of_face<dim>(body_face));
-      result.op.dofs.resize(indices.size());
-      for (unsigned int k = 0; k < indices.size(); ++k)
-        for (unsigned int c = 0; c < dim; ++c)
-          result.op.dofs[k][c] = dim * numbered.numbers[indices[k]] + c;
+      number_operator(indices, patch_of_face<dim>(body_face), result.op);
       return result;
     }
 

@@ -280,6 +280,13 @@ namespace igabde
       assemble() override;
 
     private:
+      /// The unknowns of @p op for the control points @p indices of patch
+      /// @p p (their glued numbers, every component).
+      void
+      number_operator(const std::vector<unsigned int> &indices,
+                      const unsigned int               p,
+                      PointOperator<dim>              &op) const;
+
       /// One patch of the body: its analysis space and parametric mesh.
       struct PatchSpace
       {
