@@ -182,6 +182,12 @@ namespace igabde
                                     const std::vector<unsigned int> &indices) {
             return pairs_of(w, indices);
           };
+          sliding.linearization_of =
+            [this](const Eigen::VectorXd               &w,
+                   const std::vector<unsigned int>     &indices,
+                   std::vector<PairLinearization<dim>> &result) {
+              return linearization_of(w, indices, result);
+            };
           sliding.tangent = settings.sliding_tangent;
           contact_path->set_finite_sliding(sliding);
         }

@@ -55,6 +55,86 @@ namespace igabde
 
     template <int dim>
     bool
+    BodyFace<dim>::normal_continuous() const
+    {
+      // Where the normal may turn, at an element edge (C^0: FE_Q, degree
+      // 1, a repeated knot) or where two of the faces meet, it must turn
+      // by less than 0.05 (3 degrees): tangent-continuous geometry bent by
+      // the strain (a circle's double knot or two quarter rings under a
+      // die's contact: 0.017 measured on the 3D ironing die), not the
+      // facets of a curved FE_Q(1) face (0.1 on the 2D ironing die's 32).
+      // Checked on every break line of each face at its elements'
+      // midpoints, the normals either side, and on a face's edges against
+      // the other faces there. A NURBS face of degree 2 or more with
+      // single knots passes: it is C^1.
+      const std::vector<const ContactSurface<dim> *> all  = parts();
+      const double                                   turn = 5e-2;
+      for (unsigned int p = 0; p < all.size(); ++p)
+        {
+          const auto grid = all[p]->face_grid();
+          for (unsigned int k = 0; k + 1 < dim; ++k)
+            {
+              const auto  &breaks = grid.breaks[k];
+              const double extent = breaks.back() - breaks.front();
+              // Points along the other face direction (3D): its elements'
+              // midpoints.
+              std::vector<double> across = {0.};
+              if constexpr (dim == 3)
+                {
+                  const auto &other = grid.breaks[1 - k];
+                  across.clear();
+                  for (unsigned int e = 0; e + 1 < other.size(); ++e)
+                    across.push_back(0.5 * (other[e] + other[e + 1]));
+                }
+              for (unsigned int b = 0; b < breaks.size(); ++b)
+                for (const double a : across)
+                  {
+                    Point<dim - 1> eta;
+                    if constexpr (dim == 3)
+                      eta[1 - k] = a;
+                    const bool end = b == 0 || b + 1 == breaks.size();
+                    if (!end)
+                      {
+                        eta[k]        = breaks[b] - 1e-9 * extent;
+                        const auto lo = all[p]->face_point(eta);
+                        eta[k]        = breaks[b] + 1e-9 * extent;
+                        const auto hi = all[p]->face_point(eta);
+                        if ((lo.normal - hi.normal).norm() > turn)
+                          return false;
+                        continue;
+                      }
+                    eta[k]             = breaks[b];
+                    const auto   point = all[p]->face_point(eta);
+                    const double size  = point.tangents[k].norm() * extent;
+                    for (unsigned int q = 0; q < all.size(); ++q)
+                      {
+                        if (q == p)
+                          continue;
+                        const auto &samples = all[q]->sample_points();
+                        if (samples.empty())
+                          continue;
+                        const auto *nearest = &samples.front();
+                        for (const auto &sample : samples)
+                          if (sample.location.distance(point.location) <
+                              nearest->location.distance(point.location))
+                            nearest = &sample;
+                        const auto other =
+                          all[q]->closest_point(point.location, nearest);
+                        if (other.location.distance(point.location) <
+                              1e-8 * size &&
+                            (other.normal - point.normal).norm() > turn)
+                          return false;
+                      }
+                  }
+            }
+        }
+      return true;
+    }
+
+
+
+    template <int dim>
+    bool
     BodyFace<dim>::deformable() const
     {
       return true;

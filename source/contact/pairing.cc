@@ -64,6 +64,46 @@ namespace igabde
 
 
 
+    template <int dim>
+    Tensor<2, dim>
+    local_frame_change(const Tensor<1, dim> &n,
+                       const Tensor<2, dim> &near,
+                       const Tensor<1, dim> &dn)
+    {
+      Tensor<2, dim> dT;
+      dT[0] = dn;
+      if constexpr (dim == 2)
+        {
+          (void)near;
+          dT[1][0] = -dn[1];
+          dT[1][1] = dn[0];
+        }
+      else
+        {
+          // The first tangent a / |a|, a = t - (t . n) n, with t near's
+          // first tangent or, where local_frame() falls back, its axis.
+          Tensor<1, dim> t = near[1];
+          if ((t - (t * n) * n).norm() <= 0.5)
+            {
+              unsigned int axis = 0;
+              for (unsigned int d = 1; d < dim; ++d)
+                if (std::abs(n[d]) < std::abs(n[axis]))
+                  axis = d;
+              t       = Tensor<1, dim>();
+              t[axis] = 1.;
+            }
+          const Tensor<1, dim> a  = t - (t * n) * n;
+          const Tensor<1, dim> T1 = a / a.norm();
+          const Tensor<1, dim> da = -(t * dn) * n - (t * n) * dn;
+          dT[1]                   = (da - (T1 * da) * T1) / a.norm();
+          if constexpr (dim == 3)
+            dT[2] = cross_product_3d(dn, T1) + cross_product_3d(n, dT[1]);
+        }
+      return dT;
+    }
+
+
+
     namespace
     {
       /// Size of the slave point cloud: the scale of the tolerances below.
@@ -481,6 +521,14 @@ namespace igabde
     local_frame<2>(const Tensor<1, 2> &, const Tensor<2, 2> &);
     template Tensor<2, 3>
     local_frame<3>(const Tensor<1, 3> &, const Tensor<2, 3> &);
+    template Tensor<2, 2>
+    local_frame_change<2>(const Tensor<1, 2> &,
+                          const Tensor<2, 2> &,
+                          const Tensor<1, 2> &);
+    template Tensor<2, 3>
+    local_frame_change<3>(const Tensor<1, 3> &,
+                          const Tensor<2, 3> &,
+                          const Tensor<1, 3> &);
     template <int dim>
     std::vector<ContactPair<dim>>
     PairingStrategy<dim>::make_pairs_of(
@@ -496,6 +544,22 @@ namespace igabde
         if (std::binary_search(keys.begin(), keys.end(), pair.slave_key))
           kept.push_back(std::move(pair));
       return kept;
+    }
+
+
+
+    template <int dim>
+    bool
+    PairingStrategy<dim>::make_pairs_with_derivatives(
+      const discretization::Body<dim> &,
+      const std::vector<types::boundary_id> &,
+      const ContactSurface<dim> &,
+      const std::string &,
+      const std::vector<types::global_dof_index> &,
+      std::vector<ContactPair<dim>> &,
+      std::vector<PairDerivatives<dim>> &) const
+    {
+      return false;
     }
 
 

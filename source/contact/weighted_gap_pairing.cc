@@ -3,6 +3,7 @@
 
 #include <igabde/contact/master_side.h>
 #include <igabde/contact/pairing.h>
+#include <igabde/contact/weighted_gap_derivatives.h>
 
 #include <deal.II/base/quadrature_lib.h>
 
@@ -307,7 +308,9 @@ namespace igabde
         const double                                               total,
         std::map<types::global_dof_index, WeightedIntegrals<dim>> &integrals,
         const std::map<types::global_dof_index,
-                       std::array<types::global_dof_index, dim>>  &dofs1)
+                       std::array<types::global_dof_index, dim>>  &dofs1,
+        std::map<types::global_dof_index, internal::IntegralDerivatives<dim>>
+          *derivatives)
       {
         std::vector<types::global_dof_index> held, free;
         for (const auto &[key, in] : integrals)
@@ -347,6 +350,13 @@ namespace igabde
               for (const auto &[dof, value] : in_j.op2)
                 in_k.op2[dof] += value;
               integrals.erase(j);
+              if (derivatives != nullptr)
+                if (const auto it = derivatives->find(j);
+                    it != derivatives->end())
+                  {
+                    (*derivatives)[best].add(it->second);
+                    derivatives->erase(it);
+                  }
             }
       }
 
@@ -473,13 +483,41 @@ namespace igabde
 
 
     template <int dim>
+    bool
+    WeightedGapPairing<dim>::make_pairs_with_derivatives(
+      const discretization::Body<dim>            &slave_body,
+      const std::vector<types::boundary_id>      &slave_faces,
+      const ContactSurface<dim>                  &master,
+      const std::string                          &context,
+      const std::vector<types::global_dof_index> &keys,
+      std::vector<ContactPair<dim>>              &pairs,
+      std::vector<PairDerivatives<dim>>          &derivatives) const
+    {
+      if (!master.normal_continuous())
+        return false;
+      const PairingExclusions<dim> kept = this->left_out;
+      derivatives.clear();
+      pairs          = form_pairs(slave_body,
+                         slave_faces,
+                         master,
+                         context,
+                         &keys,
+                         &derivatives);
+      this->left_out = kept;
+      return true;
+    }
+
+
+
+    template <int dim>
     std::vector<ContactPair<dim>>
     WeightedGapPairing<dim>::form_pairs(
       const discretization::Body<dim>            &slave_body,
       const std::vector<types::boundary_id>      &slave_faces,
       const ContactSurface<dim>                  &master,
       const std::string                          &context,
-      const std::vector<types::global_dof_index> *keys) const
+      const std::vector<types::global_dof_index> *keys,
+      std::vector<PairDerivatives<dim>>          *derivatives) const
     {
       constexpr unsigned int fd = dim - 1;
       const MasterSide<dim>  master_side(master, context);
@@ -525,6 +563,9 @@ namespace igabde
       std::map<types::global_dof_index,
                std::array<types::global_dof_index, dim>>
         dofs1, dofs2;
+      // Their derivatives by the unknowns, where asked for.
+      std::map<types::global_dof_index, internal::IntegralDerivatives<dim>>
+        integral_derivatives;
 
       // Slave elements, one by one, face by face: the integrals of a basis
       // function that two faces share (glued patches) add up.
@@ -598,11 +639,7 @@ namespace igabde
               // The element's quadrature points with their master points;
               // those that do not face the master within its extent are
               // left out, and the integrals run over the rest.
-              struct Sample
-              {
-                discretization::FacePoint<dim> s, m;
-                double                         weight;
-              };
+              using Sample = internal::ElementSample<dim>;
               std::vector<Sample> samples;
               bool                whole = true;
               for (unsigned int piece = 0; piece < n_piece_total; ++piece)
@@ -624,9 +661,12 @@ namespace igabde
                     Sample sample;
                     sample.s      = slave_body.face_point(slave_face, eta);
                     sample.weight = weight;
+                    sample.eta    = eta;
                     try
                       {
-                        sample.m = master_side.facing(sample.s.location);
+                        sample.m = master_side.facing(sample.s.location,
+                                                      &sample.part,
+                                                      &sample.xi);
                       }
                     catch (const base::ExcInput &)
                       {
@@ -648,6 +688,19 @@ namespace igabde
               // would make a gap out of nothing, so a cut element weights
               // with the face basis N_j (still a mean of the gap).
               const bool dual_here = dual_basis && whole;
+              if (derivatives != nullptr)
+                internal::add_element_derivatives<dim>(
+                  slave_body,
+                  slave_face,
+                  master_side,
+                  lo,
+                  hi,
+                  samples,
+                  rule,
+                  dual_here ? local :
+                              std::map<types::global_dof_index, unsigned int>(),
+                  dual_here ? dual : Eigen::MatrixXd(),
+                  integral_derivatives);
               for (const Sample &sample : samples)
                 {
                   const auto  &s      = sample.s;
@@ -704,7 +757,12 @@ namespace igabde
       double total = 0.;
       for (const auto &entry : integrals)
         total += entry.second.area;
-      merge_held_functions<dim>(slave_body, total, integrals, dofs1);
+      merge_held_functions<dim>(slave_body,
+                                total,
+                                integrals,
+                                dofs1,
+                                derivatives != nullptr ? &integral_derivatives :
+                                                         nullptr);
       if (keys != nullptr)
         {
           // The functions asked for: the others' integrals may be partial.
@@ -737,6 +795,14 @@ namespace igabde
           pair.op2       = make_operator<dim>(in.op2, in.area, dofs2);
           pair.slave_key = key;
           pairs.push_back(pair);
+          if (derivatives != nullptr)
+            derivatives->push_back(
+              internal::pair_derivatives<dim>(in.area,
+                                              in.gap,
+                                              in.normal,
+                                              in.op1,
+                                              in.op2,
+                                              integral_derivatives[key]));
         }
       if (keys != nullptr)
         return pairs;

@@ -120,9 +120,11 @@ namespace igabde
     void
     CoupledSystem<dim>::linearize_geometry(const contact::ContactIterate &x)
     {
-      const bool full = sliding.tangent == contact::SlidingTangent::full ||
-                        (sliding.tangent == contact::SlidingTangent::adaptive &&
-                         exact_tangent_wanted);
+      const bool full =
+        sliding.tangent == contact::SlidingTangent::full ||
+        sliding.tangent == contact::SlidingTangent::differences ||
+        (sliding.tangent == contact::SlidingTangent::adaptive &&
+         exact_tangent_wanted);
       if (!sliding.pairs_at || !full)
         return;
       update_geometry(x);
@@ -145,7 +147,159 @@ namespace igabde
             is_active[i] = true;
           }
 
+      J_rows.assign(d * n_pairs, {});
+      for (unsigned int i = 0; i < n_pairs; ++i)
+        if (!is_active[i])
+          for (unsigned int s = 0; s < d; ++s)
+            J_rows[d * i + s] = C_rows[d * i + s];
+      std::map<std::pair<unsigned int, unsigned int>, double> K;
+      std::vector<contact::PairLinearization<dim>>            linearized;
+      if (sliding.tangent != contact::SlidingTangent::differences &&
+          sliding.linearization_of &&
+          sliding.linearization_of(x.w, active, linearized))
+        add_closed_form_tangent(x, active, linearized, K);
+      else
+        add_difference_tangent(x, pairs, active, K);
+      for (auto &row : J_rows)
+        std::sort(row.begin(), row.end());
+      geometric_entries.clear();
+      for (const auto &[entry, v] : K)
+        geometric_entries.emplace_back(entry.first, entry.second, v);
+      geometric_at    = x.w;
+      geometric_valid = true;
+
+      // Entries the pattern of K and C does not hold: the pattern again,
+      // and MUMPS' analysis, where some are new.
+      std::vector<std::pair<unsigned int, unsigned int>> entries;
+      for (unsigned int r = 0; r < J_rows.size(); ++r)
+        for (const auto &[g, v] : J_rows[r])
+          entries.emplace_back(n_u + r, g);
+      for (const auto &[entry, v] : K)
+        entries.push_back(entry);
+      std::sort(entries.begin(), entries.end());
+      if (!std::includes(extra_pattern.begin(),
+                         extra_pattern.end(),
+                         entries.begin(),
+                         entries.end()))
+        {
+          std::vector<std::pair<unsigned int, unsigned int>> merged;
+          std::set_union(extra_pattern.begin(),
+                         extra_pattern.end(),
+                         entries.begin(),
+                         entries.end(),
+                         std::back_inserter(merged));
+          extra_pattern = std::move(merged);
+          direct.reset();
+          direct_problem.reset();
+          build_pattern();
+        }
+    }
+
+
+
+    template <int dim>
+    void
+    CoupledSystem<dim>::add_closed_form_tangent(
+      const contact::ContactIterate                           &x,
+      const std::vector<unsigned int>                         &active,
+      const std::vector<contact::PairLinearization<dim>>      &linearized,
+      std::map<std::pair<unsigned int, unsigned int>, double> &K)
+    {
+      AssertDimension(linearized.size(), active.size());
+      // A body's unknown in the system's numbering, or none where it is
+      // held (or the body is not deformable).
+      const auto global =
+        [&](const typename contact::PairLinearization<dim>::Unknown &u)
+        -> unsigned int {
+        if (u.first >= bodies.size())
+          return numbers::invalid_unsigned_int;
+        const unsigned int g = offsets[u.first] + u.second;
+        return held[g] ? numbers::invalid_unsigned_int : g;
+      };
+      for (unsigned int j = 0; j < active.size(); ++j)
+        {
+          const unsigned int                     i    = active[j];
+          const contact::PairLinearization<dim> &L    = linearized[j];
+          const contact::ContactPair<dim>       &pair = L.pair;
+          // The rows of u: the gap, and the step's slip on the tangents,
+          // d (T_s . slip) = dT_s . slip + T_s . d slip.
+          std::map<unsigned int, double> row;
+          for (const auto &[u, v] : L.gap)
+            if (const unsigned int g = global(u);
+                g != numbers::invalid_unsigned_int)
+              row[g] += v;
+          J_rows[d * i].assign(row.begin(), row.end());
+          for (unsigned int s = 1; s < d; ++s)
+            {
+              row.clear();
+              for (unsigned int c = 0; c < dim; ++c)
+                {
+                  for (const auto &[u, v] : L.frame[s][c])
+                    if (const unsigned int g = global(u);
+                        g != numbers::invalid_unsigned_int)
+                      row[g] += v * pair.step_slip[c];
+                  for (const auto &[u, v] : L.slip[c])
+                    if (const unsigned int g = global(u);
+                        g != numbers::invalid_unsigned_int)
+                      row[g] += pair.frame[s][c] * v;
+                }
+              J_rows[d * i + s].assign(row.begin(), row.end());
+            }
+          // The pair's force on the unknowns, -sign R_k (T^T p)_c, by the
+          // configuration: the operators' weights and the frame's turn.
+          Tensor<1, dim> force;
+          for (unsigned int s = 0; s < d; ++s)
+            for (unsigned int c = 0; c < dim; ++c)
+              force[c] += pair.frame[s][c] * x.p[d * i + s];
+          std::map<unsigned int, Tensor<1, dim>> d_force;
+          for (unsigned int s = 0; s < d; ++s)
+            for (unsigned int c = 0; c < dim; ++c)
+              for (const auto &[u, v] : L.frame[s][c])
+                if (const unsigned int g = global(u);
+                    g != numbers::invalid_unsigned_int)
+                  d_force[g][c] += v * x.p[d * i + s];
+          for (const unsigned int b : {pair.slave_body, pair.master_body})
+            {
+              if (b >= bodies.size())
+                continue;
+              double      sign = 0.;
+              const auto &op   = *pair.operator_on(b, sign);
+              const auto &d_op = &op == &pair.op1 ? L.op1 : L.op2;
+              AssertDimension(d_op.size(), op.weights.size());
+              for (unsigned int k = 0; k < op.weights.size(); ++k)
+                for (unsigned int c = 0; c < dim; ++c)
+                  {
+                    const unsigned int r = offsets[b] + op.dofs[k][c];
+                    if (held[r])
+                      continue;
+                    for (const auto &[u, v] : d_op[k])
+                      if (const unsigned int g = global(u);
+                          g != numbers::invalid_unsigned_int)
+                        K[{r, g}] -= sign * v * force[c];
+                    for (const auto &[g, df] : d_force)
+                      K[{r, g}] -= sign * op.weights[k] * df[c];
+                  }
+            }
+        }
+    }
+
+
+
+    template <int dim>
+    void
+    CoupledSystem<dim>::add_difference_tangent(
+      const contact::ContactIterate                           &x,
+      const std::vector<contact::ContactPair<dim>>            &pairs,
+      const std::vector<unsigned int>                         &active,
+      std::map<std::pair<unsigned int, unsigned int>, double> &K)
+    {
+      std::vector<bool> is_active(n_pairs, false);
+      for (const unsigned int i : active)
+        is_active[i] = true;
+      const double h_min =
+        *std::min_element(element_size.begin(), element_size.end());
       // The free unknowns each pair reads: its gap, slip and frame depend
+
       // on those of its two operators (the slave's basis functions over
       // the pair's support, the master's at its points).
       std::vector<std::vector<unsigned int>> reads(n_pairs);
@@ -229,14 +383,8 @@ namespace igabde
 
       // A step of 1e-6 of the smallest element: the pairing's own
       // round-off (1e-10 of an element) is then 1e-4 of the derivative.
-      const double h = 1e-6 * h_min;
-      J_rows.assign(d * n_pairs, {});
-      for (unsigned int i = 0; i < n_pairs; ++i)
-        if (!is_active[i])
-          for (unsigned int s = 0; s < d; ++s)
-            J_rows[d * i + s] = C_rows[d * i + s];
-      std::map<std::pair<unsigned int, unsigned int>, double> K;
-      std::vector<std::map<unsigned int, double>>             base(n_pairs);
+      const double                                h = 1e-6 * h_min;
+      std::vector<std::map<unsigned int, double>> base(n_pairs);
       for (const unsigned int i : active)
         base[i] = forces(pairs[i], i);
       for (unsigned int c = 0; c < n_colours; ++c)
@@ -284,39 +432,6 @@ namespace igabde
                 if (v != 0.)
                   K[{r, g}] += v / h;
             }
-        }
-      for (auto &row : J_rows)
-        std::sort(row.begin(), row.end());
-      geometric_entries.clear();
-      for (const auto &[entry, v] : K)
-        geometric_entries.emplace_back(entry.first, entry.second, v);
-      geometric_at    = x.w;
-      geometric_valid = true;
-
-      // Entries the pattern of K and C does not hold: the pattern again,
-      // and MUMPS' analysis, where some are new.
-      std::vector<std::pair<unsigned int, unsigned int>> entries;
-      for (unsigned int r = 0; r < J_rows.size(); ++r)
-        for (const auto &[g, v] : J_rows[r])
-          entries.emplace_back(n_u + r, g);
-      for (const auto &[entry, v] : K)
-        entries.push_back(entry);
-      std::sort(entries.begin(), entries.end());
-      if (!std::includes(extra_pattern.begin(),
-                         extra_pattern.end(),
-                         entries.begin(),
-                         entries.end()))
-        {
-          std::vector<std::pair<unsigned int, unsigned int>> merged;
-          std::set_union(extra_pattern.begin(),
-                         extra_pattern.end(),
-                         entries.begin(),
-                         entries.end(),
-                         std::back_inserter(merged));
-          extra_pattern = std::move(merged);
-          direct.reset();
-          direct_problem.reset();
-          build_pattern();
         }
     }
 

@@ -4,6 +4,9 @@
 #include <igabde/discretization/body_description.h>
 
 #include <deal.II/base/exceptions.h>
+#include <deal.II/base/quadrature_lib.h>
+
+#include <Eigen/Dense>
 
 #include <cmath>
 #include <string>

@@ -18,7 +18,8 @@
 // Both discretisations, and the derivatives formed through
 // FiniteSliding::pairs_of (the pairs of each group of unknowns alone, as
 // the contact stage forms them) as well as through pairs_at (all pairs at
-// every group).
+// every group), and from the pairs' derivatives in closed form
+// (FiniteSliding::linearization_of, derived here by hand for the circle).
 
 #include <igabde/nurbs/geometry_builders.h>
 
@@ -46,7 +47,10 @@ namespace coupled_sliding_tangent
   /// random state and direction; @p full: the full sliding tangent;
   /// @p subsets: FiniteSliding::pairs_of given.
   std::pair<double, double>
-  tangent_errors(const Type type, const bool full, const bool subsets = false)
+  tangent_errors(const Type type,
+                 const bool full,
+                 const bool subsets     = false,
+                 const bool closed_form = false)
   {
     BodyDescription<2> d;
     d.geometry = nurbs::make_box<2>(Point<2>(0., 0.), Point<2>(1., 1.));
@@ -125,6 +129,46 @@ namespace coupled_sliding_tangent
           some.push_back(all.at(i));
         return some;
       };
+    if (closed_form)
+      // The pairs' derivatives by hand: d gap = n . dx, dn = (I - n n) dx
+      // / |x - c|, the frame's from the normal's, d slip = dx, with
+      // dx = w_k e_c for the unknown (k, c) of the slave operator; the
+      // operators do not change.
+      sliding.linearization_of =
+        [&](const Eigen::VectorXd                      &w,
+            const std::vector<unsigned int>            &indices,
+            std::vector<contact::PairLinearization<2>> &result) {
+          const auto all = pairs_at(w);
+          result.clear();
+          for (const unsigned int i : indices)
+            {
+              contact::PairLinearization<2> L;
+              L.pair                 = all.at(i);
+              const Tensor<1, 2> n   = L.pair.frame[0];
+              const double       rho = L.pair.gap + radius;
+              for (unsigned int k = 0; k < ops[i].weights.size(); ++k)
+                for (unsigned int c = 0; c < 2; ++c)
+                  {
+                    const std::pair<unsigned int, types::global_dof_index> u(
+                      0,
+                      ops[i].dofs[k][c]);
+                    const double wk = ops[i].weights[k];
+                    L.gap.emplace_back(u, wk * n[c]);
+                    L.slip[c].emplace_back(u, wk);
+                    Tensor<1, 2> dx;
+                    dx[c]                 = wk;
+                    const Tensor<1, 2> dn = (dx - (dx * n) * n) / rho;
+                    const Tensor<2, 2> dT =
+                      contact::local_frame_change(n, L.pair.frame, dn);
+                    for (unsigned int r = 0; r < 2; ++r)
+                      for (unsigned int e = 0; e < 2; ++e)
+                        L.frame[r][e].emplace_back(u, dT[r][e]);
+                  }
+              L.op1.resize(L.pair.op1.weights.size());
+              result.push_back(L);
+            }
+          return true;
+        };
     system.set_finite_sliding(sliding);
 
     // A random state (held unknowns at zero) and direction, and forces.
@@ -180,6 +224,13 @@ TEST(CoupledSlidingTangent, FullTangentIsTheDerivativeOfThePairs)
         coupled_sliding_tangent::tangent_errors(type, true, true);
       EXPECT_LT(subset_gaps, 1e-5);
       EXPECT_LT(subset_forces, 1e-5);
+      // The same from the pairs' derivatives in closed form
+      // (FiniteSliding::linearization_of): no differences of their own,
+      // the central differences' 1e-10 with the same margin.
+      const auto [closed_gaps, closed_forces] =
+        coupled_sliding_tangent::tangent_errors(type, true, false, true);
+      EXPECT_LT(closed_gaps, 1e-5);
+      EXPECT_LT(closed_forces, 1e-5);
       // The frozen tangent is not: the test can tell them apart.
       const auto [frozen_gaps, frozen_forces] =
         coupled_sliding_tangent::tangent_errors(type, false);

@@ -47,6 +47,25 @@ namespace igabde
      * the coupled system forms its pairs again at every iterate
      * (ContactOperator::update_geometry()).
      */
+    /**
+     * @brief A pair on the configuration of FiniteSliding::linearization_of
+     * with the derivatives of what the Newton matrix differentiates by the
+     * unknowns (body, dof) of the deformable bodies: the gap, each entry of
+     * the frame (rows: normal, tangents), the step's slip
+     * (ContactPair::step_slip) and each weight of op1 and op2.
+     */
+    template <int dim>
+    struct PairLinearization
+    {
+      using Unknown  = std::pair<unsigned int, types::global_dof_index>;
+      using Gradient = std::vector<std::pair<Unknown, double>>;
+      ContactPair<dim>                           pair;
+      Gradient                                   gap;
+      std::array<std::array<Gradient, dim>, dim> frame;
+      std::array<Gradient, dim>                  slip;
+      std::vector<Gradient>                      op1, op2;
+    };
+
     template <int dim>
     struct FiniteSliding
     {
@@ -64,6 +83,15 @@ namespace igabde
         std::vector<ContactPair<dim>>(const Eigen::VectorXd &,
                                       const std::vector<unsigned int> &)>
         pairs_of;
+      /// The pairs of pairs_of() with their derivatives in closed form
+      /// (PairLinearization, in that order), or false where a pairing has
+      /// none for its master (PairingStrategy::
+      /// make_pairs_with_derivatives()): the full tangent then takes
+      /// differences of pairs_of(). Empty: differences.
+      std::function<bool(const Eigen::VectorXd &,
+                         const std::vector<unsigned int> &,
+                         std::vector<PairLinearization<dim>> &)>
+        linearization_of;
       /// The law's q of the solve, whose normal rows the gaps of pairs_at()
       /// replace (through ContactOperator::displacement_offset()).
       const Eigen::VectorXd *q = nullptr;

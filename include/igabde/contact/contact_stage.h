@@ -452,6 +452,43 @@ namespace igabde
                  {}) const;
 
       /**
+       * @brief pairs_on() into @p pairs, and where @p derivatives is not
+       * nullptr each pair's derivatives by the bodies' unknowns there
+       * (PairingStrategy::make_pairs_with_derivatives(); @p keys must then
+       * name the pairs); false where an interaction's pairing has none in
+       * closed form.
+       */
+      bool
+      pairs_with_derivatives_on(
+        const std::vector<Vector<double>>                       &u,
+        const std::vector<double>                               &factors,
+        const std::vector<std::vector<types::global_dof_index>> &keys,
+        std::vector<ContactPair<dim>>                           &pairs,
+        std::vector<PairDerivatives<dim>> *derivatives) const;
+
+      /// The bodies' displacements on the configuration that the
+      /// correction @p w reaches from sliding_base.
+      std::vector<Vector<double>>
+      configuration_at(const Eigen::VectorXd &w) const;
+
+      /// ContactPair::step_slip of the step's pair @p pair on the
+      /// configuration @p relative (from_paired_configuration()).
+      Tensor<1, dim>
+      step_slip_of(const ContactPair<dim>            &pair,
+                   const std::vector<Vector<double>> &relative) const;
+
+      /**
+       * @brief Finite sliding's full tangent in closed form
+       * (FiniteSliding::linearization_of): the pairs of pairs_of() with the
+       * derivatives of their gaps, frames, slips and operators; false where
+       * a pairing has none.
+       */
+      bool
+      linearization_of(const Eigen::VectorXd               &w,
+                       const std::vector<unsigned int>     &indices,
+                       std::vector<PairLinearization<dim>> &result) const;
+
+      /**
        * @brief Finite sliding, at the start of a step after the first: the
        * pairs formed on the last step's configuration, the operator on
        * them, the last forces and states carried over by slave key.

@@ -77,6 +77,22 @@ namespace igabde
       {
         return {this};
       }
+
+      /**
+       * @brief Whether the unit normal is continuous over the surface, on
+       * its current configuration, to within a turn of 0.05 (3 degrees)
+       * at its element edges and where its faces meet: an obstacle (as its
+       * closest point gives it); NURBS faces of degree 2 or more with
+       * single knots (C^1); tangent-continuous geometry bent by the strain
+       * (a circle's double knots, two quarter rings, a straight extrusion
+       * of degree 1). Not a faceted face (FE_Q or degree 1 on a curved
+       * geometry: the normal jumps by the facets' angle).
+       */
+      virtual bool
+      normal_continuous() const
+      {
+        return true;
+      }
     };
 
 
@@ -120,6 +136,9 @@ namespace igabde
 
       std::vector<const ContactSurface<dim> *>
       parts() const override;
+
+      bool
+      normal_continuous() const override;
 
     private:
       const discretization::Body<dim>      &body;

@@ -259,15 +259,22 @@ namespace igabde
         }
 
         /// The master point facing the slave point @p x: location, normal
-        /// and operator.
+        /// and operator; on a deformable master also its face (@p part) and
+        /// face coordinates (@p xi) where those are not nullptr.
         discretization::FacePoint<dim>
-        facing(const Point<dim> &x) const
+        facing(const Point<dim> &x,
+               unsigned int     *part = nullptr,
+               Point<dim - 1>   *xi   = nullptr) const
         {
           discretization::FacePoint<dim> m;
           if (!projectors.empty())
             {
               const auto [k, eta] = project(x);
               m                   = parts[k]->face_point(eta);
+              if (part != nullptr)
+                *part = k;
+              if (xi != nullptr)
+                *xi = eta;
             }
           else
             {

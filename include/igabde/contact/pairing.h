@@ -10,6 +10,7 @@
 #include <deal.II/base/tensor.h>
 #include <deal.II/base/types.h>
 
+#include <array>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -77,6 +78,23 @@ namespace igabde
         sign = (b == slave_body ? 1. : -1.);
         return b == slave_body ? &op1 : b == master_body ? &op2 : nullptr;
       }
+    };
+
+    /**
+     * @brief A pair's derivatives by the unknowns of its two bodies at the
+     * configuration it was formed on (finite sliding's full tangent in
+     * closed form): the gap's, the unit normal's components' and those of
+     * each weight of op1 and op2, in their order. An unknown is (0, dof)
+     * of the slave body or (1, dof) of the master body.
+     */
+    template <int dim>
+    struct PairDerivatives
+    {
+      using Unknown  = std::pair<unsigned int, types::global_dof_index>;
+      using Gradient = std::vector<std::pair<Unknown, double>>;
+      Gradient                  gap;
+      std::array<Gradient, dim> normal;
+      std::vector<Gradient>     op1, op2;
     };
 
     /**
@@ -197,6 +215,23 @@ namespace igabde
                     const ContactSurface<dim>                  &master,
                     const std::string                          &context,
                     const std::vector<types::global_dof_index> &keys) const;
+
+      /**
+       * @brief make_pairs_of() with each pair's derivatives by the bodies'
+       * unknowns (PairDerivatives, one per pair, in @p derivatives), where
+       * the pairing has them in closed form against @p master; false, and
+       * nothing formed, where it does not (this one: never), and the full
+       * tangent then takes differences of make_pairs_of().
+       */
+      virtual bool
+      make_pairs_with_derivatives(
+        const discretization::Body<dim>            &slave_body,
+        const std::vector<types::boundary_id>      &slave_faces,
+        const ContactSurface<dim>                  &master,
+        const std::string                          &context,
+        const std::vector<types::global_dof_index> &keys,
+        std::vector<ContactPair<dim>>              &pairs,
+        std::vector<PairDerivatives<dim>>          &derivatives) const;
 
       /// What the last make_pairs() left out (PairingExclusions); when it
       /// would leave out every point it throws the input error instead.
@@ -360,15 +395,39 @@ namespace igabde
         const std::string                          &context,
         const std::vector<types::global_dof_index> &keys) const override;
 
+      /**
+       * With the derivatives in closed form where the master's normal is
+       * continuous (ContactSurface::normal_continuous()): the integrands
+       * are then continuous across the element cuts, which therefore
+       * move without changing the integrals to first order, and the
+       * derivatives are those of the integrands at the quadrature points
+       * (internal::add_element_derivatives()). Where the normal turns a
+       * little at a cut (a repeated knot or two faces meeting
+       * tangentially, bent by the strain), the cut's motion times that
+       * turn is left out. Against a faceted master the normal jumps at
+       * the cuts and the full tangent takes differences.
+       */
+      bool
+      make_pairs_with_derivatives(
+        const discretization::Body<dim>            &slave_body,
+        const std::vector<types::boundary_id>      &slave_faces,
+        const ContactSurface<dim>                  &master,
+        const std::string                          &context,
+        const std::vector<types::global_dof_index> &keys,
+        std::vector<ContactPair<dim>>              &pairs,
+        std::vector<PairDerivatives<dim>>          &derivatives) const override;
+
     private:
       /// make_pairs() and make_pairs_of(): all pairs when @p keys is
-      /// nullptr.
+      /// nullptr; with their derivatives where @p derivatives is not.
       std::vector<ContactPair<dim>>
-      form_pairs(const discretization::Body<dim>            &slave_body,
-                 const std::vector<types::boundary_id>      &slave_faces,
-                 const ContactSurface<dim>                  &master,
-                 const std::string                          &context,
-                 const std::vector<types::global_dof_index> *keys) const;
+      form_pairs(
+        const discretization::Body<dim>            &slave_body,
+        const std::vector<types::boundary_id>      &slave_faces,
+        const ContactSurface<dim>                  &master,
+        const std::string                          &context,
+        const std::vector<types::global_dof_index> *keys,
+        std::vector<PairDerivatives<dim>> *derivatives = nullptr) const;
 
       /// Weights psi_j (dual basis) instead of N_j.
       const bool dual;
@@ -427,6 +486,17 @@ namespace igabde
     template <int dim>
     Tensor<2, dim>
     local_frame(const Tensor<1, dim> &n, const Tensor<2, dim> &near);
+
+    /**
+     * @brief The change of local_frame(@p n, @p near) for a change @p dn
+     * of the unit normal (orthogonal to it): its derivative in the
+     * direction @p dn, with the axis that local_frame() picks held.
+     */
+    template <int dim>
+    Tensor<2, dim>
+    local_frame_change(const Tensor<1, dim> &n,
+                       const Tensor<2, dim> &near,
+                       const Tensor<1, dim> &dn);
 
     namespace internal
     {

@@ -28,20 +28,24 @@ namespace igabde
      * also their derivatives by the configuration (full;
      * FiniteSliding::tangent), or the frozen one until the residual
      * contracts slowly and the full one from there to the end of the
-     * Newton phase (adaptive, "auto").
+     * Newton phase (adaptive, "auto"), or the full one with every
+     * derivative by finite differences of the pairing (differences; full
+     * takes them in closed form where the pairing has them).
      */
     enum class SlidingTangent
     {
       frozen,
       full,
-      adaptive
+      adaptive,
+      differences
     };
 
     /** @brief The names of SlidingTangent as the scene writes them. */
-    inline constexpr base::ChoiceNames<SlidingTangent, 3>
+    inline constexpr base::ChoiceNames<SlidingTangent, 4>
       sliding_tangent_names = {{{SlidingTangent::frozen, "frozen"},
                                 {SlidingTangent::full, "full"},
-                                {SlidingTangent::adaptive, "auto"}}};
+                                {SlidingTangent::adaptive, "auto"},
+                                {SlidingTangent::differences, "differences"}}};
   } // namespace contact
 } // namespace igabde
 

@@ -23,6 +23,7 @@
 
 #include <Amesos_BaseSolver.h>
 #include <Epetra_LinearProblem.h>
+#include <map>
 #include <memory>
 #include <string>
 #include <tuple>
@@ -255,6 +256,31 @@ namespace igabde
       /// the matrix on it.
       void
       build_pattern();
+
+      /**
+       * linearize_geometry() in closed form: J_rows of the pairs @p active
+       * and the forces' derivative @p K (row, column) from their
+       * linearisations @p linearized (FiniteSliding::linearization_of).
+       */
+      void
+      add_closed_form_tangent(
+        const contact::ContactIterate                           &x,
+        const std::vector<unsigned int>                         &active,
+        const std::vector<contact::PairLinearization<dim>>      &linearized,
+        std::map<std::pair<unsigned int, unsigned int>, double> &K);
+
+      /**
+       * linearize_geometry() by differences: the pairs @p active formed
+       * again (FiniteSliding::pairs_of) at one step per colour of the
+       * unknowns they read (Curtis, Powell and Reid), @p pairs those at
+       * the iterate.
+       */
+      void
+      add_difference_tangent(
+        const contact::ContactIterate                           &x,
+        const std::vector<contact::ContactPair<dim>>            &pairs,
+        const std::vector<unsigned int>                         &active,
+        std::map<std::pair<unsigned int, unsigned int>, double> &K);
 
       /// set_finite_sliding(); the iterate of the last update_geometry()
       /// and its offset.
