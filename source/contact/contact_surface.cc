@@ -218,6 +218,17 @@ namespace igabde
 
 
     template <int dim>
+    discretization::FaceSecondDerivatives<dim>
+    ContactSurface<dim>::face_second_derivatives(const Point<dim - 1> &) const
+    {
+      AssertThrow(false,
+                  ExcMessage(description() + " has no face coordinates."));
+      return {};
+    }
+
+
+
+    template <int dim>
     discretization::FaceGrid<dim>
     BodyFace<dim>::face_grid() const
     {
@@ -235,6 +246,15 @@ namespace igabde
     BodyFace<dim>::face_point(const Point<dim - 1> &eta) const
     {
       return body.face_point(faces[0], eta);
+    }
+
+
+
+    template <int dim>
+    discretization::FaceSecondDerivatives<dim>
+    BodyFace<dim>::face_second_derivatives(const Point<dim - 1> &eta) const
+    {
+      return body.face_second_derivatives(faces[0], eta);
     }
 
 

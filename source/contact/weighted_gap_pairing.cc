@@ -213,82 +213,6 @@ namespace igabde
 
 
 
-      // The element's dual basis (biorthogonal to its face basis):
-      // psi_j = sum_k A_jk N_k with A = D M^{-1}, M_jk = int_e N_j N_k,
-      // D = diag(int_e N_j), so that int_e psi_j N_k = delta_jk D_jj.
-      // @p local numbers the unknowns (first components) of the functions
-      // that do not vanish on the element.
-      template <int dim>
-      Eigen::MatrixXd
-      element_dual_basis(const discretization::Body<dim> &slave_body,
-                         const types::boundary_id         slave_face,
-                         const Point<dim - 1>            &lo,
-                         const Point<dim - 1>            &hi,
-                         const QGauss<1>                 &rule,
-                         std::map<types::global_dof_index, unsigned int> &local)
-      {
-        constexpr unsigned int                                    fd = dim - 1;
-        std::vector<std::vector<std::pair<unsigned int, double>>> values;
-        std::vector<double>                                       dAs;
-        std::array<unsigned int, fd>                              n_q1;
-        unsigned int                                              nq_e = 1;
-        for (unsigned int k = 0; k < fd; ++k)
-          {
-            n_q1[k] = rule.size();
-            nq_e *= rule.size();
-          }
-        for (unsigned int q = 0; q < nq_e; ++q)
-          {
-            Point<fd>    eta;
-            double       weight = 1.;
-            unsigned int qr     = q;
-            for (unsigned int k = 0; k < fd; ++k)
-              {
-                const unsigned int iq = qr % n_q1[k];
-                qr /= n_q1[k];
-                eta[k] = lo[k] + (hi[k] - lo[k]) * rule.point(iq)[0];
-                weight *= (hi[k] - lo[k]) * rule.weight(iq);
-              }
-            const auto s = slave_body.face_point(slave_face, eta);
-            dAs.push_back(weight * s.measure);
-            values.emplace_back();
-            for (unsigned int a = 0; a < s.op.weights.size(); ++a)
-              if (s.op.weights[a] != 0.)
-                {
-                  const auto key = s.op.dofs[a][0];
-                  const auto it  = local.emplace(key, local.size()).first;
-                  values.back().emplace_back(it->second, s.op.weights[a]);
-                }
-          }
-        const unsigned int n            = local.size();
-        Eigen::MatrixXd    M            = Eigen::MatrixXd::Zero(n, n);
-        Eigen::VectorXd    D            = Eigen::VectorXd::Zero(n);
-        double             element_area = 0.;
-        for (unsigned int q = 0; q < values.size(); ++q)
-          {
-            element_area += dAs[q];
-            for (const auto &[j, nj] : values[q])
-              {
-                D(j) += nj * dAs[q];
-                for (const auto &[k, nk] : values[q])
-                  M(j, k) += nj * nk * dAs[q];
-              }
-          }
-        // Functions of the cell that vanish on the face (FE_Q) have
-        // no share: identity rows keep M regular, D = 0 drops them.
-        for (unsigned int j = 0; j < n; ++j)
-          if (D(j) <= 1e-12 * element_area)
-            {
-              M.row(j).setZero();
-              M.col(j).setZero();
-              M(j, j) = 1.;
-              D(j)    = 0.;
-            }
-        return D.asDiagonal() * M.inverse();
-      }
-
-
-
       /**
        * Basis functions of the face whose unknowns supports hold in every
        * component: their pressure goes straight into the support, on both
@@ -614,15 +538,13 @@ namespace igabde
                   for (unsigned int k = 0; k < fd; ++k)
                     cuts[k] = {lo[k], hi[k]};
                 }
-              std::map<types::global_dof_index, unsigned int> local;
-              const Eigen::MatrixXd dual = dual_basis ?
-                                             element_dual_basis(slave_body,
-                                                                slave_face,
-                                                                lo,
-                                                                hi,
-                                                                rule,
-                                                                local) :
-                                             Eigen::MatrixXd();
+              const internal::ElementDualBasis<dim> dual =
+                dual_basis ? internal::element_dual_basis<dim>(slave_body,
+                                                               slave_face,
+                                                               lo,
+                                                               hi,
+                                                               rule) :
+                             internal::ElementDualBasis<dim>();
 
               // Every piece with the tensor Gauss rule.
               std::array<unsigned int, fd> n_pieces;
@@ -689,18 +611,11 @@ namespace igabde
               // with the face basis N_j (still a mean of the gap).
               const bool dual_here = dual_basis && whole;
               if (derivatives != nullptr)
-                internal::add_element_derivatives<dim>(
-                  slave_body,
-                  slave_face,
-                  master_side,
-                  lo,
-                  hi,
-                  samples,
-                  rule,
-                  dual_here ? local :
-                              std::map<types::global_dof_index, unsigned int>(),
-                  dual_here ? dual : Eigen::MatrixXd(),
-                  integral_derivatives);
+                internal::add_element_derivatives<dim>(master_side,
+                                                       samples,
+                                                       dual_here ? &dual :
+                                                                   nullptr,
+                                                       integral_derivatives);
               for (const Sample &sample : samples)
                 {
                   const auto  &s      = sample.s;
@@ -727,12 +642,13 @@ namespace igabde
                     }
                   else
                     {
-                      Eigen::VectorXd N = Eigen::VectorXd::Zero(local.size());
+                      Eigen::VectorXd N =
+                        Eigen::VectorXd::Zero(dual.local.size());
                       for (unsigned int a = 0; a < s.op.weights.size(); ++a)
                         if (s.op.weights[a] != 0.)
-                          N(local.at(s.op.dofs[a][0])) = s.op.weights[a];
-                      const Eigen::VectorXd psi = dual * N;
-                      for (const auto &[key, j] : local)
+                          N(dual.local.at(s.op.dofs[a][0])) = s.op.weights[a];
+                      const Eigen::VectorXd psi = dual.A * N;
+                      for (const auto &[key, j] : dual.local)
                         {
                           const double w_n = N(j) * dA;
                           const double w_d = psi(j) * dA;

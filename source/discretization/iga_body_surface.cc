@@ -40,6 +40,29 @@ namespace igabde
 {
   namespace discretization
   {
+    namespace
+    {
+      /// The patch's parametric point at face coordinates @p eta of its
+      /// local face @p face (the face's direction at its end, the others
+      /// in order), the patch's breaks @p breaks.
+      template <int dim>
+      Point<dim>
+      point_on_face(const std::array<std::vector<double>, dim> &breaks,
+                    const unsigned int                          face,
+                    const Point<dim - 1>                       &eta)
+      {
+        const unsigned int d = face / 2;
+        Point<dim>         xi;
+        for (unsigned int e = 0, k = 0; e < dim; ++e)
+          xi[e] =
+            (e == d ? (face % 2 == 0 ? breaks[d].front() : breaks[d].back()) :
+                      eta[k++]);
+        return xi;
+      }
+    } // namespace
+
+
+
     template <int dim>
     std::vector<SurfacePoint<dim>>
     IgaBody<dim>::surface_points(const types::boundary_id body_face,
@@ -297,11 +320,7 @@ namespace igabde
     {
       const auto [space, face] = patch_face(body_face);
       const unsigned int d     = face / 2;
-      Point<dim>         xi;
-      for (unsigned int e = 0, k = 0; e < dim; ++e)
-        xi[e] = (e == d ? (face % 2 == 0 ? space->breaks[d].front() :
-                                           space->breaks[d].back()) :
-                          eta[k++]);
+      const Point<dim>   xi    = point_on_face<dim>(space->breaks, face, eta);
       // One basis evaluation gives the point, its Jacobian and its
       // operator (the moved geometry has the reference one's knots and
       // weights, so the same basis functions): this runs at every step of
@@ -312,11 +331,15 @@ namespace igabde
       FacePoint<dim>                           result;
       geometry.basis(xi, indices, result.op.weights, &dR);
       Tensor<2, dim> J;
+      result.gradients.resize(indices.size());
       for (unsigned int l = 0; l < indices.size(); ++l)
         {
           const Point<dim> &x = geometry.control_point(indices[l]);
           result.location += result.op.weights[l] * x;
           J += outer_product(static_cast<const Tensor<1, dim> &>(x), dR[l]);
+          for (unsigned int e = 0, k = 0; e < dim; ++e)
+            if (e != d)
+              result.gradients[l][k++] = dR[l][e];
         }
       std::tie(result.measure, result.normal) =
         face_measure_and_normal(face, J, space->orientation);
@@ -328,6 +351,29 @@ namespace igabde
             ++k;
           }
       number_operator(indices, patch_of_face<dim>(body_face), result.op);
+      return result;
+    }
+
+
+
+    template <int dim>
+    FaceSecondDerivatives<dim>
+    IgaBody<dim>::face_second_derivatives(const types::boundary_id body_face,
+                                          const Point<dim - 1>    &eta) const
+    {
+      const auto [space, face] = patch_face(body_face);
+      // Face coordinate k is the patch's direction k, or k + 1 past the
+      // face's.
+      std::array<unsigned int, dim - 1> direction;
+      for (unsigned int k = 0; k + 1 < dim; ++k)
+        direction[k] = k < face / 2 ? k : k + 1;
+      const Point<dim>     xi = point_on_face<dim>(space->breaks, face, eta);
+      const Tensor<3, dim> x2 = surface_geometry(*space).second_derivatives(xi);
+      FaceSecondDerivatives<dim> result;
+      for (unsigned int a = 0; a + 1 < dim; ++a)
+        for (unsigned int b = 0; b + 1 < dim; ++b)
+          for (unsigned int c = 0; c < dim; ++c)
+            result[a][b][c] = x2[c][direction[a]][direction[b]];
       return result;
     }
 
@@ -423,6 +469,12 @@ namespace igabde
     IgaBody<2>::face_point(const types::boundary_id, const Point<1> &) const;
     template FacePoint<3>
     IgaBody<3>::face_point(const types::boundary_id, const Point<2> &) const;
+    template FaceSecondDerivatives<2>
+    IgaBody<2>::face_second_derivatives(const types::boundary_id,
+                                        const Point<1> &) const;
+    template FaceSecondDerivatives<3>
+    IgaBody<3>::face_second_derivatives(const types::boundary_id,
+                                        const Point<2> &) const;
     template SurfacePoint<2>
     IgaBody<2>::closest_surface_point(const types::boundary_id,
                                       const Point<2> &,

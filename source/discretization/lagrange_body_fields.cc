@@ -427,9 +427,9 @@ namespace igabde
 
 
     template <int dim>
-    FacePoint<dim>
-    LagrangeBody<dim>::face_point(const types::boundary_id body_face,
-                                  const Point<dim - 1>    &eta) const
+    std::pair<typename DoFHandler<dim>::active_cell_iterator, Point<dim>>
+    LagrangeBody<dim>::face_cell(const types::boundary_id body_face,
+                                 const Point<dim - 1>    &eta) const
     {
       const unsigned int p     = patch_of_face<dim>(body_face);
       const unsigned int face  = local_face<dim>(body_face);
@@ -463,7 +463,20 @@ namespace igabde
           if (k == d)
             unit[e] = std::round(unit[e]);
         }
+      return {cell, unit};
+    }
 
+
+
+    template <int dim>
+    FacePoint<dim>
+    LagrangeBody<dim>::face_point(const types::boundary_id body_face,
+                                  const Point<dim - 1>    &eta) const
+    {
+      const unsigned int d    = local_face<dim>(body_face) / 2;
+      const unsigned int face = local_face<dim>(body_face);
+      const auto [cell, unit] = face_cell(body_face, eta);
+      const CellParameters &c = cell_parameters[cell->active_cell_index()];
       std::vector<types::global_dof_index> local(fe.n_dofs_per_cell());
       cell->get_dof_indices(local);
       const auto           &base = fe.base_element(0);
@@ -494,11 +507,19 @@ namespace igabde
             grads[k]  = base.shape_grad(k, unit);
           }
       Tensor<2, dim> J; // dx/dxi (patch coordinates)
+      result.gradients.assign(n_shape, std::array<double, dim - 1>());
       for (unsigned int k = 0; k < n_shape; ++k)
         {
           const double          value = values[k];
           const Tensor<1, dim> &grad  = grads[k];
           result.op.weights[k]        = value;
+          // d/deta: face coordinate f is patch direction e_f (e_f != d),
+          // unit axis a of the cell with c.direction[a] = e_f.
+          for (unsigned int a = 0; a < dim; ++a)
+            if (c.direction[a] != d)
+              result.gradients[k][c.direction[a] < d ? c.direction[a] :
+                                                       c.direction[a] - 1] =
+                grad[a] / c.length[a];
           for (unsigned int comp = 0; comp < dim; ++comp)
             {
               const auto i = local[fe.component_to_system_index(comp, k)];
@@ -527,6 +548,43 @@ namespace igabde
 
 
 
+    template <int dim>
+    FaceSecondDerivatives<dim>
+    LagrangeBody<dim>::face_second_derivatives(
+      const types::boundary_id body_face,
+      const Point<dim - 1>    &eta) const
+    {
+      const unsigned int d       = local_face<dim>(body_face) / 2;
+      const auto [cell, unit]    = face_cell(body_face, eta);
+      const CellParameters &c    = cell_parameters[cell->active_cell_index()];
+      const auto           &base = fe.base_element(0);
+      const unsigned int    n_shape = base.n_dofs_per_cell();
+      std::vector<types::global_dof_index> local(fe.n_dofs_per_cell());
+      cell->get_dof_indices(local);
+      // The cell's unit axis of each face coordinate.
+      std::array<unsigned int, dim - 1> axis;
+      for (unsigned int a = 0; a < dim; ++a)
+        if (c.direction[a] != d)
+          axis[c.direction[a] < d ? c.direction[a] : c.direction[a] - 1] = a;
+      const Vector<double>      &x = surface_geometry();
+      FaceSecondDerivatives<dim> result;
+      for (unsigned int k = 0; k < n_shape; ++k)
+        {
+          const Tensor<2, dim> hessian = base.shape_grad_grad(k, unit);
+          for (unsigned int comp = 0; comp < dim; ++comp)
+            {
+              const double xk = x[local[fe.component_to_system_index(comp, k)]];
+              for (unsigned int a = 0; a + 1 < dim; ++a)
+                for (unsigned int b = 0; b + 1 < dim; ++b)
+                  result[a][b][comp] += xk * hessian[axis[a]][axis[b]] /
+                                        (c.length[axis[a]] * c.length[axis[b]]);
+            }
+        }
+      return result;
+    }
+
+
+
     template FaceGrid<2>
     LagrangeBody<2>::face_grid(const types::boundary_id face) const;
     template FaceGrid<3>
@@ -537,6 +595,12 @@ namespace igabde
     template FacePoint<3>
     LagrangeBody<3>::face_point(const types::boundary_id body_face,
                                 const Point<3 - 1>      &eta) const;
+    template FaceSecondDerivatives<2>
+    LagrangeBody<2>::face_second_derivatives(const types::boundary_id,
+                                             const Point<2 - 1> &) const;
+    template FaceSecondDerivatives<3>
+    LagrangeBody<3>::face_second_derivatives(const types::boundary_id,
+                                             const Point<3 - 1> &) const;
     template ErrorNorms
     LagrangeBody<2>::compute_errors(const Vector<double>   &u,
                                     const ExactSolution<2> &exact) const;

@@ -16,7 +16,26 @@ namespace igabde
   namespace nurbs
   {
     namespace
-    {} // namespace
+    {
+      /// The local tensor index of basis function @p l of a span (direction
+      /// 0 fastest) in @p local, its control point's in @p global.
+      template <int dim>
+      void
+      span_function_index(const unsigned int                   l,
+                          const std::array<KnotVector, dim>   &knots,
+                          const std::array<unsigned int, dim> &span,
+                          std::array<unsigned int, dim>       &local,
+                          std::array<unsigned int, dim>       &global)
+      {
+        unsigned int rest = l;
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            local[d]  = rest % (knots[d].degree() + 1);
+            rest      = rest / (knots[d].degree() + 1);
+            global[d] = span[d] - knots[d].degree() + local[d];
+          }
+      }
+    } // namespace
 
 
 
@@ -256,13 +275,7 @@ namespace igabde
       for (unsigned int l = 0; l < n_local; ++l)
         {
           std::array<unsigned int, dim> local, global;
-          unsigned int                  rest = l;
-          for (unsigned int d = 0; d < dim; ++d)
-            {
-              local[d]  = rest % (knots[d].degree() + 1);
-              rest      = rest / (knots[d].degree() + 1);
-              global[d] = span[d] - knots[d].degree() + local[d];
-            }
+          span_function_index<dim>(l, knots, span, local, global);
           const unsigned int a = control_point_index(global);
           double             N = 1.;
           for (unsigned int d = 0; d < dim; ++d)
@@ -382,6 +395,76 @@ namespace igabde
           outer_product(static_cast<const Tensor<1, dim> &>(points[indices[l]]),
                         dR[l]);
       return J;
+    }
+
+
+
+    template <int dim>
+    Tensor<3, dim>
+    NurbsPatch<dim>::second_derivatives(const Point<dim> &xi) const
+    {
+      // In homogeneous coordinates, P = sum N_A w_A X_A and W = sum N_A
+      // w_A are polynomial, x = P / W, and differentiating W x = P twice,
+      //   W x,ij = P,ij - W,i x,j - W,j x,i - W,ij x.
+      std::array<unsigned int, dim>                     span;
+      std::array<std::vector<std::vector<double>>, dim> ders;
+      for (unsigned int d = 0; d < dim; ++d)
+        {
+          const double x = std::clamp(xi[d], knots[d].front(), knots[d].back());
+          span[d]        = knots[d].find_span(x);
+          knots[d].basis_function_derivatives(x, span[d], 2, ders[d]);
+        }
+      unsigned int n_local = 1;
+      for (unsigned int d = 0; d < dim; ++d)
+        n_local *= knots[d].degree() + 1;
+      // Homogeneous sums: value, first and second derivatives, of the
+      // dim coordinates (c < dim) and of the weight (c = dim).
+      std::array<double, dim + 1>         P{};
+      std::array<Tensor<1, dim>, dim + 1> dP;
+      std::array<Tensor<2, dim>, dim + 1> ddP;
+      std::array<unsigned int, dim>       local, global;
+      for (unsigned int l = 0; l < n_local; ++l)
+        {
+          span_function_index<dim>(l, knots, span, local, global);
+          const unsigned int a = control_point_index(global);
+          // N and its derivatives: the product of one factor per direction,
+          // differentiated in the directions asked for.
+          const auto product = [&](const unsigned int i, const unsigned int j) {
+            double v = 1.;
+            for (unsigned int d = 0; d < dim; ++d)
+              v *= ders[d][(d == i ? 1 : 0) + (d == j ? 1 : 0)][local[d]];
+            return v;
+          };
+          const double   N = product(dim, dim);
+          Tensor<1, dim> dN;
+          Tensor<2, dim> ddN;
+          for (unsigned int i = 0; i < dim; ++i)
+            {
+              dN[i] = product(i, dim);
+              for (unsigned int j = 0; j < dim; ++j)
+                ddN[i][j] = product(i, j);
+            }
+          for (unsigned int c = 0; c <= dim; ++c)
+            {
+              const double value = weights[a] * (c < dim ? points[a][c] : 1.);
+              P[c] += value * N;
+              dP[c] += value * dN;
+              ddP[c] += value * ddN;
+            }
+        }
+      const double   W = P[dim];
+      Tensor<3, dim> result;
+      for (unsigned int c = 0; c < dim; ++c)
+        {
+          const double   x  = P[c] / W;
+          Tensor<1, dim> dx = (dP[c] - x * dP[dim]) / W;
+          for (unsigned int i = 0; i < dim; ++i)
+            for (unsigned int j = 0; j < dim; ++j)
+              result[c][i][j] = (ddP[c][i][j] - dP[dim][i] * dx[j] -
+                                 dP[dim][j] * dx[i] - ddP[dim][i][j] * x) /
+                                W;
+        }
+      return result;
     }
 
 

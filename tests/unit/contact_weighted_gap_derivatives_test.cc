@@ -15,9 +15,8 @@
 // (displacements normal to the faces). Its tolerance: the central
 // differences err by eps^2 times the third derivatives (1e-8 at eps =
 // 1e-4) and by the pairing's noise over eps (the cuts bracketed to 1e-10
-// of an element move the Gauss points: measured 2e-10 / eps relative);
-// the closed form's own differences in face coordinates (a millionth of an
-// element) by 1e-10. The bound 1e-5 leaves a margin of 5. Where the
+// of an element move the Gauss points: measured 2e-10 / eps relative).
+// The bound 1e-5 leaves a margin of 5. Where the
 // master's knot lines cross a 3D slave element obliquely, the pairing cuts
 // along the element's centre lines only, kinks of the integrand lie inside
 // pieces, and the discrete pairing's derivative has a term from the
@@ -38,6 +37,7 @@
 
 #include <gtest/gtest.h>
 
+#include "test_blocks.h"
 #include <cmath>
 #include <map>
 #include <memory>
@@ -48,34 +48,7 @@ namespace
 {
   using namespace igabde;
   using namespace dealii;
-
-  /// A block [lo, hi] of @p spans, degree 2, held on face @p held_face.
-  template <int dim>
-  std::unique_ptr<discretization::Body<dim>>
-  block(const discretization::Type           type,
-        const Point<dim>                    &lo,
-        const Point<dim>                    &hi,
-        const std::array<unsigned int, dim> &spans,
-        const types::boundary_id             held_face)
-  {
-    discretization::BodyDescription<dim> d;
-    d.name                    = "block";
-    d.material.youngs_modulus = 1000.;
-    d.material.poisson_ratio  = 0.3;
-    d.geometry                = nurbs::make_box<dim>(lo, hi);
-    nurbs::elevate_to_degree(d.geometry, 2);
-    nurbs::subdivide(d.geometry, spans);
-    discretization::DirichletCondition<dim> support;
-    support.boundary_id = held_face;
-    support.components.fill(true);
-    d.dirichlet.push_back(support);
-    discretization::DiscretizationSettings settings;
-    settings.type   = type;
-    settings.degree = 2;
-    auto body       = discretization::create_body<dim>(d, settings);
-    body->setup_system();
-    return body;
-  }
+  using test_blocks::block;
 
   /// The 2D pair: a unit slave block of 3 x 2 spans (top face 3) under a
   /// wider master block of 4 x 2 (bottom face 2, held on its top).

@@ -16,6 +16,9 @@
 //    -0.01 (the tolerances: round-off, 1e-12 of the block size, and for
 //    the slid pairs the 1e-10 of an element to which the weighted gap
 //    brackets its element cuts).
+// And against a second method: the face points' basis gradients and
+// second derivatives on a curved configuration, by central differences
+// of the face points themselves.
 
 #include <igabde/nurbs/geometry_builders.h>
 
@@ -27,6 +30,7 @@
 
 #include <gtest/gtest.h>
 
+#include "test_blocks.h"
 #include <algorithm>
 #include <cmath>
 
@@ -34,35 +38,7 @@ namespace
 {
   using namespace igabde;
   using namespace dealii;
-
-  /// A block [lo, hi] of n spans per direction, degree 2.
-  template <int dim>
-  std::unique_ptr<discretization::Body<dim>>
-  block(const discretization::Type type,
-        const Point<dim>          &lo,
-        const Point<dim>          &hi,
-        const unsigned int         n)
-  {
-    discretization::BodyDescription<dim> d;
-    d.name                    = "block";
-    d.material.youngs_modulus = 1000.;
-    d.material.poisson_ratio  = 0.3;
-    d.geometry                = nurbs::make_box<dim>(lo, hi);
-    nurbs::elevate_to_degree(d.geometry, 2);
-    std::array<unsigned int, dim> spans;
-    spans.fill(n);
-    nurbs::subdivide(d.geometry, spans);
-    discretization::DirichletCondition<dim> bottom;
-    bottom.boundary_id = 2 * (dim - 1);
-    bottom.components.fill(true);
-    d.dirichlet.push_back(bottom);
-    discretization::DiscretizationSettings settings;
-    settings.type   = type;
-    settings.degree = 2;
-    auto body       = discretization::create_body<dim>(d, settings);
-    body->setup_system();
-    return body;
-  }
+  using test_blocks::block;
 
   /// A rotation by 0.3 rad (about the axis (1, 2, 2) / 3 in 3D).
   template <int dim>
@@ -298,6 +274,65 @@ namespace
       }
     slave->reset_surfaces();
   }
+
+  /// The face points' derivatives by the face coordinates on a curved
+  /// configuration (a smooth non-affine displacement): the operator's
+  /// gradients (FacePoint::gradients) against central differences of its
+  /// weights, and face_second_derivatives() against central differences
+  /// of the tangents, at points inside the elements. Steps h = 1e-5 of the
+  /// face: the differences err by h^2 times third derivatives (of order
+  /// one here) and by round-off 1e-16 / h, so 1e-8 bounds both by a margin
+  /// of 100.
+  template <int dim>
+  void
+  face_derivatives_agree_with_differences(const discretization::Type type)
+  {
+    Point<dim> lo, hi;
+    for (unsigned int k = 0; k < dim; ++k)
+      hi[k] = 1. + 0.5 * k;
+    const auto     body = block<dim>(type, lo, hi, 3);
+    Vector<double> u(body->n_dofs());
+    for (types::global_dof_index i = 0; i < body->n_dofs(); ++i)
+      {
+        const Point<dim> &X = body->dof_location(i);
+        u[i] = 0.05 * std::sin(2. * X[0] + X[dim - 1] + body->dof_component(i));
+      }
+    body->move_surfaces(u);
+    const types::boundary_id face = 2 * dim - 1;
+    const auto               grid = body->face_grid(face);
+    const double             h    = 1e-5;
+    for (const double s : {0.1, 0.37, 0.55, 0.93})
+      {
+        Point<dim - 1> eta;
+        for (unsigned int k = 0; k < dim - 1; ++k)
+          eta[k] =
+            grid.breaks[k].front() +
+            (s + 0.02 * k) * (grid.breaks[k].back() - grid.breaks[k].front());
+        const auto point  = body->face_point(face, eta);
+        const auto second = body->face_second_derivatives(face, eta);
+        ASSERT_EQ(point.gradients.size(), point.op.weights.size());
+        for (unsigned int b = 0; b + 1 < dim; ++b)
+          {
+            Point<dim - 1> up = eta, down = eta;
+            up[b] += h;
+            down[b] -= h;
+            const auto pu = body->face_point(face, up);
+            const auto pd = body->face_point(face, down);
+            ASSERT_EQ(pu.op.dofs, point.op.dofs);
+            ASSERT_EQ(pd.op.dofs, point.op.dofs);
+            for (unsigned int k = 0; k < point.op.weights.size(); ++k)
+              EXPECT_NEAR(point.gradients[k][b],
+                          (pu.op.weights[k] - pd.op.weights[k]) / (2. * h),
+                          1e-8);
+            for (unsigned int a = 0; a + 1 < dim; ++a)
+              EXPECT_LT((second[a][b] -
+                         (pu.tangents[a] - pd.tangents[a]) / (2. * h))
+                          .norm(),
+                        1e-8);
+          }
+      }
+    body->reset_surfaces();
+  }
 } // namespace
 
 TEST(MovedSurfaces, RigidMotionOfTheNurbsSurface2D)
@@ -338,4 +373,24 @@ TEST(MovedSurfaces, WeightedGapPairsFollowTheConfigurationLagrange2D)
 TEST(MovedSurfaces, WeightedGapPairsFollowTheConfigurationLagrange3D)
 {
   pairs_of_a_rigid_motion<3>(discretization::Type::lagrange);
+}
+
+TEST(MovedSurfaces, FaceDerivativesAgreeWithDifferencesNurbs2D)
+{
+  face_derivatives_agree_with_differences<2>(discretization::Type::nurbs);
+}
+
+TEST(MovedSurfaces, FaceDerivativesAgreeWithDifferencesNurbs3D)
+{
+  face_derivatives_agree_with_differences<3>(discretization::Type::nurbs);
+}
+
+TEST(MovedSurfaces, FaceDerivativesAgreeWithDifferencesLagrange2D)
+{
+  face_derivatives_agree_with_differences<2>(discretization::Type::lagrange);
+}
+
+TEST(MovedSurfaces, FaceDerivativesAgreeWithDifferencesLagrange3D)
+{
+  face_derivatives_agree_with_differences<3>(discretization::Type::lagrange);
 }

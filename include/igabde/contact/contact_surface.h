@@ -70,6 +70,11 @@ namespace igabde
       virtual discretization::FacePoint<dim>
       face_point(const Point<dim - 1> &eta) const;
 
+      /// The tangents' derivatives at @p eta (Body::face_second_derivatives());
+      /// an obstacle throws.
+      virtual discretization::FaceSecondDerivatives<dim>
+      face_second_derivatives(const Point<dim - 1> &eta) const;
+
       /// The surfaces with face coordinates of their own that this one is
       /// made of: itself, or each patch face of a surface over several.
       virtual std::vector<const ContactSurface<dim> *>
@@ -133,6 +138,9 @@ namespace igabde
 
       discretization::FacePoint<dim>
       face_point(const Point<dim - 1> &eta) const override;
+
+      discretization::FaceSecondDerivatives<dim>
+      face_second_derivatives(const Point<dim - 1> &eta) const override;
 
       std::vector<const ContactSurface<dim> *>
       parts() const override;

@@ -60,32 +60,55 @@ namespace igabde
       };
 
       /**
+       * The dual basis of one slave element, biorthogonal to its face
+       * basis: psi_j = sum_k A_jk N_k with A = D M^{-1}, M_jk = int_e N_j
+       * N_k, D = diag(int_e N_j), so that int_e psi_j N_k = delta_jk D_jj;
+       * on the whole element with its Gauss rule. Functions of the cell
+       * that vanish on the face (FE_Q) have no share: an identity row
+       * keeps M regular and D = 0 drops them.
+       */
+      template <int dim>
+      struct ElementDualBasis
+      {
+        /// Numbers the functions that do not vanish on the element, by
+        /// their keys (first components' unknowns).
+        std::map<types::global_dof_index, unsigned int> local;
+        /// A = D M^{-1}, and M^{-1}.
+        Eigen::MatrixXd A, M_inverse;
+        /// The functions without a share on the face.
+        std::vector<bool> no_share;
+        /// The rule's points and their weights in face coordinates.
+        std::vector<discretization::FacePoint<dim>> points;
+        std::vector<double>                         weights;
+      };
+
+      /// The dual basis of the slave element [@p lo, @p hi] of
+      /// @p slave_face, integrated with @p rule in each face direction.
+      template <int dim>
+      ElementDualBasis<dim>
+      element_dual_basis(const discretization::Body<dim> &slave_body,
+                         const types::boundary_id         slave_face,
+                         const Point<dim - 1>            &lo,
+                         const Point<dim - 1>            &hi,
+                         const QGauss<1>                 &rule);
+
+      /**
        * Adds the derivatives of the integrals that the samples @p samples
-       * of the slave element [@p lo, @p hi] of @p slave_face give each
-       * basis function living there, to @p derivatives (by the function's
-       * key), with the weights of WeightedGapPairing: N_j, or where
-       * @p dual is not empty the element's dual basis psi_j = sum_k
-       * dual_jk N_k, @p local numbering the functions, integrated on the
-       * whole element with @p rule. The slave point's basis derivatives
-       * and the master's second derivatives are central differences in
-       * face coordinates (a millionth of the element), an obstacle's
-       * closest point's derivatives by the slave point central
-       * differences too.
+       * of a slave element give each basis function living there, to
+       * @p derivatives (by the function's key), with the weights of
+       * WeightedGapPairing: N_j, or where @p dual is given the element's
+       * dual basis psi_j. The basis derivatives are the face points' own
+       * (FacePoint::gradients, Body::face_second_derivatives()); an
+       * obstacle's closest point's derivatives by the slave point are
+       * central differences.
        */
       template <int dim>
       void
-      add_element_derivatives(
-        const discretization::Body<dim>                       &slave_body,
-        const types::boundary_id                               slave_face,
-        const MasterSide<dim>                                 &master,
-        const Point<dim - 1>                                  &lo,
-        const Point<dim - 1>                                  &hi,
-        const std::vector<ElementSample<dim>>                 &samples,
-        const QGauss<1>                                       &rule,
-        const std::map<types::global_dof_index, unsigned int> &local,
-        const Eigen::MatrixXd                                 &dual,
-        std::map<types::global_dof_index, IntegralDerivatives<dim>>
-          &derivatives);
+      add_element_derivatives(const MasterSide<dim>                 &master,
+                              const std::vector<ElementSample<dim>> &samples,
+                              const ElementDualBasis<dim>           *dual,
+                              std::map<types::global_dof_index,
+                                       IntegralDerivatives<dim>> &derivatives);
 
       /**
        * The pair's derivatives from those of its integrals: the gap

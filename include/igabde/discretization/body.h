@@ -441,11 +441,22 @@ namespace igabde
       /**
        * @brief The point of the patch face @p face at face coordinates
        * @p eta (inside the box of face_grid()): location, outward normal,
-       * surface measure, tangents and operator.
+       * surface measure, tangents, operator and its derivatives by the
+       * face coordinates.
        */
       virtual FacePoint<dim>
       face_point(const types::boundary_id face,
                  const Point<dim - 1>    &eta) const = 0;
+
+      /**
+       * @brief The tangents' derivatives by the face coordinates at the
+       * point face_point() gives (the second derivatives of the face's
+       * map), on the same configuration: what the motion of a closest
+       * point on a curved face needs (finite sliding's tangent).
+       */
+      virtual FaceSecondDerivatives<dim>
+      face_second_derivatives(const types::boundary_id face,
+                              const Point<dim - 1>    &eta) const = 0;
 
       /**
        * @brief The surface queries on the configuration x = X + @p u (the

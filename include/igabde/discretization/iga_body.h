@@ -123,6 +123,11 @@ namespace igabde
       face_point(const types::boundary_id face,
                  const Point<dim - 1>    &eta) const override;
 
+      /// @brief The NURBS face's second derivatives at @p eta.
+      FaceSecondDerivatives<dim>
+      face_second_derivatives(const types::boundary_id face,
+                              const Point<dim - 1>    &eta) const override;
+
       /**
        * @brief Relative L2 error of the displacement and relative energy
        * error sqrt(int (s - s_h) : C^-1 : (s - s_h) / int s : C^-1 : s);

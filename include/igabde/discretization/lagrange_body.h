@@ -75,6 +75,11 @@ namespace igabde
       face_point(const types::boundary_id face,
                  const Point<dim - 1>    &eta) const override;
 
+      /// @brief The cell's mapped second derivatives at @p eta.
+      FaceSecondDerivatives<dim>
+      face_second_derivatives(const types::boundary_id face,
+                              const Point<dim - 1>    &eta) const override;
+
       ErrorNorms
       compute_errors(const Vector<double>     &u,
                      const ExactSolution<dim> &exact) const override;
@@ -243,6 +248,12 @@ namespace igabde
       mean_over_cells(const Vector<double> &u,
                       const Point<dim>     &location,
                       const Value          &value) const;
+      /// The cell of patch face @p body_face that holds the face
+      /// coordinates @p eta, and the point's unit coordinates in it (on the
+      /// face exactly).
+      std::pair<typename DoFHandler<dim>::active_cell_iterator, Point<dim>>
+      face_cell(const types::boundary_id body_face,
+                const Point<dim - 1>    &eta) const;
       /// The cell of each knot span, per patch (face_point()).
       std::vector<std::map<std::array<unsigned int, dim>,
                            typename DoFHandler<dim>::active_cell_iterator>>

@@ -80,7 +80,21 @@ namespace igabde
       /// Displacement / point-force operator; on the face only the trace
       /// basis (the face's control points or nodes) is non-zero.
       PointOperator<dim> op;
+      /// The operator's weights' derivatives by the face coordinates,
+      /// gradients[k][a] = d op.weights[k] / deta_a (per unit parameter):
+      /// the basis derivatives the tangents are made of, t_a = sum_k
+      /// gradients[k][a] x_k.
+      std::vector<std::array<double, dim - 1>> gradients;
     };
+
+    /**
+     * @brief The tangents' derivatives at a face point by its face
+     * coordinates: second[a][b] = d t_a / d eta_b = d^2 x / deta_a deta_b
+     * (symmetric in a and b; m per unit parameter squared).
+     */
+    template <int dim>
+    using FaceSecondDerivatives =
+      std::array<std::array<Tensor<1, dim>, dim - 1>, dim - 1>;
 
     /**
      * @brief The element grid of a patch face in its face coordinates.

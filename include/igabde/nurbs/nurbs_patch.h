@@ -101,6 +101,11 @@ namespace igabde
       Tensor<2, dim>
       jacobian(const Point<dim> &xi) const;
 
+      /// Second derivatives d^2 x_c / dxi_i dxi_j at xi, as [c][i][j] (of
+      /// the span that basis() takes at xi).
+      Tensor<3, dim>
+      second_derivatives(const Point<dim> &xi) const;
+
       /**
        * @brief Nonzero rational basis functions at @p xi: fills the
        * control-point indices, R_A and dR_A/dxi (parametric derivatives).
